@@ -1,0 +1,59 @@
+// The book's lighting model in GLSL: the same formulas as blinn_phong.h (the C++ copy the
+// tests and the ground truth use). Later chapters include this file.
+
+// [light-struct]
+// One light as the shaders see it, 64 bytes in std430.
+struct GpuLight {
+  vec4 position_type;    // xyz: world position, w: 0 directional, 1 point, 2 spot
+  vec4 direction_range;  // xyz: direction the light shines, w: range (0 = unbounded)
+  vec4 radiance;         // rgb: colour x intensity
+  vec4 spot;             // x: cos(outer cone), y: 1 / (cos(inner) - cos(outer))
+};
+// [/light-struct]
+
+const float LIGHT_DIRECTIONAL = 0.0;
+const float LIGHT_POINT = 1.0;
+const float LIGHT_SPOT = 2.0;
+
+float distance_attenuation(float distance, float range) {
+  float d2 = max(distance * distance, 1e-4);
+  float window = 1.0;
+  if (range > 0.0) {
+    float ratio = distance / range;
+    window = clamp(1.0 - ratio * ratio * ratio * ratio, 0.0, 1.0);
+    window *= window;
+  }
+  return window / d2;
+}
+
+// Direction to the light (xyz) and the radiance arriving at `position`.
+void light_incident(GpuLight light, vec3 position, out vec3 to_light, out vec3 radiance) {
+  if (light.position_type.w == LIGHT_DIRECTIONAL) {
+    to_light = -light.direction_range.xyz;
+    radiance = light.radiance.rgb;
+    return;
+  }
+  vec3 d = light.position_type.xyz - position;
+  float distance = length(d);
+  to_light = distance > 0.0 ? d / distance : vec3(0.0, 1.0, 0.0);
+  float a = distance_attenuation(distance, light.direction_range.w);
+  if (light.position_type.w == LIGHT_SPOT) {
+    float t = clamp((dot(-to_light, light.direction_range.xyz) - light.spot.x) * light.spot.y, 0.0, 1.0);
+    a *= t * t;
+  }
+  radiance = light.radiance.rgb * a;
+}
+
+// [blinn-phong-glsl]
+// Lambert + normalised Blinn-Phong for one light; diffuse and specular kept apart.
+void blinn_phong(vec3 n, vec3 to_eye, vec3 to_light, vec3 radiance, float exponent,
+                 inout vec3 diffuse, inout vec3 specular) {
+  float n_dot_l = dot(n, to_light);
+  if (n_dot_l <= 0.0) return;
+  vec3 h = normalize(to_light + to_eye);
+  float n_dot_h = max(dot(n, h), 0.0);
+  float lobe = (exponent + 8.0) / 8.0 * pow(n_dot_h, exponent);
+  diffuse += radiance * n_dot_l;
+  specular += radiance * (lobe * n_dot_l);
+}
+// [/blinn-phong-glsl]

@@ -1,0 +1,372 @@
+#include "common/app.h"
+
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "common/error.h"
+#include "common/paths.h"
+
+namespace lp {
+
+namespace {
+constexpr int kBenchWarmup = 5;
+constexpr int kBenchFrames = 60;
+}  // namespace
+
+std::string Shot::name() const {
+  std::ostringstream s;
+  s << view << '_' << mode;
+  for (const auto& [k, v] : knobs) s << '_' << k << v;
+  return s.str();
+}
+
+double Frame::knob(const std::string& name) const {
+  auto it = knobs.find(name);
+  if (it == knobs.end()) throw Error("internal: the chapter reads an undeclared knob --" + name);
+  return it->second;
+}
+
+std::string default_output(const std::string& file) {
+  auto path = source_root() / "out" / file;
+  std::filesystem::create_directories(path.parent_path());
+  return path.string();
+}
+
+struct App::Job {
+  enum Kind { Image, Check, Bench } kind = Image;
+  Shot shot;
+  int width = 0, height = 0, frames = 1, warmup = 0;
+  std::string out;
+};
+
+// Dear ImGui on the GLFW window; exists only in window mode.
+struct App::Gui {
+  explicit Gui(GLFWwindow* w) {
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the reader's folder
+    ImGui_ImplGlfw_InitForOpenGL(w, true);
+    ImGui_ImplOpenGL3_Init("#version 450");
+  }
+  ~Gui() {
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+  }
+};
+
+App::App(const Chapter& chapter, Options options) : chapter_(chapter), options_(std::move(options)) {
+  bool batch = options_.check || options_.bench;
+  context_ = Context::create({.headless = options_.headless || batch, .width = options_.width,
+                              .height = options_.height, .title = "lightpass " + chapter_.cli.program});
+  scene_ = std::make_unique<Scene>(load_scene(from_root(options_.scene)));
+  for (const auto& w : scene_->warnings) std::cerr << "warning: " << w << '\n';
+  if (scene_->cameras.empty()) throw Error(scene_->path.string() + " has no camera: add a perspective camera node to render it");
+  view_ = options_.view.empty() ? scene_->cameras.front().name : scene_->camera(options_.view).name;
+  scene_gpu_ = std::make_unique<SceneGpu>(*scene_);
+  frame_.mode = options_.mode;
+  frame_.knobs = options_.knobs;
+
+  if (context_->is_window()) {
+    gui_ = std::make_unique<Gui>(context_->window());
+    glm::vec3 extent = scene_->bounds_max - scene_->bounds_min;
+    fly_ = FlyCamera(scene_->camera(view_), std::max(0.5f, glm::length(extent) * 0.1f));
+    last_time_ = glfwGetTime();
+    return;
+  }
+  if (options_.check) {
+    for (const auto& shot : chapter_.references) {
+      if (options_.mode_given && shot.mode != options_.mode) continue;
+      if (options_.view_given && shot.view != options_.view) continue;
+      jobs_.push_back({.kind = Job::Check, .shot = shot, .width = chapter_.reference_width, .height = chapter_.reference_height});
+    }
+    if (jobs_.empty()) throw Error("no reference image of " + chapter_.cli.program + " matches the given --view/--mode");
+  } else {
+    Job job{.kind = options_.bench ? Job::Bench : Job::Image,
+            .shot = {.view = view_, .mode = options_.mode, .knobs = options_.knobs},
+            .width = options_.width, .height = options_.height, .frames = options_.frames,
+            .out = options_.out.empty() ? default_output(chapter_.cli.program + ".png") : options_.out};
+    if (options_.bench) {
+      job.warmup = kBenchWarmup;
+      if (options_.frames == 1) job.frames = kBenchFrames;
+    }
+    jobs_.push_back(job);
+  }
+}
+
+App::~App() = default;
+
+void App::prepare_frame(int w, int h, const Camera& camera) {
+  if (!target_ || target_->width() != w || target_->height() != h) {
+    target_ = std::make_unique<OutputTarget>(w, h);
+    metrics_.set_allocation("output colour SRGB8_ALPHA8", std::size_t(w) * h * 4);
+    metrics_.set_allocation("output depth DEPTH24_STENCIL8", std::size_t(w) * h * 4);
+  }
+  frame_.width = w;
+  frame_.height = h;
+  frame_.camera = frame_camera(camera, float(w) / float(h));
+  frame_.target = target_->framebuffer();
+  target_->bind();  // shaders write linear values; the target stores sRGB
+}
+
+bool App::next_frame() {
+  if (!context_->is_window()) {
+    if (started_) {
+      metrics_.end_frame();
+      const Job& job = jobs_[job_];
+      if (++job_frame_ == job.warmup && job.warmup > 0) metrics_.reset();
+      if (job_frame_ == job.warmup + job.frames) {
+        finish_job(job);
+        ++job_;
+        job_frame_ = 0;
+      }
+    }
+    started_ = true;
+    frame_.reload_shaders = false;
+    if (job_ >= jobs_.size()) return false;
+    const Job& job = jobs_[job_];
+    frame_.mode = job.shot.mode;
+    frame_.knobs = options_.knobs;
+    for (const auto& [k, v] : job.shot.knobs) frame_.knobs[k] = v;
+    ++frame_.index;
+    prepare_frame(job.width, job.height, scene_->camera(job.shot.view));
+    return true;
+  }
+
+  if (started_) {
+    if (!panel_drawn_) panel();
+    present();
+    metrics_.end_frame();
+    context_->swap_and_poll();
+  }
+  started_ = true;
+  panel_drawn_ = false;
+  int w = 0, h = 0;
+  for (context_->framebuffer_size(w, h); w == 0 || h == 0; context_->framebuffer_size(w, h)) {
+    if (context_->should_close()) return false;
+    glfwWaitEvents();  // minimised: nothing to draw until the window has pixels again
+  }
+  if (context_->should_close()) return false;
+  GLFWwindow* win = context_->window();
+  double now = glfwGetTime();
+  float dt = static_cast<float>(std::min(now - last_time_, 0.1));
+  last_time_ = now;
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+  const ImGuiIO& io = ImGui::GetIO();
+  frame_.reload_shaders = false;
+  if (!io.WantCaptureKeyboard) {
+    if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) glfwSetWindowShouldClose(win, GLFW_TRUE);
+    if (ImGui::IsKeyPressed(GLFW_KEY_R)) frame_.reload_shaders = true;
+    if (ImGui::IsKeyPressed(GLFW_KEY_P)) {
+      save_png(default_output(chapter_.cli.program + ".png"), target_->read());
+      std::cout << "wrote " << default_output(chapter_.cli.program + ".png") << '\n';
+    }
+  }
+  if (!io.WantCaptureMouse) fly_.update(win, dt);
+  ++frame_.index;
+  prepare_frame(w, h, fly_.camera());
+  return true;
+}
+
+void App::panel(const std::function<void()>& chapter_controls) {
+  if (!gui_) return;
+  panel_drawn_ = true;
+  ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(340, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin(chapter_.cli.program.c_str());
+  ImGui::TextWrapped("%s", chapter_.cli.summary.c_str());
+  ImGui::Text("%s", context_->renderer().c_str());
+  ImGui::Separator();
+  if (ImGui::BeginCombo("mode", frame_.mode.c_str())) {
+    for (const auto& m : chapter_.cli.modes)
+      if (ImGui::Selectable(m.c_str(), m == frame_.mode)) { frame_.mode = m; metrics_.reset(); }
+    ImGui::EndCombo();
+  }
+  if (ImGui::BeginCombo("view", view_.c_str())) {
+    for (const auto& c : scene_->cameras)
+      if (ImGui::Selectable(c.name.c_str(), c.name == view_)) {
+        view_ = c.name;
+        glm::vec3 extent = scene_->bounds_max - scene_->bounds_min;
+        fly_ = FlyCamera(c, std::max(0.5f, glm::length(extent) * 0.1f));
+      }
+    ImGui::EndCombo();
+  }
+  for (const auto& k : chapter_.cli.knobs) {
+    double& v = frame_.knobs[k.name];
+    ImGuiSliderFlags flags = k.max > 100 * std::max(1.0, k.min) ? ImGuiSliderFlags_Logarithmic : 0;
+    if (k.integer) {
+      int i = static_cast<int>(v);
+      if (ImGui::SliderInt(k.name.c_str(), &i, int(k.min), int(k.max), "%d", flags)) { v = i; metrics_.reset(); }
+    } else {
+      float f = static_cast<float>(v);
+      if (ImGui::SliderFloat(k.name.c_str(), &f, float(k.min), float(k.max), "%.3g", flags)) v = f;
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", k.help.c_str());
+  }
+  if (chapter_controls) chapter_controls();
+  ImGui::Separator();
+  const char* unit = context_->is_software() ? "ms (llvmpipe, CPU)" : "ms (GPU)";
+  if (ImGui::BeginTable("passes", 3)) {
+    ImGui::TableSetupColumn("pass");
+    ImGui::TableSetupColumn(unit);
+    ImGui::TableSetupColumn("fragments");
+    ImGui::TableHeadersRow();
+    for (const auto& s : metrics_.stats()) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn(); ImGui::TextUnformatted(s.name.c_str());
+      ImGui::TableNextColumn(); ImGui::Text("%.3f", s.mean_ms);
+      ImGui::TableNextColumn(); ImGui::Text("%llu", static_cast<unsigned long long>(s.samples));
+    }
+    ImGui::EndTable();
+  }
+  ImGui::Text("render targets: %.1f MB", metrics_.allocated_bytes() / 1e6);
+  ImGui::TextDisabled("WASD/QE move, right mouse look, R reload shaders, P save PNG");
+  ImGui::End();
+}
+
+void App::present() {
+  glDisable(GL_FRAMEBUFFER_SRGB);  // copy the stored sRGB bytes as they are: same pixels as headless
+  int w = 0, h = 0;
+  context_->framebuffer_size(w, h);
+  glBlitNamedFramebuffer(target_->framebuffer(), 0, 0, 0, target_->width(), target_->height(), 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  ImGui::Render();
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+void App::finish_job(const Job& job) {
+  if (GLenum e = glGetError(); e != GL_NO_ERROR)
+    throw Error(std::string("OpenGL reported ") + gl::error_name(e) + " while rendering " + job.shot.name());
+  ImageRGBA8 image = target_->read();
+  if (job.kind == Job::Image) {
+    save_png(job.out, image);
+    std::cout << "wrote " << job.out << " (" << job.width << "x" << job.height << ", view " << job.shot.view
+              << ", mode " << job.shot.mode << ", " << context_->renderer() << ")\n";
+    return;
+  }
+  if (job.kind == Job::Bench) {
+    print_bench();
+    return;
+  }
+  auto reference = source_root() / "tests" / "reference" / chapter_.cli.program / (job.shot.name() + ".png");
+  auto out_dir = std::filesystem::path(options_.out.empty() ? default_output("check/" + chapter_.cli.program + "/x")
+                                                            : (std::filesystem::path(options_.out) / "x").string()).parent_path();
+  std::filesystem::create_directories(out_dir);
+  auto actual_path = out_dir / (job.shot.name() + ".png");
+  if (options_.update_references) {
+    save_png(reference, image);
+    std::cout << "updated reference " << reference.string() << '\n';
+    return;
+  }
+  if (!std::filesystem::exists(reference)) {
+    save_png(actual_path, image);
+    std::cout << "MISSING " << job.shot.name() << ": no reference " << reference.string() << " (render kept at "
+              << actual_path.string() << "; make references on purpose with --check --update-references)\n";
+    ++missing_;
+    return;
+  }
+  CompareResult r = compare(image, load_png(reference), job.shot.tolerance);
+  std::cout << (r.passed ? "ok       " : "MISMATCH ") << std::left << std::setw(28) << job.shot.name() << ' ' << r.summary() << '\n';
+  if (!r.passed) {
+    ++failures_;
+    save_png(actual_path, image);
+    auto diff_path = out_dir / (job.shot.name() + "_diff.png");
+    save_png(diff_path, diff_heatmap(image, load_png(reference), job.shot.tolerance.threshold));
+    std::cout << "         actual " << actual_path.string() << "\n         diff   " << diff_path.string()
+              << "\n         expected " << reference.string() << '\n';
+  }
+}
+
+void App::print_bench() const {
+  nlohmann::ordered_json j;
+  j["program"] = chapter_.cli.program;
+  j["renderer"] = context_->renderer();
+  j["timer"] = context_->is_software() ? "llvmpipe (CPU time)" : "GPU time";
+  j["platform"] = context_->platform();
+  j["width"] = target_->width();
+  j["height"] = target_->height();
+  j["scene"] = options_.scene;
+  j["view"] = jobs_[job_].shot.view;
+  j["mode"] = frame_.mode;
+  j["knobs"] = frame_.knobs;
+  j["frames"] = jobs_[job_].frames;
+  auto& passes = j["passes"] = nlohmann::json::array();
+  double total = 0;
+  for (const auto& s : metrics_.stats()) {
+    passes.push_back({{"name", s.name}, {"mean_ms", s.mean_ms}, {"min_ms", s.min_ms}, {"fragments", s.samples}, {"frames", s.frames}});
+    total += s.mean_ms;
+  }
+  j["total_ms"] = total;
+  j["render_target_bytes"] = metrics_.allocated_bytes();
+  auto& alloc = j["allocations"] = nlohmann::json::array();
+  for (const auto& a : metrics_.allocations()) alloc.push_back({{"name", a.name}, {"bytes", a.bytes}});
+  std::cout << j.dump() << std::endl;
+}
+
+int App::finish() {
+  if (options_.update_references) {
+    // Record what made the references: a reader's GPU may differ from them by a few steps.
+    auto dir = source_root() / "tests" / "reference" / chapter_.cli.program;
+    std::ofstream(dir / "RENDERER.txt") << context_->renderer() << '\n' << context_->version() << '\n';
+    std::cout << chapter_.cli.program << ": updated " << jobs_.size() << " references in " << dir.string()
+              << " (" << context_->renderer() << ")\n";
+    return 0;
+  }
+  if (options_.check) {
+    if (GLenum e = glGetError(); e != GL_NO_ERROR) std::cerr << "warning: " << gl::error_name(e) << '\n';
+    size_t total = jobs_.size();
+    std::cout << chapter_.cli.program << ": " << (total - failures_ - missing_) << " of " << total << " references match";
+    if (failures_) std::cout << ", " << failures_ << " differ";
+    if (missing_) std::cout << ", " << missing_ << " missing";
+    std::cout << " (" << context_->renderer() << ")\n";
+    if (failures_) return 1;
+    if (missing_) return 3;
+  }
+  return 0;
+}
+
+int run_chapter(int argc, const char* const* argv, const Chapter& chapter, const std::function<void(App&)>& body) {
+  Options options;
+  try {
+    options = parse_cli(argc, argv, chapter.cli);
+  } catch (const UsageError& e) {
+    bool help = std::string(e.what()).empty();
+    if (!help) std::cerr << chapter.cli.program << ": " << e.what() << "\n\n";
+    (help ? std::cout : std::cerr) << usage(chapter.cli);
+    return help ? 0 : 2;
+  }
+  try {
+    if (options.list) {
+      Scene scene = load_scene(from_root(options.scene));
+      std::cout << "views:";
+      for (const auto& c : scene.cameras) std::cout << ' ' << c.name;
+      std::cout << "\nmodes:";
+      for (const auto& m : chapter.cli.modes) std::cout << ' ' << m;
+      std::cout << "\nreferences:";
+      for (const auto& s : chapter.references) std::cout << ' ' << s.name();
+      std::cout << '\n';
+      return 0;
+    }
+    App app(chapter, options);
+    body(app);
+    return app.finish();
+  } catch (const std::exception& e) {
+    std::cerr << chapter.cli.program << ": error: " << e.what() << '\n';
+    return 1;
+  }
+}
+
+}  // namespace lp

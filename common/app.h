@@ -1,0 +1,114 @@
+#pragma once
+// The program around a chapter: command line, context, scene, camera, the frame loop for
+// the window and for headless runs, the panel, and the outputs (PNG, --bench JSON,
+// --check against the reference images). A chapter's main() reads:
+//
+//   return lp::run_chapter(argc, argv, kChapter, [](lp::App& app) {
+//     MyStage stage(app.scene_gpu());
+//     while (app.next_frame()) {
+//       const lp::Frame& f = app.frame();
+//       { auto pass = app.metrics().pass("lighting"); stage.render(f); }
+//       app.panel([&] { /* chapter controls */ });
+//     }
+//   });
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/camera.h"
+#include "common/cli.h"
+#include "common/context.h"
+#include "common/image.h"
+#include "common/metrics.h"
+#include "common/scene.h"
+#include "common/scene_gpu.h"
+#include "common/target.h"
+
+namespace lp {
+
+// One reference image: a view, a mode and knob values, compared with a tolerance.
+struct Shot {
+  std::string view;
+  std::string mode;
+  std::map<std::string, double> knobs = {};
+  CompareOptions tolerance = {};
+  std::string name() const;  // file name stem: "<view>_<mode>[_<knob><value>...]"
+};
+
+struct Chapter {
+  CliSpec cli;
+  std::vector<Shot> references;  // what --check renders, at the reference size
+  int reference_width = 320, reference_height = 180;
+};
+
+// What the chapter needs to draw one frame.
+struct Frame {
+  int width = 0, height = 0;
+  FrameCamera camera;
+  std::string mode;
+  std::map<std::string, double> knobs;
+  GLuint target = 0;           // framebuffer: sRGB colour + depth/stencil, width x height
+  std::uint64_t index = 0;     // frames since start
+  bool reload_shaders = false; // R pressed in the window: rebuild programs from disk
+  double knob(const std::string& name) const;
+  int knob_int(const std::string& name) const { return static_cast<int>(knob(name)); }
+};
+
+class App {
+ public:
+  App(const Chapter& chapter, Options options);
+  ~App();
+
+  const Options& options() const { return options_; }
+  const Scene& scene() const { return *scene_; }
+  const SceneGpu& scene_gpu() const { return *scene_gpu_; }
+  Context& context() { return *context_; }
+  PassMetrics& metrics() { return metrics_; }
+
+  // Advances the loop: finishes the previous frame (present, read back, compare) and
+  // prepares the next. False when the window closed or the headless work is done.
+  bool next_frame();
+  const Frame& frame() const { return frame_; }
+  // The side panel (window only): mode, view, knobs, timings, then the chapter's controls.
+  void panel(const std::function<void()>& chapter_controls = {});
+  // Writes what the run produced and returns the exit code.
+  int finish();
+
+ private:
+  struct Job;  // one image to render headless (a shot, or the default view)
+  void prepare_frame(int width, int height, const Camera& camera);
+  void finish_job(const Job& job);
+  void present();
+  void print_bench() const;
+
+  Chapter chapter_;
+  Options options_;
+  std::unique_ptr<Context> context_;
+  std::unique_ptr<Scene> scene_;
+  std::unique_ptr<SceneGpu> scene_gpu_;
+  PassMetrics metrics_;
+  Frame frame_;
+  FlyCamera fly_;
+  std::vector<Job> jobs_;
+  size_t job_ = 0;
+  int job_frame_ = 0;
+  bool started_ = false, panel_drawn_ = false;
+  int failures_ = 0, missing_ = 0;
+  double last_time_ = 0;
+  std::string view_;
+  std::unique_ptr<OutputTarget> target_;
+  struct Gui;
+  std::unique_ptr<Gui> gui_;
+};
+
+// Parses the command line, builds the App and runs `body`; prints errors and returns the
+// exit code: 0 fine, 1 an error (message says what and where), 2 bad usage.
+int run_chapter(int argc, const char* const* argv, const Chapter& chapter, const std::function<void(App&)>& body);
+
+// out/<name> under the source root (created), for default outputs.
+std::string default_output(const std::string& file);
+
+}  // namespace lp

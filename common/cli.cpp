@@ -1,0 +1,132 @@
+#include "common/cli.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <sstream>
+
+#include "common/error.h"
+
+namespace lp {
+namespace {
+
+int parse_int(const std::string& option, const std::string& text, int min, int max) {
+  int value = 0;
+  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || end != text.data() + text.size())
+    throw UsageError(option + " expects an integer, got '" + text + "'");
+  if (value < min || value > max)
+    throw UsageError(option + " must be between " + std::to_string(min) + " and " +
+                     std::to_string(max) + ", got " + text);
+  return value;
+}
+
+double parse_number(const std::string& option, const std::string& text) {
+  try {
+    size_t used = 0;
+    double value = std::stod(text, &used);
+    if (used != text.size() || !std::isfinite(value)) throw std::invalid_argument(text);
+    return value;
+  } catch (const std::exception&) {
+    throw UsageError(option + " expects a number, got '" + text + "'");
+  }
+}
+
+void parse_size(const std::string& text, Options& o) {
+  auto x = text.find('x');
+  if (x == std::string::npos) throw UsageError("--size expects WxH (e.g. 1280x720), got '" + text + "'");
+  o.width = parse_int("--size width", text.substr(0, x), 0, 16384);
+  o.height = parse_int("--size height", text.substr(x + 1), 0, 16384);
+  if (o.width == 0 || o.height == 0)
+    throw UsageError("--size " + text + " has no pixels: width and height must be at least 1");
+  o.size_given = true;
+}
+
+std::string format_number(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+double Options::knob(const std::string& name) const {
+  auto it = knobs.find(name);
+  if (it == knobs.end()) throw Error("internal: the chapter reads an undeclared knob --" + name);
+  return it->second;
+}
+
+std::string usage(const CliSpec& spec) {
+  std::ostringstream u;
+  u << "usage: " << spec.program << " [options]\n  " << spec.summary << "\n\n"
+    << "options:\n"
+       "  --headless         render without a window (EGL) and write a PNG\n"
+       "  --size WxH         image or window size (default 1280x720)\n"
+       "  --scene FILE       glTF scene (default " << spec.default_scene << ")\n"
+       "  --view NAME        camera from the scene (default: its first camera)\n"
+       "  --mode NAME        one of:";
+  for (const auto& m : spec.modes) u << ' ' << m;
+  u << " (default " << spec.modes.front() << ")\n"
+       "  --out FILE.png     where to write the image (default out/" << spec.program << ".png)\n"
+       "  --frames N         frames to render headless (default 1)\n"
+       "  --bench            render frames and print timings and fragment counts as JSON\n"
+       "  --check            render the reference views and compare them with tests/reference/\n"
+       "  --update-references  with --check: overwrite the references (on purpose only)\n"
+       "  --list             list the scene's views, the modes and the knobs\n"
+       "  --help             this text\n";
+  for (const auto& k : spec.knobs) {
+    u << "  --" << k.name << (k.integer ? " N" : " X") << std::string(std::max<int>(1, 16 - int(k.name.size())), ' ')
+      << k.help << " (" << format_number(k.min) << ".." << format_number(k.max) << ", default "
+      << format_number(k.default_value) << ")\n";
+  }
+  return u.str();
+}
+
+Options parse_cli(int argc, const char* const* argv, const CliSpec& spec) {
+  Options o;
+  o.scene = spec.default_scene;
+  o.mode = spec.modes.front();
+  for (const auto& k : spec.knobs) o.knobs[k.name] = k.default_value;
+
+  for (int i = 1; i < argc; ++i) {
+    std::string arg = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw UsageError(arg + " needs a value");
+      return argv[++i];
+    };
+    if (arg == "--help" || arg == "-h") throw UsageError("");
+    else if (arg == "--headless") o.headless = true;
+    else if (arg == "--size") parse_size(value(), o);
+    else if (arg == "--scene") o.scene = value();
+    else if (arg == "--view") { o.view = value(); o.view_given = true; }
+    else if (arg == "--mode") {
+      o.mode = value();
+      o.mode_given = true;
+      if (std::find(spec.modes.begin(), spec.modes.end(), o.mode) == spec.modes.end()) {
+        std::string known;
+        for (const auto& m : spec.modes) known += " " + m;
+        throw UsageError("unknown mode '" + o.mode + "'; modes:" + known);
+      }
+    } else if (arg == "--out") o.out = value();
+    else if (arg == "--frames") o.frames = parse_int(arg, value(), 1, 1000000);
+    else if (arg == "--bench") o.bench = true;
+    else if (arg == "--check") o.check = true;
+    else if (arg == "--update-references") o.update_references = true;
+    else if (arg == "--list") o.list = true;
+    else {
+      auto knob = std::find_if(spec.knobs.begin(), spec.knobs.end(),
+                               [&](const Knob& k) { return arg == "--" + k.name; });
+      if (knob == spec.knobs.end()) throw UsageError("unknown option '" + arg + "'");
+      double v = parse_number(arg, value());
+      if (knob->integer && v != std::floor(v)) throw UsageError(arg + " expects an integer, got " + format_number(v));
+      if (v < knob->min || v > knob->max)
+        throw UsageError(arg + " must be between " + format_number(knob->min) + " and " +
+                         format_number(knob->max) + ", got " + format_number(v));
+      o.knobs[knob->name] = v;
+    }
+  }
+  if (o.update_references && !o.check) throw UsageError("--update-references only makes sense with --check");
+  return o;
+}
+
+}  // namespace lp

@@ -1,0 +1,51 @@
+#pragma once
+// The command line every chapter shares, plus the chapter's own knobs
+// (e.g. --lights 64). Unknown or malformed options throw UsageError (exit code 2).
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lp {
+
+// A numeric chapter option, e.g. {"lights", "number of lights", 4, 1, 100000, true}.
+struct Knob {
+  std::string name;
+  std::string help;
+  double default_value = 0;
+  double min = 0, max = 0;
+  bool integer = false;
+};
+
+struct CliSpec {
+  std::string program;       // "01_forward"
+  std::string summary;       // one line: what the chapter shows
+  std::string default_scene; // relative to the source root
+  std::vector<std::string> modes;  // the first is the default
+  std::vector<Knob> knobs;
+};
+
+struct Options {
+  bool headless = false;
+  int width = 1280, height = 720;
+  bool size_given = false;
+  std::string scene;   // resolved default when not given
+  std::string view;    // empty: the scene's first camera
+  std::string mode;
+  bool mode_given = false, view_given = false;
+  std::string out;     // empty: out/<program>.png under the source root
+  int frames = 1;
+  bool bench = false;
+  bool check = false;
+  bool update_references = false;
+  bool list = false;
+  std::map<std::string, double> knobs;
+
+  double knob(const std::string& name) const;  // throws Error for a knob the spec lacks
+  int knob_int(const std::string& name) const { return static_cast<int>(knob(name)); }
+};
+
+Options parse_cli(int argc, const char* const* argv, const CliSpec& spec);
+std::string usage(const CliSpec& spec);
+
+}  // namespace lp

@@ -1,0 +1,105 @@
+#pragma once
+// Images on disk and in memory, and the comparisons the render tests and the
+// speed-versus-error sweeps are built on. Every image here stores its rows top to bottom;
+// OpenGL reads back bottom to top, so callers of glReadPixels use flip_vertically().
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace lp {
+
+// 8-bit RGBA image, rows top to bottom (the way PNG stores them).
+struct ImageRGBA8 {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> pixels;  // width * height * 4
+
+  static ImageRGBA8 blank(int width, int height);  // transparent black
+  std::uint8_t* at(int x, int y);
+  const std::uint8_t* at(int x, int y) const;
+};
+
+// Float image with 1..4 channels, rows top to bottom. For HDR buffers and ground truths.
+struct ImageF {
+  int width = 0, height = 0, channels = 0;
+  std::vector<float> data;  // width * height * channels
+
+  static ImageF blank(int width, int height, int channels);  // all zeros
+  float& at(int x, int y, int c);
+  float at(int x, int y, int c) const;
+};
+
+void flip_vertically(ImageRGBA8& image);
+void flip_vertically(ImageF& image);
+
+ImageRGBA8 load_png(const std::filesystem::path& path);  // grey, grey+alpha, RGB, RGBA; 8 or 16 bit
+void save_png(const std::filesystem::path& path, const ImageRGBA8& image);  // creates parent dirs
+
+// PFM: 'PF' (3 channels) and 'Pf' (1 channel); byte order from the sign of the scale.
+// The scale's magnitude is ignored, as nearly every reader does, so round trips are exact.
+ImageF load_pfm(const std::filesystem::path& path);
+void save_pfm(const std::filesystem::path& path, const ImageF& image);  // 1 or 3 channels (of 4: RGB)
+
+// Radiance RGBE: about 1% relative precision, no negative values.
+ImageF load_hdr(const std::filesystem::path& path);  // always 3 channels
+void save_hdr(const std::filesystem::path& path, const ImageF& image);
+
+// sRGB transfer functions, the exact piecewise curves of IEC 61966-2-1.
+float srgb_to_linear(float srgb);
+float linear_to_srgb(float linear);
+// Clamps to [0,1], encodes sRGB, rounds to nearest. One channel is grey, two are grey
+// and alpha; alpha stays linear and is 255 when the image has none.
+ImageRGBA8 to_srgb8(const ImageF& linear);
+
+// The recipe of mature render-test suites: a pixel fails if any colour channel (alpha is
+// ignored) differs by more than `threshold` 8-bit steps; the images match if the fraction
+// of failing pixels is at most `max_failing_fraction`.
+struct CompareOptions {
+  int threshold = 3;
+  double max_failing_fraction = 0.001;
+};
+
+struct CompareResult {
+  bool size_mismatch = false;
+  int actual_width = 0, actual_height = 0, expected_width = 0, expected_height = 0;
+  double mean_error = 0;  // per pixel: the largest channel difference, in 8-bit steps
+  double p99_error = 0;   // nearest rank: the ceil(0.99 N)-th smallest per-pixel error
+  double max_error = 0;
+  double psnr_db = 0;  // over the RGB values, peak 255; +infinity when identical
+  double failing_fraction = 0;
+  std::size_t failing_pixels = 0;
+  bool passed = false;
+  CompareOptions options;  // what the verdict was judged against, for summary()
+
+  // "mean 0.12  p99 1  max 4  PSNR 51.3 dB  failing 0.031% (18 px) -> PASS (threshold 3, allowed 0.100%)"
+  std::string summary() const;
+};
+
+CompareResult compare(const ImageRGBA8& actual, const ImageRGBA8& expected, const CompareOptions& options = {});
+
+// Heat map of the per-pixel largest channel difference: black where equal, then a
+// blue -> green -> yellow -> red ramp on which `full_scale` steps is red. Differences
+// within `threshold` stay in the dim blues; failing pixels are at least full blue, so a
+// single one stands out. Images of different sizes give an all-red image of actual's size.
+ImageRGBA8 diff_heatmap(const ImageRGBA8& actual, const ImageRGBA8& expected, int threshold = 3,
+                        int full_scale = 32);
+
+// Per-pixel error against a ground truth: the mean absolute difference over the RGB
+// channels (the one channel of grey images); the channel counts must agree up to alpha.
+// NaN counts as an infinite error, so a broken pixel cannot hide.
+std::vector<float> pixel_errors(const ImageF& actual, const ImageF& expected);
+
+// Statistics of pixel_errors() over the pixels where mask is non-zero (empty mask: all).
+// rmse is the root mean square of those per-pixel errors; p99 is nearest rank, as above.
+struct FloatErrorStats {
+  double mean_abs = 0, rmse = 0, p99 = 0, max = 0;
+  std::size_t pixels = 0;
+};
+FloatErrorStats compare_float(const ImageF& actual, const ImageF& expected,
+                              const std::vector<std::uint8_t>& mask = {});
+
+// Heat map of per-pixel errors on the same ramp: 0 is black, full_scale and above red.
+ImageRGBA8 error_heatmap(const std::vector<float>& error, int width, int height, float full_scale);
+
+}  // namespace lp

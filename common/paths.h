@@ -1,0 +1,22 @@
+#pragma once
+// Where the book's files live. Programs never depend on the working directory: the source
+// root is baked in at configure time, and LIGHTPASS_ROOT overrides it (e.g. for a copy of
+// the tree on another machine).
+#include <filesystem>
+#include <string_view>
+
+namespace lp {
+
+std::filesystem::path source_root();
+
+// A path relative to the source root ("assets/forward/forward.gltf"); absolute paths pass
+// through unchanged.
+std::filesystem::path from_root(const std::filesystem::path& relative);
+
+// Where shaders are found: #include "01_forward/shaders/x.glsl" is relative to this.
+std::filesystem::path shader_root();
+
+// Reads a whole text file; a missing file is reported with the full path that was tried.
+std::string read_text_file(const std::filesystem::path& path, std::string_view what = "file");
+
+}  // namespace lp

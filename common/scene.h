@@ -1,0 +1,117 @@
+#pragma once
+// A glTF 2.0 scene flattened into what the chapters draw: one vertex and one index array,
+// materials, textures, instances with world matrices, KHR_lights_punctual lights and the
+// named cameras. CPU side only (the ground-truth renderers read it too); scene_gpu.h uploads it.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "common/image.h"
+
+namespace lp {
+
+struct Vertex {
+  glm::vec3 position{0};
+  glm::vec3 normal{0, 1, 0};
+  glm::vec2 uv{0};
+  glm::vec4 tangent{1, 0, 0, 1};  // xyz tangent, w = handedness of the bitangent
+};
+
+struct Primitive {
+  std::uint32_t first_index = 0, index_count = 0;  // into Scene::indices (already rebased)
+  int material = 0;
+};
+
+struct Mesh {
+  std::string name;
+  std::vector<Primitive> primitives;
+};
+
+// Exactly what the file says, in glTF's terms; the chapters map it onto their lighting model.
+struct Material {
+  std::string name;
+  glm::vec4 base_color{1};
+  int base_color_texture = -1;  // index into Scene::textures (sRGB)
+  glm::vec3 emissive{0};
+  glm::vec3 specular_color{1};  // KHR_materials_specular: specularColorFactor * specularFactor
+  float specular_factor = 1;
+  bool has_specular_extension = false;
+  float roughness = 1;
+  int normal_texture = -1;      // index into Scene::textures (linear)
+  float normal_scale = 1;
+};
+
+struct Texture {
+  std::string name;
+  ImageRGBA8 image;
+  bool srgb = false;
+  bool fallback = false;  // the file could not be read: a checker stands in
+};
+
+enum class LightType { Directional, Point, Spot };
+
+struct Light {
+  std::string name;
+  LightType type = LightType::Point;
+  glm::vec3 color{1};
+  float intensity = 1;        // candela (point, spot) or lux (directional)
+  glm::vec3 position{0};      // world space
+  glm::vec3 direction{0, 0, -1};  // world space, the way the light shines
+  float range = 0;            // 0: unbounded
+  float inner_cone = 0, outer_cone = 0.7853982f;  // radians
+};
+
+struct Camera {
+  std::string name;
+  glm::mat4 world{1};  // camera-to-world; the camera looks down -Z
+  float yfov = 0.8f, znear = 0.1f, zfar = 1000.f;
+  glm::mat4 view() const { return glm::inverse(world); }
+  glm::vec3 position() const { return glm::vec3(world[3]); }
+};
+
+// Exact geometry a mesh stands for, from node extras {"lightpass": {"shape": ...}}, so a
+// ground-truth renderer can intersect the true surface rather than its triangles.
+struct Shape {
+  enum Kind { None, Sphere, Rect } kind = None;
+  float radius = 0;      // Sphere, centred at the node origin
+  glm::vec2 size{0};     // Rect in the node's XZ plane, normal +Y
+};
+
+struct Instance {
+  std::string name;
+  int mesh = -1;
+  glm::mat4 model{1};
+  Shape shape;
+};
+
+struct Scene {
+  std::filesystem::path path;
+  std::vector<Vertex> vertices;
+  std::vector<std::uint32_t> indices;
+  std::vector<Mesh> meshes;
+  std::vector<Material> materials;  // never empty: a default grey material is appended last
+  std::vector<Texture> textures;
+  std::vector<Instance> instances;
+  std::vector<Light> lights;
+  std::vector<Camera> cameras;      // in node order; the first is the default view
+  glm::vec3 ambient{0};             // scene extras {"lightpass": {"ambient": [r,g,b]}}
+  glm::vec3 bounds_min{0}, bounds_max{0};
+  std::vector<std::string> warnings;
+
+  // The named camera; throws Error listing the names when there is none of that name.
+  const Camera& camera(const std::string& name) const;
+};
+
+// Throws Error with the file and what is wrong (malformed JSON, missing buffer, an index past
+// the vertices, ...). Missing textures are not errors: a checker stands in, with a warning.
+// Missing normals and tangents are generated.
+Scene load_scene(const std::filesystem::path& path);
+
+// Fills in normals (area-weighted) and tangents (from UVs, or any perpendicular without UVs).
+void generate_normals(std::vector<Vertex>& v, const std::vector<std::uint32_t>& indices, std::uint32_t first, std::uint32_t count);
+void generate_tangents(std::vector<Vertex>& v, const std::vector<std::uint32_t>& indices, std::uint32_t first, std::uint32_t count, bool has_uv);
+
+}  // namespace lp

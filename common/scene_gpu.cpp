@@ -1,0 +1,70 @@
+#include "common/scene_gpu.h"
+
+#include <cmath>
+#include <cstddef>
+
+namespace lp {
+namespace {
+
+gl::Texture upload(const ImageRGBA8& img, bool srgb) {
+  int levels = 1 + static_cast<int>(std::floor(std::log2(std::max(img.width, img.height))));
+  gl::Texture t = gl::make_texture_2d(srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, img.width, img.height, levels);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTextureSubImage2D(t.id(), 0, 0, 0, img.width, img.height, GL_RGBA, GL_UNSIGNED_BYTE, img.pixels.data());
+  glGenerateTextureMipmap(t.id());
+  glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTextureParameteri(t.id(), GL_TEXTURE_WRAP_T, GL_REPEAT);
+  return t;
+}
+
+ImageRGBA8 solid(std::uint8_t r, std::uint8_t g, std::uint8_t b) {
+  ImageRGBA8 img;
+  img.width = img.height = 1;
+  img.pixels = {r, g, b, 255};
+  return img;
+}
+
+}  // namespace
+
+SceneGpu::SceneGpu(const Scene& scene)
+    : scene_(scene),
+      vertices_(gl::make_buffer(scene.vertices.data(), scene.vertices.size() * sizeof(Vertex))),
+      indices_(gl::make_buffer(scene.indices.data(), scene.indices.size() * sizeof(std::uint32_t))),
+      white_(upload(solid(255, 255, 255), true)),
+      flat_normal_(upload(solid(128, 128, 255), false)) {
+  GLuint vao = vao_.id();
+  glVertexArrayVertexBuffer(vao, 0, vertices_.id(), 0, sizeof(Vertex));
+  glVertexArrayElementBuffer(vao, indices_.id());
+  auto attribute = [vao](GLuint location, int size, std::size_t offset) {
+    glEnableVertexArrayAttrib(vao, location);
+    glVertexArrayAttribFormat(vao, location, size, GL_FLOAT, GL_FALSE, static_cast<GLuint>(offset));
+    glVertexArrayAttribBinding(vao, location, 0);
+  };
+  attribute(kPosition, 3, offsetof(Vertex, position));
+  attribute(kNormal, 3, offsetof(Vertex, normal));
+  attribute(kUv, 2, offsetof(Vertex, uv));
+  attribute(kTangent, 4, offsetof(Vertex, tangent));
+  for (const auto& t : scene.textures) textures_.push_back(upload(t.image, t.srgb));
+}
+
+void SceneGpu::draw(const DrawCallback& before_each_primitive) const {
+  glBindVertexArray(vao_.id());
+  for (const auto& inst : scene_.instances) {
+    for (const auto& p : scene_.meshes[inst.mesh].primitives) {
+      before_each_primitive(inst, scene_.materials[p.material]);
+      glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(p.index_count), GL_UNSIGNED_INT,
+                     reinterpret_cast<const void*>(std::uintptr_t(p.first_index) * sizeof(std::uint32_t)));
+    }
+  }
+}
+
+std::size_t SceneGpu::triangle_count() const {
+  std::size_t n = 0;
+  for (const auto& inst : scene_.instances)
+    for (const auto& p : scene_.meshes[inst.mesh].primitives) n += p.index_count / 3;
+  return n;
+}
+
+}  // namespace lp

@@ -1,0 +1,39 @@
+#pragma once
+// The scene's meshes and textures on the GPU: one vertex array for everything, one texture
+// per (image, colour space). Drawing is a loop over instances; the caller sets the
+// per-draw state (matrices, material) in a callback, so each chapter decides what it needs.
+#include <functional>
+#include <vector>
+
+#include "common/gl.h"
+#include "common/scene.h"
+
+namespace lp {
+
+class SceneGpu {
+ public:
+  explicit SceneGpu(const Scene& scene);
+
+  // Vertex attribute locations every chapter's vertex shader uses.
+  static constexpr GLuint kPosition = 0, kNormal = 1, kUv = 2, kTangent = 3;
+
+  const Scene& scene() const { return scene_; }
+  // The texture for Scene::textures[index], or a white / flat-normal texture for -1.
+  GLuint base_color_texture(int index) const { return index < 0 ? white_.id() : textures_[index].id(); }
+  GLuint normal_texture(int index) const { return index < 0 ? flat_normal_.id() : textures_[index].id(); }
+
+  using DrawCallback = std::function<void(const Instance&, const Material&)>;
+  // Binds the vertex array and draws every primitive of every instance.
+  void draw(const DrawCallback& before_each_primitive) const;
+  // Triangles drawn by one draw() call (for the cost report).
+  std::size_t triangle_count() const;
+
+ private:
+  const Scene& scene_;
+  gl::VertexArray vao_;
+  gl::Buffer vertices_, indices_;
+  std::vector<gl::Texture> textures_;
+  gl::Texture white_, flat_normal_;
+};
+
+}  // namespace lp

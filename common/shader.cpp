@@ -1,0 +1,167 @@
+#include "common/shader.h"
+
+#include <algorithm>
+#include <iostream>
+#include <regex>
+#include <sstream>
+
+#include "common/error.h"
+#include "common/paths.h"
+
+namespace lp {
+namespace {
+
+struct Preprocessor {
+  std::vector<std::string> files;
+  std::vector<std::string> stack;  // to report include cycles
+
+  int file_index(const std::string& path) {
+    auto it = std::find(files.begin(), files.end(), path);
+    if (it != files.end()) return static_cast<int>(it - files.begin());
+    files.push_back(path);
+    return static_cast<int>(files.size() - 1);
+  }
+
+  // Appends `path` to `out`, expanding includes; `included_from` names the including line.
+  void expand(const std::string& path, const std::string& included_from, std::ostringstream& out,
+              const std::vector<std::string>* defines) {
+    if (std::find(stack.begin(), stack.end(), path) != stack.end())
+      throw Error(included_from + ": #include \"" + path + "\" includes itself (cycle)");
+    bool already = std::find(files.begin(), files.end(), path) != files.end();
+    if (already) return;  // each file once, like #pragma once
+    std::string text;
+    try {
+      text = read_text_file(shader_root() / path, "shader");
+    } catch (const Error& e) {
+      throw Error(included_from.empty() ? e.what() : included_from + ": " + e.what());
+    }
+    int id = file_index(path);
+    if (!stack.empty()) out << "#line 1 " << id << '\n';  // the root file starts with #version
+    stack.push_back(path);
+    std::istringstream in(text);
+    std::string line;
+    int number = 0;
+    static const std::regex include_re(R"(^\s*#\s*include\s+"([^"]+)\"\s*$)");
+    static const std::regex version_re(R"(^\s*#\s*version\b.*)");
+    bool version_seen = false;
+    while (std::getline(in, line)) {
+      ++number;
+      std::smatch m;
+      if (std::regex_match(line, m, include_re)) {
+        expand(m[1], path + ":" + std::to_string(number), out, nullptr);
+        out << "#line " << number + 1 << ' ' << id << '\n';
+      } else if (!version_seen && defines && std::regex_match(line, version_re)) {
+        version_seen = true;
+        out << line << '\n';
+        for (const auto& d : *defines) out << "#define " << d << '\n';
+        out << "#line " << number + 1 << ' ' << id << '\n';
+      } else {
+        out << line << '\n';
+      }
+    }
+    stack.pop_back();
+  }
+};
+
+std::string stage_name(GLenum type) {
+  switch (type) {
+    case GL_VERTEX_SHADER: return "vertex";
+    case GL_FRAGMENT_SHADER: return "fragment";
+    case GL_GEOMETRY_SHADER: return "geometry";
+    case GL_COMPUTE_SHADER: return "compute";
+    default: return "shader";
+  }
+}
+
+}  // namespace
+
+ShaderSource preprocess_shader(const std::string& path, const std::vector<std::string>& defines) {
+  Preprocessor p;
+  std::ostringstream out;
+  p.expand(path, "", out, &defines);
+  return {out.str(), p.files};
+}
+
+std::string map_shader_log(const std::string& log, const std::vector<std::string>& files) {
+  // Mesa: "0:12(3): error: ..."   NVIDIA: "0(12) : error C1008: ..."
+  static const std::regex mesa(R"(^(\d+):(\d+)\((\d+)\):\s*(.*)$)");
+  static const std::regex nvidia(R"(^(\d+)\((\d+)\)\s*:\s*(.*)$)");
+  std::istringstream in(log);
+  std::ostringstream out;
+  std::string line;
+  auto file = [&](const std::string& index) {
+    size_t i = std::stoul(index);
+    return i < files.size() ? files[i] : "<source " + index + ">";
+  };
+  while (std::getline(in, line)) {
+    std::smatch m;
+    if (std::regex_match(line, m, mesa))
+      out << file(m[1]) << ':' << m[2] << ':' << m[3] << ": " << m[4] << '\n';
+    else if (std::regex_match(line, m, nvidia))
+      out << file(m[1]) << ':' << m[2] << ": " << m[3] << '\n';
+    else if (!line.empty())
+      out << line << '\n';
+  }
+  return out.str();
+}
+
+ShaderProgram::ShaderProgram(std::vector<ShaderStage> stages, std::vector<std::string> defines)
+    : stages_(std::move(stages)), defines_(std::move(defines)), program_(build(stages_, defines_)) {}
+
+bool ShaderProgram::reload() {
+  try {
+    program_ = build(stages_, defines_);
+    return true;
+  } catch (const Error& e) {
+    std::cerr << e.what() << "\n(kept the previous program)\n";
+    return false;
+  }
+}
+
+gl::Program ShaderProgram::build(const std::vector<ShaderStage>& stages, const std::vector<std::string>& defines) {
+  gl::Program program;
+  std::vector<GLuint> shaders;
+  std::vector<std::string> all_files;
+  auto cleanup = [&] { for (GLuint s : shaders) glDeleteShader(s); };
+  for (const auto& stage : stages) {
+    ShaderSource src;
+    try {
+      src = preprocess_shader(stage.path, defines);
+    } catch (...) {
+      cleanup();
+      throw;
+    }
+    GLuint s = glCreateShader(stage.type);
+    shaders.push_back(s);
+    const char* text = src.text.c_str();
+    glShaderSource(s, 1, &text, nullptr);
+    glCompileShader(s);
+    GLint ok = 0, length = 0;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+      glGetShaderiv(s, GL_INFO_LOG_LENGTH, &length);
+      std::string log(std::max(length, 1), '\0');
+      glGetShaderInfoLog(s, length, nullptr, log.data());
+      cleanup();
+      throw Error("cannot compile " + stage_name(stage.type) + " shader " +
+                  (shader_root() / stage.path).string() + ":\n" + map_shader_log(log.c_str(), src.files));
+    }
+    glAttachShader(program.id(), s);
+    all_files.insert(all_files.end(), src.files.begin(), src.files.end());
+  }
+  glLinkProgram(program.id());
+  cleanup();
+  GLint ok = 0, length = 0;
+  glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
+  if (!ok) {
+    glGetProgramiv(program.id(), GL_INFO_LOG_LENGTH, &length);
+    std::string log(std::max(length, 1), '\0');
+    glGetProgramInfoLog(program.id(), length, nullptr, log.data());
+    std::string names;
+    for (const auto& s : stages) names += " " + s.path;
+    throw Error("cannot link shader program (" + names.substr(1) + "):\n" + log.c_str());
+  }
+  return program;
+}
+
+}  // namespace lp

@@ -1,0 +1,41 @@
+#include "common/target.h"
+
+#include <algorithm>
+#include <string>
+
+#include "common/error.h"
+
+namespace lp {
+
+OutputTarget::OutputTarget(int w, int h)
+    : width_(w), height_(h),
+      colour_(gl::make_texture_2d(GL_SRGB8_ALPHA8, w, h)),
+      depth_(gl::make_texture_2d(GL_DEPTH24_STENCIL8, w, h)) {
+  glNamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT0, colour_.id(), 0);
+  glNamedFramebufferTexture(fbo_.id(), GL_DEPTH_STENCIL_ATTACHMENT, depth_.id(), 0);
+  if (glCheckNamedFramebufferStatus(fbo_.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw Error("the output framebuffer (" + std::to_string(w) + "x" + std::to_string(h) + ") is incomplete");
+}
+
+void OutputTarget::bind() const {
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
+  glViewport(0, 0, width_, height_);
+  glEnable(GL_FRAMEBUFFER_SRGB);
+}
+
+ImageRGBA8 OutputTarget::read() const {
+  ImageRGBA8 img;
+  img.width = width_;
+  img.height = height_;
+  img.pixels.resize(std::size_t(width_) * height_ * 4);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glGetTextureImage(colour_.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(img.pixels.size()), img.pixels.data());
+  // OpenGL's first row is the bottom one; PNG's is the top one.
+  const std::size_t row = std::size_t(width_) * 4;
+  for (int y = 0; y < height_ / 2; ++y)
+    std::swap_ranges(img.pixels.begin() + y * row, img.pixels.begin() + (y + 1) * row,
+                     img.pixels.begin() + (height_ - 1 - y) * row);
+  return img;
+}
+
+}  // namespace lp

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# expect.sh EXIT_CODE REGEX... [--no-match REGEX] -- COMMAND...
+# Runs COMMAND; passes when it exits with EXIT_CODE and its output (stdout + stderr)
+# matches every extended regular expression REGEX (and not the --no-match one).
+set -u
+want_code="$1"; shift
+regexes=(); no_match=""
+while [ $# -gt 0 ] && [ "$1" != "--" ]; do
+  if [ "$1" = "--no-match" ]; then no_match="$2"; shift 2; else regexes+=("$1"); shift; fi
+done
+[ "${1:-}" = "--" ] && shift
+output="$("$@" 2>&1)"; code=$?
+echo "$output"
+fail=0
+if [ "$code" != "$want_code" ]; then echo "FAIL: exit code $code, expected $want_code"; fail=1; fi
+for r in "${regexes[@]}"; do
+  if ! grep -Eq -- "$r" <<<"$output"; then echo "FAIL: output does not match /$r/"; fail=1; fi
+done
+if [ -n "$no_match" ] && grep -Eq -- "$no_match" <<<"$output"; then echo "FAIL: output matches /$no_match/"; fail=1; fi
+if grep -Eq "Segmentation fault|core dumped|terminate called|Assertion .* failed" <<<"$output"; then echo "FAIL: crashed"; fail=1; fi
+exit $fail

@@ -1,0 +1,70 @@
+// The shared command line: good input parses, bad input is a UsageError that says why.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "common/cli.h"
+#include "common/error.h"
+
+using namespace lp;
+
+namespace {
+const CliSpec kSpec{.program = "test", .summary = "a test", .default_scene = "assets/x.gltf",
+                    .modes = {"a", "b"}, .knobs = {{"lights", "lights", 4, 0, 100, true}, {"radius", "r", 0.5, 0.01, 10, false}}};
+
+Options parse(std::vector<const char*> args) {
+  args.insert(args.begin(), "test");
+  return parse_cli(static_cast<int>(args.size()), args.data(), kSpec);
+}
+
+std::string usage_error(std::vector<const char*> args) {
+  try {
+    parse(args);
+  } catch (const UsageError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+}  // namespace
+
+TEST(Cli, Defaults) {
+  Options o = parse({});
+  EXPECT_FALSE(o.headless);
+  EXPECT_EQ(o.width, 1280);
+  EXPECT_EQ(o.mode, "a");
+  EXPECT_EQ(o.scene, "assets/x.gltf");
+  EXPECT_EQ(o.knob("lights"), 4);
+}
+
+TEST(Cli, ParsesEverything) {
+  Options o = parse({"--headless", "--size", "320x180", "--scene", "s.gltf", "--view", "v", "--mode", "b", "--out",
+                     "o.png", "--frames", "3", "--bench", "--lights", "7", "--radius", "2.5"});
+  EXPECT_TRUE(o.headless && o.bench && o.size_given && o.mode_given && o.view_given);
+  EXPECT_EQ(o.width, 320);
+  EXPECT_EQ(o.height, 180);
+  EXPECT_EQ(o.view, "v");
+  EXPECT_EQ(o.mode, "b");
+  EXPECT_EQ(o.frames, 3);
+  EXPECT_EQ(o.knob_int("lights"), 7);
+  EXPECT_DOUBLE_EQ(o.knob("radius"), 2.5);
+}
+
+TEST(Cli, RejectsBadInputWithAReason) {
+  EXPECT_NE(usage_error({"--frobnicate"}).find("unknown option '--frobnicate'"), std::string::npos);
+  EXPECT_NE(usage_error({"--size", "0x0"}).find("at least 1"), std::string::npos);
+  EXPECT_NE(usage_error({"--size", "640"}).find("WxH"), std::string::npos);
+  EXPECT_NE(usage_error({"--size", "axb"}).find("integer"), std::string::npos);
+  EXPECT_NE(usage_error({"--mode", "c"}).find("unknown mode 'c'"), std::string::npos);
+  EXPECT_NE(usage_error({"--frames", "0"}).find("between"), std::string::npos);
+  EXPECT_NE(usage_error({"--lights", "101"}).find("between 0 and 100"), std::string::npos);
+  EXPECT_NE(usage_error({"--lights", "2.5"}).find("integer"), std::string::npos);
+  EXPECT_NE(usage_error({"--radius", "nan"}).find("number"), std::string::npos);
+  EXPECT_NE(usage_error({"--scene"}).find("needs a value"), std::string::npos);
+  EXPECT_NE(usage_error({"--update-references"}).find("--check"), std::string::npos);
+}
+
+TEST(Cli, UsageListsModesAndKnobs) {
+  std::string u = usage(kSpec);
+  EXPECT_NE(u.find("--lights N"), std::string::npos);
+  EXPECT_NE(u.find("one of: a b"), std::string::npos);
+}
