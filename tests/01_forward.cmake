@@ -1,0 +1,32 @@
+# Chapter 01: reference images, outputs and bad input, through the program itself.
+set(P01 $<TARGET_FILE:01_forward>)
+foreach(mode per-pixel per-vertex unnormalized multi-pass)
+  lightpass_program_test(01_forward.reference.${mode} 0 "references match" ${P01} --check --mode ${mode} --out ${CHECK_OUT}/01_forward)
+endforeach()
+lightpass_program_test(01_forward.headless_writes_png 0 "wrote .*01_headless.png"
+  ${P01} --headless --size 160x90 --out ${CMAKE_BINARY_DIR}/out/01_headless.png)
+lightpass_program_test(01_forward.no_display_falls_back 0 "no display.*rendering headless"
+  env -u DISPLAY -u WAYLAND_DISPLAY ${P01} --size 160x90 --out ${CMAKE_BINARY_DIR}/out/01_nodisplay.png)
+lightpass_program_test(01_forward.bench_prints_json 0 "\"passes\":\\[\\{\"name\":\"forward: all lights in one pass\""
+  ${P01} --bench --frames 2 --size 160x90)
+add_test(NAME 01_forward.unknown_option COMMAND ${EXPECT} 2 "unknown option '--frobnicate'" "^usage: 01_forward" -- ${P01} --frobnicate)
+lightpass_program_test(01_forward.zero_size 2 "has no pixels" ${P01} --headless --size 0x0)
+lightpass_program_test(01_forward.bad_size 2 "expects WxH" ${P01} --headless --size big)
+lightpass_program_test(01_forward.bad_mode 2 "unknown mode 'shiny'" ${P01} --mode shiny)
+lightpass_program_test(01_forward.bad_knob 2 "--lights must be between" ${P01} --lights -3)
+lightpass_program_test(01_forward.unknown_view 1 "no camera named 'nowhere'. views: overview" ${P01} --headless --view nowhere)
+lightpass_program_test(01_forward.missing_scene 1 "cannot open scene .*nothing.gltf': no such file" ${P01} --headless --scene nothing.gltf)
+lightpass_program_test(01_forward.malformed_scene 1 "cannot load scene .*malformed.gltf" ${P01} --headless --scene tests/data/malformed.gltf)
+lightpass_program_test(01_forward.no_camera 1 "no_camera.gltf has no camera" ${P01} --headless --scene tests/data/no_camera.gltf)
+lightpass_program_test(01_forward.missing_texture_warns 0 "warning: .*could not be loaded.*fallback"
+  ${P01} --headless --size 160x90 --scene tests/data/missing_texture.gltf --out ${CMAKE_BINARY_DIR}/out/01_missing_texture.png)
+lightpass_program_test(01_forward.nonindexed_scene 0 "wrote"
+  ${P01} --headless --size 160x90 --scene tests/data/nonindexed_nonormals.gltf --out ${CMAKE_BINARY_DIR}/out/01_nonindexed.png)
+# A missing shader: a source root with the assets but no chapters/ folder.
+file(MAKE_DIRECTORY ${CMAKE_BINARY_DIR}/root_without_shaders)
+file(CREATE_LINK ${CMAKE_SOURCE_DIR}/assets ${CMAKE_BINARY_DIR}/root_without_shaders/assets SYMBOLIC)
+lightpass_program_test(01_forward.missing_shader 1 "cannot open shader '.*root_without_shaders/chapters/01_forward/shaders/forward.vert': no such file"
+  env LIGHTPASS_ROOT=${CMAKE_BINARY_DIR}/root_without_shaders ${P01} --headless --size 64x36)
+add_test(NAME 01_forward.shader_error_names_file_and_line
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/shader_error.sh ${P01} ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR}/shader_error_root)
+
