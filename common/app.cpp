@@ -185,7 +185,7 @@ void App::panel(const std::function<void()>& chapter_controls) {
   if (!gui_) return;
   panel_drawn_ = true;
   ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(340, 0), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(430, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin(chapter_.cli.program.c_str());
   ImGui::TextWrapped("%s", chapter_.cli.summary.c_str());
   ImGui::Text("%s", context_->renderer().c_str());
@@ -218,11 +218,11 @@ void App::panel(const std::function<void()>& chapter_controls) {
   }
   if (chapter_controls) chapter_controls();
   ImGui::Separator();
-  const char* unit = context_->is_software() ? "ms (llvmpipe, CPU)" : "ms (GPU)";
+  const char* unit = context_->is_software() ? "ms (llvmpipe)" : "ms (GPU)";
   if (ImGui::BeginTable("passes", 3)) {
-    ImGui::TableSetupColumn("pass");
-    ImGui::TableSetupColumn(unit);
-    ImGui::TableSetupColumn("fragments");
+    ImGui::TableSetupColumn("pass", ImGuiTableColumnFlags_WidthStretch);
+    ImGui::TableSetupColumn(unit, ImGuiTableColumnFlags_WidthFixed, 90);
+    ImGui::TableSetupColumn("fragments", ImGuiTableColumnFlags_WidthFixed, 80);
     ImGui::TableHeadersRow();
     for (const auto& s : metrics_.stats()) {
       ImGui::TableNextRow();
@@ -245,6 +245,18 @@ void App::present() {
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  if (options_.frames_given && frame_.index >= static_cast<std::uint64_t>(options_.frames)) {
+    // Scripted screenshots of the window, panel included (the book's figures of the UI).
+    if (!options_.out.empty()) {
+      ImageRGBA8 shot = ImageRGBA8::blank(w, h);
+      glPixelStorei(GL_PACK_ALIGNMENT, 1);
+      glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, shot.pixels.data());
+      flip_vertically(shot);
+      save_png(options_.out, shot);
+      std::cout << "wrote " << options_.out << " (window screenshot, " << w << "x" << h << ")\n";
+    }
+    glfwSetWindowShouldClose(context_->window(), GLFW_TRUE);
+  }
 }
 
 void App::finish_job(const Job& job) {

@@ -68,7 +68,8 @@ std::string usage(const CliSpec& spec) {
   for (const auto& m : spec.modes) u << ' ' << m;
   u << " (default " << spec.modes.front() << ")\n"
        "  --out FILE.png     where to write the image (default out/" << spec.program << ".png)\n"
-       "  --frames N         frames to render headless (default 1)\n"
+       "  --frames N         frames to render (default 1 headless; in a window: close after N,\n"
+       "                     with --out saving a screenshot of the window and its panel)\n"
        "  --bench            render frames and print timings and fragment counts as JSON\n"
        "  --check            render the reference views and compare them with tests/reference/\n"
        "  --update-references  with --check: overwrite the references (on purpose only)\n"
@@ -108,7 +109,7 @@ Options parse_cli(int argc, const char* const* argv, const CliSpec& spec) {
         throw UsageError("unknown mode '" + o.mode + "'; modes:" + known);
       }
     } else if (arg == "--out") o.out = value();
-    else if (arg == "--frames") o.frames = parse_int(arg, value(), 1, 1000000);
+    else if (arg == "--frames") { o.frames = parse_int(arg, value(), 1, 1000000); o.frames_given = true; }
     else if (arg == "--bench") o.bench = true;
     else if (arg == "--check") o.check = true;
     else if (arg == "--update-references") o.update_references = true;

@@ -35,6 +35,7 @@ struct Options {
   bool mode_given = false, view_given = false;
   std::string out;     // empty: out/<program>.png under the source root
   int frames = 1;
+  bool frames_given = false;  // in a window: close after N frames (with --out: save a screenshot)
   bool bench = false;
   bool check = false;
   bool update_references = false;

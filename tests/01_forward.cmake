@@ -30,3 +30,6 @@ lightpass_program_test(01_forward.missing_shader 1 "cannot open shader '.*root_w
 add_test(NAME 01_forward.shader_error_names_file_and_line
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/shader_error.sh ${P01} ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR}/shader_error_root)
 
+# The window path (GLFW + the panel) under a virtual X display, closing itself after 3 frames.
+lightpass_program_test(01_forward.window_screenshot 0 "window screenshot, 640x360"
+  xvfb-run -a -s "-screen 0 640x360x24" ${P01} --size 640x360 --frames 3 --out ${CMAKE_BINARY_DIR}/out/01_window.png)

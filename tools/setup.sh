@@ -8,6 +8,7 @@ LIGHTPASS_PACKAGES=(
   libegl-mesa0 libgl1-mesa-dri libegl-dev   # headless rendering (Mesa llvmpipe through EGL)
   libglm-dev libstb-dev libtinygltf-dev nlohmann-json3-dev libimgui-dev
   libgtest-dev python3                      # tests, book excerpt check, plots
+  xvfb xauth                                # the window path is tested under a virtual display
 )
 
 lightpass_install_packages() {
