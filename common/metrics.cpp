@@ -1,15 +1,19 @@
 #include "common/metrics.h"
 
 #include <algorithm>
+#include <exception>
 
 #include "common/error.h"
 
 namespace lp {
 
-PassMetrics::Scope::~Scope() {
+PassMetrics::Scope::~Scope() noexcept(false) {
   if (!active_) return;
   glEndQuery(GL_TIME_ELAPSED);
   glEndQuery(GL_SAMPLES_PASSED);
+  // Say which pass went wrong, not just that something did (unless already unwinding).
+  if (GLenum e = glGetError(); e != GL_NO_ERROR && std::uncaught_exceptions() == 0)
+    throw Error(std::string("OpenGL reported ") + gl::error_name(e) + " in pass '" + *name_ + "'");
 }
 
 PassMetrics::Scope PassMetrics::pass(const std::string& name) {
@@ -28,7 +32,7 @@ PassMetrics::Scope PassMetrics::pass(const std::string& name) {
   glBeginQuery(GL_SAMPLES_PASSED, slot.samples.id());
   slot.pending = true;
   slot.frame = frame_;
-  return Scope();
+  return Scope(&it->name);
 }
 
 void PassMetrics::collect(Pass& pass, int index, Slot& slot, bool wait) {

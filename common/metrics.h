@@ -24,13 +24,14 @@ class PassMetrics {
 
   class Scope {
    public:
-    Scope(Scope&& o) noexcept : active_(o.active_) { o.active_ = false; }
+    Scope(Scope&& o) noexcept : active_(o.active_), name_(o.name_) { o.active_ = false; }
     Scope(const Scope&) = delete;
-    ~Scope();
+    ~Scope() noexcept(false);  // throws Error naming the pass if OpenGL reported an error in it
    private:
     friend class PassMetrics;
-    Scope() = default;
+    explicit Scope(const std::string* name) : name_(name) {}
     bool active_ = true;
+    const std::string* name_;
   };
 
   // Measures everything drawn until the returned Scope ends. One scope at a time, and each

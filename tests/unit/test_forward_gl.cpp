@@ -165,3 +165,16 @@ TEST_F(ForwardGl, ShaderCompileErrorNamesFileAndLine) {
   EXPECT_NE(message.find("t/inc.glsl:3"), std::string::npos) << message;
   EXPECT_NE(message.find("bad.frag"), std::string::npos) << message;
 }
+
+TEST_F(ForwardGl, GlErrorsNameThePassThatCausedThem) {
+  PassMetrics m;
+  std::string message;
+  try {
+    auto pass = m.pass("broken pass");
+    glEnable(0xFFFF);  // not a capability: GL_INVALID_ENUM
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("GL_INVALID_ENUM in pass 'broken pass'"), std::string::npos) << message;
+  EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+}
