@@ -32,6 +32,7 @@ const lp::Chapter kChapter{
 
 }  // namespace
 
+// [main]
 int main(int argc, char** argv) {
   return lp::run_chapter(argc, argv, kChapter, [](lp::App& app) {
     lp::ch01::ForwardRenderer forward(app.scene_gpu());
@@ -68,3 +69,4 @@ int main(int argc, char** argv) {
     }
   });
 }
+// [/main]
