@@ -1,0 +1,114 @@
+#pragma once
+// The maths of the HDR stage on the CPU: luminance, the policy for values a float buffer
+// should not hold (NaN, infinities, negatives, more than fp16 can store), the log-luminance
+// that the average is taken of, the tonemapping operators, eye adaptation and the bloom
+// bright pass. shaders/hdr_math.glsl says the same in GLSL; the unit tests hold this file
+// to the formulas, the GPU tests hold the GLSL to this file.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace lp::ch05 {
+
+// The largest finite half float: an RGBA16F target cannot hold more.
+inline constexpr float kHalfMax = 65504.f;
+
+// [luminance]
+// Relative luminance of linear Rec. 709 / sRGB primaries.
+inline float luminance(const glm::vec3& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+// [/luminance]
+
+// [sanitize]
+// What the HDR stage does with values a radiance buffer should not contain:
+//  - NaN in any channel: the pixel is invalid. It is left out of the average luminance
+//    (its weight is 0), shown black, and adds nothing to bloom.
+//  - +Inf, or more than fp16's 65504: the value overflowed, so it was at least that bright.
+//    It is read as 65504 everywhere (average, bloom, image), as if clamped when written.
+//  - Negative values and -Inf: no light is negative; read as 0.
+struct Sanitized {
+  glm::vec3 rgb{0};
+  bool valid = true;
+};
+
+inline Sanitized sanitize(const glm::vec3& c) {
+  if (std::isnan(c.r) || std::isnan(c.g) || std::isnan(c.b)) return {glm::vec3(0), false};
+  return {glm::clamp(c, glm::vec3(0), glm::vec3(kHalfMax)), true};
+}
+// [/sanitize]
+
+// [log-luminance]
+// One pixel's term of the log-average: log(delta + L). delta keeps black pixels finite
+// (log 0 = -inf); the average of a black frame is exactly log(delta).
+inline float log_luminance(const glm::vec3& sanitized_rgb, float delta) {
+  return std::log(delta + luminance(sanitized_rgb));
+}
+// [/log-luminance]
+
+// [operators]
+// Tonemapping operators: exposed scene value x >= 0 in, display value in [0, 1] out,
+// applied to each colour channel.
+enum class Operator { Clamp, Reinhard, ReinhardExtended, Aces };
+
+// No curve: whatever exposure pushes past 1 is lost (what an 8-bit display does).
+inline float tonemap_clamp(float x) { return std::min(x, 1.f); }
+
+// Reinhard's x / (1 + x), the operator of the source: 0 -> 0, 1 -> 1/2, approaches 1 but
+// never reaches it, so no value is ever white.
+inline float tonemap_reinhard(float x) { return x / (1.f + x); }
+
+// Reinhard's extended form: the same curve bent so that `white` maps to exactly 1; values
+// above it burn out to white.
+inline float tonemap_reinhard_extended(float x, float white) {
+  float y = x * (1.f + x / (white * white)) / (1.f + x);
+  return std::min(y, 1.f);
+}
+
+// A filmic curve: Narkowicz's rational fit to the ACES reference rendering transform
+// (2015). A toe that deepens the darks, a shoulder that rolls off to white at x ~ 7.2.
+inline float tonemap_aces(float x) {
+  float y = (x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f);
+  return std::clamp(y, 0.f, 1.f);
+}
+
+inline float tonemap(Operator op, float x, float white) {
+  switch (op) {
+    case Operator::Clamp: return tonemap_clamp(x);
+    case Operator::Reinhard: return tonemap_reinhard(x);
+    case Operator::ReinhardExtended: return tonemap_reinhard_extended(x, white);
+    case Operator::Aces: return tonemap_aces(x);
+  }
+  return 0.f;
+}
+// [/operators]
+
+// [adapt]
+// Eye adaptation: the adapted luminance moves towards the frame's log-average with time
+// constant tau (seconds). After tau it has covered 63% of the way, after 3 tau 95%. The
+// factor 1 - exp(-dt / tau) makes the result independent of the frame rate: two frames of
+// dt end where one frame of 2 dt does. tau = 0 adapts at once.
+inline float adapt(float adapted, float target, float dt, float tau) {
+  if (tau <= 0.f) return target;
+  return adapted + (target - adapted) * (1.f - std::exp(-dt / tau));
+}
+// [/adapt]
+
+// [bright-pass]
+// What of an exposed pixel x blooms: the part of its luminance above `threshold`, with
+// x's colour, limited to `limit` so that a single extreme pixel (a firefly, an overflowed
+// value) cannot flood the screen once blurred.
+inline glm::vec3 bright_pass(const glm::vec3& x, float threshold, float limit) {
+  float y = luminance(x);
+  if (y <= threshold || y <= 0.f) return glm::vec3(0);
+  float excess = std::min(y - threshold, limit);
+  return x * (excess / y);
+}
+// [/bright-pass]
+
+// Operator names for the command line and the book.
+inline const std::vector<std::string> kOperatorNames = {"clamp", "reinhard", "reinhard-extended", "aces"};
+
+}  // namespace lp::ch05

@@ -1,0 +1,182 @@
+// Chapter 05: HDR. The lit scene is accumulated in a float target, its log-average
+// luminance sets the exposure (with the eye adapting over frames), bloom spreads the
+// brightest light, and a tonemapping curve brings it into the display's range. The modes
+// switch the curve, show what an 8-bit light accumulation loses, and show the bloom's
+// intermediate images.
+#include <chrono>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include <imgui.h>
+
+#include "chapters/05_hdr/hdr_pipeline.h"
+#include "chapters/05_hdr/radiance_source.h"
+#include "common/app.h"
+#include "common/error.h"
+
+namespace {
+
+using namespace lp::ch05;
+
+const std::vector<std::string> kModes = {"reinhard", "reinhard-extended", "aces", "clamp", "8bit", "bright-pass", "bloom-only"};
+
+const lp::CliSpec kCli{
+    .program = "05_hdr",
+    .summary = "HDR: float light accumulation, log-average exposure with eye adaptation, tonemapping operators, bloom.",
+    .default_scene = "assets/street/street.gltf",
+    .modes = kModes,
+    .knobs = {{"sun", "multiplies directional lights (the atrium's sun)", 1, 0, 1000},
+              {"glow", "multiplies emissive surfaces (lamps, windows)", 8, 0, 10000},
+              {"key", "exposed value of the log-average luminance (middle grey)", 0.18, 0.001, 100},
+              {"white", "reinhard-extended: exposed value shown as white", 4, 0.01, 1e6},
+              {"tau", "eye adaptation time constant, seconds (0: instant)", 0.5, 0, 600},
+              {"adapt-start", "first frame: eye adapted to this times its average", 1, 1e-4, 1e6},
+              {"average", "0 mip chain, 1 compute, 2 naive mip chain, 3 glGenerateMipmap", 0, 0, 3, true},
+              {"bloom", "0 off, 1 added after tonemapping (source), 2 before (energy-conserving)", 0, 0, 2, true},
+              {"bloom-level", "blur at 1/2^N of the resolution", 2, 0, 8, true},
+              {"bloom-radius", "Gaussian sigma as a fraction of the image height", 0.02, 0, 0.5},
+              {"bloom-threshold", "exposed luminance above which a pixel blooms", 1, 0, 1e6},
+              {"bloom-strength", "how much of the bloom is added", 0.08, 0, 1}}};
+
+// The reference images, per scene (a Shot names a view, not a scene): `--check` renders
+// the street's, `--check --scene assets/atrium/atrium.gltf` the atrium's.
+const std::vector<lp::Shot> kStreetShots = {
+    // Each operator, 8-bit light accumulation, a night key, both bloom placements, bloom stages.
+    {"street_level", "reinhard"}, {"street_level", "reinhard-extended"}, {"street_level", "aces"},
+    {"street_level", "clamp"}, {"street_level", "8bit"}, {"street_level", "aces", {{"key", 0.045}}},
+    {"street_level", "aces", {{"bloom", 1}}}, {"street_level", "aces", {{"bloom", 2}}},
+    {"street_level", "bright-pass", {{"bloom", 1}}}, {"street_level", "bloom-only", {{"bloom", 1}}},
+};
+const std::vector<lp::Shot> kAtriumShots = {
+    // A strong sun: float against 8-bit, the operators, and the first frame after coming in
+    // from a scene 30x brighter (the eye has not adapted yet).
+    {"aisle", "reinhard", {{"sun", 25}}}, {"aisle", "8bit", {{"sun", 25}}}, {"aisle", "aces", {{"sun", 25}}},
+    {"aisle", "reinhard-extended", {{"sun", 25}}}, {"aisle", "aces", {{"sun", 25}, {"bloom", 2}}},
+    {"aisle", "reinhard", {{"sun", 25}, {"adapt-start", 30}}},
+};
+
+lp::Chapter chapter_for(int argc, char** argv) {
+  std::vector<lp::Shot> shots = kStreetShots;
+  try {
+    if (lp::parse_cli(argc, argv, kCli).scene.find("atrium") != std::string::npos) shots = kAtriumShots;
+  } catch (const lp::Error&) {
+    // run_chapter parses again and reports the problem.
+  }
+  return {.cli = kCli, .references = shots};
+}
+
+// The chapter's knobs as the stage's settings.
+HdrSettings settings_for(const lp::Frame& f, float dt) {
+  HdrSettings s;
+  s.average = static_cast<AverageMethod>(f.knob_int("average"));
+  s.adaptation = {.key = float(f.knob("key")), .tau = float(f.knob("tau")), .dt = dt};
+  s.tonemap.white = float(f.knob("white"));
+  s.tonemap.op = f.mode == "reinhard-extended" ? Operator::ReinhardExtended
+               : f.mode == "aces"              ? Operator::Aces
+               : f.mode == "clamp"             ? Operator::Clamp
+                                               : Operator::Reinhard;
+  s.bloom = static_cast<BloomMode>(f.knob_int("bloom"));
+  s.bloom_chain = {.level = f.knob_int("bloom-level"), .radius = float(f.knob("bloom-radius")),
+                   .threshold = float(f.knob("bloom-threshold")), .limit = 64.f};
+  s.bloom_strength = float(f.knob("bloom-strength"));
+  if (f.mode == "bright-pass") s.view = HdrSettings::View::BrightPass;
+  if (f.mode == "bloom-only") s.view = HdrSettings::View::Bloom;
+  return s;
+}
+
+// The radiance target for this frame: reallocated when the size or the format changes.
+class RadianceTargets {
+ public:
+  RadianceTarget& get(const lp::Frame& f, lp::PassMetrics& metrics) {
+    GLenum format = f.mode == "8bit" ? GL_RGBA8 : GL_RGBA16F;  // 8-bit: to see what it loses
+    if (!target_ || target_->width() != f.width || target_->height() != f.height || target_->format() != format) {
+      target_ = std::make_unique<RadianceTarget>(f.width, f.height, format);
+      metrics.set_allocation("radiance colour", std::size_t(f.width) * f.height * lp::gl::bytes_per_texel(format));
+      metrics.set_allocation("radiance depth DEPTH24_STENCIL8", std::size_t(f.width) * f.height * 4);
+    }
+    return *target_;
+  }
+
+ private:
+  std::unique_ptr<RadianceTarget> target_;
+};
+
+// Frame time for the eye: the real one in the window, a fixed 1/60 s headless (so N frames
+// always simulate N/60 s). Headless, every new image (view, mode, knobs, size) starts
+// with a fresh eye; in the window only a change of mode or --adapt-start resets it.
+class FrameClock {
+ public:
+  explicit FrameClock(bool window) : window_(window) {}
+  float dt() {
+    auto now = std::chrono::steady_clock::now();
+    float seconds = std::min(std::chrono::duration<float>(now - last_).count(), 0.1f);
+    last_ = now;
+    return window_ ? seconds : 1.f / 60.f;
+  }
+  bool new_shot(const lp::Frame& f) {
+    std::ostringstream key;
+    key << f.mode << ' ' << f.knob("adapt-start");
+    if (!window_) {
+      key << ' ' << f.width << 'x' << f.height;
+      for (const auto& [k, v] : f.knobs) key << ' ' << k << v;
+      for (int i = 0; i < 16; ++i) key << ' ' << f.camera.view[i / 4][i % 4];
+    }
+    bool changed = key.str() != last_shot_;
+    last_shot_ = key.str();
+    return changed;
+  }
+
+ private:
+  bool window_;
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+  std::string last_shot_;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return lp::run_chapter(argc, argv, chapter_for(argc, argv), [](lp::App& app) {
+    ForwardRadiance source(app.scene());
+    RadianceTargets targets;
+    HdrPipeline hdr;
+    FrameClock clock(app.context().is_window());
+
+    while (app.next_frame()) {
+      const lp::Frame& f = app.frame();
+      if (f.reload_shaders) {
+        source.reload_shaders();
+        hdr.reload_shaders();
+      }
+      // [frame]
+      // 1. The lit scene as radiance in a float target: chapter 01's forward renderer for now.
+      //    To take chapter 03's deferred light buffer instead, run its passes here and hand
+      //    its light-buffer texture to hdr.process() below; nothing else changes.
+      RadianceTarget& radiance = targets.get(f, app.metrics());
+      source.set_scales(float(f.knob("sun")), float(f.knob("glow")));
+      {
+        auto pass = app.metrics().pass("radiance: chapter 01 forward, all lights");
+        source.render(f.camera, radiance);
+      }
+
+      // 2. The HDR stage: log-average, eye adaptation, bloom, tonemapping into the sRGB8 output.
+      if (clock.new_shot(f)) hdr.reset_adaptation(float(f.knob("adapt-start")));
+      hdr.process(radiance.texture(), f.width, f.height, settings_for(f, clock.dt()), f.target, &app.metrics());
+      // [/frame]
+      app.metrics().set_allocation("hdr: log-average chain + bloom chain", hdr.allocated_bytes());
+
+      app.panel([&] {
+        ExposureState e = hdr.adaptation().read();
+        ImGui::Text("log-average %.4g, adapted %.4g", e.target, e.adapted);
+        ImGui::Text("exposure %.4g (%.0f pixels averaged)", e.exposure, e.count);
+        if (ImGui::Button("re-adapt from 30x brighter")) hdr.reset_adaptation(30.f);
+      });
+    }
+    if (!app.context().is_window() && !app.options().check && !app.options().bench) {
+      ExposureState e = hdr.adaptation().read();
+      std::cout << "log-average luminance " << e.target << " (" << e.count << " pixels), adapted " << e.adapted
+                << ", exposure " << e.exposure << '\n';
+    }
+  });
+}

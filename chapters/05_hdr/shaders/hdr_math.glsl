@@ -1,0 +1,70 @@
+// The maths of the HDR stage in GLSL: the same formulas as hdr_math.h (the C++ copy the
+// unit tests hold). Every pass of the chapter includes this file.
+
+const float HALF_MAX = 65504.0;  // the largest finite half float
+
+// Buffer bindings of the stage (hdr_pipeline.h repeats them for the C++ side).
+#define LOG_AVERAGE_BINDING 5   // LogAverageResult: what the log-average pass found
+#define EXPOSURE_BINDING 6      // ExposureState: adapted luminance and exposure
+#define PARTIALS_BINDING 7      // compute reduction: one partial sum per workgroup
+
+// [exposure-state]
+struct LogAverageResult {
+  float mean_log;   // mean of log(delta + L) over the pixels counted
+  float count;      // pixels counted (NaN pixels are not)
+  float pad0, pad1;
+};
+
+struct ExposureState {
+  float target;     // this frame's log-average luminance, exp(mean_log)
+  float adapted;    // what the eye is adapted to
+  float exposure;   // key / adapted: multiplies the radiance before the curve
+  float mean_log;
+  float count;
+  float pad0, pad1, pad2;
+};
+// [/exposure-state]
+
+float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
+
+// [sanitize-glsl]
+// Bit patterns, not isnan()/isinf(): a compiler that assumes arithmetic never makes a NaN
+// may fold isnan(x) to false, and this is the one place that must see them.
+bool is_nan(float x) { return (floatBitsToUint(x) & 0x7fffffffu) > 0x7f800000u; }
+
+// NaN anywhere: invalid (0, and valid = false). +Inf and anything above 65504: 65504.
+// Negative and -Inf: 0. See hdr_math.h for why.
+vec3 sanitize(vec3 c, out bool valid) {
+  valid = !(is_nan(c.r) || is_nan(c.g) || is_nan(c.b));
+  if (!valid) return vec3(0.0);
+  return clamp(c, vec3(0.0), vec3(HALF_MAX));
+}
+// [/sanitize-glsl]
+
+float log_luminance(vec3 sanitized_rgb, float delta) { return log(delta + luminance(sanitized_rgb)); }
+
+// [operators-glsl]
+#define OP_CLAMP 0
+#define OP_REINHARD 1
+#define OP_REINHARD_EXTENDED 2
+#define OP_ACES 3
+
+vec3 tonemap(int op, vec3 x, float white) {
+  if (op == OP_CLAMP) return min(x, vec3(1.0));
+  if (op == OP_REINHARD) return x / (1.0 + x);
+  if (op == OP_REINHARD_EXTENDED) return min(x * (1.0 + x / (white * white)) / (1.0 + x), vec3(1.0));
+  // OP_ACES: Narkowicz's fit of the ACES filmic curve.
+  return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+}
+// [/operators-glsl]
+
+float adapt(float adapted, float target, float dt, float tau) {
+  if (tau <= 0.0) return target;
+  return adapted + (target - adapted) * (1.0 - exp(-dt / tau));
+}
+
+vec3 bright_pass(vec3 x, float threshold, float limit) {
+  float y = luminance(x);
+  if (y <= threshold || y <= 0.0) return vec3(0.0);
+  return x * (min(y - threshold, limit) / y);
+}

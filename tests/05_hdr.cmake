@@ -1,0 +1,28 @@
+# Chapter 05: HDR. Unit tests of the maths (no OpenGL), GPU tests of the stage on a headless
+# context, and the program itself: reference images (street and atrium), eye adaptation over
+# frames, outputs and bad input.
+add_executable(hdr_unit_tests unit/test_05_hdr_math.cpp)
+target_link_libraries(hdr_unit_tests PRIVATE lightpass_05_hdr GTest::gtest_main)
+gtest_discover_tests(hdr_unit_tests TEST_PREFIX "05_hdr.unit." DISCOVERY_TIMEOUT 60)
+
+add_executable(hdr_gl_tests unit/test_05_hdr_gl.cpp)
+target_link_libraries(hdr_gl_tests PRIVATE lightpass_05_hdr GTest::gtest_main)
+gtest_discover_tests(hdr_gl_tests TEST_PREFIX "05_hdr.gl." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
+
+set(P05 $<TARGET_FILE:05_hdr>)
+set(ATRIUM ${CMAKE_SOURCE_DIR}/assets/atrium/atrium.gltf)
+lightpass_program_test(05_hdr.reference.street 0 "10 of 10 references match" ${P05} --check --out ${CHECK_OUT}/05_hdr)
+lightpass_program_test(05_hdr.reference.atrium 0 "6 of 6 references match" ${P05} --check --scene ${ATRIUM} --out ${CHECK_OUT}/05_hdr)
+lightpass_program_test(05_hdr.headless_writes_png 0 "wrote .*05_headless.png"
+  ${P05} --headless --size 160x90 --out ${CMAKE_BINARY_DIR}/out/05_headless.png)
+# Eye adaptation, headless: 60 frames of 1/60 s after coming in from a scene 30x brighter.
+# Frame 1 starts at 30x the log-average; 59 updates later the gap has shrunk by
+# exp(-59/60 / 0.5) = 0.13992: adapted / average = 1 + 29 x 0.13992 = 5.05775. Float steps on the GPU
+# (< 1e-5) and the 6 printed digits (1e-5 each) keep it within 5.0576 .. 5.0579.
+add_test(NAME 05_hdr.adaptation_over_frames COMMAND sh -c
+  "'${P05}' --headless --scene '${ATRIUM}' --view aisle --sun 25 --size 96x54 --frames 60 --adapt-start 30 --tau 0.5 --out '${CMAKE_BINARY_DIR}/out/05_adapt.png' | awk '/log-average/ { r = $7 / $3; print \"adapted / average = \" r; found = 1; exit !(r > 5.0576 && r < 5.0579) } END { if (!found) exit 1 }'")
+lightpass_program_test(05_hdr.bench_prints_json 0 "\"name\":\"hdr: tonemap\""
+  ${P05} --bench --frames 2 --size 160x90 --scene ${ATRIUM} --bloom 1)
+lightpass_program_test(05_hdr.bad_mode 2 "unknown mode 'sepia'" ${P05} --mode sepia)
+lightpass_program_test(05_hdr.bad_knob 2 "--bloom must be between 0 and 2" ${P05} --bloom 3)
+lightpass_program_test(05_hdr.bad_average 2 "--average expects an integer" ${P05} --average 1.5)
