@@ -1,0 +1,113 @@
+// Reading the G-buffer back: the samplers, the frame block, and decode_gbuffer(), which
+// turns one pixel into the surface the lighting model needs. Compile with the defines of
+// GBuffer::shader_defines(first_unit) (see gbuffer.h for the contract), e.g.
+//   #include "02_gbuffer/shaders/gbuffer.glsl"
+//   Surface s = decode_gbuffer(ivec2(gl_FragCoord.xy));
+#include "02_gbuffer/shaders/encoding.glsl"
+
+#ifndef GBUFFER_FIRST_UNIT
+#error "gbuffer.glsl needs the defines of GBuffer::shader_defines()"
+#endif
+
+layout(binding = GBUFFER_FIRST_UNIT + 0) uniform sampler2D gb_albedo;    // rgb albedo, a emissive code
+layout(binding = GBUFFER_FIRST_UNIT + 1) uniform sampler2D gb_specular;  // rgb colour, a exponent code
+layout(binding = GBUFFER_FIRST_UNIT + 2) uniform sampler2D gb_normal;
+layout(binding = GBUFFER_FIRST_UNIT + 3) uniform sampler2D gb_depth;     // window depth
+#ifdef GBUFFER_STORED_POSITION
+layout(binding = GBUFFER_FIRST_UNIT + 4) uniform sampler2D gb_position;  // the float reference only
+#endif
+
+// [frame-block-glsl]
+layout(std140, binding = GBUFFER_FRAME_BINDING) uniform GBufferFrame {
+  mat4 gb_view_projection;          // the camera the G-buffer was drawn with
+  mat4 gb_inverse_view_projection;  // computed in double precision on the CPU
+  vec4 gb_eye;                      // xyz: camera position
+  vec4 gb_size;                     // width, height, 1 / width, 1 / height
+  vec4 gb_depth_info;               // near, far, depth value meaning "sky", 1 if reversed-Z
+  vec4 gb_emissive[256];            // emissive colour of each code (0: none)
+};
+// [/frame-block-glsl]
+
+// [surface-struct]
+struct Surface {
+  vec3 position;   // world space
+  vec3 normal;     // world space, unit length (zero for the sky)
+  vec3 albedo;     // linear
+  vec3 specular;   // linear specular colour
+  float exponent;  // Blinn-Phong exponent
+  vec3 emissive;   // linear radiance the surface emits
+  bool is_sky;     // no geometry at this pixel: nothing to light
+  float depth;     // the stored window depth
+};
+// [/surface-struct]
+
+// [reconstruct-glsl]
+// The world position of a pixel from its depth. The pixel centre and the depth give the
+// point in normalised device coordinates; the inverse view-projection takes it back to
+// homogeneous world coordinates, and the divide by w undoes the perspective.
+vec3 reconstruct_position(vec2 pixel_centre, float depth) {
+  vec2 ndc_xy = pixel_centre * gb_size.zw * 2.0 - 1.0;
+#ifdef GBUFFER_REVERSED_Z
+  float ndc_z = depth;              // glClipControl(..., GL_ZERO_TO_ONE): depth = z / w
+#else
+  float ndc_z = depth * 2.0 - 1.0;  // OpenGL's default: depth = (z / w + 1) / 2
+#endif
+  vec4 world = gb_inverse_view_projection * vec4(ndc_xy, ndc_z, 1.0);
+  return world.xyz / world.w;
+}
+// [/reconstruct-glsl]
+
+vec3 decode_normal(vec4 stored) {
+#if defined(GBUFFER_NORMAL_FLOAT)
+  return normalize(stored.xyz);
+#elif defined(GBUFFER_NORMAL_XYZ)
+  return decode_xyz(stored.xyz);
+#else
+  return decode_octahedral(stored.xy, GBUFFER_NORMAL_OCT);
+#endif
+}
+
+// [decode-gbuffer]
+Surface decode_gbuffer(ivec2 pixel) {
+  Surface s;
+  vec4 albedo = texelFetch(gb_albedo, pixel, 0);
+  vec4 specular = texelFetch(gb_specular, pixel, 0);
+  vec4 normal = texelFetch(gb_normal, pixel, 0);
+  s.depth = texelFetch(gb_depth, pixel, 0).r;
+  // [sky-test]
+#ifdef GBUFFER_CONTROL_BITS
+  s.is_sky = normal.a < 0.5;  // the control value: 0 where the clear left it, 1 under geometry
+#else
+  s.is_sky = s.depth == gb_depth_info.z;  // the depth buffer still holds its clear value
+#endif
+  // [/sky-test]
+  s.position = reconstruct_position(vec2(pixel) + 0.5, s.is_sky ? gb_depth_info.z : s.depth);
+#ifdef GBUFFER_STORED_POSITION
+  if (!s.is_sky) s.position = texelFetch(gb_position, pixel, 0).xyz;
+#endif
+  if (s.is_sky) {  // defined values, never NaN: nothing here is lit
+    s.normal = vec3(0.0);
+    s.albedo = s.specular = s.emissive = vec3(0.0);
+    s.exponent = 1.0;
+    return s;
+  }
+  s.normal = decode_normal(normal);
+  s.albedo = albedo.rgb;
+  s.specular = specular.rgb;
+#ifdef GBUFFER_FLOAT_EXPONENT
+  s.exponent = specular.a;
+#else
+  s.exponent = decode_exponent(specular.a);
+#endif
+#ifdef GBUFFER_EMISSIVE_ALBEDO_SCALE
+  s.emissive = albedo.rgb * albedo.a;  // the source: a strength that tints with the albedo
+#else
+  s.emissive = gb_emissive[int(round(albedo.a * 255.0))].rgb;
+#endif
+  return s;
+}
+
+Surface decode_gbuffer(vec2 uv) {
+  return decode_gbuffer(ivec2(clamp(floor(uv * gb_size.xy), vec2(0.0), gb_size.xy - 1.0)));
+}
+// [/decode-gbuffer]

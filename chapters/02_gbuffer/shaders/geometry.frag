@@ -1,0 +1,85 @@
+#version 450
+// The geometry pass: one fragment writes every target of the G-buffer at once (multiple
+// render targets). Nothing is lit here; the surface is only described. The vertex stage is
+// chapter 01's forward.vert, so both chapters cover exactly the same pixels.
+#include "02_gbuffer/shaders/encoding.glsl"
+
+layout(early_fragment_tests) in;  // GL_SAMPLES_PASSED = fragments written
+
+layout(binding = 0) uniform sampler2D u_base_color_texture;
+layout(binding = 1) uniform sampler2D u_normal_texture;
+
+uniform vec4 u_base_color;
+uniform vec3 u_specular;
+uniform float u_exponent;
+uniform int u_emissive_code;        // palette layouts: which emissive colour (0: none)
+uniform float u_emissive_strength;  // the source layout: emissive = albedo * strength
+uniform bool u_has_normal_map;
+uniform float u_normal_scale;
+
+in vec3 v_position;
+in vec3 v_normal;
+in vec2 v_uv;
+in vec4 v_tangent;
+
+// [targets]
+layout(location = 0) out vec4 out_albedo;    // rgb albedo, a emissive
+layout(location = 1) out vec4 out_specular;  // rgb specular colour, a exponent
+layout(location = 2) out vec4 out_normal;    // encoded normal (+ control bits)
+#if defined(GBUFFER_DEPTH_COPY)
+layout(location = 3) out float out_depth;    // the source's G4: window depth as a float
+#elif defined(GBUFFER_STORED_POSITION)
+layout(location = 3) out vec4 out_position;  // the float reference: world position
+#endif
+// [/targets]
+
+// [mapped-normal]
+// The shading normal: the interpolated normal, renormalised, bent by the normal map in the
+// tangent frame (tangent T, bitangent B = sign * N x T, normal N). A mesh may bring no usable
+// tangent (none in the file and no UVs to derive one, or a tangent along the normal): then
+// Gram-Schmidt leaves nothing and the normal map cannot be applied; the interpolated normal
+// is kept rather than a NaN written. A zero normal falls back to the triangle's own.
+vec3 mapped_normal() {
+  vec3 n = v_normal;
+  if (!(dot(n, n) > 1e-20)) n = cross(dFdx(v_position), dFdy(v_position));
+  n = normalize(n);
+  if (!u_has_normal_map) return n;
+  vec3 t = v_tangent.xyz - n * dot(n, v_tangent.xyz);
+  if (!(dot(t, t) > 1e-12)) return n;
+  t = normalize(t);
+  vec3 b = cross(n, t) * (v_tangent.w < 0.0 ? -1.0 : 1.0);
+  vec3 m = texture(u_normal_texture, v_uv).xyz * 2.0 - 1.0;
+  m.xy *= u_normal_scale;
+  vec3 bent = mat3(t, b, n) * m;
+  return dot(bent, bent) > 1e-20 ? normalize(bent) : n;
+}
+// [/mapped-normal]
+
+void main() {
+  vec3 albedo = (u_base_color * texture(u_base_color_texture, v_uv)).rgb;
+  vec3 n = mapped_normal();
+  // [write-targets]
+#ifdef GBUFFER_EMISSIVE_ALBEDO_SCALE
+  out_albedo = vec4(albedo, u_emissive_strength);
+#else
+  out_albedo = vec4(albedo, float(u_emissive_code) / 255.0);
+#endif
+#ifdef GBUFFER_FLOAT_EXPONENT
+  out_specular = vec4(u_specular, u_exponent);
+#else
+  out_specular = vec4(u_specular, encode_exponent(u_exponent));
+#endif
+#if defined(GBUFFER_NORMAL_FLOAT)
+  out_normal = vec4(n, 1.0);
+#elif defined(GBUFFER_NORMAL_XYZ)
+  out_normal = vec4(encode_xyz(n), 1.0);  // alpha: control value "geometry here"
+#else
+  out_normal = vec4(encode_octahedral(n, GBUFFER_NORMAL_OCT), 0.0, 1.0);
+#endif
+#if defined(GBUFFER_DEPTH_COPY)
+  out_depth = gl_FragCoord.z;
+#elif defined(GBUFFER_STORED_POSITION)
+  out_position = vec4(v_position, 1.0);
+#endif
+  // [/write-targets]
+}
