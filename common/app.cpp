@@ -306,7 +306,7 @@ void App::print_bench() const {
   nlohmann::ordered_json j;
   j["program"] = chapter_.cli.program;
   j["renderer"] = context_->renderer();
-  j["timer"] = context_->is_software() ? "llvmpipe (CPU time)" : "GPU time";
+  j["timer"] = context_->is_software() ? "llvmpipe: CPU time with glFinish around each pass" : "GPU time (GL_TIME_ELAPSED)";
   j["platform"] = context_->platform();
   j["width"] = target_->width();
   j["height"] = target_->height();

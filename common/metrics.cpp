@@ -2,13 +2,25 @@
 
 #include <algorithm>
 #include <exception>
+#include <string>
 
 #include "common/error.h"
 
 namespace lp {
 
+PassMetrics::Scope::Scope(const std::string* name, double* cpu_ms) : name_(name), cpu_ms_(cpu_ms) {
+  if (cpu_ms_) {
+    glFinish();
+    start_ = std::chrono::steady_clock::now();
+  }
+}
+
 PassMetrics::Scope::~Scope() noexcept(false) {
   if (!active_) return;
+  if (cpu_ms_) {
+    glFinish();
+    *cpu_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
+  }
   glEndQuery(GL_TIME_ELAPSED);
   glEndQuery(GL_SAMPLES_PASSED);
   // Say which pass went wrong, not just that something did (unless already unwinding).
@@ -32,7 +44,12 @@ PassMetrics::Scope PassMetrics::pass(const std::string& name) {
   glBeginQuery(GL_SAMPLES_PASSED, slot.samples.id());
   slot.pending = true;
   slot.frame = frame_;
-  return Scope(&it->name);
+  if (software_ < 0) {
+    std::string renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    software_ = renderer.find("llvmpipe") != std::string::npos || renderer.find("softpipe") != std::string::npos;
+  }
+  slot.cpu_ms = -1;
+  return Scope(&it->name, software_ ? &slot.cpu_ms : nullptr);
 }
 
 void PassMetrics::collect(Pass& pass, int index, Slot& slot, bool wait) {
@@ -46,7 +63,7 @@ void PassMetrics::collect(Pass& pass, int index, Slot& slot, bool wait) {
   glGetQueryObjectui64v(slot.samples.id(), GL_QUERY_RESULT, &samples);
   slot.pending = false;
   Stats& s = stats_[index];
-  double ms = ns * 1e-6;
+  double ms = slot.cpu_ms >= 0 ? slot.cpu_ms : ns * 1e-6;
   s.last_ms = ms;
   s.min_ms = s.frames ? std::min(s.min_ms, ms) : ms;
   s.samples = samples;

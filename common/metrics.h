@@ -1,8 +1,11 @@
 #pragma once
 // What a frame cost, per pass: GPU time from GL_TIME_ELAPSED queries (read a few frames
-// later from a ring, so the frame never waits for them; on llvmpipe they measure CPU time)
+// later from a ring, so the frame never waits for them). llvmpipe rasterises lazily, so
+// its timer queries miss most of the work: there each pass is timed with glFinish and the
+// CPU clock instead (honest, at the cost of a stall that a software renderer hardly notices)
 // and fragments that passed the depth and stencil tests, counted exactly with
 // GL_SAMPLES_PASSED occlusion queries. Counts are deterministic: CI can assert them.
+#include <chrono>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -24,14 +27,16 @@ class PassMetrics {
 
   class Scope {
    public:
-    Scope(Scope&& o) noexcept : active_(o.active_), name_(o.name_) { o.active_ = false; }
+    Scope(Scope&& o) noexcept : active_(o.active_), name_(o.name_), cpu_ms_(o.cpu_ms_), start_(o.start_) { o.active_ = false; }
     Scope(const Scope&) = delete;
     ~Scope() noexcept(false);  // throws Error naming the pass if OpenGL reported an error in it
    private:
     friend class PassMetrics;
-    explicit Scope(const std::string* name) : name_(name) {}
+    Scope(const std::string* name, double* cpu_ms);
     bool active_ = true;
     const std::string* name_;
+    double* cpu_ms_;  // software renderer: where the CPU-clock time goes; else null
+    std::chrono::steady_clock::time_point start_;
   };
 
   // Measures everything drawn until the returned Scope ends. One scope at a time, and each
@@ -55,6 +60,7 @@ class PassMetrics {
     gl::Query time{GL_TIME_ELAPSED}, samples{GL_SAMPLES_PASSED};
     bool pending = false;
     std::uint64_t frame = 0;
+    double cpu_ms = -1;  // set on software renderers, used instead of the timer query
   };
   struct Pass {
     std::string name;
@@ -68,6 +74,7 @@ class PassMetrics {
   std::vector<Stats> stats_;
   std::vector<Allocation> allocations_;
   std::uint64_t frame_ = 0;
+  int software_ = -1;  // unknown until the first pass: 1 on llvmpipe/softpipe
 };
 
 }  // namespace lp
