@@ -13,6 +13,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <nlohmann/json.hpp>
 
 #include "common/error.h"
 
@@ -114,6 +115,25 @@ ImageRGBA8 fallback_checker(glm::u8vec4 a, glm::u8vec4 b) {
   return img;
 }
 
+// tinygltf's JSON value as nlohmann::json (tinygltf keeps extras in its own type).
+nlohmann::json json_text(const tinygltf::Value& v) {
+  if (v.IsBool()) return v.Get<bool>();
+  if (v.IsInt()) return v.Get<int>();
+  if (v.IsNumber()) return v.GetNumberAsDouble();
+  if (v.IsString()) return v.Get<std::string>();
+  if (v.IsArray()) {
+    nlohmann::json a = nlohmann::json::array();
+    for (size_t i = 0; i < v.ArrayLen(); ++i) a.push_back(json_text(v.Get(static_cast<int>(i))));
+    return a;
+  }
+  if (v.IsObject()) {
+    nlohmann::json o = nlohmann::json::object();
+    for (const auto& key : v.Keys()) o[key] = json_text(v.Get(key));
+    return o;
+  }
+  return nullptr;
+}
+
 class Loader {
  public:
   Loader(const tinygltf::Model& m, Scene& s) : m_(m), s_(s) {}
@@ -213,6 +233,8 @@ class Loader {
     std::string name = node.name.empty() ? "node" + std::to_string(node_index) : node.name;
     if (node.mesh >= 0) add_instance(node, name, world);
     if (node.camera >= 0) add_camera(node, name, world);
+    if (node.extras.Has("lightpass"))
+      s_.node_extras.push_back({.name = name, .world = world, .lightpass_json = json_text(node.extras.Get("lightpass")).dump()});
     if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end() && it->second.Has("light"))
       add_light(it->second.Get("light").GetNumberAsInt(), name, world);
     for (int child : node.children) visit(child, world, depth + 1);

@@ -87,6 +87,14 @@ struct Instance {
   Shape shape;
 };
 
+// A node's `"extras": {"lightpass": {...}}`, kept as JSON text for what a chapter defines
+// itself (chapter 04 reads its neon lights from it). Every node that has one, mesh or not.
+struct NodeExtras {
+  std::string name;
+  glm::mat4 world{1};
+  std::string lightpass_json;  // the object under "lightpass", serialised
+};
+
 struct Scene {
   std::filesystem::path path;
   std::vector<Vertex> vertices;
@@ -97,6 +105,7 @@ struct Scene {
   std::vector<Instance> instances;
   std::vector<Light> lights;
   std::vector<Camera> cameras;      // in node order; the first is the default view
+  std::vector<NodeExtras> node_extras;  // in node order
   glm::vec3 ambient{0};             // scene extras {"lightpass": {"ambient": [r,g,b]}}
   glm::vec3 bounds_min{0}, bounds_max{0};
   std::vector<std::string> warnings;

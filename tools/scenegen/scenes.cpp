@@ -401,4 +401,52 @@ void write_cornell(const fs::path& out) {
   b.write(dir);
 }
 
+// ---------------------------------------------------------------------------------------------
+// neon: chapter 04. Three neon tubes (node extras, see chapters/04_neon/neon_scene.h) over a
+// glossy floor, one in front of a wall parallel to it (reflection rays along the tube), one
+// leaning with its lower end touching the floor, one on the wall without caps and with barn
+// doors; a glossy sphere; a dim moon so the scene has an ordinary light too.
+void write_neon(const fs::path& out) {
+  const fs::path dir = fresh_dir(out, "neon");
+  GltfBuilder b("neon");
+  b.set_ambient({0.02f, 0.02f, 0.025f});
+
+  b.add_camera("overview", {0.2f, 1.7f, 4.2f}, {0.3f, 0.75f, -1.2f}, 0.75f, 0.05f, 50.0f);
+  b.add_camera("grazing", {-4.6f, 1.05f, -1.35f}, {3.0f, 1.0f, -1.9f}, 0.6f, 0.05f, 50.0f);
+  b.add_camera("close", {0.7f, 0.75f, 1.1f}, {1.55f, 0.1f, -0.75f}, 0.7f, 0.05f, 50.0f);
+
+  b.add_directional_light("moon", {0.3f, -1.0f, -0.5f}, {0.55f, 0.65f, 1.0f}, 0.04f);
+
+  // A neon node: the tube along the node's local X, the first barn door along local +Y.
+  auto neon = [&](const std::string& name, glm::vec3 centre, glm::vec3 along, glm::vec3 up, json tube) {
+    const glm::vec3 x = glm::normalize(along);
+    const glm::vec3 y = glm::normalize(up - glm::dot(up, x) * x);
+    const glm::quat q = frame_rotation(glm::mat3(x, y, glm::cross(x, y)));
+    json node = {{"name", name}, {"translation", jvec(centre)}, {"extras", {{"lightpass", {{"neon", tube}}}}}};
+    if (std::fabs(q.w) < 1.0f - 1e-7f) node["rotation"] = jquat(q);
+    b.add_node(node);
+  };
+  neon("neon_pink", {-0.7f, 1.15f, -1.7f}, {1, 0, 0}, kUp,
+       {{"length", fnum(2.4f)}, {"radius", fnum(0.03f)}, {"color", jvec(glm::vec3(1.0f, 0.2f, 0.55f))},
+        {"intensity", fnum(1.0f)}, {"specular", fnum(1.0f)}, {"caps", true}});
+  const glm::vec3 low(1.75f, 0.03f, -0.35f), high(2.25f, 1.45f, -0.95f);  // the low end touches the floor
+  neon("neon_cyan", 0.5f * (low + high), high - low, {0, 0, 1},
+       {{"length", fnum(glm::length(high - low))}, {"radius", fnum(0.03f)}, {"color", jvec(glm::vec3(0.2f, 0.8f, 1.0f))},
+        {"intensity", fnum(0.8f)}, {"specular", fnum(1.0f)}, {"caps", true}});
+  neon("neon_amber", {2.6f, 2.3f, -1.82f}, {1, 0, 0}, kUp,
+       {{"length", fnum(1.2f)}, {"radius", fnum(0.025f)}, {"color", jvec(glm::vec3(1.0f, 0.55f, 0.15f))},
+        {"intensity", fnum(0.6f)}, {"specular", fnum(1.0f)}, {"caps", false},
+        {"barn_doors", json::array({fnum(0.0f), fnum(2.0f), fnum(0.35f), fnum(0.5f)})}});
+
+  const int floor_mat = b.add_material(matte("floor_glossy", {0.30f, 0.30f, 0.32f}, 0.3f, 0.5f));
+  const int wall_mat = b.add_material(matte("wall_satin", {0.55f, 0.52f, 0.48f}, 0.5f, 0.25f));
+  const int sphere_mat = b.add_material(matte("sphere_glossy", {0.12f, 0.12f, 0.15f}, 0.2f, 0.6f));
+  RectMeshes rects(b);
+  rects.node("floor", {0.0f, 0.0f, 0.0f}, kUp, {1, 0, 0}, 10.0f, 8.0f, floor_mat);
+  rects.node("wall", {0.0f, 1.5f, -2.0f}, {0, 0, 1}, {1, 0, 0}, 10.0f, 3.0f, wall_mat);
+  const float radius = 0.45f;
+  b.add_sphere_node("sphere", b.add_mesh("sphere", make_uv_sphere(radius, 64, 32), sphere_mat), {0.6f, radius, -0.6f}, radius);
+  b.write(dir);
+}
+
 }  // namespace scenegen

@@ -12,6 +12,7 @@ void write_forward(const std::filesystem::path& out_dir);
 void write_atrium(const std::filesystem::path& out_dir);
 void write_street(const std::filesystem::path& out_dir);
 void write_cornell(const std::filesystem::path& out_dir);
+void write_neon(const std::filesystem::path& out_dir);   // chapter 04
 
 // Small broken / edge-case glTF files for the loader's tests, written into dir.
 void write_test_data(const std::filesystem::path& dir);

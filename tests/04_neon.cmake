@@ -1,0 +1,49 @@
+# Chapter 04: the neon light. Unit tests of the maths and the capsule (no OpenGL), GPU tests
+# (the GLSL against the C++, the renderer against the ground truth), and the program itself:
+# reference images per mode, outputs and bad input.
+add_executable(neon_tests
+  unit/test_04_neon_math.cpp
+  unit/test_04_capsule.cpp
+  unit/test_04_scene.cpp
+)
+target_link_libraries(neon_tests PRIVATE lightpass_04_neon GTest::gtest_main)
+gtest_discover_tests(neon_tests DISCOVERY_TIMEOUT 60 TEST_PREFIX "04_neon.")
+
+add_executable(neon_gl_tests unit/test_04_neon_gl.cpp)
+target_link_libraries(neon_gl_tests PRIVATE lightpass_04_neon GTest::gtest_main)
+gtest_discover_tests(neon_gl_tests DISCOVERY_TIMEOUT 60 TEST_PREFIX "04_neon." PROPERTIES TIMEOUT 300)
+
+# The program: reference images per mode (tests/reference/04_neon/, made on llvmpipe).
+set(P04 $<TARGET_FILE:04_neon>)
+foreach(mode improved ground-truth source points representative-point analytic-diffuse)
+  lightpass_program_test(04_neon.reference.${mode} 0 "references match" ${P04} --check --mode ${mode} --out ${CHECK_OUT}/04_neon)
+endforeach()
+lightpass_program_test(04_neon.headless_writes_png 0 "wrote .*04_headless.png"
+  ${P04} --headless --size 160x90 --out ${CMAKE_BINARY_DIR}/out/04_headless.png)
+lightpass_program_test(04_neon.bench_prints_json 0 "\"passes\":\\[\\{\"name\":\"forward: lights and neon tubes\""
+  ${P04} --bench --frames 2 --size 160x90)
+lightpass_program_test(04_neon.bad_mode 2 "unknown mode 'laser'" ${P04} --mode laser)
+lightpass_program_test(04_neon.bad_knob 2 "--samples must be between" ${P04} --samples 0)
+# Any scene loads; one without neon lights is lit by its ordinary lights alone.
+lightpass_program_test(04_neon.scene_without_neon 0 "wrote"
+  ${P04} --headless --size 160x90 --scene assets/forward/forward.gltf --out ${CMAKE_BINARY_DIR}/out/04_forward_scene.png)
+
+# A user's scene with a neon node, and one whose description is broken: tests/data's
+# minimal.gltf with a node added (written at configure time, beside a copy of its buffer).
+file(READ ${CMAKE_CURRENT_SOURCE_DIR}/data/minimal.gltf neon_gltf)
+configure_file(${CMAKE_CURRENT_SOURCE_DIR}/data/minimal.bin ${CMAKE_BINARY_DIR}/neon_data/minimal.bin COPYONLY)
+string(JSON neon_nodes LENGTH "${neon_gltf}" nodes)
+string(JSON neon_gltf SET "${neon_gltf}" scenes 0 nodes ${neon_nodes} "${neon_nodes}")
+set(neon_good "${neon_gltf}")
+string(JSON neon_good SET "${neon_good}" nodes ${neon_nodes}
+  "{\"name\": \"sign\", \"translation\": [0, 0.5, 0], \"extras\": {\"lightpass\": {\"neon\": {\"length\": 1.5, \"intensity\": 0.5, \"color\": [1, 0.3, 0.6]}}}}")
+file(WRITE ${CMAKE_BINARY_DIR}/neon_data/neon_minimal.gltf "${neon_good}")
+string(JSON neon_bad SET "${neon_gltf}" nodes ${neon_nodes}
+  "{\"name\": \"broken_sign\", \"extras\": {\"lightpass\": {\"neon\": {\"length\": -2, \"intensity\": 1}}}}")
+file(WRITE ${CMAKE_BINARY_DIR}/neon_data/neon_bad_length.gltf "${neon_bad}")
+lightpass_program_test(04_neon.user_scene_with_neon 0 "wrote"
+  ${P04} --headless --size 160x90 --scene ${CMAKE_BINARY_DIR}/neon_data/neon_minimal.gltf --out ${CMAKE_BINARY_DIR}/out/04_minimal.png)
+lightpass_program_test(04_neon.malformed_neon 1 "neon light 'broken_sign': \"length\" must be >= 0"
+  ${P04} --headless --size 160x90 --scene ${CMAKE_BINARY_DIR}/neon_data/neon_bad_length.gltf)
+# The sweep's options.
+add_test(NAME 04_neon.sweep_unknown_option COMMAND ${EXPECT} 2 "unknown option '--fast'" -- $<TARGET_FILE:04_neon_sweep> --fast)
