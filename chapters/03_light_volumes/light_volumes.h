@@ -1,0 +1,174 @@
+#pragma once
+// Chapter 03's stage: local lights drawn as volumes into a light buffer. Each light covers
+// the pixels of its volume; the lighting shader runs only there and adds the light's
+// diffuse and specular parts into two float targets; a final full-screen pass combines them
+// with the surface (F = albedo * L1 + L2 + emissive). Five strategies decide which pixels
+// of a volume reach the shader, from "all of them" to the two-pass stencil mask; all give
+// the same image.
+//
+//   LightVolumes volumes;                          // the unit meshes, the shaders
+//   volumes.set_lights(build_light_set(lights, cut_threshold(1.f, peak_reflectance(scene)),
+//                                      volumes.shapes()));
+//   LightBuffer light(w, h, ch02::depth_format(gbuffer.layout().depth));  // L1, L2, depth-stencil
+//   gbuffer.bind_textures(0);                      // the light shaders read chapter 02's G-buffer
+//   SurfaceView view = surface_view(gbuffer);
+//   light.begin(gbuffer.framebuffer());            // copy its depth, zero the stencil
+//   volumes.draw_global(light, view, ambient);     // ambient + directional lights, full screen
+//   volumes.draw_local(light, view, Strategy::Stencil);
+//   glBindFramebuffer(GL_FRAMEBUFFER, output);  volumes.composite(light, view, background);
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "chapters/02_gbuffer/deferred.h"
+#include "chapters/02_gbuffer/gbuffer.h"
+#include "chapters/03_light_volumes/light_instances.h"
+#include "chapters/03_light_volumes/volume_meshes.h"
+#include "common/camera.h"
+#include "common/gl.h"
+#include "common/shader.h"
+
+namespace lp::ch03 {
+
+// [strategies]
+enum class Strategy {
+  FullScreen,  // every pixel, for every light: the reference
+  Scissor,     // every pixel of the rectangle around the light's projected sphere
+  FrontFaces,  // the volume's front faces, depth test LESS: what lies behind the front
+  BackFaces,   // the volume's back faces, depth test GREATER: what lies in front of the back
+  Stencil,     // the two-pass stencil mask: exactly what lies inside the volume
+  StencilBits, // the same mask, eight lights at a time, one stencil bit each
+};
+inline const std::vector<std::string> kStrategies = {"full-screen", "scissor", "front-faces", "back-faces", "stencil",
+                                                     "stencil-bits"};
+// [/strategies]
+bool is_strategy(const std::string& name);
+Strategy strategy_named(const std::string& name);  // throws Error for an unknown name
+
+// What the light shaders read the surface from: chapter 02's G-buffer, or deferred
+// lighting's smaller one. Its textures are bound on units 0.. and chapter 02's frame block
+// at its binding (GBuffer::bind_textures(0)) before any draw below.
+struct SurfaceView {
+  FrameCamera camera;                // the camera the G-buffer was drawn with, its projection
+  bool reversed_z = false;
+  std::vector<std::string> defines;  // gbuffer.glsl's, for the layout
+};
+SurfaceView surface_view(const ch02::GBuffer& gbuffer);
+
+// [light-buffer]
+// The light buffer: L1 (diffuse light) and L2 (specular light) in RGBA16F, blended
+// additively, and a depth-stencil buffer holding a copy of the G-buffer's depth for the
+// volumes' depth tests and the stencil mask. Deferred lighting keeps one target instead:
+// rgb diffuse, a specular.
+class LightBuffer {
+ public:
+  enum class Kind { DiffuseAndSpecular, PrePass };
+  LightBuffer(int width, int height, GLenum depth_stencil_format, Kind kind = Kind::DiffuseAndSpecular);
+
+  // Copies the depth (and stencil) of `gbuffer_framebuffer`, of the same format, and binds
+  // the light buffer. The stencil must be 0 there (chapter 02 clears it and never writes).
+  void begin(GLuint gbuffer_framebuffer) const;
+  void bind() const;
+  void clear() const;  // colours to 0 (the global pass normally overwrites them instead)
+
+  GLuint framebuffer() const { return fbo_.id(); }
+  GLuint diffuse() const { return diffuse_.id(); }
+  GLuint specular() const { return specular_.id(); }  // 0 for the pre-pass kind
+  GLuint depth_stencil() const { return depth_stencil_.id(); }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  Kind kind() const { return kind_; }
+  std::size_t bytes() const;  // all targets, for the memory report
+
+ private:
+  int width_, height_;
+  Kind kind_;
+  gl::Framebuffer fbo_;
+  gl::Texture diffuse_, specular_, depth_stencil_;
+};
+// [/light-buffer]
+
+// Exact counts of the lighting shader's invocations (atomic counters, early fragment tests;
+// 32 bits each, so exact up to 2^32 fragments a frame).
+struct FragmentCounts {
+  std::uint64_t shaded = 0;     // fragments the lighting shader ran for, over all lights
+  std::uint64_t lit = 0;        // of those, the ones the light added anything to
+  std::uint64_t lit_inner = 0;  // of those, the ones within 99% of the light's cut radius
+  double overshading() const { return lit ? double(shaded) / double(lit) : 0.0; }
+};
+
+// What the CPU did for a strategy in the last draw_local().
+struct DrawStats {
+  int draw_calls = 0;
+  int lights_skipped = 0;         // scissor: the projected sphere is off screen or behind
+  int lights_camera_inside = 0;   // front faces: drawn from the back instead
+};
+
+// The screen rectangle (x, y, width, height in pixels, OpenGL's bottom-left origin) that
+// holds the projection of the sphere (centre, radius) seen by `camera`: the whole viewport
+// when the sphere reaches the near plane, nothing when it lies behind it or off screen.
+std::optional<glm::ivec4> scissor_rect(const FrameCamera& camera, const glm::vec3& centre, float radius, int width,
+                                       int height);
+
+class LightVolumes {
+ public:
+  enum class Output { Light, HeatShaded, HeatLit };  // what the lighting shader adds
+
+  explicit LightVolumes(int sphere_subdivisions = 2, int cone_sides = 16);
+  void reload_shaders();
+
+  void set_lights(LightSet lights);
+  const LightSet& lights() const { return lights_; }
+  const VolumeShapes& shapes() const { return shapes_; }
+
+  // Ambient and the directional lights for every pixel; writes the light buffer (no blending).
+  void draw_global(const LightBuffer& target, const SurfaceView& view, const glm::vec3& ambient);
+  // Every local light, added into the light buffer, the pixels chosen by `strategy`.
+  void draw_local(const LightBuffer& target, const SurfaceView& view, Strategy strategy, Output output = Output::Light);
+  // F = albedo * L1 + L2 + emissive into the bound framebuffer (sky pixels: background).
+  void composite(const LightBuffer& light, const SurfaceView& view, const glm::vec3& background);
+
+  // Counting costs an atomic operation per fragment: on for tests and the panel, off for timing.
+  void set_counting(bool on) { counting_ = on; }
+  bool counting() const { return counting_; }
+  FragmentCounts counts() const;  // of the last draw_local (waits for the GPU)
+  const DrawStats& draw_stats() const { return stats_; }
+
+  // Pictures, into the bound framebuffer, whose depth-stencil holds the scene's depth:
+  // every volume as a wireframe in its light's colour, depth-tested against the scene.
+  void draw_wireframe(const SurfaceView& view);
+  // One light's stencil mask (the pixels its light pass shades) tinted in its colour,
+  // with its volume's outline. `index` counts in light order; the stencil is left at 0.
+  void draw_stencil_mask(const SurfaceView& view, int index);
+  // A per-pixel count from a light buffer drawn with Output::Heat*, as a colour ramp.
+  void draw_heat(const LightBuffer& counts, float full_scale);
+  // One light-buffer target (diffuse() or specular()) times `scale`.
+  void draw_light_target(GLuint texture, float scale);
+
+ private:
+  struct Group;  // the lights drawn with one mesh and one record type
+  // The program for a fragment shader, with volume.vert (volumes = true) or a full-screen
+  // triangle, compiled once for each set of defines.
+  const ShaderProgram& program(const std::string& fragment, const SurfaceView& view, std::vector<std::string> extra = {},
+                               bool volumes = true);
+  std::vector<Group> groups() const;
+  void draw_group(const Group& g, const ShaderProgram& p, int first, int count, bool full_screen) const;
+  void set_volume_uniforms(const ShaderProgram& p, const SurfaceView& view) const;
+  bool camera_inside(const Group& g, int i, const glm::vec3& eye) const;
+
+  VolumeShapes shapes_;
+  LightSet lights_;
+  gl::Buffer sphere_vertices_, sphere_indices_, cone_vertices_, cone_indices_;
+  gl::Buffer points_, cones_, wide_spots_, directional_, counters_;
+  gl::VertexArray points_vao_, cones_vao_, wide_vao_;
+  std::map<std::string, ShaderProgram> programs_;
+  ch02::FullScreenPass full_screen_;
+  bool counting_ = false;
+  DrawStats stats_;
+};
+
+}  // namespace lp::ch03
