@@ -29,3 +29,7 @@ lightpass_program_test(02_gbuffer.street_with_emissive 0 "wrote"
   ${P02} --headless --size 160x90 --scene assets/street/street.gltf --view street_level --mode emissive --out ${CMAKE_BINARY_DIR}/out/02_street_emissive.png)
 lightpass_program_test(02_gbuffer.mesh_without_normals 0 "wrote"
   ${P02} --headless --size 160x90 --scene tests/data/nonindexed_nonormals.gltf --out ${CMAKE_BINARY_DIR}/out/02_nonindexed.png)
+
+# The window path (GLFW + the panel) under a virtual X display, closing itself after 3 frames.
+lightpass_program_test(02_gbuffer.window_screenshot 0 "window screenshot, 320x180"
+  xvfb-run -a -s "-screen 0 320x180x24" ${P02} --size 320x180 --frames 3 --out ${CMAKE_BINARY_DIR}/out/02_window.png)

@@ -31,3 +31,7 @@ lightpass_program_test(03_light_volumes.bad_mode 2 "unknown mode 'tiled'" ${P03}
 lightpass_program_test(03_light_volumes.bad_show 2 "--show must be between" ${P03} --show 9)
 lightpass_program_test(03_light_volumes.no_such_light_to_show 1 "there is no light 5000 to show the stencil mask of \\(312 local lights\\)"
   ${P03} --headless --size 64x36 --show 4 --light 5000 --out ${CMAKE_BINARY_DIR}/out/03_nolight.png)
+
+# The window path (GLFW + the panel) under a virtual X display, closing itself after 3 frames.
+lightpass_program_test(03_light_volumes.window_screenshot 0 "window screenshot, 320x180"
+  xvfb-run -a -s "-screen 0 320x180x24" ${P03} --size 320x180 --frames 3 --out ${CMAKE_BINARY_DIR}/out/03_window.png)
