@@ -8,9 +8,8 @@
 #include "common/error.h"
 
 namespace lp {
-namespace {
 
-int parse_int(const std::string& option, const std::string& text, int min, int max) {
+int parse_integer(const std::string& option, const std::string& text, int min, int max) {
   int value = 0;
   auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (ec != std::errc() || end != text.data() + text.size())
@@ -20,6 +19,17 @@ int parse_int(const std::string& option, const std::string& text, int min, int m
                      std::to_string(max) + ", got " + text);
   return value;
 }
+
+void parse_size(const std::string& option, const std::string& text, int& width, int& height) {
+  auto x = text.find('x');
+  if (x == std::string::npos) throw UsageError(option + " expects WxH (e.g. 1280x720), got '" + text + "'");
+  width = parse_integer(option + " width", text.substr(0, x), 0, 16384);
+  height = parse_integer(option + " height", text.substr(x + 1), 0, 16384);
+  if (width == 0 || height == 0)
+    throw UsageError(option + " " + text + " has no pixels: width and height must be at least 1");
+}
+
+namespace {
 
 double parse_number(const std::string& option, const std::string& text) {
   try {
@@ -32,15 +42,6 @@ double parse_number(const std::string& option, const std::string& text) {
   }
 }
 
-void parse_size(const std::string& text, Options& o) {
-  auto x = text.find('x');
-  if (x == std::string::npos) throw UsageError("--size expects WxH (e.g. 1280x720), got '" + text + "'");
-  o.width = parse_int("--size width", text.substr(0, x), 0, 16384);
-  o.height = parse_int("--size height", text.substr(x + 1), 0, 16384);
-  if (o.width == 0 || o.height == 0)
-    throw UsageError("--size " + text + " has no pixels: width and height must be at least 1");
-  o.size_given = true;
-}
 
 std::string format_number(double v) {
   std::ostringstream s;
@@ -97,7 +98,7 @@ Options parse_cli(int argc, const char* const* argv, const CliSpec& spec) {
     };
     if (arg == "--help" || arg == "-h") throw UsageError("");
     else if (arg == "--headless") o.headless = true;
-    else if (arg == "--size") parse_size(value(), o);
+    else if (arg == "--size") { parse_size("--size", value(), o.width, o.height); o.size_given = true; }
     else if (arg == "--scene") o.scene = value();
     else if (arg == "--view") { o.view = value(); o.view_given = true; }
     else if (arg == "--mode") {
@@ -109,7 +110,7 @@ Options parse_cli(int argc, const char* const* argv, const CliSpec& spec) {
         throw UsageError("unknown mode '" + o.mode + "'; modes:" + known);
       }
     } else if (arg == "--out") o.out = value();
-    else if (arg == "--frames") { o.frames = parse_int(arg, value(), 1, 1000000); o.frames_given = true; }
+    else if (arg == "--frames") { o.frames = parse_integer(arg, value(), 1, 1000000); o.frames_given = true; }
     else if (arg == "--bench") o.bench = true;
     else if (arg == "--check") o.check = true;
     else if (arg == "--update-references") o.update_references = true;

@@ -47,6 +47,11 @@ struct Options {
 };
 
 Options parse_cli(int argc, const char* const* argv, const CliSpec& spec);
+
+// The value parsers behind it, for other command lines (the sweep programs): each throws a
+// UsageError that names `option` and says what was wrong.
+int parse_integer(const std::string& option, const std::string& text, int min, int max);
+void parse_size(const std::string& option, const std::string& text, int& width, int& height);
 std::string usage(const CliSpec& spec);
 
 }  // namespace lp

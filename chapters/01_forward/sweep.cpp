@@ -4,7 +4,6 @@
 // time on llvmpipe, and the CSV says which.
 //
 //   01_forward_sweep [--out DIR] [--size WxH] [--light-size WxH] [--frames N] [--max-lights N]
-#include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <functional>
@@ -16,6 +15,7 @@
 #include "common/error.h"
 #include "common/metrics.h"
 #include "common/paths.h"
+#include "common/sweep.h"
 #include "common/target.h"
 
 namespace {
@@ -30,25 +30,6 @@ struct Settings {
   int frames = 20;
   int max_lights = 1024;
 };
-
-void parse_size(const std::string& s, int& w, int& h) {
-  if (std::sscanf(s.c_str(), "%dx%d", &w, &h) != 2 || w <= 0 || h <= 0) throw UsageError("bad size '" + s + "'");
-}
-
-Settings parse(int argc, char** argv) {
-  Settings s;
-  for (int i = 1; i < argc; ++i) {
-    std::string a = argv[i];
-    auto value = [&] { if (i + 1 >= argc) throw UsageError(a + " needs a value"); return std::string(argv[++i]); };
-    if (a == "--out") s.out = value();
-    else if (a == "--size") parse_size(value(), s.width, s.height);
-    else if (a == "--light-size") parse_size(value(), s.light_width, s.light_height);
-    else if (a == "--frames") s.frames = std::stoi(value());
-    else if (a == "--max-lights") s.max_lights = std::stoi(value());
-    else throw UsageError("unknown option '" + a + "'");
-  }
-  return s;
-}
 
 // Renders `frames` frames after a warm-up and returns the measured pass.
 PassMetrics::Stats measure(PassMetrics& metrics, int frames, const std::function<void()>& draw) {
@@ -132,8 +113,11 @@ void light_sweep(const Settings& s, const Scene& scene, const SceneGpu& gpu, con
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    Settings s = parse(argc, argv);
+  Settings s;
+  return run_sweep(argc, argv, "01_forward_sweep", [&](SweepArgs& args) {
+    args.text("--out", s.out).size("--size", s.width, s.height).size("--light-size", s.light_width, s.light_height)
+        .integer("--frames", s.frames).integer("--max-lights", s.max_lights);
+  }, [&] {
     std::filesystem::create_directories(s.out);
     auto context = Context::create({.headless = true, .width = s.width, .height = s.height});
     Scene scene = load_scene(from_root("assets/forward/forward.gltf"));
@@ -143,12 +127,5 @@ int main(int argc, char** argv) {
     tessellation_sweep(s, scene, gpu, timer);
     light_sweep(s, scene, gpu, timer, context->is_software());
     std::cout << "wrote " << s.out << "/01_tessellation.csv and 01_lights.csv\n";
-    return 0;
-  } catch (const UsageError& e) {
-    std::cerr << "01_forward_sweep: " << e.what() << "\nusage: 01_forward_sweep [--out DIR] [--size WxH] [--light-size WxH] [--frames N] [--max-lights N]\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "01_forward_sweep: error: " << e.what() << '\n';
-    return 1;
-  }
+  });
 }

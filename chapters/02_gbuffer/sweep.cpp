@@ -43,6 +43,7 @@
 #include "common/error.h"
 #include "common/metrics.h"
 #include "common/paths.h"
+#include "common/sweep.h"
 #include "common/target.h"
 
 namespace {
@@ -60,26 +61,6 @@ struct Settings {
   int max_lights = 1024;
   std::string only;
 };
-
-void parse_size(const std::string& s, int& w, int& h) {
-  if (std::sscanf(s.c_str(), "%dx%d", &w, &h) != 2 || w <= 0 || h <= 0) throw UsageError("bad size '" + s + "'");
-}
-
-Settings parse(int argc, char** argv) {
-  Settings s;
-  for (int i = 1; i < argc; ++i) {
-    std::string a = argv[i];
-    auto value = [&] { if (i + 1 >= argc) throw UsageError(a + " needs a value"); return std::string(argv[++i]); };
-    if (a == "--out") s.out = value();
-    else if (a == "--size") parse_size(value(), s.width, s.height);
-    else if (a == "--light-size") parse_size(value(), s.light_width, s.light_height);
-    else if (a == "--frames") s.frames = std::stoi(value());
-    else if (a == "--max-lights") s.max_lights = std::stoi(value());
-    else if (a == "--only") s.only = value();
-    else throw UsageError("unknown option '" + a + "'");
-  }
-  return s;
-}
 
 // ---- normal encodings over the sphere (CPU) ------------------------------------------------
 
@@ -386,8 +367,11 @@ void light_sweep(const Settings& s, const std::string& timer, bool software) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    Settings s = parse(argc, argv);
+  Settings s;
+  return run_sweep(argc, argv, "02_gbuffer_sweep", [&](SweepArgs& args) {
+    args.text("--out", s.out).size("--size", s.width, s.height).size("--light-size", s.light_width, s.light_height)
+        .integer("--frames", s.frames).integer("--max-lights", s.max_lights).text("--only", s.only);
+  }, [&] {
     std::filesystem::create_directories(s.out);
     auto context = Context::create({.headless = true, .width = s.width, .height = s.height});
     std::string timer = (context->is_software() ? "llvmpipe CPU time: " : "GPU time: ") + context->renderer();
@@ -407,14 +391,5 @@ int main(int argc, char** argv) {
     if (s.only.empty() || s.only == "position") position_sweep(s, context->renderer());
     if (s.only.empty() || s.only == "lights") light_sweep(s, timer, context->is_software());
     std::cout << "wrote the CSV files in " << s.out << '\n';
-    return 0;
-  } catch (const UsageError& e) {
-    std::cerr << "02_gbuffer_sweep: " << e.what()
-              << "\nusage: 02_gbuffer_sweep [--out DIR] [--size WxH] [--light-size WxH] [--frames N] [--max-lights N] "
-                 "[--only encodings|layouts|position|lights]\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "02_gbuffer_sweep: error: " << e.what() << '\n';
-    return 1;
-  }
+  });
 }

@@ -29,6 +29,7 @@
 #include "common/error.h"
 #include "common/metrics.h"
 #include "common/paths.h"
+#include "common/sweep.h"
 #include "common/target.h"
 
 namespace {
@@ -44,28 +45,6 @@ struct Settings {
   int max_lights = 4096;
   std::string view = "street_level";
 };
-
-void parse_size(const std::string& s, int& w, int& h) {
-  if (std::sscanf(s.c_str(), "%dx%d", &w, &h) != 2 || w <= 0 || h <= 0) throw UsageError("bad size '" + s + "'");
-}
-
-Settings parse(int argc, char** argv) {
-  Settings s;
-  for (int i = 1; i < argc; ++i) {
-    std::string a = argv[i];
-    auto value = [&] {
-      if (i + 1 >= argc) throw UsageError(a + " needs a value");
-      return std::string(argv[++i]);
-    };
-    if (a == "--out") s.out = value();
-    else if (a == "--size") { parse_size(value(), s.width, s.height); s.size_given = true; }
-    else if (a == "--frames") s.frames = std::stoi(value());
-    else if (a == "--max-lights") s.max_lights = std::stoi(value());
-    else if (a == "--view") s.view = value();
-    else throw UsageError("unknown option '" + a + "'");
-  }
-  return s;
-}
 
 // The passes of one frame, timed over `frames` frames after a warm-up: mean ms per pass
 // (GL_TIME_ELAPSED) and the wall-clock time of a whole frame, finished with glFinish.
@@ -290,8 +269,11 @@ class Sweep {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    Settings s = parse(argc, argv);
+  Settings s;
+  return run_sweep(argc, argv, "03_light_volumes_sweep", [&](SweepArgs& args) {
+    args.text("--out", s.out).size("--size", s.width, s.height, &s.size_given).integer("--frames", s.frames)
+        .integer("--max-lights", s.max_lights).text("--view", s.view);
+  }, [&] {
     std::filesystem::create_directories(s.out);
     auto context = Context::create({.headless = true, .width = s.width, .height = s.height});
     const bool software = context->is_software();
@@ -309,13 +291,5 @@ int main(int argc, char** argv) {
     sweep.tessellation(timer);
     sweep.cut(timer);
     std::cout << "wrote " << s.out << "/03_lights.csv, 03_tessellation.csv and 03_cut.csv\n";
-    return 0;
-  } catch (const UsageError& e) {
-    std::cerr << "03_light_volumes_sweep: " << e.what()
-              << "\nusage: 03_light_volumes_sweep [--out DIR] [--size WxH] [--frames N] [--max-lights N] [--view NAME]\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "03_light_volumes_sweep: error: " << e.what() << '\n';
-    return 1;
-  }
+  });
 }
