@@ -13,15 +13,26 @@ add_executable(neon_gl_tests unit/test_04_neon_gl.cpp)
 target_link_libraries(neon_gl_tests PRIVATE lightpass_04_neon GTest::gtest_main)
 gtest_discover_tests(neon_gl_tests DISCOVERY_TIMEOUT 60 TEST_PREFIX "04_neon." PROPERTIES TIMEOUT 300)
 
-# The program: reference images per mode (tests/reference/04_neon/, made on llvmpipe).
+# The deferred path (capsule volumes through chapter 03's stencil) against the forward pass.
+add_executable(neon_volumes_gl_tests unit/test_04_neon_volumes_gl.cpp)
+target_link_libraries(neon_volumes_gl_tests PRIVATE lightpass_04_neon GTest::gtest_main)
+gtest_discover_tests(neon_volumes_gl_tests DISCOVERY_TIMEOUT 60 TEST_PREFIX "04_neon." PROPERTIES TIMEOUT 300)
+
+# The program: reference images per mode (tests/reference/04_neon/, made on llvmpipe), the
+# capsule volumes by default and the forward pass (--forward 1); the night street's signs.
 set(P04 $<TARGET_FILE:04_neon>)
 foreach(mode improved ground-truth source points representative-point analytic-diffuse)
   lightpass_program_test(04_neon.reference.${mode} 0 "references match" ${P04} --check --mode ${mode} --out ${CHECK_OUT}/04_neon)
 endforeach()
-lightpass_program_test(04_neon.headless_writes_png 0 "wrote .*04_headless.png"
+lightpass_program_test(04_neon.reference.street_neon 0 "6 of 6 references match"
+  ${P04} --check --scene assets/street_neon/street_neon.gltf --out ${CHECK_OUT}/04_neon_street)
+lightpass_program_test(04_neon.headless_says_what_the_capsules_shaded 0
+  "capsule volumes: frame took .* ms.*neon fragments shaded [0-9]+, lit [0-9]+, overshading"
   ${P04} --headless --size 160x90 --out ${CMAKE_BINARY_DIR}/out/04_headless.png)
-lightpass_program_test(04_neon.bench_prints_json 0 "\"passes\":\\[\\{\"name\":\"forward: lights and neon tubes\""
-  ${P04} --bench --frames 2 --size 160x90)
+lightpass_program_test(04_neon.headless_forward_writes_png 0 "forward: frame took"
+  ${P04} --headless --size 160x90 --forward 1 --out ${CMAKE_BINARY_DIR}/out/04_headless_forward.png)
+lightpass_program_test(04_neon.bench_prints_json 0 "\"name\":\"neon: capsule volumes, stencil\""
+  ${P04} --bench --frames 2 --size 160x90 --count 0)
 lightpass_program_test(04_neon.bad_mode 2 "unknown mode 'laser'" ${P04} --mode laser)
 lightpass_program_test(04_neon.bad_knob 2 "--samples must be between" ${P04} --samples 0)
 # Any scene loads; one without neon lights is lit by its ordinary lights alone.

@@ -44,6 +44,19 @@ void restore_state() {
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
 }
 
+void additive_volume_state() {
+  // [additive-state]
+  // Every light adds to what the lights before it left; nothing here writes depth, and the
+  // volumes are never clipped by the near or the far plane: depth clamp keeps them whole
+  // (their depths are clamped to the planes instead), so a light crossing a plane is
+  // still covered.
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_ONE, GL_ONE);
+  glDepthMask(GL_FALSE);
+  glEnable(GL_DEPTH_CLAMP);
+  // [/additive-state]
+}
+
 // [stencil-light]
 // Pass 1, the mask. Both faces, no colour. Along the ray through a pixel, the surface is
 // inside the volume when it lies in front of the back face (the back face fails the depth
@@ -340,16 +353,7 @@ void LightVolumes::draw_local(const LightBuffer& target, const SurfaceView& view
   const DepthTests tests = depth_tests(view);
   const std::vector<Group> all = groups();
 
-  // [additive-state]
-  // Every light adds to what the lights before it left; nothing here writes depth, and the
-  // volumes are never clipped by the near or the far plane: depth clamp keeps them whole
-  // (their depths are clamped to the planes instead), so a light crossing a plane is
-  // still covered.
-  glEnable(GL_BLEND);
-  glBlendFunc(GL_ONE, GL_ONE);
-  glDepthMask(GL_FALSE);
-  glEnable(GL_DEPTH_CLAMP);
-  // [/additive-state]
+  additive_volume_state();
 
   switch (strategy) {
     case Strategy::FullScreen: {
@@ -482,6 +486,22 @@ void LightVolumes::draw_local(const LightBuffer& target, const SurfaceView& view
   }
   restore_state();
 }
+
+// [volume-hook]
+void draw_stencil_volumes(const SurfaceView& view, int count, const std::function<void(int, VolumePass)>& draw) {
+  begin_depth_convention(view);
+  const DepthTests tests = depth_tests(view);
+  additive_volume_state();
+  glEnable(GL_STENCIL_TEST);
+  for (int i = 0; i < count; ++i) {
+    stencil_mark_state(tests);
+    draw(i, VolumePass::Mark);
+    stencil_shade_state();
+    draw(i, VolumePass::Shade);
+  }
+  restore_state();
+}
+// [/volume-hook]
 
 FragmentCounts LightVolumes::counts() const {
   GLuint c[3] = {0, 0, 0};

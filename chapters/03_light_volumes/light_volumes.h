@@ -17,6 +17,7 @@
 //   volumes.draw_local(light, view, Strategy::Stencil);
 //   glBindFramebuffer(GL_FRAMEBUFFER, output);  volumes.composite(light, view, background);
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -113,6 +114,19 @@ struct DrawStats {
 // when the sphere reaches the near plane, nothing when it lies behind it or off screen.
 std::optional<glm::ivec4> scissor_rect(const FrameCamera& camera, const glm::vec3& centre, float radius, int width,
                                        int height);
+
+// [volume-hook-h]
+// Other convex light volumes through the stencil strategy (chapter 04's capsules): for each
+// of `count` volumes, draw(i, VolumePass::Mark) runs with the mask's state and then
+// draw(i, VolumePass::Shade) with the light's, exactly as draw_local(Strategy::Stencil) runs
+// its own: additive blending, no depth writes, depth clamp. The caller draws volume i with its
+// own programs (Mark: any vertex shader with shaders/stencil.frag; Shade: one that writes L1
+// and L2 and declares early fragment tests) into the bound framebuffer, whose depth-stencil
+// holds the G-buffer's depth and a zero stencil (LightBuffer::begin); each volume leaves the
+// stencil at zero again.
+enum class VolumePass { Mark, Shade };
+void draw_stencil_volumes(const SurfaceView& view, int count, const std::function<void(int index, VolumePass pass)>& draw);
+// [/volume-hook-h]
 
 class LightVolumes {
  public:

@@ -28,3 +28,15 @@ for term in diffuse specular; do
     --ylabel "p99 relative error (%)" --out "$out/04_methods_$term.svg"
 done
 python3 "$root/chapters/04_neon/diagrams.py" "$out"
+# The capsule volumes (the program, deferred path): the night street with its signs, the
+# capsules and their stencil masks, and what the capsules shade without lighting.
+if [ "${1:-}" != "--plots-only" ]; then
+  p04="${build:-$root/build}/chapters/04_neon/04_neon"
+  street=(--scene assets/street_neon/street_neon.gltf)
+  shot() { "$p04" --headless --size 640x360 "$@" | tail -n 1; }
+  shot "${street[@]}" --view neon_signs --out "$out/04_street_neon.png"
+  shot "${street[@]}" --view inside_sign --out "$out/04_street_inside_sign.png"
+  shot "${street[@]}" --view above_signs --show 2 --out "$out/04_street_capsules.png"
+  shot "${street[@]}" --view neon_signs --show 3 --out "$out/04_street_waste.png"
+  shot --view close --show 3 --out "$out/04_close_waste.png"
+fi

@@ -7,7 +7,7 @@
 namespace lp::ch04 {
 
 NeonTubes::NeonTubes() {
-  CapsuleMesh mesh = make_capsule(24, 6);
+  CapsuleMesh mesh = make_capsule(48, 12);
   vertices_ = gl::make_buffer(mesh.positions.data(), mesh.positions.size() * sizeof(glm::vec3));
   indices_ = gl::make_buffer(mesh.indices.data(), mesh.indices.size() * sizeof(std::uint32_t));
   index_count_ = static_cast<GLsizei>(mesh.indices.size());
@@ -41,6 +41,12 @@ void NeonTubes::draw_capsules() const {
   if (count_ == 0) return;
   glBindVertexArray(vao_.id());
   glDrawElementsInstanced(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr, count_);
+}
+
+void NeonTubes::draw_capsule(int index) const {
+  if (index < 0 || index >= count_) return;
+  glBindVertexArray(vao_.id());
+  glDrawElementsInstancedBaseInstance(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr, 1, static_cast<GLuint>(index));
 }
 
 NeonForward::NeonForward(const SceneGpu& scene)
@@ -80,10 +86,19 @@ void NeonForward::draw(const FrameCamera& camera, const NeonDraw& how, const ch0
     glBindTextureUnit(0, scene_.base_color_texture(m.base_color_texture));
   });
   if (how.term != Term::All) return;  // the glass is not part of the light being measured
+  draw_glass(camera, tubes);
+}
+
+void NeonForward::draw_glass(const FrameCamera& camera, const NeonTubes& tubes) const {
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glEnable(GL_CULL_FACE);
   glass_.use();
   glass_.set("u_view_projection", camera.view_projection());
   glass_.set("u_glass", 1);
   tubes.draw_capsules();
+  glDisable(GL_CULL_FACE);
 }
 
 }  // namespace lp::ch04

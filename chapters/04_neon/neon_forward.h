@@ -1,8 +1,9 @@
 #pragma once
 // A forward renderer for the neon tubes: every object is drawn once, and each fragment is lit
 // by chapter 01's lights and by every tube with the selected method (shaders/neon.glsl).
-// Chapter 03 replaces the loop over tubes by one capsule volume per tube over the G-buffer;
-// NeonTubes already holds what that needs (the packed instances and the unit capsule).
+// It is the chapter's yardstick: neon_volumes.h draws the same tubes as capsule volumes over
+// chapter 02's G-buffer (the default path), and the tests hold the two images together.
+// NeonTubes serves both: the packed instances and the unit capsule.
 #include <vector>
 
 #include "chapters/01_forward/light_buffer.h"
@@ -36,6 +37,8 @@ class NeonTubes {
   const std::vector<NeonGpu>& packed() const { return packed_; }
   // Draws every tube's capsule, instanced (the program sets the rest).
   void draw_capsules() const;
+  // Draws tube `index`'s capsule alone: the same instanced draw, one instance from `index`.
+  void draw_capsule(int index) const;
 
  private:
   gl::VertexArray vao_;
@@ -52,6 +55,8 @@ class NeonForward {
   // The scene lit by `lights` (chapter 01) and the tubes, then the glowing glass of the tubes.
   void draw(const FrameCamera& camera, const NeonDraw& how, const ch01::LightBuffer& lights,
             const NeonTubes& tubes) const;
+  // The glowing glass alone, depth-tested against the bound framebuffer's depth.
+  void draw_glass(const FrameCamera& camera, const NeonTubes& tubes) const;
 
  private:
   const SceneGpu& scene_;

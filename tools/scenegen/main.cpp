@@ -1,6 +1,6 @@
 // scenegen: writes the lightpass scenes (glTF 2.0) and the loader test inputs, deterministically.
 //
-//   scenegen OUT_DIR                    writes OUT_DIR/{forward,atrium,street,cornell,neon}/
+//   scenegen OUT_DIR                    writes OUT_DIR/{forward,atrium,street,cornell,neon,street_neon}/
 //   scenegen --test-data DIR            writes the loader test inputs into DIR
 //   scenegen --verify DIR               loads every .gltf under DIR with tinygltf and checks it
 //   scenegen --verify-test-data DIR     checks the test inputs fail/load as documented
@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
       scenegen::write_street(a);
       scenegen::write_cornell(a);
       scenegen::write_neon(a);
+      scenegen::write_street_neon(a);
       return 0;
     }
     if (argc == 3 && a == "--test-data") {

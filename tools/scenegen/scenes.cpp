@@ -9,6 +9,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <numbers>
 #include <string>
@@ -110,6 +111,17 @@ class RectMeshes {
   GltfBuilder& b_;
   std::map<std::tuple<float, float, int, float, float, int, int>, int> cache_;
 };
+
+// A neon node (chapter 04, see chapters/04_neon/neon_scene.h): the tube along the node's
+// local X through `centre`, the first barn door along local +Y (`up` made perpendicular).
+void add_neon(GltfBuilder& b, const std::string& name, glm::vec3 centre, glm::vec3 along, glm::vec3 up, json tube) {
+  const glm::vec3 x = glm::normalize(along);
+  const glm::vec3 y = glm::normalize(up - glm::dot(up, x) * x);
+  const glm::quat q = frame_rotation(glm::mat3(x, y, glm::cross(x, y)));
+  json node = {{"name", name}, {"translation", jvec(centre)}, {"extras", {{"lightpass", {{"neon", tube}}}}}};
+  if (std::fabs(q.w) < 1.0f - 1e-7f) node["rotation"] = jquat(q);
+  b.add_node(node);
+}
 
 }  // namespace
 
@@ -230,9 +242,10 @@ void write_atrium(const fs::path& out) {
 
 // ---------------------------------------------------------------------------------------------
 // street: night street, 300 small coloured point lights with ranges, 12 street lamps.
-void write_street(const fs::path& out) {
-  const fs::path dir = fresh_dir(out, "street");
-  GltfBuilder b("street");
+// build_street() fills a builder (street_neon adds to it); `cameras_first` adds cameras before
+// the street's own, so that the first of them is the default view.
+namespace {
+void build_street(GltfBuilder& b, const std::function<void(GltfBuilder&)>& cameras_first) {
   b.set_ambient({0.015f, 0.015f, 0.02f});
   Pcg32 rng(0x57ee7u);
 
@@ -255,6 +268,7 @@ void write_street(const fs::path& out) {
   points[0].intensity = 0.8f;
   for (auto& p : points) p.range = std::sqrt(p.intensity / 0.015f);  // I / d^2 = 0.015 at the range
 
+  if (cameras_first) cameras_first(b);
   b.add_camera("overview", {0.0f, 60.0f, 100.0f}, {0.0f, 0.0f, 0.0f}, 0.9f, 0.5f, 400.0f);
   b.add_camera("street_level", {2.0f, 1.7f, 55.0f}, {0.0f, 3.0f, -40.0f}, 0.9f, 0.05f, 200.0f);
   b.add_camera("inside_light", points[0].pos + glm::vec3(0.5f, 0.0f, 1.5f), {0.0f, 2.0f, -30.0f}, 0.9f, 0.05f, 200.0f);
@@ -351,6 +365,13 @@ void write_street(const fs::path& out) {
   for (int i = 0; i < 4; ++i)
     b.add_mesh_node(window_names[i], b.add_mesh(window_names[i], windows[i], i < 3 ? window_mats[i] : glass_dark),
                     glm::vec3(0.0f));
+}
+}  // namespace
+
+void write_street(const fs::path& out) {
+  const fs::path dir = fresh_dir(out, "street");
+  GltfBuilder b("street");
+  build_street(b, nullptr);
   b.write(dir);
 }
 
@@ -419,12 +440,7 @@ void write_neon(const fs::path& out) {
 
   // A neon node: the tube along the node's local X, the first barn door along local +Y.
   auto neon = [&](const std::string& name, glm::vec3 centre, glm::vec3 along, glm::vec3 up, json tube) {
-    const glm::vec3 x = glm::normalize(along);
-    const glm::vec3 y = glm::normalize(up - glm::dot(up, x) * x);
-    const glm::quat q = frame_rotation(glm::mat3(x, y, glm::cross(x, y)));
-    json node = {{"name", name}, {"translation", jvec(centre)}, {"extras", {{"lightpass", {{"neon", tube}}}}}};
-    if (std::fabs(q.w) < 1.0f - 1e-7f) node["rotation"] = jquat(q);
-    b.add_node(node);
+    add_neon(b, name, centre, along, up, std::move(tube));
   };
   neon("neon_pink", {-0.7f, 1.15f, -1.7f}, {1, 0, 0}, kUp,
        {{"length", fnum(2.4f)}, {"radius", fnum(0.03f)}, {"color", jvec(glm::vec3(1.0f, 0.2f, 0.55f))},
@@ -446,6 +462,43 @@ void write_neon(const fs::path& out) {
   rects.node("wall", {0.0f, 1.5f, -2.0f}, {0, 0, 1}, {1, 0, 0}, 10.0f, 3.0f, wall_mat);
   const float radius = 0.45f;
   b.add_sphere_node("sphere", b.add_mesh("sphere", make_uv_sphere(radius, 64, 32), sphere_mat), {0.6f, radius, -0.6f}, radius);
+  b.write(dir);
+}
+
+// ---------------------------------------------------------------------------------------------
+// street_neon: chapter 04. The night street exactly as write_street makes it (the same RNG
+// draws, so the same lamps, buildings and windows), with neon signs on the building fronts:
+// the facades stand at |x| = 8 without gaps from z = -60 to 58, so a sign 12 cm in front of
+// one is always on a wall. Heights between the first and second rows of windows (their panes
+// span y 1.0-2.5 and 4.2-5.7). Intensities give capsules of 11-16 m (one 8-bit step): from
+// the pavement a view stands inside some and outside others.
+void write_street_neon(const fs::path& out) {
+  const fs::path dir = fresh_dir(out, "street_neon");
+  GltfBuilder b("street_neon");
+  build_street(b, [](GltfBuilder& c) {
+    c.add_camera("neon_signs", {0.5f, 1.8f, 52.0f}, {-0.5f, 2.7f, 26.0f}, 0.9f, 0.05f, 200.0f);
+    c.add_camera("inside_sign", {-5.4f, 1.75f, 42.5f}, {-7.6f, 3.0f, 36.5f}, 0.9f, 0.05f, 200.0f);
+    c.add_camera("above_signs", {1.5f, 34.0f, 64.0f}, {-0.5f, 0.0f, 19.0f}, 0.9f, 0.5f, 300.0f);
+  });
+  const float left = -7.88f, right = 7.88f;  // 12 cm in front of the facades
+  const glm::vec3 along_street(0, 0, 1);
+  auto tube = [](float length, float radius, glm::vec3 color, float intensity, bool caps) {
+    return json{{"length", fnum(length)}, {"radius", fnum(radius)}, {"color", jvec(color)},
+                {"intensity", fnum(intensity)}, {"specular", fnum(1.0f)}, {"caps", caps}};
+  };
+  add_neon(b, "sign_pink", {left, 3.35f, 38.0f}, along_street, kUp, tube(2.4f, 0.025f, {1.0f, 0.15f, 0.55f}, 1.0f, true));
+  add_neon(b, "sign_cyan", {right, 3.2f, 32.0f}, kUp, {1, 0, 0}, tube(1.4f, 0.025f, {0.2f, 0.8f, 1.0f}, 0.6f, true));
+  // Barn doors above and below (the first door along +Y): the light reaches the street and
+  // the wall beside the tube, not the wall above and the pavement right under it.
+  json green = tube(1.6f, 0.025f, {0.3f, 1.0f, 0.35f}, 0.7f, true);
+  green["barn_doors"] = json::array({fnum(0.0f), fnum(2.0f), fnum(0.35f), fnum(0.5f)});
+  add_neon(b, "sign_green", {left, 3.35f, 26.0f}, along_street, kUp, green);
+  // One door above (a hood): the light goes down and out, not up the wall.
+  json amber = tube(2.0f, 0.025f, {1.0f, 0.55f, 0.12f}, 0.8f, false);
+  amber["barn_doors"] = json::array({fnum(0.1f), fnum(1.0f), fnum(0.35f), fnum(0.6f)});
+  add_neon(b, "sign_amber", {right, 3.35f, 16.0f}, along_street, kUp, amber);
+  add_neon(b, "sign_violet", {left, 3.3f, 10.75f}, {0.0f, 1.2f, 1.5f}, {1, 0, 0}, tube(1.9f, 0.025f, {0.6f, 0.3f, 1.0f}, 0.5f, true));
+  add_neon(b, "sign_red", {right, 3.35f, -5.0f}, along_street, kUp, tube(3.0f, 0.03f, {1.0f, 0.1f, 0.08f}, 1.0f, true));
   b.write(dir);
 }
 

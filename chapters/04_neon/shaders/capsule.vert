@@ -2,7 +2,8 @@
 // A tube's capsule (or cylinder) from the unit mesh of capsule.h and the packed per-instance
 // matrix, as in the thesis: scale across by the radius, stretch along the axis (flattening
 // the caps for a cylinder), rotate into (Ri, Rj, Rk), move to the centre. capsule_vertex()
-// in capsule.cpp is the same on the CPU.
+// in capsule.cpp is the same on the CPU. The tube itself goes on to the fragment shader
+// (flat): the light-volume pass lights its pixels with it.
 #include "04_neon/shaders/neon.glsl"
 
 layout(location = 0) in vec3 a_position;  // unit capsule, axis +Y
@@ -14,6 +15,9 @@ uniform mat4 u_view_projection;
 uniform bool u_glass;  // true: the glass tube itself (its own radius); false: the light's volume
 
 flat out vec3 v_power;
+flat out mat4 v_packed;  // the instance's NeonGpu, as it arrived
+flat out vec4 v_barn_doors;
+flat out vec4 v_extra;
 out vec3 v_position;
 
 void main() {
@@ -28,6 +32,9 @@ void main() {
   vec3 world = mat3(t.door, t.axis, rk) * local + t.centre;
   // [/capsule-vertex-glsl]
   v_power = t.power;
+  v_packed = a_packed;
+  v_barn_doors = a_barn_doors;
+  v_extra = a_extra;
   v_position = world;
   gl_Position = u_view_projection * vec4(world, 1.0);
 }

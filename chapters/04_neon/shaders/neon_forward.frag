@@ -1,7 +1,8 @@
 #version 450
 // Chapter 04's forward pass: chapter 01's lights, then every neon tube by the selected
-// method, for every fragment. (Chapter 03's light volumes will call neon_light() from a
-// capsule drawn per tube instead, over the G-buffer.)
+// method, for every fragment. The chapter's default path calls the same neon_light() once per
+// pixel of each tube's capsule over the G-buffer instead (neon_volume.frag); this pass is the
+// yardstick the tests hold it to (--forward 1).
 #include "01_forward/shaders/lighting.glsl"
 #include "04_neon/shaders/neon.glsl"
 

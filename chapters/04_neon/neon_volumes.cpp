@@ -1,0 +1,155 @@
+#include "chapters/04_neon/neon_volumes.h"
+
+namespace lp::ch04 {
+
+namespace {
+
+constexpr GLuint kLightBufferUnit = 5;     // after the G-buffer's units 0..4, as chapter 03
+constexpr GLsizeiptr kCounterStride = 16;  // per tube: shaded, lit, lit_open (and padding)
+
+const char* const kCapsule = "04_neon/shaders/capsule.vert";
+
+}  // namespace
+
+NeonVolumes::NeonVolumes() = default;
+
+void NeonVolumes::reload_shaders() {
+  for (auto& [key, p] : programs_) p.reload();
+}
+
+const ShaderProgram& NeonVolumes::program(const std::string& vertex, const std::string& fragment,
+                                          const ch03::SurfaceView& view, std::vector<std::string> extra) {
+  std::vector<std::string> defines = view.defines;
+  defines.insert(defines.end(), extra.begin(), extra.end());
+  std::string key = vertex + "|" + fragment;
+  for (const auto& d : defines) key += "|" + d;
+  auto it = programs_.find(key);
+  if (it == programs_.end())
+    it = programs_.emplace(key, ShaderProgram({{GL_VERTEX_SHADER, vertex}, {GL_FRAGMENT_SHADER, fragment}}, defines)).first;
+  return it->second;
+}
+
+void NeonVolumes::draw(const NeonTubes& tubes, const ch03::LightBuffer& light, const ch03::SurfaceView& view,
+                       const NeonDraw& how, bool waste) {
+  counts_ = {};
+  per_tube_.assign(std::size_t(tubes.count()), {});
+  if (tubes.count() == 0) return;
+  std::vector<std::string> extra;
+  if (counting_) extra.push_back("COUNT_FRAGMENTS 1");
+  if (waste) extra.push_back("SHOW_WASTE 1");
+  // [neon-programs]
+  // The mask: the capsule placed by capsule.vert, chapter 03's empty stencil shader. The
+  // light: the same capsule, and a fragment shader that lights the G-buffer's surface with
+  // neon_light() (shaders/neon_volume.frag).
+  const ShaderProgram& mark = program(kCapsule, "03_light_volumes/shaders/stencil.frag", view);
+  const ShaderProgram& shade = program(kCapsule, "04_neon/shaders/neon_volume.frag", view, extra);
+  for (const ShaderProgram* p : {&mark, &shade}) {
+    p->use();
+    p->set("u_view_projection", view.camera.view_projection());
+    p->set("u_glass", 0);  // the light's volume, not the glass
+  }
+  shade.set("u_method", static_cast<int>(how.method));
+  shade.set("u_samples", how.samples);
+  // [/neon-programs]
+  if (counting_) {
+    const GLsizeiptr bytes = kCounterStride * tubes.count();
+    if (counters_size_ < bytes) {  // storage is immutable: a larger buffer when needed
+      counters_ = gl::make_buffer(nullptr, std::size_t(bytes), GL_DYNAMIC_STORAGE_BIT);
+      counters_size_ = bytes;
+    }
+    glClearNamedBufferData(counters_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+  }
+  // A second, independent count: GL_SAMPLES_PASSED around each light pass. Only one such
+  // query can be active, and a measured pass (PassMetrics) already runs one: then this one
+  // is left out (samples stay 0).
+  GLint outer_query = 0;
+  glGetQueryiv(GL_SAMPLES_PASSED, GL_CURRENT_QUERY, &outer_query);
+  const bool query = counting_ && outer_query == 0;
+  light.bind();
+  // [neon-volumes]
+  // Chapter 03's stencil strategy, with a capsule for the volume: per tube, the mask (both
+  // faces, no colour), then the light (back faces, where the mask is set).
+  ch03::draw_stencil_volumes(view, tubes.count(), [&](int i, ch03::VolumePass pass) {
+    if (pass == ch03::VolumePass::Mark) {
+      mark.use();
+      tubes.draw_capsule(i);
+      return;
+    }
+    shade.use();
+    if (counting_) glBindBufferRange(GL_ATOMIC_COUNTER_BUFFER, 0, counters_.id(), kCounterStride * i, kCounterStride);
+    if (query) glBeginQuery(GL_SAMPLES_PASSED, samples_.id());
+    tubes.draw_capsule(i);
+    if (query) {
+      glEndQuery(GL_SAMPLES_PASSED);
+      GLuint64 passed = 0;
+      glGetQueryObjectui64v(samples_.id(), GL_QUERY_RESULT, &passed);
+      per_tube_[std::size_t(i)].samples = passed;
+    }
+  });
+  // [/neon-volumes]
+  if (counting_) {
+    std::vector<GLuint> c(std::size_t(kCounterStride / 4) * tubes.count());
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT);
+    glGetNamedBufferSubData(counters_.id(), 0, kCounterStride * tubes.count(), c.data());
+    for (int i = 0; i < tubes.count(); ++i) {
+      NeonCounts& t = per_tube_[std::size_t(i)];
+      t.shaded = c[4 * i];
+      t.lit = c[4 * i + 1];
+      t.lit_open = c[4 * i + 2];
+      counts_.shaded += t.shaded;
+      counts_.lit += t.lit;
+      counts_.lit_open += t.lit_open;
+      counts_.samples += t.samples;
+    }
+  }
+}
+
+void NeonVolumes::draw_term(const ch03::LightBuffer& light, const ch03::SurfaceView& view, Term term,
+                            const glm::vec3& background) {
+  const ShaderProgram& p = program("02_gbuffer/shaders/fullscreen.vert", "04_neon/shaders/neon_term.frag", view,
+                                   {"LIGHT_BUFFER_UNIT 5"});
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_STENCIL_TEST);
+  glBindTextureUnit(kLightBufferUnit + 0, light.diffuse());
+  glBindTextureUnit(kLightBufferUnit + 1, light.specular());
+  p.use();
+  p.set("u_background", background);
+  p.set("u_term", static_cast<int>(term));
+  full_screen_.draw();
+  glEnable(GL_DEPTH_TEST);
+}
+
+void NeonVolumes::draw_pictures(const NeonTubes& tubes, const ch03::SurfaceView& view, bool masks) {
+  const ShaderProgram& mark = program(kCapsule, "03_light_volumes/shaders/stencil.frag", view);
+  const ShaderProgram& tint = program(kCapsule, "04_neon/shaders/mask_tint.frag", view);
+  const ShaderProgram& outline = program(kCapsule, "04_neon/shaders/glass.frag", view);
+  for (const ShaderProgram* p : {&mark, &tint, &outline}) {
+    p->use();
+    p->set("u_view_projection", view.camera.view_projection());
+    p->set("u_glass", 0);
+  }
+  if (masks) {
+    // The masks exactly as draw() makes them; the light pass adds the tube's colour instead.
+    ch03::draw_stencil_volumes(view, tubes.count(), [&](int i, ch03::VolumePass pass) {
+      (pass == ch03::VolumePass::Mark ? mark : tint).use();
+      tubes.draw_capsule(i);
+    });
+  }
+  // The outlines, depth-tested against the scene (the G-buffer's depth convention).
+  if (view.reversed_z) glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(view.reversed_z ? GL_GEQUAL : GL_LEQUAL);
+  glDepthMask(GL_FALSE);
+  glDisable(GL_CULL_FACE);
+  glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+  outline.use();
+  tubes.draw_capsules();
+  glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+}
+
+}  // namespace lp::ch04
