@@ -18,6 +18,7 @@
 #include "common/error.h"
 #include "common/metrics.h"
 #include "common/paths.h"
+#include "common/sweep.h"
 #include "common/target.h"
 
 namespace {
@@ -31,24 +32,6 @@ struct Settings {
   int frames = 10;
   int reference_samples = 2048;
 };
-
-void parse_size(const std::string& s, int& w, int& h) {
-  if (std::sscanf(s.c_str(), "%dx%d", &w, &h) != 2 || w <= 0 || h <= 0) throw UsageError("bad size '" + s + "'");
-}
-
-Settings parse(int argc, char** argv) {
-  Settings s;
-  for (int i = 1; i < argc; ++i) {
-    std::string a = argv[i];
-    auto value = [&] { if (i + 1 >= argc) throw UsageError(a + " needs a value"); return std::string(argv[++i]); };
-    if (a == "--out") s.out = value();
-    else if (a == "--size") parse_size(value(), s.width, s.height);
-    else if (a == "--frames") s.frames = std::stoi(value());
-    else if (a == "--reference-samples") s.reference_samples = std::stoi(value());
-    else throw UsageError("unknown option '" + a + "'");
-  }
-  return s;
-}
 
 // A method as the sweep names it: the renderer's method and its sample count.
 struct Variant {
@@ -260,8 +243,11 @@ void points_sweep(const Settings& s, const Scene& scene, Sweep& sweep, const std
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    Settings s = parse(argc, argv);
+  Settings s;
+  return run_sweep(argc, argv, "04_neon_sweep", [&](SweepArgs& args) {
+    args.text("--out", s.out).size("--size", s.width, s.height).integer("--frames", s.frames)
+        .integer("--reference-samples", s.reference_samples);
+  }, [&] {
     std::filesystem::create_directories(s.out);
     auto context = Context::create({.headless = true, .width = s.width, .height = s.height});
     Scene scene = load_scene(from_root("assets/neon/neon.gltf"));
@@ -272,13 +258,5 @@ int main(int argc, char** argv) {
     methods_sweep(s, scene, sweep, timer);
     points_sweep(s, scene, sweep, timer);
     std::cout << "wrote " << s.out << "/04_methods.csv and 04_points.csv\n";
-    return 0;
-  } catch (const UsageError& e) {
-    std::cerr << "04_neon_sweep: " << e.what()
-              << "\nusage: 04_neon_sweep [--out DIR] [--size WxH] [--frames N] [--reference-samples N]\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "04_neon_sweep: error: " << e.what() << '\n';
-    return 1;
-  }
+  });
 }
