@@ -9,6 +9,12 @@ add_executable(hdr_gl_tests unit/test_05_hdr_gl.cpp)
 target_link_libraries(hdr_gl_tests PRIVATE lightpass_05_hdr GTest::gtest_main)
 gtest_discover_tests(hdr_gl_tests TEST_PREFIX "05_hdr.gl." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
 
+# The radiance: chapter 03's deferred path against chapter 01's forward renderer, the light
+# cut made for the exposure, the exposure read back from earlier frames.
+add_executable(hdr_radiance_gl_tests unit/test_05_hdr_radiance_gl.cpp)
+target_link_libraries(hdr_radiance_gl_tests PRIVATE lightpass_05_hdr GTest::gtest_main)
+gtest_discover_tests(hdr_radiance_gl_tests TEST_PREFIX "05_hdr.radiance." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
+
 set(P05 $<TARGET_FILE:05_hdr>)
 set(ATRIUM ${CMAKE_SOURCE_DIR}/assets/atrium/atrium.gltf)
 lightpass_program_test(05_hdr.reference.street 0 "10 of 10 references match" ${P05} --check --out ${CHECK_OUT}/05_hdr)
@@ -21,6 +27,12 @@ lightpass_program_test(05_hdr.headless_writes_png 0 "wrote .*05_headless.png"
 # (< 1e-5) and the 6 printed digits (1e-5 each) keep it within 5.0576 .. 5.0579.
 add_test(NAME 05_hdr.adaptation_over_frames COMMAND sh -c
   "'${P05}' --headless --scene '${ATRIUM}' --view aisle --sun 25 --size 96x54 --frames 60 --adapt-start 30 --tau 0.5 --out '${CMAKE_BINARY_DIR}/out/05_adapt.png' | awk '/log-average/ { r = $7 / $3; print \"adapted / average = \" r; found = 1; exit !(r > 5.0576 && r < 5.0579) } END { if (!found) exit 1 }'")
+# The light cut follows the exposure: after a few frames of the night street the volumes are
+# cut for an exposure read back 1-3 frames late, raised by the adaptation's bound
+# (exp(3 x (1/60) / 0.5) = 1.105 at most), times Reinhard's output slope (1.001), rounded up
+# to a quarter stop (at most 2^(1/4) = 1.189): between 1 and 1.32 times the frame's exposure.
+add_test(NAME 05_hdr.cut_follows_the_exposure COMMAND sh -c
+  "'${P05}' --headless --size 96x54 --frames 8 --out '${CMAKE_BINARY_DIR}/out/05_cut.png' | awk '/^log-average/ { e = $NF } /^lights cut for exposure/ { c = $5; read = /frames before/ } END { print \"cut / exposure = \" c / e; exit !(e > 0 && read && c >= e && c <= 1.32 * e) }'")
 lightpass_program_test(05_hdr.bench_prints_json 0 "\"name\":\"hdr: tonemap\""
   ${P05} --bench --frames 2 --size 160x90 --scene ${ATRIUM} --bloom 1)
 lightpass_program_test(05_hdr.bad_mode 2 "unknown mode 'sepia'" ${P05} --mode sepia)

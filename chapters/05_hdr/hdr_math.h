@@ -85,6 +85,51 @@ inline float tonemap(Operator op, float x, float white) {
 }
 // [/operators]
 
+// The slope of each curve, dT/dx, where it is not clamped (0 where it is).
+inline double tonemap_slope(Operator op, double x, double white) {
+  switch (op) {
+    case Operator::Clamp: return x < 1.0 ? 1.0 : 0.0;
+    case Operator::Reinhard: return 1.0 / ((1.0 + x) * (1.0 + x));
+    case Operator::ReinhardExtended:
+      if (x * (1.0 + x / (white * white)) / (1.0 + x) >= 1.0) return 0.0;
+      return (1.0 + x * (2.0 + x) / (white * white)) / ((1.0 + x) * (1.0 + x));
+    case Operator::Aces: {
+      double n = x * (2.51 * x + 0.03), d = x * (2.43 * x + 0.59) + 0.14;
+      if (n / d >= 1.0) return 0.0;
+      return ((5.02 * x + 0.03) * d - n * (4.86 * x + 0.59)) / (d * d);
+    }
+  }
+  return 0.0;
+}
+
+// [output-slope]
+// How steeply a curve turns exposed light into output steps, relative to the steepest an
+// sRGB output can be without a curve: the largest d/dx srgb(T(x)) over x >= 0, divided by
+// 12.92 (the sRGB encoding's slope at black, where chapter 03's kSrgbFirstStep comes from).
+// Light that moves x by less than kSrgbFirstStep / output_slope moves no output pixel by a
+// whole step. Reinhard, clamp and extended Reinhard (white >= 1) are steepest at black with
+// slope 1: 1. ACES's toe is flat (0.21 at black); its steepest point is where its output
+// leaves sRGB's linear segment (0.0031308): 0.495. The maximum is searched on a grid of 200
+// points a decade, plus 0 and that point, and rounded up by 10^-3 (the unit test checks a
+// grid ten times finer).
+inline double srgb_encode_slope(double linear) {
+  return linear <= 0.0031308 ? 12.92 : 1.055 / 2.4 * std::pow(linear, 1.0 / 2.4 - 1.0);
+}
+inline float output_slope(Operator op, float white) {
+  auto slope = [&](double x) {
+    return srgb_encode_slope(tonemap(op, float(x), white)) * tonemap_slope(op, x, white) / 12.92;
+  };
+  double lo = 0, hi = 1e3;  // the last x in sRGB's linear segment (T is monotonic)
+  for (int i = 0; i < 200; ++i) {
+    double mid = 0.5 * (lo + hi);
+    (double(tonemap(op, float(mid), white)) <= 0.0031308 ? lo : hi) = mid;
+  }
+  double best = std::max(slope(0.0), slope(lo));
+  for (int i = -7 * 200; i <= 3 * 200; ++i) best = std::max(best, slope(std::pow(10.0, i / 200.0)));
+  return float(best * (1.0 + 1e-3));
+}
+// [/output-slope]
+
 // [adapt]
 // Eye adaptation: the adapted luminance moves towards the frame's log-average with time
 // constant tau (seconds). After tau it has covered 63% of the way, after 3 tau 95%. The

@@ -4,9 +4,9 @@
 //   radiance (RGBA16F) --> log-average --> eye adaptation --> [bloom] --> tonemap --> sRGB8
 //
 // The input is only "a radiance texture and its size": whatever renders the lit scene
-// (chapter 01's forward renderer here, chapter 03's light buffer later) hands its texture
-// to process(). The pieces are usable alone too: LogAverage, EyeAdaptation, Bloom,
-// Tonemapper.
+// (chapter 03's deferred path in the program, chapter 01's forward renderer in the tests)
+// hands its texture to process(). The pieces are usable alone too: LogAverage,
+// EyeAdaptation, Bloom, Tonemapper.
 #include <string>
 #include <vector>
 

@@ -1,8 +1,9 @@
-// Chapter 05: HDR. The lit scene is accumulated in a float target, its log-average
-// luminance sets the exposure (with the eye adapting over frames), bloom spreads the
-// brightest light, and a tonemapping curve brings it into the display's range. The modes
-// switch the curve, show what an 8-bit light accumulation loses, and show the bloom's
-// intermediate images.
+// Chapter 05: HDR. The lit scene is accumulated in a float target by chapter 03's deferred
+// path (G-buffer, light volumes, float light buffer), its log-average luminance sets the
+// exposure (with the eye adapting over frames), bloom spreads the brightest light, and a
+// tonemapping curve brings it into the display's range. The lights' volumes are cut for the
+// exposure, read back from earlier frames without waiting. The modes switch the curve, show
+// what an 8-bit light accumulation loses, and show the bloom's intermediate images.
 #include <chrono>
 #include <iostream>
 #include <map>
@@ -11,6 +12,7 @@
 
 #include <imgui.h>
 
+#include "chapters/05_hdr/exposure_feedback.h"
 #include "chapters/05_hdr/hdr_pipeline.h"
 #include "chapters/05_hdr/radiance_source.h"
 #include "common/app.h"
@@ -87,14 +89,14 @@ HdrSettings settings_for(const lp::Frame& f, float dt) {
 }
 
 // The radiance target for this frame: reallocated when the size or the format changes.
+// Chapter 03's composite writes every pixel and tests nothing: no depth buffer.
 class RadianceTargets {
  public:
   RadianceTarget& get(const lp::Frame& f, lp::PassMetrics& metrics) {
     GLenum format = f.mode == "8bit" ? GL_RGBA8 : GL_RGBA16F;  // 8-bit: to see what it loses
     if (!target_ || target_->width() != f.width || target_->height() != f.height || target_->format() != format) {
-      target_ = std::make_unique<RadianceTarget>(f.width, f.height, format);
-      metrics.set_allocation("radiance colour", std::size_t(f.width) * f.height * lp::gl::bytes_per_texel(format));
-      metrics.set_allocation("radiance depth DEPTH24_STENCIL8", std::size_t(f.width) * f.height * 4);
+      target_ = std::make_unique<RadianceTarget>(f.width, f.height, format, false);
+      metrics.set_allocation(format == GL_RGBA8 ? "radiance colour RGBA8" : "radiance colour RGBA16F", target_->bytes());
     }
     return *target_;
   }
@@ -138,10 +140,12 @@ class FrameClock {
 
 int main(int argc, char** argv) {
   return lp::run_chapter(argc, argv, chapter_for(argc, argv), [](lp::App& app) {
-    ForwardRadiance source(app.scene());
+    DeferredRadiance source(app.scene());
     RadianceTargets targets;
     HdrPipeline hdr;
+    ExposureFeedback feedback;
     FrameClock clock(app.context().is_window());
+    ExposureEstimate cut;
 
     while (app.next_frame()) {
       const lp::Frame& f = app.frame();
@@ -150,33 +154,51 @@ int main(int argc, char** argv) {
         hdr.reload_shaders();
       }
       // [frame]
-      // 1. The lit scene as radiance in a float target: chapter 01's forward renderer for now.
-      //    To take chapter 03's deferred light buffer instead, run its passes here and hand
-      //    its light-buffer texture to hdr.process() below; nothing else changes.
-      RadianceTarget& radiance = targets.get(f, app.metrics());
-      source.set_scales(float(f.knob("sun")), float(f.knob("glow")));
-      {
-        auto pass = app.metrics().pass("radiance: chapter 01 forward, all lights");
-        source.render(f.camera, radiance);
+      const float start_scale = float(f.knob("adapt-start"));
+      if (clock.new_shot(f)) {
+        hdr.reset_adaptation(start_scale);
+        feedback.reset();
       }
+      const HdrSettings settings = settings_for(f, clock.dt());
 
-      // 2. The HDR stage: log-average, eye adaptation, bloom, tonemapping into the sRGB8 output.
-      if (clock.new_shot(f)) hdr.reset_adaptation(float(f.knob("adapt-start")));
-      hdr.process(radiance.texture(), f.width, f.height, settings_for(f, clock.dt()), f.target, &app.metrics());
+      // 1. The lights' volumes end where a light gives less than one output step after the
+      //    largest exposure this frame can get: read back from an earlier frame, never waiting.
+      cut = feedback.begin_frame(settings.adaptation, settings.delta, start_scale);
+      source.set_cut_exposure(cut.exposure * output_slope(settings.tonemap.op, settings.tonemap.white));
+
+      // 2. The lit scene as radiance in a float target, by chapter 03's deferred path:
+      //    G-buffer, light volumes into the float light buffer, composite into our target.
+      source.set_scales(float(f.knob("sun")), float(f.knob("glow")));
+      RadianceTarget& radiance = targets.get(f, app.metrics());
+      source.render(f.camera, radiance, &app.metrics());
+
+      // 3. The HDR stage: log-average, eye adaptation, bloom, tonemapping into the sRGB8 output.
+      hdr.process(radiance.texture(), f.width, f.height, settings, f.target, &app.metrics());
+      feedback.end_frame(hdr.adaptation().state_buffer());
       // [/frame]
+      app.metrics().set_allocation("G-buffer (chapter 02) + light buffer (chapter 03)", source.allocated_bytes());
       app.metrics().set_allocation("hdr: log-average chain + bloom chain", hdr.allocated_bytes());
 
       app.panel([&] {
-        ExposureState e = hdr.adaptation().read();
-        ImGui::Text("log-average %.4g, adapted %.4g", e.target, e.adapted);
-        ImGui::Text("exposure %.4g (%.0f pixels averaged)", e.exposure, e.count);
-        if (ImGui::Button("re-adapt from 30x brighter")) hdr.reset_adaptation(30.f);
+        if (const ExposureState* e = feedback.latest()) {  // read back late: the panel does not wait either
+          ImGui::Text("log-average %.4g, adapted %.4g (%d frames ago)", e->target, e->adapted, feedback.latest_age());
+          ImGui::Text("exposure %.4g (%.0f pixels averaged)", e->exposure, e->count);
+        }
+        if (cut.age < 0) ImGui::Text("lights cut for exposure %.4g (no reading yet: the stage's limit)", source.cut_exposure());
+        else ImGui::Text("lights cut for exposure %.4g (read %d frames ago: %.4g)", source.cut_exposure(), cut.age, cut.read);
+        if (ImGui::Button("re-adapt from 30x brighter")) {
+          hdr.reset_adaptation(30.f);
+          feedback.reset();
+        }
       });
     }
     if (!app.context().is_window() && !app.options().check && !app.options().bench) {
       ExposureState e = hdr.adaptation().read();
       std::cout << "log-average luminance " << e.target << " (" << e.count << " pixels), adapted " << e.adapted
                 << ", exposure " << e.exposure << '\n';
+      std::cout << "lights cut for exposure " << source.cut_exposure() << " (an exposure of at most " << cut.exposure;
+      if (cut.age < 0) std::cout << ", the stage's limit: no reading yet)\n";
+      else std::cout << " from the one read " << cut.age << " frames before, " << cut.read << ")\n";
     }
   });
 }

@@ -1,25 +1,29 @@
 #include "chapters/05_hdr/radiance_source.h"
 
 #include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <optional>
 #include <string>
 
 #include "chapters/01_forward/ground_truth.h"
+#include "chapters/03_light_volumes/light_radius.h"
 #include "common/error.h"
 
 namespace lp::ch05 {
 
-RadianceTarget::RadianceTarget(int w, int h, GLenum format)
-    : width_(w), height_(h), format_(format),
+RadianceTarget::RadianceTarget(int w, int h, GLenum format, bool with_depth)
+    : width_(w), height_(h), format_(format), has_depth_(with_depth),
       colour_(gl::make_texture_2d(format, w, h)),
-      depth_(gl::make_texture_2d(GL_DEPTH24_STENCIL8, w, h)) {
+      depth_(with_depth ? gl::make_texture_2d(GL_DEPTH24_STENCIL8, w, h) : gl::Texture(GL_TEXTURE_2D)) {
   glNamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT0, colour_.id(), 0);
-  glNamedFramebufferTexture(fbo_.id(), GL_DEPTH_STENCIL_ATTACHMENT, depth_.id(), 0);
+  if (with_depth) glNamedFramebufferTexture(fbo_.id(), GL_DEPTH_STENCIL_ATTACHMENT, depth_.id(), 0);
   if (glCheckNamedFramebufferStatus(fbo_.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw Error("the radiance framebuffer (" + std::to_string(w) + "x" + std::to_string(h) + ") is incomplete");
 }
 
 std::size_t RadianceTarget::bytes() const {
-  return std::size_t(width_) * height_ * (gl::bytes_per_texel(format_) + gl::bytes_per_texel(GL_DEPTH24_STENCIL8));
+  return std::size_t(width_) * height_ * (gl::bytes_per_texel(format_) + (has_depth_ ? gl::bytes_per_texel(GL_DEPTH24_STENCIL8) : 0));
 }
 
 void RadianceTarget::bind() const {
@@ -83,6 +87,92 @@ void ForwardRadiance::render(const FrameCamera& camera, const RadianceTarget& ta
   glClearColor(ch01::kBackground.r, ch01::kBackground.g, ch01::kBackground.b, 1.f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   forward_->draw(camera, ch01::ForwardMode::PerPixel, lights_);
+}
+
+// --- Chapter 03's deferred path ----------------------------------------------------------------
+
+DeferredRadiance::DeferredRadiance(const Scene& scene, const ch02::Layout& layout, ch03::Strategy strategy)
+    : original_(scene), layout_(layout), strategy_(strategy), peak_reflectance_(ch03::peak_reflectance(scene)) {
+  set_scales(1, 1);
+}
+
+void DeferredRadiance::set_scales(float sun, float glow) {
+  if (sun == sun_ && glow == glow_) return;
+  if (!scene_) {
+    scene_ = std::make_unique<Scene>(rescaled_scene(original_, sun, glow));
+    gpu_ = std::make_unique<SceneGpu>(*scene_);
+  } else {
+    for (std::size_t i = 0; i < scene_->materials.size(); ++i)
+      scene_->materials[i].emissive = original_.materials[i].emissive * glow;
+    for (std::size_t i = 0; i < scene_->lights.size(); ++i)
+      scene_->lights[i].intensity = original_.lights[i].intensity * (original_.lights[i].type == LightType::Directional ? sun : 1.f);
+  }
+  // Chapter 02's geometry pass takes its emissive palette from the materials when it is made.
+  if (glow != glow_) geometry_ = std::make_unique<ch02::GeometryPass>(*gpu_);
+  if (sun != sun_) lights_changed_ = true;
+  sun_ = sun;
+  glow_ = glow;
+}
+
+void DeferredRadiance::set_cut_exposure(float exposure) {
+  if (!(exposure > 0.f) || !std::isfinite(exposure)) throw Error("the light cut needs a positive, finite exposure");
+  // [quarter-stop]
+  const float rounded = std::exp2(std::ceil(std::log2(exposure) * 4.f) / 4.f);
+  // [/quarter-stop]
+  if (rounded != cut_exposure_) lights_changed_ = true;
+  cut_exposure_ = rounded;
+}
+
+float DeferredRadiance::cut_threshold() const { return ch03::cut_threshold(cut_exposure_, peak_reflectance_); }
+
+void DeferredRadiance::reload_shaders() {
+  geometry_->reload_shaders();
+  volumes_.reload_shaders();
+}
+
+std::size_t DeferredRadiance::allocated_bytes() const {
+  if (!gbuffer_) return 0;
+  return gbuffer_->bytes_per_pixel() * std::size_t(gbuffer_->width()) * gbuffer_->height() + light_->bytes();
+}
+
+void DeferredRadiance::render(const FrameCamera& camera, const RadianceTarget& target, PassMetrics* metrics) {
+  auto timed = [&](const std::string& name) {
+    return metrics ? std::optional<PassMetrics::Scope>(metrics->pass(name)) : std::nullopt;
+  };
+  const int w = target.width(), h = target.height();
+  if (!gbuffer_ || gbuffer_->width() != w || gbuffer_->height() != h) {
+    gbuffer_ = std::make_unique<ch02::GBuffer>(w, h, layout_);
+    light_ = std::make_unique<ch03::LightBuffer>(w, h, ch02::depth_format(layout_.depth));
+  }
+  if (lights_changed_) {
+    ch03::LightSet set = ch03::build_light_set(scene_->lights, cut_threshold(), volumes_.shapes());
+    if (!warned_)  // the same lights every time: say it once
+      for (const auto& warning : set.warnings) std::cerr << "warning: " << warning << '\n';
+    warned_ = true;
+    volumes_.set_lights(std::move(set));
+    lights_changed_ = false;
+  }
+  // [deferred-frame]
+  {
+    auto t = timed("radiance: G-buffer (chapter 02)");
+    geometry_->draw(*gbuffer_, camera);
+  }
+  gbuffer_->bind_textures(0);
+  const ch03::SurfaceView view = ch03::surface_view(*gbuffer_);
+  light_->begin(gbuffer_->framebuffer());
+  {
+    auto t = timed("radiance: ambient + directional (chapter 03)");
+    volumes_.draw_global(*light_, view, scene_->ambient);
+  }
+  {
+    auto t = timed("radiance: local lights, " + ch03::kStrategies[int(strategy_)] + " (chapter 03)");
+    volumes_.draw_local(*light_, view, strategy_);
+  }
+  // Chapter 03's composite draws into the bound framebuffer: ours, not the sRGB output.
+  target.bind();
+  auto t = timed("radiance: composite albedo x L1 + L2 + emissive");
+  volumes_.composite(*light_, view, ch01::kBackground);
+  // [/deferred-frame]
 }
 
 }  // namespace lp::ch05

@@ -1,25 +1,33 @@
 #pragma once
-// Where the chapter's HDR radiance comes from. The HDR stage only needs a radiance texture;
-// until chapter 03's deferred light buffer exists, chapter 01's forward renderer draws the
-// lit scene into a RadianceTarget of our own: RGBA16F (the float path) or RGBA8 (what an
-// 8-bit light accumulation keeps).
+// Where the chapter's HDR radiance comes from. The HDR stage only needs a radiance texture.
+// The chapter's is chapter 03's deferred path (DeferredRadiance): chapter 02's G-buffer,
+// the lights' volumes into chapter 03's float light buffer, and its composite into a
+// RadianceTarget of our own: RGBA16F (the float path) or RGBA8 (what an 8-bit light
+// accumulation keeps). Chapter 01's forward renderer (ForwardRadiance) draws the same
+// radiance the direct way; the tests hold the two against each other.
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "chapters/01_forward/forward.h"
 #include "chapters/01_forward/light_buffer.h"
+#include "chapters/02_gbuffer/gbuffer.h"
+#include "chapters/03_light_volumes/light_volumes.h"
 #include "common/camera.h"
 #include "common/gl.h"
 #include "common/image.h"
+#include "common/metrics.h"
 #include "common/scene.h"
 #include "common/scene_gpu.h"
 
 namespace lp::ch05 {
 
-// A colour texture (GL_RGBA16F or GL_RGBA8) and a depth buffer to render the lit scene into.
+// A colour texture (GL_RGBA16F or GL_RGBA8) to render the lit scene into, and a depth
+// buffer for a renderer that draws geometry into it (the forward one; the deferred path's
+// composite needs none).
 class RadianceTarget {
  public:
-  RadianceTarget(int width, int height, GLenum format);
+  RadianceTarget(int width, int height, GLenum format, bool with_depth = true);
   GLuint framebuffer() const { return fbo_.id(); }
   GLuint texture() const { return colour_.id(); }
   GLenum format() const { return format_; }
@@ -32,6 +40,7 @@ class RadianceTarget {
  private:
   int width_, height_;
   GLenum format_;
+  bool has_depth_;
   gl::Framebuffer fbo_;
   gl::Texture colour_, depth_;
 };
@@ -48,7 +57,8 @@ ImageF read_texture(GLuint texture, int width, int height);
 Scene rescaled_scene(const Scene& scene, float sun, float glow);
 
 // [forward-radiance]
-// Chapter 01's forward renderer as the radiance source: all lights in one pass, per pixel.
+// Chapter 01's forward renderer as a radiance source: all lights in one pass, per pixel,
+// uncut. The cross-check for DeferredRadiance.
 class ForwardRadiance {
  public:
   explicit ForwardRadiance(const Scene& scene);
@@ -66,5 +76,50 @@ class ForwardRadiance {
   float sun_ = -1, glow_ = -1;
 };
 // [/forward-radiance]
+
+// [deferred-radiance]
+// Chapter 03's deferred path as the radiance source: chapter 02's G-buffer, ambient and
+// directional light for every pixel, each local light through its stencil-masked volume into
+// chapter 03's float light buffer (L1 diffuse, L2 specular, RGBA16F), and chapter 03's
+// composite, albedo * L1 + L2 + emissive, into a RadianceTarget instead of the sRGB output.
+class DeferredRadiance {
+ public:
+  explicit DeferredRadiance(const Scene& scene, const ch02::Layout& layout = ch02::our_layout(),
+                            ch03::Strategy strategy = ch03::Strategy::Stencil);
+  void set_scales(float sun, float glow);  // cheap when unchanged
+  // The exposure the volumes are cut for: a light ends where it gives less than one output
+  // step after this exposure (times the curve's output_slope()) on the brightest material.
+  // Rounded up to a quarter stop, so the volumes are rebuilt only when it moves by 19 %.
+  void set_cut_exposure(float exposure);
+  float cut_exposure() const { return cut_exposure_; }  // as rounded
+  float cut_threshold() const;                           // chapter 03's threshold for it
+  void reload_shaders();
+  // Draws the scene as `camera` sees it into `target` (any size; the G-buffer and the light
+  // buffer follow it). With `metrics`, each pass is timed on its own.
+  void render(const FrameCamera& camera, const RadianceTarget& target, PassMetrics* metrics = nullptr);
+
+  const Scene& scene() const { return *scene_; }  // rescaled
+  const SceneGpu& scene_gpu() const { return *gpu_; }
+  float peak_reflectance() const { return peak_reflectance_; }
+  const ch02::GBuffer& gbuffer() const { return *gbuffer_; }
+  const ch03::LightBuffer& light_buffer() const { return *light_; }
+  ch03::LightVolumes& volumes() { return volumes_; }
+  std::size_t allocated_bytes() const;  // G-buffer + light buffer
+
+ private:
+  const Scene& original_;
+  ch02::Layout layout_;
+  ch03::Strategy strategy_;
+  std::unique_ptr<Scene> scene_;  // the rescaled copy the GPU scene points at
+  std::unique_ptr<SceneGpu> gpu_;
+  std::unique_ptr<ch02::GeometryPass> geometry_;  // made again when the glow changes (its palette)
+  ch03::LightVolumes volumes_;
+  std::unique_ptr<ch02::GBuffer> gbuffer_;
+  std::unique_ptr<ch03::LightBuffer> light_;
+  float peak_reflectance_;
+  float sun_ = -1, glow_ = -1, cut_exposure_ = 1;
+  bool lights_changed_ = true, warned_ = false;
+};
+// [/deferred-radiance]
 
 }  // namespace lp::ch05

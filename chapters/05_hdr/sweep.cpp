@@ -20,6 +20,7 @@
 #include <sstream>
 #include <string>
 
+#include "chapters/05_hdr/exposure_feedback.h"
 #include "chapters/05_hdr/hdr_math.h"
 #include "chapters/05_hdr/hdr_pipeline.h"
 #include "chapters/05_hdr/radiance_source.h"
@@ -113,13 +114,17 @@ ImageF ramp_image(int w, int h) {
   return img;
 }
 
+// The chapter's radiance: chapter 03's deferred path, the volumes cut as on the program's
+// first frame (for the stage's largest exposure: nothing the eye could see is cut).
 struct SceneSource {
   Scene scene;
-  ForwardRadiance source;
-  explicit SceneSource(const std::string& path) : scene(load_scene(from_root(path))), source(scene) {}
+  DeferredRadiance source;
+  explicit SceneSource(const std::string& path) : scene(load_scene(from_root(path))), source(scene) {
+    source.set_cut_exposure(exposure_limit(0.18f, 1e-4f, 1.f));
+  }
   RadianceTarget render(const std::string& view, int w, int h, float sun, float glow, GLenum format = GL_RGBA16F) {
     source.set_scales(sun, glow);
-    RadianceTarget t(w, h, format);
+    RadianceTarget t(w, h, format, false);
     source.render(frame_camera(scene.camera(view), float(w) / float(h)), t);
     return t;
   }

@@ -7,6 +7,7 @@
 #include <limits>
 #include <numeric>
 
+#include "chapters/05_hdr/exposure_feedback.h"
 #include "chapters/05_hdr/hdr_math.h"
 #include "chapters/05_hdr/reference.h"
 
@@ -132,6 +133,66 @@ TEST(Adaptation, ApproachesWithoutOvershootFromBothSides) {
     // steps stop once (a - target) k, with k = 1 - exp(-dt / tau) = 0.0328, is below half an
     // ulp of 1 (6e-8): a stays within 6e-8 / 0.0328 = 1.82e-6 of the target, from above.
     EXPECT_NEAR(a, target, 1.82e-6f);
+  }
+}
+
+// --- How far a light may be cut: the curve's slope and the exposure's bound ----------------
+
+TEST(OutputSlope, TheSlopesAreTheCurvesDerivatives) {
+  // Central differences of the float curves, where they are smooth (away from the clamps).
+  for (Operator op : kOperators)
+    for (double x : {1e-3, 0.01, 0.1, 0.5, 0.9, 2.0, 3.0}) {
+      const double h = 1e-3 * x;
+      const double numeric = (double(tonemap(op, float(x + h), 4.f)) - tonemap(op, float(x - h), 4.f)) / (2 * h);
+      EXPECT_NEAR(tonemap_slope(op, x, 4.0), numeric, 2e-3 * std::max(1.0, numeric) + 2e-4 / x) << kOperatorNames[int(op)] << " at " << x;
+    }
+}
+
+TEST(OutputSlope, IsTheSteepestPointOfCurveAndEncoding) {
+  // Reinhard, clamp and extended Reinhard are steepest at black with slope 1 (and sRGB is):
+  // 1, plus the search's 10^-3. ACES's toe is flat; its steepest output point is where the
+  // curve leaves sRGB's linear segment.
+  EXPECT_NEAR(output_slope(Operator::Reinhard, 4.f), 1.001f, 1e-6f);
+  EXPECT_NEAR(output_slope(Operator::Clamp, 4.f), 1.001f, 1e-6f);
+  EXPECT_NEAR(output_slope(Operator::ReinhardExtended, 4.f), 1.001f, 1e-6f);
+  EXPECT_NEAR(output_slope(Operator::Aces, 4.f), 0.4952f * 1.001f, 1e-4f);  // T'(0.00876)
+  // No point of a grid ten times finer (2000 a decade) is steeper than the bound, and the
+  // bound is no more than 0.2 % above the steepest point found.
+  for (Operator op : kOperators)
+    for (float white : {0.5f, 4.f}) {
+      double steepest = 0;
+      for (int i = -7 * 2000; i <= 3 * 2000; ++i) {
+        const double x = std::pow(10.0, i / 2000.0);
+        steepest = std::max(steepest, srgb_encode_slope(tonemap(op, float(x), white)) * tonemap_slope(op, x, white) / 12.92);
+      }
+      EXPECT_LE(steepest, output_slope(op, white)) << kOperatorNames[int(op)] << " white " << white;
+      EXPECT_GE(steepest, output_slope(op, white) / 1.002) << kOperatorNames[int(op)] << " white " << white;
+    }
+}
+
+TEST(ExposureBound, HoldsForAnySequenceOfFrames) {
+  // Eyes adapting to random frames (black ones included), at random frame times and time
+  // constants: the exposure of every later frame is within the bound from every earlier one,
+  // and never above the stage's limit.
+  std::uint32_t seed = 12345;
+  auto uniform = [&] { seed = seed * 1664525u + 1013904223u; return float(seed >> 8) / 16777216.f; };
+  const float key = 0.18f, delta = 1e-4f;
+  for (int run = 0; run < 50; ++run) {
+    const float start = std::pow(10.f, -2.f + 4.f * uniform());
+    std::vector<float> adapted, decay;
+    float a = 0, sum = 0;
+    for (int n = 0; n < 200; ++n) {
+      const float target = uniform() < 0.2f ? delta : delta + std::pow(10.f, -4.f + 8.f * uniform());  // exp(mean log(delta + L)) >= delta
+      const float dt = 0.002f + 0.1f * uniform(), tau = 0.05f + 2.f * uniform();
+      a = n == 0 ? target * start : adapt(a, target, dt, tau);
+      sum += n == 0 ? 0.f : dt / tau;
+      adapted.push_back(a);
+      decay.push_back(sum);
+      ASSERT_LE(key / a, exposure_limit(key, delta, start)) << "run " << run << " frame " << n;
+      for (int m = std::max(0, n - 8); m < n; ++m)
+        ASSERT_LE(key / a, exposure_bound_after(key, adapted[m], double(decay[n]) - decay[m], std::uint64_t(n - m)))
+            << "run " << run << " frame " << n << " from " << m;
+    }
   }
 }
 
