@@ -29,6 +29,8 @@
 #include "common/error.h"
 #include "common/metrics.h"
 #include "common/paths.h"
+#include "common/cli.h"
+#include "common/sweep.h"
 #include "common/target.h"
 
 namespace {
@@ -42,35 +44,21 @@ struct Settings {
   std::vector<std::pair<int, int>> sizes = {{256, 256}, {1024, 1024}, {1280, 720}, {1920, 1080}, {1921, 1081}, {2560, 1440}, {3840, 2160}};
   int bloom_width = 1920, bloom_height = 1080;
   int figure_width = 640, figure_height = 360;
-  bool figures = true;
-  bool sweeps = true;
+  bool no_figures = false;
+  bool no_sweeps = false;  // figures and adaptation only
   bool software = false;  // llvmpipe: time with the CPU clock
 };
 
-std::pair<int, int> parse_size(const std::string& s) {
-  int w = 0, h = 0;
-  if (std::sscanf(s.c_str(), "%dx%d", &w, &h) != 2 || w <= 0 || h <= 0) throw UsageError("bad size '" + s + "'");
-  return {w, h};
-}
-
-Settings parse(int argc, char** argv) {
-  Settings s;
-  for (int i = 1; i < argc; ++i) {
-    std::string a = argv[i];
-    auto value = [&] { if (i + 1 >= argc) throw UsageError(a + " needs a value"); return std::string(argv[++i]); };
-    if (a == "--out") s.out = value();
-    else if (a == "--frames") s.frames = std::stoi(value());
-    else if (a == "--sizes") {
-      s.sizes.clear();
-      std::stringstream list(value());
-      for (std::string item; std::getline(list, item, ',');) s.sizes.push_back(parse_size(item));
-    } else if (a == "--bloom-size") std::tie(s.bloom_width, s.bloom_height) = parse_size(value());
-    else if (a == "--figure-size") std::tie(s.figure_width, s.figure_height) = parse_size(value());
-    else if (a == "--no-figures") s.figures = false;
-    else if (a == "--no-sweeps") s.sweeps = false;  // figures and adaptation only
-    else throw UsageError("unknown option '" + a + "'");
+// "640x360,1920x1080" -> sizes (the --sizes option).
+std::vector<std::pair<int, int>> parse_sizes(const std::string& text) {
+  std::vector<std::pair<int, int>> sizes;
+  std::stringstream list(text);
+  for (std::string item; std::getline(list, item, ',');) {
+    int w = 0, h = 0;
+    parse_size("--sizes", item, w, h);
+    sizes.push_back({w, h});
   }
-  return s;
+  return sizes;
 }
 
 // Runs `work` for two warm-up frames and then `frames` measured ones; returns the mean in ms.
@@ -229,9 +217,9 @@ void adaptation_sweep(const Settings& s, SceneSource& atrium, const std::string&
     ExposureState e = hdr.adaptation().read();
     cpu = frame == 0 ? e.adapted : adapt(cpu, e.target, hs.adaptation.dt, hs.adaptation.tau);
     csv << frame << ',' << frame / 60.0 << ',' << e.target << ',' << e.adapted << ',' << cpu << ',' << e.exposure << '\n';
-    if (s.figures && (frame == 0 || frame == 15 || frame == 30 || frame == 60 || frame == 90 || frame == 150)) strip.push_back(target.read());
+    if (!s.no_figures && (frame == 0 || frame == 15 || frame == 30 || frame == 60 || frame == 90 || frame == 150)) strip.push_back(target.read());
   }
-  if (!s.figures) return;
+  if (s.no_figures) return;
   // One strip, the frames side by side at half size.
   int sw = w / 2, sh = h / 2, gap = 4;
   ImageRGBA8 out = ImageRGBA8::blank(int(strip.size()) * (sw + gap) - gap, sh);
@@ -331,8 +319,14 @@ void figures(const Settings& s, SceneSource& street, SceneSource& atrium) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    Settings s = parse(argc, argv);
+  Settings s;
+  std::string sizes;
+  return run_sweep(argc, argv, "05_hdr_sweep", [&](SweepArgs& args) {
+    args.text("--out", s.out).integer("--frames", s.frames).text("--sizes", sizes)
+        .size("--bloom-size", s.bloom_width, s.bloom_height).size("--figure-size", s.figure_width, s.figure_height)
+        .flag("--no-figures", s.no_figures).flag("--no-sweeps", s.no_sweeps);
+  }, [&] {
+    if (!sizes.empty()) s.sizes = parse_sizes(sizes);
     std::filesystem::create_directories(s.out);
     auto context = Context::create({.headless = true, .width = 64, .height = 64});
     s.software = context->is_software();
@@ -340,20 +334,12 @@ int main(int argc, char** argv) {
     std::cout << timer << std::endl;
     SceneSource street("assets/street/street.gltf"), atrium("assets/atrium/atrium.gltf");
     operator_curves(s);
-    if (s.figures) figures(s, street, atrium);
+    if (!s.no_figures) figures(s, street, atrium);
     adaptation_sweep(s, atrium, timer);
-    if (s.sweeps) {
+    if (!s.no_sweeps) {
       log_average_sweep(s, atrium, timer);
       bloom_sweep(s, street, timer);
     }
     std::cout << "wrote " << s.out << "/05_*.csv" << std::endl;
-    return 0;
-  } catch (const UsageError& e) {
-    std::cerr << "05_hdr_sweep: " << e.what()
-              << "\nusage: 05_hdr_sweep [--out DIR] [--frames N] [--sizes WxH,...] [--bloom-size WxH] [--figure-size WxH] [--no-figures] [--no-sweeps]\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "05_hdr_sweep: error: " << e.what() << '\n';
-    return 1;
-  }
+  });
 }
