@@ -58,13 +58,11 @@ int run_sweep(int argc, const char* const* argv, const std::string& program,
   declare(args);
   try {
     args.parse(argc, argv);
+    sweep();  // may still find a malformed value (e.g. a list inside one option)
+    return 0;
   } catch (const UsageError& e) {
     std::cerr << program << ": " << e.what() << '\n' << args.usage(program) << '\n';
     return 2;
-  }
-  try {
-    sweep();
-    return 0;
   } catch (const std::exception& e) {
     std::cerr << program << ": error: " << e.what() << '\n';
     return 1;
