@@ -1,5 +1,6 @@
 #include "chapters/05_hdr/reference.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -73,6 +74,26 @@ ImageF reference_bloom(const ImageF& radiance, float exposure, float threshold, 
   ImageF out = ImageF::blank(w, h, 3);
   for (std::size_t i = 0; i < bright.size(); ++i) out.data[i] = float(bright[i]);
   return out;
+}
+
+ImageF constant_image(int w, int h, glm::vec3 c) {
+  ImageF img = ImageF::blank(w, h, 3);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int k = 0; k < 3; ++k) img.at(x, y, k) = c[k];
+  return img;
+}
+
+ImageF ramp_image(int w, int h) {
+  ImageF img = ImageF::blank(w, h, 3);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      float v = std::pow(10.f, -3.f + 6.f * float(x) / float(std::max(1, w - 1))) * (1.f + float(h - 1 - y) / float(h));
+      img.at(x, y, 0) = v;
+      img.at(x, y, 1) = 0.8f * v;
+      img.at(x, y, 2) = 0.6f * v;
+    }
+  return img;
 }
 
 }  // namespace lp::ch05

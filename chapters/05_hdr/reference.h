@@ -4,6 +4,8 @@
 // The GPU passes are measured against these.
 #include <cstddef>
 
+#include <glm/glm.hpp>
+
 #include "common/image.h"
 
 namespace lp::ch05 {
@@ -30,5 +32,12 @@ std::size_t naive_chain_pixels(int width, int height);
 // then a separable Gaussian of standard deviation sigma_px pixels, cut at ceil(3 sigma)
 // and renormalised, clamped at the edges. RGB, top row first, like the input.
 ImageF reference_bloom(const ImageF& radiance, float exposure, float threshold, float limit, float sigma_px);
+
+// Synthetic buffers shared by the tests and the sweep.
+// A uniform colour.
+ImageF constant_image(int width, int height, glm::vec3 colour);
+// Luminance rising from 1e-3 on the left to 1e3 on the right, a little brighter at the top:
+// the right and top edges, which the naive chain drops, are the brightest.
+ImageF ramp_image(int width, int height);
 
 }  // namespace lp::ch05

@@ -89,18 +89,6 @@ double measure_ms(int frames, bool software, const std::function<void()>& work) 
   return metrics.find("work")->mean_ms;
 }
 
-// The same "ramp" the GPU tests use: brightest at the right and top, which a naive chain drops.
-ImageF ramp_image(int w, int h) {
-  ImageF img = ImageF::blank(w, h, 3);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      float v = std::pow(10.f, -3.f + 6.f * float(x) / float(std::max(1, w - 1))) * (1.f + float(h - 1 - y) / float(h));
-      img.at(x, y, 0) = v;
-      img.at(x, y, 1) = 0.8f * v;
-      img.at(x, y, 2) = 0.6f * v;
-    }
-  return img;
-}
 
 // The chapter's radiance: chapter 03's deferred path, the volumes cut as on the program's
 // first frame (for the stage's largest exposure: nothing the eye could see is cut).

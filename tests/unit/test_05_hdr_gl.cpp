@@ -38,27 +38,7 @@ constexpr double kLogAverageBound = 1e-4;
 
 const AverageMethod kExactMethods[] = {AverageMethod::MipChain, AverageMethod::Compute};
 
-ImageF constant_image(int w, int h, glm::vec3 c) {
-  ImageF img = ImageF::blank(w, h, 3);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      for (int k = 0; k < 3; ++k) img.at(x, y, k) = c[k];
-  return img;
-}
 
-// Luminance rising from 1e-3 on the left to 1e3 on the right, a little brighter at the top:
-// the right and top edges, which the naive chain drops, are the brightest.
-ImageF ramp_image(int w, int h) {
-  ImageF img = ImageF::blank(w, h, 3);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      float v = std::pow(10.f, -3.f + 6.f * float(x) / float(std::max(1, w - 1))) * (1.f + float(h - 1 - y) / float(h));
-      img.at(x, y, 0) = v;
-      img.at(x, y, 1) = 0.8f * v;
-      img.at(x, y, 2) = 0.6f * v;
-    }
-  return img;
-}
 
 // Deterministic log-normal "scene" values between about 1e-3 and 1e2.
 ImageF noise_image(int w, int h, std::uint32_t seed = 1) {

@@ -27,13 +27,6 @@ std::vector<float> log_grid() {
   return xs;
 }
 
-ImageF constant_image(int w, int h, glm::vec3 c) {
-  ImageF img = ImageF::blank(w, h, 3);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      for (int k = 0; k < 3; ++k) img.at(x, y, k) = c[k];
-  return img;
-}
 
 }  // namespace
 
