@@ -290,13 +290,21 @@ void App::finish_job(const Job& job) {
     ++missing_;
     return;
   }
-  CompareResult r = compare(image, load_png(reference), job.shot.tolerance);
-  std::cout << (r.passed ? "ok       " : "MISMATCH ") << std::left << std::setw(28) << job.shot.name() << ' ' << r.summary() << '\n';
+  // The references were made by one renderer (RENDERER.txt beside them); a different one
+  // gets the shot's cross-renderer allowance, where it has one, and is told so.
+  CompareOptions tolerance = job.shot.tolerance;
+  std::string made_by;
+  std::getline(std::ifstream(reference.parent_path() / "RENDERER.txt"), made_by);
+  bool other = !made_by.empty() && made_by != context_->renderer();
+  if (other && job.shot.other_renderer) tolerance = *job.shot.other_renderer;
+  CompareResult r = compare(image, load_png(reference), tolerance);
+  std::cout << (r.passed ? "ok       " : "MISMATCH ") << std::left << std::setw(28) << job.shot.name() << ' ' << r.summary()
+            << (other && job.shot.other_renderer ? " [other renderer]" : "") << '\n';
   if (!r.passed) {
     ++failures_;
     save_png(actual_path, image);
     auto diff_path = out_dir / (job.shot.name() + "_diff.png");
-    save_png(diff_path, diff_heatmap(image, load_png(reference), job.shot.tolerance.threshold));
+    save_png(diff_path, diff_heatmap(image, load_png(reference), tolerance.threshold));
     std::cout << "         actual " << actual_path.string() << "\n         diff   " << diff_path.string()
               << "\n         expected " << reference.string() << '\n';
   }

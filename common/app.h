@@ -34,7 +34,11 @@ struct Shot {
   std::string view;
   std::string mode;
   std::map<std::string, double> knobs = {};
-  CompareOptions tolerance = {};
+  CompareOptions tolerance = {};  // against the renderer that made the references
+  // On another renderer (a reader's GPU), where OpenGL leaves a result to the implementation
+  // (e.g. which mip level a minified texel reads): the allowance that difference needs.
+  // Unset: the same tolerance everywhere.
+  std::optional<CompareOptions> other_renderer = {};
   std::string name() const;  // file name stem: "<view>_<mode>[_<knob><value>...]"
 };
 

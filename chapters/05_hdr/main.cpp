@@ -51,12 +51,21 @@ const std::vector<lp::Shot> kStreetShots = {
     {"street_level", "aces", {{"bloom", 1}}}, {"street_level", "aces", {{"bloom", 2}}},
     {"street_level", "bright-pass", {{"bloom", 1}}}, {"street_level", "bloom-only", {{"bloom", 1}}},
 };
+// The atrium's tiled floor is minified far into the distance, where OpenGL leaves the mip
+// level to the implementation: on an NVIDIA H200 0.4 to 0.9 % of these sunlit views' pixels
+// differ from the llvmpipe references by more than 3 steps, all on the floor (chapter 02
+// measured the same). Another renderer gets chapter 02's allowance for it, 2 %; the renderer
+// that made the references keeps 0.1 %.
+const lp::CompareOptions kTexturedFloor{.threshold = 3, .max_failing_fraction = 0.02};
 const std::vector<lp::Shot> kAtriumShots = {
     // A strong sun: float against 8-bit, the operators, and the first frame after coming in
     // from a scene 30x brighter (the eye has not adapted yet).
-    {"aisle", "reinhard", {{"sun", 25}}}, {"aisle", "8bit", {{"sun", 25}}}, {"aisle", "aces", {{"sun", 25}}},
-    {"aisle", "reinhard-extended", {{"sun", 25}}}, {"aisle", "aces", {{"sun", 25}, {"bloom", 2}}},
-    {"aisle", "reinhard", {{"sun", 25}, {"adapt-start", 30}}},
+    {"aisle", "reinhard", {{"sun", 25}}, {}, kTexturedFloor},
+    {"aisle", "8bit", {{"sun", 25}}, {}, kTexturedFloor},
+    {"aisle", "aces", {{"sun", 25}}, {}, kTexturedFloor},
+    {"aisle", "reinhard-extended", {{"sun", 25}}, {}, kTexturedFloor},
+    {"aisle", "aces", {{"sun", 25}, {"bloom", 2}}, {}, kTexturedFloor},
+    {"aisle", "reinhard", {{"sun", 25}, {"adapt-start", 30}}, {}, kTexturedFloor},
 };
 
 lp::Chapter chapter_for(int argc, char** argv) {
