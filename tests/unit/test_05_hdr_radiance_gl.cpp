@@ -45,21 +45,23 @@ double half_ulp_bound(double v) { return 0x1p-10 * v + 0x1p-24; }
 
 glm::vec3 rgb(const ImageF& img, int x, int y) { return {img.at(x, y, 0), img.at(x, y, 1), img.at(x, y, 2)}; }
 
+// The exposure the stage gives one frame of `radiance` (an eye adapted to it: tau = 0).
+float stage_exposure(GLuint radiance, int w, int h) {
+  HdrPipeline hdr;
+  HdrSettings s;
+  s.adaptation.tau = 0;
+  OutputTarget out(w, h);
+  hdr.process(radiance, w, h, s, out.framebuffer());
+  return hdr.adaptation().read().exposure;
+}
+
 class HdrRadianceGl : public ::testing::Test {
  protected:
   static void SetUpTestSuite() { context_ = Context::create({.headless = true, .width = kW, .height = kH}).release(); }
   static void TearDownTestSuite() { delete context_; }
   void TearDown() override { EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR)); }
 
-  // The exposure the stage gives one frame of `radiance` (an eye adapted to it: tau = 0).
-  static float exposure_of(GLuint radiance, int w = kW, int h = kH) {
-    HdrPipeline hdr;
-    HdrSettings s;
-    s.adaptation.tau = 0;
-    OutputTarget out(w, h);
-    hdr.process(radiance, w, h, s, out.framebuffer());
-    return hdr.adaptation().read().exposure;
-  }
+  static float exposure_of(GLuint radiance, int w = kW, int h = kH) { return stage_exposure(radiance, w, h); }
 
   // `radiance` through the tonemapper at a fixed exposure into an sRGB8 image.
   static ImageRGBA8 tonemapped(GLuint radiance, float exposure, Operator op) {
@@ -223,7 +225,7 @@ struct CrossCheck {
     RadianceTarget forward_target(kW, kH, GL_RGBA16F);
     forward.render(camera, forward_target);
     forward_image = forward_target.read();
-    exposure = HdrRadianceGlExposure(forward_target.texture());
+    exposure = stage_exposure(forward_target.texture(), kW, kH);
 
     DeferredRadiance deferred(scene);
     deferred.set_scales(v.sun, v.glow);
@@ -260,15 +262,6 @@ struct CrossCheck {
       }
     return over;
   }
-  static float HdrRadianceGlExposure(GLuint texture) {
-    HdrPipeline hdr;
-    HdrSettings s;
-    s.adaptation.tau = 0;
-    OutputTarget out(kW, kH);
-    hdr.process(texture, kW, kH, s, out.framebuffer());
-    return hdr.adaptation().read().exposure;
-  }
-
   View view;
   Scene scene;
   FrameCamera camera;
