@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
   return lp::run_chapter(argc, argv, kChapter, [](lp::App& app) {
     lp::ch01::ForwardRenderer forward(app.scene_gpu());
     lp::ch01::GroundTruthView ground_truth(app.scene());
+    std::vector<lp::Light> light_list;  // what the GPU buffer holds, for the CPU ground truth
     lp::ch01::LightBuffer lights;
     int light_count = -1;
 
@@ -45,14 +46,15 @@ int main(int argc, char** argv) {
       if (f.reload_shaders) forward.reload_shaders();
       if (f.knob_int("lights") != light_count) {
         light_count = f.knob_int("lights");
-        lights.upload(lp::ch01::lights_for_count(app.scene(), light_count));
+        light_list = lp::ch01::lights_for_count(app.scene(), light_count);
+        lights.upload(light_list);
       }
 
       glClearColor(lp::ch01::kBackground.r, lp::ch01::kBackground.g, lp::ch01::kBackground.b, 1.f);
       glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
       if (f.mode == "ground-truth") {
         auto pass = app.metrics().pass("ground truth (CPU ray casting)");
-        ground_truth.draw(f, lp::ch01::lights_for_count(app.scene(), light_count));
+        ground_truth.draw(f, light_list);
       } else if (lp::ch01::forward_mode(f.mode) == ForwardMode::MultiPass) {
         {
           auto pass = app.metrics().pass("base: depth, ambient, emissive");
