@@ -274,8 +274,8 @@ void App::finish_job(const Job& job) {
     return;
   }
   auto reference = source_root() / "tests" / "reference" / chapter_.cli.program / (job.shot.name() + ".png");
-  auto out_dir = std::filesystem::path(options_.out.empty() ? default_output("check/" + chapter_.cli.program + "/x")
-                                                            : (std::filesystem::path(options_.out) / "x").string()).parent_path();
+  auto out_dir = options_.out.empty() ? source_root() / "out" / "check" / chapter_.cli.program
+                                      : std::filesystem::path(options_.out);
   std::filesystem::create_directories(out_dir);
   auto actual_path = out_dir / (job.shot.name() + ".png");
   if (options_.update_references) {
