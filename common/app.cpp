@@ -31,6 +31,28 @@ std::string Shot::name() const {
   return s.str();
 }
 
+void Frame::bind_output() const {
+  glBindFramebuffer(GL_FRAMEBUFFER, target);
+  glViewport(0, 0, width, height);
+  glEnable(GL_FRAMEBUFFER_SRGB);
+}
+
+const std::vector<Shot>& Chapter::references_for(const std::string& scene) const {
+  const auto file = std::filesystem::path(scene).filename();
+  if (file == std::filesystem::path(cli.default_scene).filename()) return references;
+  for (const auto& [path, shots] : scene_references)
+    if (file == std::filesystem::path(path).filename()) return shots;
+  std::string known;
+  for (const auto& s : reference_scenes()) known += " " + s;
+  throw Error(cli.program + " has no reference images of " + scene + "; scenes with references:" + known);
+}
+
+std::vector<std::string> Chapter::reference_scenes() const {
+  std::vector<std::string> scenes = {cli.default_scene};
+  for (const auto& [path, shots] : scene_references) scenes.push_back(path);
+  return scenes;
+}
+
 double Frame::knob(const std::string& name) const {
   auto it = knobs.find(name);
   if (it == knobs.end()) throw Error("internal: the chapter reads an undeclared knob --" + name);
@@ -86,7 +108,7 @@ App::App(const Chapter& chapter, Options options) : chapter_(chapter), options_(
     return;
   }
   if (options_.check) {
-    for (const auto& shot : chapter_.references) {
+    for (const auto& shot : chapter_.references_for(options_.scene)) {
       if (options_.mode_given && shot.mode != options_.mode) continue;
       if (options_.view_given && shot.view != options_.view) continue;
       jobs_.push_back({.kind = Job::Check, .shot = shot, .width = chapter_.reference_width, .height = chapter_.reference_height});
@@ -106,6 +128,12 @@ App::App(const Chapter& chapter, Options options) : chapter_(chapter), options_(
 }
 
 App::~App() = default;
+
+std::ostream& App::report() {
+  static std::ostream quiet(nullptr);  // a stream without a buffer writes nothing
+  const bool batch = context_->is_window() || options_.check || options_.bench;
+  return batch ? quiet : std::cout;
+}
 
 void App::prepare_frame(int w, int h, const Camera& camera) {
   if (!target_ || target_->width() != w || target_->height() != h) {
@@ -139,6 +167,8 @@ bool App::next_frame() {
     frame_.mode = job.shot.mode;
     frame_.knobs = options_.knobs;
     for (const auto& [k, v] : job.shot.knobs) frame_.knobs[k] = v;
+    frame_.dt = 1.f / 60.f;
+    frame_.new_shot = job_frame_ == 0;
     ++frame_.index;
     prepare_frame(job.width, job.height, scene_->camera(job.shot.view));
     return true;
@@ -162,6 +192,10 @@ bool App::next_frame() {
   double now = glfwGetTime();
   float dt = static_cast<float>(std::min(now - last_time_, 0.1));
   last_time_ = now;
+  frame_.dt = dt;
+  frame_.new_shot = frame_.index == 0 || frame_.mode != last_mode_ || view_changed_;
+  last_mode_ = frame_.mode;
+  view_changed_ = false;
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();
@@ -199,6 +233,7 @@ void App::panel(const std::function<void()>& chapter_controls) {
     for (const auto& c : scene_->cameras)
       if (ImGui::Selectable(c.name.c_str(), c.name == view_)) {
         view_ = c.name;
+        view_changed_ = true;
         glm::vec3 extent = scene_->bounds_max - scene_->bounds_min;
         fly_ = FlyCamera(c, std::max(0.5f, glm::length(extent) * 0.1f));
       }
@@ -376,7 +411,14 @@ int run_chapter(int argc, const char* const* argv, const Chapter& chapter, const
       std::cout << "\nmodes:";
       for (const auto& m : chapter.cli.modes) std::cout << ' ' << m;
       std::cout << "\nreferences:";
-      for (const auto& s : chapter.references) std::cout << ' ' << s.name();
+      const std::vector<std::string> scenes = chapter.reference_scenes();
+      const auto file = std::filesystem::path(options.scene).filename();
+      if (std::any_of(scenes.begin(), scenes.end(), [&](const auto& s) { return std::filesystem::path(s).filename() == file; }))
+        for (const auto& s : chapter.references_for(options.scene)) std::cout << ' ' << s.name();
+      else
+        std::cout << " (none of this scene)";
+      std::cout << "\nreference scenes:";
+      for (const auto& s : chapter.reference_scenes()) std::cout << ' ' << s;
       std::cout << '\n';
       return 0;
     }

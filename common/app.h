@@ -12,6 +12,7 @@
 //     }
 //   });
 #include <functional>
+#include <iosfwd>
 #include <map>
 #include <memory>
 #include <optional>
@@ -44,8 +45,14 @@ struct Shot {
 
 struct Chapter {
   CliSpec cli;
-  std::vector<Shot> references;  // what --check renders, at the reference size
+  std::vector<Shot> references;  // what --check renders for the default scene, at the reference size
+  // Other scenes with references of their own (a Shot names a view, not a scene), by the path
+  // given to --scene: `--check --scene assets/atrium/atrium.gltf` renders the atrium's.
+  std::map<std::string, std::vector<Shot>> scene_references = {};
   int reference_width = 320, reference_height = 180;
+  // The shots of `scene` (matched by file name); throws Error when it has none.
+  const std::vector<Shot>& references_for(const std::string& scene) const;
+  std::vector<std::string> reference_scenes() const;  // the default scene first
 };
 
 // What the chapter needs to draw one frame.
@@ -57,6 +64,14 @@ struct Frame {
   GLuint target = 0;           // framebuffer: sRGB colour + depth/stencil, width x height
   std::uint64_t index = 0;     // frames since start
   bool reload_shaders = false; // R pressed in the window: rebuild programs from disk
+  // Seconds since the last frame: the real time in a window (at most 0.1), 1/60 headless,
+  // so N headless frames always simulate N/60 s.
+  float dt = 1.f / 60.f;
+  // The first frame of a new image: headless, each image (--check shot, --bench, the PNG);
+  // in a window, the first frame and each change of mode or view. State that builds up over
+  // frames (eye adaptation) starts again here.
+  bool new_shot = true;
+  void bind_output() const;    // target, the viewport, sRGB encoding of linear output
   double knob(const std::string& name) const;
   int knob_int(const std::string& name) const { return static_cast<int>(knob(name)); }
 };
@@ -71,6 +86,9 @@ class App {
   const SceneGpu& scene_gpu() const { return *scene_gpu_; }
   Context& context() { return *context_; }
   PassMetrics& metrics() { return metrics_; }
+  // Where a chapter prints what a headless run did (lights drawn, fragments shaded): standard
+  // output, quiet in a window and under --check and --bench, whose output is their own.
+  std::ostream& report();
 
   // Advances the loop: finishes the previous frame (present, read back, compare) and
   // prepares the next. False when the window closed or the headless work is done.
@@ -103,6 +121,8 @@ class App {
   int failures_ = 0, missing_ = 0;
   double last_time_ = 0;
   std::string view_;
+  std::string last_mode_;
+  bool view_changed_ = false;
   std::unique_ptr<OutputTarget> target_;
   struct Gui;
   std::unique_ptr<Gui> gui_;

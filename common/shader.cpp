@@ -14,6 +14,22 @@ namespace {
 struct Preprocessor {
   std::vector<std::string> files;
   std::vector<std::string> stack;  // to report include cycles
+  std::vector<std::string> defines;
+
+  // `#include NAME`: the file a define names, `NAME "path"` (as C's computed includes).
+  // This is how a later chapter plugs its GLSL into an earlier chapter's shader.
+  std::string included_by_define(const std::string& name, const std::string& where) const {
+    for (const auto& d : defines) {
+      if (d.compare(0, name.size(), name) != 0 || d.size() <= name.size() || d[name.size()] != ' ') continue;
+      static const std::regex quoted(R"re(^\s*"([^"]+)"\s*$)re");
+      std::smatch m;
+      std::string value = d.substr(name.size() + 1);
+      if (!std::regex_match(value, m, quoted))
+        throw Error(where + ": #include " + name + ": the define " + name + " must be a quoted path, not " + value);
+      return m[1];
+    }
+    throw Error(where + ": #include " + name + ": " + name + " is not defined (the program must pass it as a define)");
+  }
 
   int file_index(const std::string& path) {
     auto it = std::find(files.begin(), files.end(), path);
@@ -23,8 +39,7 @@ struct Preprocessor {
   }
 
   // Appends `path` to `out`, expanding includes; `included_from` names the including line.
-  void expand(const std::string& path, const std::string& included_from, std::ostringstream& out,
-              const std::vector<std::string>* defines) {
+  void expand(const std::string& path, const std::string& included_from, std::ostringstream& out, bool root) {
     if (std::find(stack.begin(), stack.end(), path) != stack.end())
       throw Error(included_from + ": #include \"" + path + "\" includes itself (cycle)");
     bool already = std::find(files.begin(), files.end(), path) != files.end();
@@ -42,18 +57,23 @@ struct Preprocessor {
     std::string line;
     int number = 0;
     static const std::regex include_re(R"(^\s*#\s*include\s+"([^"]+)\"\s*$)");
+    static const std::regex computed_include_re(R"(^\s*#\s*include\s+([A-Za-z_][A-Za-z0-9_]*)\s*(//.*)?$)");
     static const std::regex version_re(R"(^\s*#\s*version\b.*)");
     bool version_seen = false;
     while (std::getline(in, line)) {
       ++number;
       std::smatch m;
       if (std::regex_match(line, m, include_re)) {
-        expand(m[1], path + ":" + std::to_string(number), out, nullptr);
+        expand(m[1], path + ":" + std::to_string(number), out, false);
         out << "#line " << number + 1 << ' ' << id << '\n';
-      } else if (!version_seen && defines && std::regex_match(line, version_re)) {
+      } else if (std::regex_match(line, m, computed_include_re)) {
+        const std::string where = path + ":" + std::to_string(number);
+        expand(included_by_define(m[1], where), where, out, false);
+        out << "#line " << number + 1 << ' ' << id << '\n';
+      } else if (!version_seen && root && std::regex_match(line, version_re)) {
         version_seen = true;
         out << line << '\n';
-        for (const auto& d : *defines) out << "#define " << d << '\n';
+        for (const auto& d : defines) out << "#define " << d << '\n';
         out << "#line " << number + 1 << ' ' << id << '\n';
       } else {
         out << line << '\n';
@@ -77,8 +97,9 @@ std::string stage_name(GLenum type) {
 
 ShaderSource preprocess_shader(const std::string& path, const std::vector<std::string>& defines) {
   Preprocessor p;
+  p.defines = defines;
   std::ostringstream out;
-  p.expand(path, "", out, &defines);
+  p.expand(path, "", out, true);
   return {out.str(), p.files};
 }
 

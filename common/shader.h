@@ -26,6 +26,7 @@ struct ShaderSource {
 };
 
 // Expands #include (recursively, each file once) and inserts `defines` after #version.
+// `#include NAME` includes the file that the define `NAME "path"` names (an error when none does).
 ShaderSource preprocess_shader(const std::string& path, const std::vector<std::string>& defines = {});
 
 // Rewrites a driver's info log so that "0:12(3): error" (Mesa) or "0(12) : error" (NVIDIA)

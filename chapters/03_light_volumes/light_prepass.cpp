@@ -145,4 +145,32 @@ void LightPrePass::draw_materials(const LightBuffer& light, PrePassSpecular spec
 }
 // [/second-geometry-pass]
 
+// [prepass-frame]
+void LightPrePass::render(LightVolumes& volumes, const LightBuffer& light, const FrameCamera& camera,
+                          const FrameOutput& output, const glm::vec3& ambient, const glm::vec3& background,
+                          PrePassSpecular specular, PassMetrics* metrics) {
+  {
+    auto pass = timed(metrics, "geometry 1: normal, exponent, depth");
+    draw_geometry(camera, output.width, output.height);
+  }
+  bind_textures();
+  light.begin(framebuffer());
+  {
+    auto pass = timed(metrics, "global: ambient + directional (chapter 03)");
+    volumes.draw_global(light, view(), ambient);
+  }
+  {
+    auto pass = timed(metrics, "local lights: stencil");
+    volumes.draw_local(light, view(), Strategy::Stencil);
+  }
+  output.bind();
+  glBlitNamedFramebuffer(framebuffer(), output.framebuffer, 0, 0, output.width, output.height, 0, 0, output.width,
+                         output.height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+  glClearColor(background.r, background.g, background.b, 1.f);
+  glClear(GL_COLOR_BUFFER_BIT);
+  auto pass = timed(metrics, "geometry 2: materials x light");
+  draw_materials(light, specular);
+}
+// [/prepass-frame]
+
 }  // namespace lp::ch03

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "chapters/02_gbuffer/gbuffer.h"
+#include "chapters/03_light_volumes/deferred_frame.h"
 #include "chapters/03_light_volumes/light_volumes.h"
 #include "common/gl.h"
 #include "common/scene_gpu.h"
@@ -43,6 +44,13 @@ class LightPrePass {
   // Pass 3: every object again into the bound framebuffer, whose depth must hold a copy of
   // this G-buffer's (depth test EQUAL), lit by `light` (a LightBuffer of kind PrePass).
   void draw_materials(const LightBuffer& light, PrePassSpecular specular) const;
+
+  // The whole deferred-lighting frame into `output`: pass 1, chapter 03's global and
+  // stencil-masked local lights into `light` (of kind PrePass, this size), pass 2 over a copy
+  // of pass 1's depth. Each pass timed in `metrics`.
+  void render(LightVolumes& volumes, const LightBuffer& light, const FrameCamera& camera, const FrameOutput& output,
+              const glm::vec3& ambient, const glm::vec3& background, PrePassSpecular specular,
+              PassMetrics* metrics = nullptr);
 
  private:
   const SceneGpu& scene_;

@@ -11,7 +11,7 @@ namespace lp::ch03 {
 namespace {
 
 constexpr int kShapeSphere = 0, kShapeCone = 1, kShapeFullScreen = 2;  // as in light_instance.glsl
-constexpr GLuint kLightBufferUnit = 5;  // after the G-buffer's units 0..4
+constexpr GLuint kLightBufferUnit = LightBuffer::kFirstUnit;
 
 // Depth comparisons for the G-buffer's convention: standard (near 0, far 1) or reversed-Z.
 struct DepthTests {
@@ -126,6 +126,10 @@ Strategy strategy_named(const std::string& name) {
   throw Error("unknown light-volume strategy '" + name + "'");
 }
 
+std::vector<std::string> ShaderHooks::defines() const {
+  return {"FRAME_VISIBILITY \"" + visibility + "\"", "FRAME_AMBIENT \"" + ambient + "\""};
+}
+
 SurfaceView surface_view(const ch02::GBuffer& gbuffer) {
   return {gbuffer.camera(), ch02::is_reversed_z(gbuffer.layout()), gbuffer.shader_defines(0)};
 }
@@ -174,6 +178,13 @@ void LightBuffer::begin(GLuint gbuffer_framebuffer) const {
 }
 // [/begin-light-buffer]
 
+void LightBuffer::bind_textures() const {
+  glBindTextureUnit(kFirstUnit + 0, diffuse_.id());
+  glBindTextureUnit(kFirstUnit + 1, specular_.id());
+}
+
+std::vector<std::string> LightBuffer::shader_defines() { return {"LIGHT_BUFFER_UNIT " + std::to_string(kFirstUnit)}; }
+
 void LightBuffer::clear() const {
   const float zero[4] = {0, 0, 0, 0};
   glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 0, zero);
@@ -217,6 +228,7 @@ std::optional<glm::ivec4> scissor_rect(const FrameCamera& camera, const glm::vec
 // --- The renderer ----------------------------------------------------------------------------
 
 struct LightVolumes::Group {
+  int first_light = 0;  // light order of its first light
   GLuint vao = 0;
   GLsizei index_count = 0;
   int count = 0;
@@ -255,6 +267,8 @@ void LightVolumes::reload_shaders() {
 const ShaderProgram& LightVolumes::program(const std::string& fragment, const SurfaceView& view, std::vector<std::string> extra,
                                            bool volumes) {
   std::vector<std::string> defines = view.defines;
+  const std::vector<std::string> hooks = view.hooks.defines();
+  defines.insert(defines.end(), hooks.begin(), hooks.end());
   defines.insert(defines.end(), extra.begin(), extra.end());
   const std::string vertex = volumes ? "03_light_volumes/shaders/volume.vert" : "02_gbuffer/shaders/fullscreen.vert";
   std::string key = vertex + "|" + fragment;
@@ -281,13 +295,14 @@ std::vector<LightVolumes::Group> LightVolumes::groups() const {
   const float sphere_bound = glm::length(shapes_.sphere.positions[0]);
   const float cone_corner = 1.f / std::cos(std::numbers::pi_v<float> / float(shapes_.cone_sides));
   const GLsizei sphere_indices = GLsizei(shapes_.sphere.indices.size()), cone_indices = GLsizei(shapes_.cone.indices.size());
+  const int points = int(lights_.points.size()), cones = int(lights_.cones.size());
   std::vector<Group> g = {
-      {points_vao_.id(), sphere_indices, int(lights_.points.size()), false, kShapeSphere, &shapes_.sphere, sphere_bound,
+      {0, points_vao_.id(), sphere_indices, points, false, kShapeSphere, &shapes_.sphere, sphere_bound,
        lights_.points.data(), nullptr},
-      {cones_vao_.id(), cone_indices, int(lights_.cones.size()), true, kShapeCone, &shapes_.cone, cone_corner, nullptr,
+      {points, cones_vao_.id(), cone_indices, cones, true, kShapeCone, &shapes_.cone, cone_corner, nullptr,
        lights_.cones.data()},
-      {wide_vao_.id(), sphere_indices, int(lights_.wide_spots.size()), true, kShapeSphere, &shapes_.sphere, sphere_bound,
-       nullptr, lights_.wide_spots.data()},
+      {points + cones, wide_vao_.id(), sphere_indices, int(lights_.wide_spots.size()), true, kShapeSphere,
+       &shapes_.sphere, sphere_bound, nullptr, lights_.wide_spots.data()},
   };
   std::erase_if(g, [](const Group& x) { return x.count == 0; });
   return g;
@@ -301,6 +316,7 @@ void LightVolumes::draw_group(const Group& g, const ShaderProgram& p, int first,
   p.use();
   p.set("u_shape", full_screen ? kShapeFullScreen : g.shape);
   p.set("u_spot", int(g.spot));
+  p.set("u_first_light", g.first_light + first);
   glBindVertexArray(g.vao);
   if (full_screen)
     glDrawArraysInstancedBaseInstance(GL_TRIANGLES, 0, 3, count, GLuint(first));
@@ -333,6 +349,16 @@ void LightVolumes::draw_global(const LightBuffer& target, const SurfaceView& vie
   restore_state();
 }
 
+// What every strategy draws with.
+struct LightVolumes::Draw {
+  const LightBuffer& target;
+  const SurfaceView& view;
+  const ShaderProgram& shade;  // light.frag: the light at a pixel
+  const ShaderProgram& mark;   // stencil.frag: no colour, for the stencil masks
+  DepthTests tests;
+  std::vector<Group> groups;
+};
+
 void LightVolumes::draw_local(const LightBuffer& target, const SurfaceView& view, Strategy strategy, Output output) {
   std::vector<std::string> extra;
   if (counting_) extra.push_back("COUNT_FRAGMENTS 1");
@@ -350,141 +376,144 @@ void LightVolumes::draw_local(const LightBuffer& target, const SurfaceView& view
   stats_ = {};
   target.bind();
   begin_depth_convention(view);
-  const DepthTests tests = depth_tests(view);
-  const std::vector<Group> all = groups();
-
+  const Draw d{target, view, shade, mark, depth_tests(view), groups()};
   additive_volume_state();
+  // [strategy-table]
+  using StrategyDraw = void (LightVolumes::*)(const Draw&);
+  static constexpr StrategyDraw kDraw[] = {&LightVolumes::draw_full_screen, &LightVolumes::draw_scissor,
+                                           &LightVolumes::draw_front_faces, &LightVolumes::draw_back_faces,
+                                           &LightVolumes::draw_stencil,     &LightVolumes::draw_stencil_bits};
+  static_assert(std::size(kDraw) == 6, "one function per Strategy, in its order");
+  (this->*kDraw[int(strategy)])(d);
+  // [/strategy-table]
+  restore_state();
+}
 
-  switch (strategy) {
-    case Strategy::FullScreen: {
-      // [full-screen]
-      // One full-screen triangle per light (instanced): every pixel, every light.
-      glDisable(GL_DEPTH_TEST);
-      glDisable(GL_CULL_FACE);
-      for (const Group& g : all) {
-        draw_group(g, shade, 0, g.count, true);
-        ++stats_.draw_calls;
+void LightVolumes::draw_full_screen(const Draw& d) {
+  // [full-screen]
+  // One full-screen triangle per light (instanced): every pixel, every light.
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  for (const Group& g : d.groups) {
+    draw_group(g, d.shade, 0, g.count, true);
+    ++stats_.draw_calls;
+  }
+  // [/full-screen]
+}
+
+void LightVolumes::draw_scissor(const Draw& d) {
+  // [scissor]
+  // The full-screen triangle again, but the scissor test keeps only the rectangle
+  // around the light's projected sphere: one draw per light, no depth test.
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glEnable(GL_SCISSOR_TEST);
+  for (const Group& g : d.groups)
+    for (int i = 0; i < g.count; ++i) {
+      glm::vec4 pr = g.position_radius(i);
+      auto rect = scissor_rect(d.view.camera, glm::vec3(pr), pr.w, d.target.width(), d.target.height());
+      if (!rect) {
+        ++stats_.lights_skipped;
+        continue;
       }
-      // [/full-screen]
-      break;
+      glScissor(rect->x, rect->y, rect->z, rect->w);
+      draw_group(g, d.shade, i, 1, true);
+      ++stats_.draw_calls;
     }
-    case Strategy::Scissor: {
-      // [scissor]
-      // The full-screen triangle again, but the scissor test keeps only the rectangle
-      // around the light's projected sphere: one draw per light, no depth test.
-      glDisable(GL_DEPTH_TEST);
-      glDisable(GL_CULL_FACE);
-      glEnable(GL_SCISSOR_TEST);
-      for (const Group& g : all)
-        for (int i = 0; i < g.count; ++i) {
-          glm::vec4 pr = g.position_radius(i);
-          auto rect = scissor_rect(view.camera, glm::vec3(pr), pr.w, target.width(), target.height());
-          if (!rect) {
-            ++stats_.lights_skipped;
-            continue;
-          }
-          glScissor(rect->x, rect->y, rect->z, rect->w);
-          draw_group(g, shade, i, 1, true);
-          ++stats_.draw_calls;
-        }
-      // [/scissor]
-      break;
-    }
-    case Strategy::FrontFaces: {
-      // [front-faces]
-      // Front faces with depth test LESS: the pixels whose surface lies behind the volume's
-      // front. With the camera inside a volume there is no front face to draw, so such a
-      // light is drawn from its back faces (the next strategy) instead. Consecutive lights
-      // of one kind go in one instanced draw, in light order.
-      glEnable(GL_DEPTH_TEST);
-      glEnable(GL_CULL_FACE);
-      for (const Group& g : all) {
-        int first = 0;
-        while (first < g.count) {
-          const bool inside = camera_inside(g, first, view.camera.position);
-          int end = first + 1;
-          while (end < g.count && camera_inside(g, end, view.camera.position) == inside) ++end;
-          glCullFace(inside ? GL_FRONT : GL_BACK);
-          glDepthFunc(inside ? tests.greater : tests.less);
-          draw_group(g, shade, first, end - first, false);
-          ++stats_.draw_calls;
-          if (inside) stats_.lights_camera_inside += end - first;
-          first = end;
-        }
-      }
-      // [/front-faces]
-      break;
-    }
-    case Strategy::BackFaces: {
-      // [back-faces]
-      // Back faces with depth test GREATER: the pixels whose surface lies in front of the
-      // volume's back. Right with the camera inside; it still shades everything in front of
-      // the light, and depth clamp keeps back faces beyond the far plane. One instanced
-      // draw per mesh for all lights.
-      glEnable(GL_DEPTH_TEST);
-      glEnable(GL_CULL_FACE);
-      glCullFace(GL_FRONT);
-      glDepthFunc(tests.greater);
-      for (const Group& g : all) {
-        draw_group(g, shade, 0, g.count, false);
-        ++stats_.draw_calls;
-      }
-      // [/back-faces]
-      break;
-    }
-    case Strategy::Stencil: {
-      // [stencil]
-      // Per light: the mask, then the light through it.
-      glEnable(GL_STENCIL_TEST);
-      for (const Group& g : all)
-        for (int i = 0; i < g.count; ++i) {
-          stencil_mark_state(tests);
-          draw_group(g, mark, i, 1, false);
-          stencil_shade_state();
-          draw_group(g, shade, i, 1, false);
-          stats_.draw_calls += 2;
-        }
-      // [/stencil]
-      break;
-    }
-    case Strategy::StencilBits: {
-      // [stencil-bits]
-      // The same mask, but eight lights share the stencil buffer, one bit each: eight mark
-      // passes, then eight light passes. Along a pixel's ray at most the back face and the
-      // front face of a convex volume fail the depth test, and the surface is inside when
-      // exactly one does: inverting the light's bit on each failure leaves it set exactly
-      // there. The GPU waits for the marks once per eight lights instead of once per light.
-      glEnable(GL_STENCIL_TEST);
-      for (const Group& g : all)
-        for (int first = 0; first < g.count; first += 8) {
-          const int batch = std::min(8, g.count - first);
-          glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-          glEnable(GL_DEPTH_TEST);
-          glDepthFunc(tests.less_equal);
-          glDisable(GL_CULL_FACE);
-          glStencilFunc(GL_ALWAYS, 0, 0xFF);
-          glStencilOp(GL_KEEP, GL_INVERT, GL_KEEP);
-          for (int b = 0; b < batch; ++b) {
-            glStencilMask(1u << b);
-            draw_group(g, mark, first + b, 1, false);
-          }
-          glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-          glDisable(GL_DEPTH_TEST);
-          glEnable(GL_CULL_FACE);
-          glCullFace(GL_FRONT);
-          glStencilOp(GL_KEEP, GL_KEEP, GL_ZERO);
-          for (int b = 0; b < batch; ++b) {
-            glStencilMask(1u << b);  // shade where bit b is set, and clear only bit b
-            glStencilFunc(GL_NOTEQUAL, 0, 1u << b);
-            draw_group(g, shade, first + b, 1, false);
-          }
-          stats_.draw_calls += 2 * batch;
-        }
-      // [/stencil-bits]
-      break;
+  // [/scissor]
+}
+
+void LightVolumes::draw_front_faces(const Draw& d) {
+  // [front-faces]
+  // Front faces with depth test LESS: the pixels whose surface lies behind the volume's
+  // front. With the camera inside a volume there is no front face to draw, so such a
+  // light is drawn from its back faces (the next strategy) instead. Consecutive lights
+  // of one kind go in one instanced draw, in light order.
+  glEnable(GL_DEPTH_TEST);
+  glEnable(GL_CULL_FACE);
+  for (const Group& g : d.groups) {
+    int first = 0;
+    while (first < g.count) {
+      const bool inside = camera_inside(g, first, d.view.camera.position);
+      int end = first + 1;
+      while (end < g.count && camera_inside(g, end, d.view.camera.position) == inside) ++end;
+      glCullFace(inside ? GL_FRONT : GL_BACK);
+      glDepthFunc(inside ? d.tests.greater : d.tests.less);
+      draw_group(g, d.shade, first, end - first, false);
+      ++stats_.draw_calls;
+      if (inside) stats_.lights_camera_inside += end - first;
+      first = end;
     }
   }
-  restore_state();
+  // [/front-faces]
+}
+
+void LightVolumes::draw_back_faces(const Draw& d) {
+  // [back-faces]
+  // Back faces with depth test GREATER: the pixels whose surface lies in front of the
+  // volume's back. Right with the camera inside; it still shades everything in front of
+  // the light, and depth clamp keeps back faces beyond the far plane. One instanced
+  // draw per mesh for all lights.
+  glEnable(GL_DEPTH_TEST);
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_FRONT);
+  glDepthFunc(d.tests.greater);
+  for (const Group& g : d.groups) {
+    draw_group(g, d.shade, 0, g.count, false);
+    ++stats_.draw_calls;
+  }
+  // [/back-faces]
+}
+
+void LightVolumes::draw_stencil(const Draw& d) {
+  // [stencil]
+  // Per light: the mask, then the light through it.
+  glEnable(GL_STENCIL_TEST);
+  for (const Group& g : d.groups)
+    for (int i = 0; i < g.count; ++i) {
+      stencil_mark_state(d.tests);
+      draw_group(g, d.mark, i, 1, false);
+      stencil_shade_state();
+      draw_group(g, d.shade, i, 1, false);
+      stats_.draw_calls += 2;
+    }
+  // [/stencil]
+}
+
+void LightVolumes::draw_stencil_bits(const Draw& d) {
+  // [stencil-bits]
+  // The same mask, but eight lights share the stencil buffer, one bit each: eight mark
+  // passes, then eight light passes. Along a pixel's ray at most the back face and the
+  // front face of a convex volume fail the depth test, and the surface is inside when
+  // exactly one does: inverting the light's bit on each failure leaves it set exactly
+  // there. The GPU waits for the marks once per eight lights instead of once per light.
+  glEnable(GL_STENCIL_TEST);
+  for (const Group& g : d.groups)
+    for (int first = 0; first < g.count; first += 8) {
+      const int batch = std::min(8, g.count - first);
+      glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+      glEnable(GL_DEPTH_TEST);
+      glDepthFunc(d.tests.less_equal);
+      glDisable(GL_CULL_FACE);
+      glStencilFunc(GL_ALWAYS, 0, 0xFF);
+      glStencilOp(GL_KEEP, GL_INVERT, GL_KEEP);
+      for (int b = 0; b < batch; ++b) {
+        glStencilMask(1u << b);
+        draw_group(g, d.mark, first + b, 1, false);
+      }
+      glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+      glDisable(GL_DEPTH_TEST);
+      glEnable(GL_CULL_FACE);
+      glCullFace(GL_FRONT);
+      glStencilOp(GL_KEEP, GL_KEEP, GL_ZERO);
+      for (int b = 0; b < batch; ++b) {
+        glStencilMask(1u << b);  // shade where bit b is set, and clear only bit b
+        glStencilFunc(GL_NOTEQUAL, 0, 1u << b);
+        draw_group(g, d.shade, first + b, 1, false);
+      }
+      stats_.draw_calls += 2 * batch;
+    }
+  // [/stencil-bits]
 }
 
 // [volume-hook]
@@ -511,14 +540,13 @@ FragmentCounts LightVolumes::counts() const {
 }
 
 void LightVolumes::composite(const LightBuffer& light, const SurfaceView& view, const glm::vec3& background) {
-  const ShaderProgram& p = program("03_light_volumes/shaders/composite.frag", view, {"LIGHT_BUFFER_UNIT 5"}, false);
+  const ShaderProgram& p = program("03_light_volumes/shaders/composite.frag", view, LightBuffer::shader_defines(), false);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
   glDisable(GL_CULL_FACE);
   glDisable(GL_STENCIL_TEST);
   glDisable(GL_SCISSOR_TEST);
-  glBindTextureUnit(kLightBufferUnit + 0, light.diffuse());
-  glBindTextureUnit(kLightBufferUnit + 1, light.specular());
+  light.bind_textures();
   p.use();
   p.set("u_background", background);
   full_screen_.draw();

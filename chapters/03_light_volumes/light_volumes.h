@@ -50,6 +50,20 @@ inline const std::vector<std::string> kStrategies = {"full-screen", "scissor", "
 bool is_strategy(const std::string& name);
 Strategy strategy_named(const std::string& name);  // throws Error for an unknown name
 
+// [shader-hooks]
+// The GLSL that chapter 03's light shaders include for the terms later chapters add, each a
+// file named by a define (`#include FRAME_VISIBILITY`). Chapter 03's own files change nothing:
+// every light fully visible, the scene's constant ambient. Chapter 06 names its shadow
+// lookup, chapters 07 and 08 their ambient occlusion and indirect light.
+struct ShaderHooks {
+  // float directional_visibility(int index, GpuLight, Surface); float local_visibility(...)
+  std::string visibility = "03_light_volumes/shaders/hooks/full_visibility.glsl";
+  // vec3 ambient_light(vec3 ambient, Surface, ivec2 pixel)
+  std::string ambient = "03_light_volumes/shaders/hooks/constant_ambient.glsl";
+  std::vector<std::string> defines() const;  // {"FRAME_VISIBILITY \"...\"", "FRAME_AMBIENT \"...\""}
+};
+// [/shader-hooks]
+
 // What the light shaders read the surface from: chapter 02's G-buffer, or deferred
 // lighting's smaller one. Its textures are bound on units 0.. and chapter 02's frame block
 // at its binding (GBuffer::bind_textures(0)) before any draw below.
@@ -57,6 +71,7 @@ struct SurfaceView {
   FrameCamera camera;                // the camera the G-buffer was drawn with, its projection
   bool reversed_z = false;
   std::vector<std::string> defines;  // gbuffer.glsl's, for the layout
+  ShaderHooks hooks;                 // the terms later chapters add (none by default)
 };
 SurfaceView surface_view(const ch02::GBuffer& gbuffer);
 
@@ -68,6 +83,9 @@ SurfaceView surface_view(const ch02::GBuffer& gbuffer);
 class LightBuffer {
  public:
   enum class Kind { DiffuseAndSpecular, PrePass };
+  // Where a pass that reads the light buffer finds it: L1 on unit kFirstUnit, L2 on the next
+  // (after the G-buffer's units 0..4). GLSL: `layout(binding = LIGHT_BUFFER_UNIT + 0)`.
+  static constexpr GLuint kFirstUnit = ch02::GBuffer::kUnits;
   LightBuffer(int width, int height, GLenum depth_stencil_format, Kind kind = Kind::DiffuseAndSpecular);
 
   // Copies the depth (and stencil) of `gbuffer_framebuffer`, of the same format, and binds
@@ -75,6 +93,9 @@ class LightBuffer {
   void begin(GLuint gbuffer_framebuffer) const;
   void bind() const;
   void clear() const;  // colours to 0 (the global pass normally overwrites them instead)
+  // Binds L1 and L2 to kFirstUnit.. for a pass that reads them; shader_defines() says where.
+  void bind_textures() const;
+  static std::vector<std::string> shader_defines();  // {"LIGHT_BUFFER_UNIT 5"}
 
   GLuint framebuffer() const { return fbo_.id(); }
   GLuint diffuse() const { return diffuse_.id(); }
@@ -171,6 +192,15 @@ class LightVolumes {
                                bool volumes = true);
   std::vector<Group> groups() const;
   void draw_group(const Group& g, const ShaderProgram& p, int first, int count, bool full_screen) const;
+  // The strategies, one function each, called by draw_local() between its common set-up
+  // (programs, counters, additive blending, depth clamp) and restoring OpenGL's defaults.
+  struct Draw;
+  void draw_full_screen(const Draw& d);
+  void draw_scissor(const Draw& d);
+  void draw_front_faces(const Draw& d);
+  void draw_back_faces(const Draw& d);
+  void draw_stencil(const Draw& d);
+  void draw_stencil_bits(const Draw& d);
   void set_volume_uniforms(const ShaderProgram& p, const SurfaceView& view) const;
   bool camera_inside(const Group& g, int i, const glm::vec3& eye) const;
 

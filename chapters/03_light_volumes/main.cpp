@@ -12,6 +12,7 @@
 
 #include "chapters/01_forward/ground_truth.h"
 #include "chapters/02_gbuffer/gbuffer.h"
+#include "chapters/03_light_volumes/deferred_frame.h"
 #include "chapters/03_light_volumes/light_counts.h"
 #include "chapters/03_light_volumes/light_prepass.h"
 #include "chapters/03_light_volumes/light_radius.h"
@@ -77,38 +78,33 @@ FrameCamera with_far(FrameCamera camera, double far) {
   return camera;
 }
 
-// The output's depth (and a clean stencil) for the pictures drawn over the image.
-void copy_depth_to_output(GLuint from, const Frame& f) {
-  glBlitNamedFramebuffer(from, f.target, 0, 0, f.width, f.height, 0, 0, f.width, f.height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
-  const GLint zero = 0;
-  glClearNamedFramebufferiv(f.target, GL_STENCIL, 0, &zero);
-}
-
-void bind_output(const Frame& f) {
-  glBindFramebuffer(GL_FRAMEBUFFER, f.target);
-  glViewport(0, 0, f.width, f.height);
-  glEnable(GL_FRAMEBUFFER_SRGB);
+FrameShow frame_show(int show) {
+  switch (show) {
+    case kDiffuse: return FrameShow::DiffuseLight;
+    case kSpecular: return FrameShow::SpecularLight;
+    case kHeatShaded: return FrameShow::HeatShaded;
+    case kHeatLit: return FrameShow::HeatLit;
+    default: return FrameShow::Image;
+  }
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   return lp::run_chapter(argc, argv, kChapter, [](lp::App& app) {
-    ch02::GeometryPass geometry(app.scene_gpu());
-    LightVolumes volumes;
+    DeferredFrame frame(app.scene_gpu());
+    LightVolumes& volumes = frame.volumes();
     LightPrePass prepass(app.scene_gpu());
-    std::unique_ptr<ch02::GBuffer> gbuffer;
-    std::unique_ptr<LightBuffer> light, prepass_light;
+    std::unique_ptr<LightBuffer> prepass_light;
     std::vector<double> lights_key;
     const glm::vec3 background = ch01::kBackground, ambient = app.scene().ambient;
-    const bool report = !app.context().is_window() && !app.options().check && !app.options().bench;
 
     while (app.next_frame()) {
       const lp::Frame& f = app.frame();
+      const FrameOutput output{f.target, f.width, f.height};
       const auto start = std::chrono::steady_clock::now();
       if (f.reload_shaders) {
-        geometry.reload_shaders();
-        volumes.reload_shaders();
+        frame.reload_shaders();
         prepass.reload_shaders();
       }
       std::vector<double> key = {f.knob("lights"), f.knob("exposure"), f.knob("cut")};
@@ -125,93 +121,45 @@ int main(int argc, char** argv) {
         for (const auto& w : set.warnings) std::cerr << "warning: " << w << '\n';
         volumes.set_lights(std::move(set));
       }
-      if (!gbuffer || gbuffer->width() != f.width || gbuffer->height() != f.height) {
-        gbuffer = std::make_unique<ch02::GBuffer>(f.width, f.height);
-        light = std::make_unique<LightBuffer>(f.width, f.height, ch02::depth_format(gbuffer->layout().depth));
-        prepass_light = std::make_unique<LightBuffer>(f.width, f.height, LightPrePass::kDepthFormat, LightBuffer::Kind::PrePass);
-        app.metrics().set_allocation("G-buffer (chapter 02)", gbuffer->bytes_per_pixel() * f.width * f.height);
-        app.metrics().set_allocation("light buffer L1 + L2 RGBA16F + depth-stencil", light->bytes());
-      }
       volumes.set_counting(f.knob_int("count") != 0);
       const FrameCamera camera = with_far(f.camera, f.knob("far"));
       const int show = f.knob_int("show");
 
       if (!is_prepass(f.mode)) {
         // [frame]
-        const Strategy strategy = strategy_named(f.mode);
-        {
-          auto pass = app.metrics().pass("geometry: G-buffer (chapter 02)");
-          geometry.draw(*gbuffer, camera);
-        }
-        gbuffer->bind_textures(0);
-        const SurfaceView view = surface_view(*gbuffer);
-        light->begin(gbuffer->framebuffer());
-        const bool heat = show == kHeatShaded || show == kHeatLit;
-        if (heat) {
-          light->clear();
-        } else {
-          auto pass = app.metrics().pass("global: ambient + directional");
-          volumes.draw_global(*light, view, ambient);
-        }
-        {
-          auto pass = app.metrics().pass("local lights: " + f.mode);
-          auto output = show == kHeatShaded ? LightVolumes::Output::HeatShaded
-                        : show == kHeatLit  ? LightVolumes::Output::HeatLit
-                                            : LightVolumes::Output::Light;
-          volumes.draw_local(*light, view, strategy, output);
-        }
-        bind_output(f);
-        {
-          auto pass = app.metrics().pass("composite: albedo x L1 + L2 + emissive");
-          if (heat) volumes.draw_heat(*light, kHeatFullScale);
-          else if (show == kDiffuse) volumes.draw_light_target(light->diffuse(), 1.f);
-          else if (show == kSpecular) volumes.draw_light_target(light->specular(), 4.f);
-          else volumes.composite(*light, view, background);
-        }
+        // Chapter 03's frame (deferred_frame.cpp): the G-buffer, ambient and directional
+        // light for every pixel, each local light in its volume, culled by the strategy the
+        // mode names, and the composite; or one of the light buffer's pictures instead.
+        frame.set_strategy(strategy_named(f.mode));
+        frame.render(camera, output, &app.metrics(), {.show = frame_show(show), .heat_full_scale = kHeatFullScale});
+        // The pictures over the image: every volume, or one light's stencil mask.
         if (show == kVolumes || show == kStencilMask) {
-          copy_depth_to_output(gbuffer->framebuffer(), f);
-          bind_output(f);
-          if (show == kVolumes) volumes.draw_wireframe(view);
-          else volumes.draw_stencil_mask(view, f.knob_int("light"));
+          frame.copy_depth_to_output();
+          if (show == kVolumes) volumes.draw_wireframe(frame.view());
+          else volumes.draw_stencil_mask(frame.view(), f.knob_int("light"));
         }
         // [/frame]
+        app.metrics().set_allocation("G-buffer (chapter 02) + light buffer L1 + L2 RGBA16F + depth-stencil",
+                                     frame.allocated_bytes());
       } else {
-        // [prepass-frame]
-        {
-          auto pass = app.metrics().pass("geometry 1: normal, exponent, depth");
-          prepass.draw_geometry(camera, f.width, f.height);
-        }
-        prepass.bind_textures();
-        prepass_light->begin(prepass.framebuffer());
-        {
-          auto pass = app.metrics().pass("global: ambient + directional");
-          volumes.draw_global(*prepass_light, prepass.view(), ambient);
-        }
-        {
-          auto pass = app.metrics().pass("local lights: stencil");
-          volumes.draw_local(*prepass_light, prepass.view(), Strategy::Stencil);
-        }
-        bind_output(f);
-        copy_depth_to_output(prepass.framebuffer(), f);
-        glClearColor(background.r, background.g, background.b, 1.f);
-        glClear(GL_COLOR_BUFFER_BIT);
-        auto pass = app.metrics().pass("geometry 2: materials x light");
-        prepass.draw_materials(*prepass_light, f.mode == "light-prepass" ? PrePassSpecular::White : PrePassSpecular::Chroma);
-        // [/prepass-frame]
+        if (!prepass_light || prepass_light->width() != f.width || prepass_light->height() != f.height)
+          prepass_light = std::make_unique<LightBuffer>(f.width, f.height, LightPrePass::kDepthFormat, LightBuffer::Kind::PrePass);
+        // Deferred lighting (light_prepass.cpp): geometry twice, the lights in between.
+        prepass.render(volumes, *prepass_light, camera, output, ambient, background,
+                       f.mode == "light-prepass" ? PrePassSpecular::White : PrePassSpecular::Chroma, &app.metrics());
       }
-
       FragmentCounts counts = volumes.counting() ? volumes.counts() : FragmentCounts{};
-      if (report) {
+      if (std::ostream& out = app.report()) {
         glFinish();
         double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-        std::cout << volumes.lights().local_count() << " local lights, " << f.mode << ": frame took " << ms
-                  << " ms (wall clock, " << app.context().renderer() << ")";
+        out << volumes.lights().local_count() << " local lights, " << f.mode << ": frame took " << ms
+            << " ms (wall clock, " << app.context().renderer() << ")";
         if (volumes.counting())
-          std::cout << "; fragments shaded " << counts.shaded << ", lit " << counts.lit << ", overshading "
-                    << counts.overshading();
+          out << "; fragments shaded " << counts.shaded << ", lit " << counts.lit << ", overshading "
+              << counts.overshading();
         const DrawStats& s = volumes.draw_stats();
-        std::cout << "; " << s.draw_calls << " draw calls, " << s.lights_skipped << " lights skipped, "
-                  << s.lights_camera_inside << " with the eye inside\n";
+        out << "; " << s.draw_calls << " draw calls, " << s.lights_skipped << " lights skipped, "
+            << s.lights_camera_inside << " with the eye inside\n";
       }
       app.panel([&] {
         const LightSet& set = volumes.lights();

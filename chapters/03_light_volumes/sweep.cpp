@@ -21,6 +21,7 @@
 #include "chapters/01_forward/ground_truth.h"
 #include "chapters/02_gbuffer/deferred.h"
 #include "chapters/02_gbuffer/gbuffer.h"
+#include "chapters/03_light_volumes/deferred_frame.h"
 #include "chapters/03_light_volumes/light_counts.h"
 #include "chapters/03_light_volumes/light_radius.h"
 #include "chapters/03_light_volumes/light_volumes.h"
@@ -88,45 +89,28 @@ class Sweep {
  public:
   Sweep(const Settings& s, const Scene& scene, const SceneGpu& gpu, bool software)
       : s_(s), scene_(scene), gpu_(gpu), software_(software), geometry_(gpu), gbuffer_(s.width, s.height),
-        light_(s.width, s.height, ch02::depth_format(gbuffer_.layout().depth)), target_(s.width, s.height),
+        target_(s.width, s.height),
         camera_(frame_camera(scene.camera(s.view), float(s.width) / s.height)) {}
 
-  // One frame of the chapter: G-buffer, global lights, local lights, composite.
-  void volume_frame(PassMetrics& m, LightVolumes& volumes, Strategy strategy) {
-    {
-      auto p = m.pass("geometry");
-      geometry_.draw(gbuffer_, camera_);
-    }
-    gbuffer_.bind_textures(0);
-    const SurfaceView view = surface_view(gbuffer_);
-    light_.begin(gbuffer_.framebuffer());
-    {
-      auto p = m.pass("global");
-      volumes.draw_global(light_, view, scene_.ambient);
-    }
-    {
-      auto p = m.pass("local");
-      volumes.draw_local(light_, view, strategy);
-    }
-    target_.bind();
-    auto p = m.pass("composite");
-    volumes.composite(light_, view, ch01::kBackground);
-  }
-
-  // Counts from one frame with the counters on, then the timed frames with them off.
+  // Counts from one frame with the counters on, then the timed frames with them off; each
+  // frame is the chapter's own (deferred_frame.cpp), into the sweep's output image.
   struct Result {
     Timing time;
+    double local_ms = 0;  // the local lights' pass
     FragmentCounts counts;
     DrawStats stats;
   };
-  Result run(LightVolumes& volumes, Strategy strategy) {
+  Result run(DeferredFrame& frame, Strategy strategy) {
+    frame.set_strategy(strategy);
+    auto volume_frame = [&](PassMetrics& m) { frame.render(camera_, {target_.framebuffer(), s_.width, s_.height}, &m); };
     Result r;
-    volumes.set_counting(true);
-    measure(0, [&](PassMetrics& m) { volume_frame(m, volumes, strategy); });
-    r.counts = volumes.counts();
-    r.stats = volumes.draw_stats();
-    volumes.set_counting(false);
-    r.time = measure(s_.frames, [&](PassMetrics& m) { volume_frame(m, volumes, strategy); });
+    frame.volumes().set_counting(true);
+    measure(0, volume_frame);
+    r.counts = frame.volumes().counts();
+    r.stats = frame.volumes().draw_stats();
+    frame.volumes().set_counting(false);
+    r.time = measure(s_.frames, volume_frame);
+    r.local_ms = r.time.ms["local lights: " + kStrategies[int(strategy)]];
     return r;
   }
 
@@ -134,7 +118,8 @@ class Sweep {
     std::ofstream csv(s_.out + "/03_lights.csv");
     csv << "# " << timer << ", " << s_.width << "x" << s_.height << ", street, view " << s_.view << "\n"
         << "lights,method,total_ms,lighting_ms,wall_ms,light_evaluations,fragments_lit,overshading,draw_calls\n";
-    LightVolumes volumes;
+    DeferredFrame frame(gpu_);
+    LightVolumes& volumes = frame.volumes();
     ch01::ForwardRenderer forward(gpu_);
     ch02::DeferredLighting deferred;
     // Brute force on a CPU: the full-screen ways cost pixels x lights; stop them early there.
@@ -149,7 +134,7 @@ class Sweep {
       for (std::size_t k = 0; k < kStrategies.size(); ++k) {
         Strategy strategy = static_cast<Strategy>(k);
         if (strategy == Strategy::FullScreen && n > brute_force_cap) continue;
-        Result r = run(volumes, strategy);
+        Result r = run(frame, strategy);
         // The counters are 32 bits: the full-screen pass at 4096 lights and 1080p passes 2^32.
         // It shades every pixel for every light by construction (a test checks it), so
         // there the count is computed instead.
@@ -157,10 +142,10 @@ class Sweep {
           r.counts.shaded = std::uint64_t(volumes.lights().local_count()) * s_.width * s_.height;
         }
         lit = r.counts.lit;
-        csv << n << ',' << kStrategies[k] << ',' << r.time.total() << ',' << r.time.ms["local"] << ',' << r.time.wall_ms << ',' << r.counts.shaded
+        csv << n << ',' << kStrategies[k] << ',' << r.time.total() << ',' << r.local_ms << ',' << r.time.wall_ms << ',' << r.counts.shaded
             << ',' << r.counts.lit << ',' << r.counts.overshading() << ',' << r.stats.draw_calls << '\n';
         std::cout << n << " lights, " << kStrategies[k] << ": " << r.time.total() << " ms (local lights "
-                  << r.time.ms["local"] << ", wall clock " << r.time.wall_ms << "), shaded " << r.counts.shaded << ", lit " << r.counts.lit
+                  << r.local_ms << ", wall clock " << r.time.wall_ms << "), shaded " << r.counts.shaded << ", lit " << r.counts.lit
                   << ", overshading " << r.counts.overshading() << std::endl;
       }
       if (n > brute_force_cap) continue;
@@ -200,14 +185,15 @@ class Sweep {
         << "subdivisions,triangles,circumradius,total_ms,lighting_ms,wall_ms,fragments_shaded,fragments_lit,overshading\n";
     std::vector<Light> lights = lights_for_count(scene_, n);
     for (int subdivisions : {0, 1, 2, 3}) {
-      LightVolumes volumes(subdivisions);
+      DeferredFrame frame(gpu_, ch02::our_layout(), subdivisions);
+      LightVolumes& volumes = frame.volumes();
       volumes.set_lights(build_light_set(lights, cut_threshold(1.f, peak_reflectance(scene_)), volumes.shapes()));
-      Result r = run(volumes, Strategy::Stencil);
+      Result r = run(frame, Strategy::Stencil);
       csv << subdivisions << ',' << volumes.shapes().sphere.triangle_count() << ',' << icosphere_circumradius(subdivisions) << ','
-          << r.time.total() << ',' << r.time.ms["local"] << ',' << r.time.wall_ms << ',' << r.counts.shaded << ',' << r.counts.lit << ','
+          << r.time.total() << ',' << r.local_ms << ',' << r.time.wall_ms << ',' << r.counts.shaded << ',' << r.counts.lit << ','
           << r.counts.overshading() << '\n';
       std::cout << "icosphere " << subdivisions << ": overshading " << r.counts.overshading() << ", local lights "
-                << r.time.ms["local"] << " ms" << std::endl;
+                << r.local_ms << " ms" << std::endl;
     }
   }
 
@@ -218,7 +204,8 @@ class Sweep {
     csv << "# " << timer << ", " << s_.width << "x" << s_.height << ", street (312 lights), view " << s_.view
         << "; error: 8-bit sRGB steps against chapter 02's uncut full-screen shading\n"
         << "lights,rule,threshold,mean_radius,lighting_ms,wall_ms,fragments_shaded,max_error,p99_error,mean_error\n";
-    LightVolumes volumes;
+    DeferredFrame frame(gpu_);
+    LightVolumes& volumes = frame.volumes();
     ch02::DeferredLighting deferred;
     for (bool ranged : {true, false}) {
       std::vector<Light> lights = scene_.lights;
@@ -243,10 +230,10 @@ class Sweep {
         for (const auto& p : set.points) radius += p.position_radius.w;
         radius /= std::max<std::size_t>(1, set.points.size());
         volumes.set_lights(std::move(set));
-        Result r = run(volumes, Strategy::Stencil);
+        Result r = run(frame, Strategy::Stencil);
         CompareResult e = compare(target_.read(), truth, {.threshold = 1, .max_failing_fraction = 1.0});
         csv << (ranged ? "with ranges" : "no ranges") << ',' << rule.name << ',' << rule.threshold << ',' << radius << ','
-            << r.time.ms["local"] << ',' << r.time.wall_ms << ',' << r.counts.shaded << ',' << e.max_error << ',' << e.p99_error << ','
+            << r.local_ms << ',' << r.time.wall_ms << ',' << r.counts.shaded << ',' << e.max_error << ',' << e.p99_error << ','
             << e.mean_error << '\n';
         std::cout << (ranged ? "with ranges, " : "no ranges, ") << rule.name << ": mean radius " << radius << " m, max error "
                   << e.max_error << " steps, shaded " << r.counts.shaded << std::endl;
@@ -260,8 +247,7 @@ class Sweep {
   const SceneGpu& gpu_;
   bool software_;
   ch02::GeometryPass geometry_;
-  ch02::GBuffer gbuffer_;
-  LightBuffer light_;
+  ch02::GBuffer gbuffer_;  // chapter 02's full-screen pass, the yardstick
   OutputTarget target_;
   FrameCamera camera_;
 };

@@ -18,7 +18,7 @@
 #include "chapters/03_light_volumes/light_volumes.h"
 #include "chapters/04_neon/neon_forward.h"
 #include "chapters/04_neon/neon_scene.h"
-#include "chapters/04_neon/neon_volumes.h"
+#include "chapters/04_neon/neon_stage.h"
 #include "common/app.h"
 #include "common/error.h"
 
@@ -50,7 +50,8 @@ const CliSpec kCli{
 
 // [references]
 // The reference images, per scene (a Shot names a view, not a scene): `--check` renders the
-// neon room's, `--check --scene assets/street_neon/street_neon.gltf` the night street's.
+// neon room's, `--check --scene assets/street_neon/street_neon.gltf` the night street's
+// (kChapter below).
 std::vector<Shot> room_shots() {
   std::vector<Shot> shots = {{"overview", "improved"}, {"overview", "ground-truth"}, {"overview", "source"},
                              {"overview", "points"}, {"overview", "representative-point"},
@@ -74,127 +75,78 @@ std::vector<Shot> street_shots() {
 }
 // [/references]
 
-Chapter chapter_for(int argc, char** argv) {
-  std::vector<Shot> shots = room_shots();
-  try {
-    if (parse_cli(argc, argv, kCli).scene.find("street_neon") != std::string::npos) shots = street_shots();
-  } catch (const Error&) {
-    // run_chapter parses again and reports the problem.
-  }
-  return {.cli = kCli, .references = shots};
-}
+const Chapter kChapter{.cli = kCli,
+                       .references = room_shots(),
+                       .scene_references = {{"assets/street_neon/street_neon.gltf", street_shots()}}};
 
-void bind_output(const Frame& f) {
-  glBindFramebuffer(GL_FRAMEBUFFER, f.target);
-  glViewport(0, 0, f.width, f.height);
-  glEnable(GL_FRAMEBUFFER_SRGB);
-}
-
-// The output's depth from the G-buffer (and a clean stencil), for what is drawn over the image.
-void copy_depth_to_output(GLuint from, const Frame& f) {
-  glBlitNamedFramebuffer(from, f.target, 0, 0, f.width, f.height, 0, 0, f.width, f.height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
-  const GLint zero = 0;
-  glClearNamedFramebufferiv(f.target, GL_STENCIL, 0, &zero);
+NeonPicture picture_for(int show) {
+  return show == kVolumes ? NeonPicture::Capsules
+       : show == kMasks   ? NeonPicture::Masks
+       : show == kWaste   ? NeonPicture::Waste
+                          : NeonPicture::None;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  return run_chapter(argc, argv, chapter_for(argc, argv), [](App& app) {
-    NeonForward forward(app.scene_gpu());
+  return run_chapter(argc, argv, kChapter, [](App& app) {
     NeonTubes tubes;
     tubes.upload(neon_lights(app.scene()));
+    NeonForward forward(app.scene_gpu());
     ch01::LightBuffer lights;  // the forward pass: every light of the scene
     lights.upload(app.scene().lights);
-    ch02::GeometryPass geometry(app.scene_gpu());
-    ch03::LightVolumes volumes;  // the scene's other lights, chapter 03's way
-    volumes.set_lights(ch03::build_light_set(app.scene().lights, ch03::cut_threshold(1.f, ch03::peak_reflectance(app.scene())),
-                                             volumes.shapes()));
-    for (const auto& w : volumes.lights().warnings) std::cerr << "warning: " << w << '\n';
-    NeonVolumes neon;
-    std::unique_ptr<ch02::GBuffer> gbuffer;
-    std::unique_ptr<ch03::LightBuffer> light;
-    const glm::vec3 background = ch01::kBackground, ambient = app.scene().ambient;
-    const bool report = !app.context().is_window() && !app.options().check && !app.options().bench;
+    // The deferred path: chapter 03's frame, its lights cut as chapter 03 cuts them, and
+    // the tubes as a stage of it.
+    ch03::DeferredFrame frame(app.scene_gpu());
+    frame.volumes().set_lights(ch03::build_light_set(
+        app.scene().lights, ch03::cut_threshold(1.f, ch03::peak_reflectance(app.scene())), frame.volumes().shapes()));
+    for (const auto& w : frame.volumes().lights().warnings) std::cerr << "warning: " << w << '\n';
+    NeonStage stage(app.scene_gpu(), tubes);
+    frame.add_stage(stage);
+    NeonVolumes& neon = stage.volumes();
+    const glm::vec3 background = ch01::kBackground;
 
     while (app.next_frame()) {
       const Frame& f = app.frame();
       const auto start = std::chrono::steady_clock::now();
       if (f.reload_shaders) {
         forward.reload_shaders();
-        geometry.reload_shaders();
-        volumes.reload_shaders();
-        neon.reload_shaders();
+        frame.reload_shaders();
+        stage.reload_shaders();
       }
       NeonDraw how{.method = method_from_name(f.mode),
                    .samples = f.knob_int(f.mode == "points" ? "points" : "samples"),
                    .term = static_cast<Term>(f.knob_int("term"))};
       const bool deferred = f.knob_int("forward") == 0;
-      const int show = f.knob_int("show");
       neon.set_counting(deferred && f.knob_int("count") != 0);
 
-      if (!deferred) {
+      // [frame]
+      if (deferred) {
+        // Chapter 03's frame with the tubes as a stage: G-buffer, chapter 03's lights, each
+        // tube's capsule through the stencil, the composite, the glass.
+        stage.set(how, picture_for(f.knob_int("show")));
+        frame.render(f.camera, {f.target, f.width, f.height}, &app.metrics(),
+                     {.scene_lights = stage.wants_scene_lights()});
+      } else {
+        // The yardstick: every light and every tube for every fragment, in one forward pass.
         glClearColor(background.r, background.g, background.b, 1.f);
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         auto pass = app.metrics().pass("forward: lights and neon tubes");
         forward.draw(f.camera, how, lights, tubes);
-      } else {
-        if (!gbuffer || gbuffer->width() != f.width || gbuffer->height() != f.height) {
-          gbuffer = std::make_unique<ch02::GBuffer>(f.width, f.height);
-          light = std::make_unique<ch03::LightBuffer>(f.width, f.height, ch02::depth_format(gbuffer->layout().depth));
-          app.metrics().set_allocation("G-buffer (chapter 02)", gbuffer->bytes_per_pixel() * f.width * f.height);
-          app.metrics().set_allocation("light buffer L1 + L2 RGBA16F + depth-stencil (chapter 03)", light->bytes());
-        }
-        // [frame]
-        {
-          auto pass = app.metrics().pass("geometry: G-buffer (chapter 02)");
-          geometry.draw(*gbuffer, f.camera);
-        }
-        gbuffer->bind_textures(0);
-        const ch03::SurfaceView view = ch03::surface_view(*gbuffer);
-        light->begin(gbuffer->framebuffer());  // the G-buffer's depth, a zero stencil
-        const bool whole = how.term == Term::All && show != kWaste;
-        if (whole) {
-          {
-            auto pass = app.metrics().pass("global: ambient + directional (chapter 03)");
-            volumes.draw_global(*light, view, ambient);
-          }
-          auto pass = app.metrics().pass("local lights: stencil (chapter 03)");
-          volumes.draw_local(*light, view, ch03::Strategy::Stencil);
-        } else {
-          light->clear();  // the tubes alone
-        }
-        {
-          auto pass = app.metrics().pass("neon: capsule volumes, stencil");
-          neon.draw(tubes, *light, view, how, show == kWaste);
-        }
-        bind_output(f);
-        {
-          auto pass = app.metrics().pass("composite: albedo x L1 + L2 + emissive (chapter 03)");
-          if (show == kWaste) volumes.draw_light_target(light->diffuse(), 1.f);
-          else if (whole) volumes.composite(*light, view, background);
-          else neon.draw_term(*light, view, how.term, background);
-        }
-        copy_depth_to_output(gbuffer->framebuffer(), f);
-        bind_output(f);
-        if (show == kVolumes || show == kMasks) neon.draw_pictures(tubes, view, show == kMasks);
-        if (whole) {
-          auto pass = app.metrics().pass("glass: the tubes themselves");
-          forward.draw_glass(f.camera, tubes);
-        }
-        // [/frame]
       }
+      // [/frame]
+      if (deferred) app.metrics().set_allocation("G-buffer (chapter 02) + light buffer (chapter 03)", frame.allocated_bytes());
 
       const NeonCounts& c = neon.counts();
-      if (report) {
+      if (std::ostream& out = app.report()) {
         glFinish();
         double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-        std::cout << tubes.count() << " neon tubes, " << f.mode << (deferred ? ", capsule volumes" : ", forward")
+        out << tubes.count() << " neon tubes, " << f.mode << (deferred ? ", capsule volumes" : ", forward")
                   << ": frame took " << ms << " ms (wall clock, " << app.context().renderer() << ")";
         if (neon.counting())
-          std::cout << "; neon fragments shaded " << c.shaded << ", lit " << c.lit << ", overshading " << c.overshading()
+          out << "; neon fragments shaded " << c.shaded << ", lit " << c.lit << ", overshading " << c.overshading()
                     << " (" << c.lit_open << " lit with the barn doors open)";
-        std::cout << '\n';
+        out << '\n';
       }
       app.panel([&] {
         ImGui::Text("%d neon tubes, %d other lights", tubes.count(), lights.count());

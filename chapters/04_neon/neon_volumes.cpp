@@ -4,7 +4,6 @@ namespace lp::ch04 {
 
 namespace {
 
-constexpr GLuint kLightBufferUnit = 5;     // after the G-buffer's units 0..4, as chapter 03
 constexpr GLsizeiptr kCounterStride = 16;  // per tube: shaded, lit, lit_open (and padding)
 
 const char* const kCapsule = "04_neon/shaders/capsule.vert";
@@ -107,13 +106,12 @@ void NeonVolumes::draw(const NeonTubes& tubes, const ch03::LightBuffer& light, c
 void NeonVolumes::draw_term(const ch03::LightBuffer& light, const ch03::SurfaceView& view, Term term,
                             const glm::vec3& background) {
   const ShaderProgram& p = program("02_gbuffer/shaders/fullscreen.vert", "04_neon/shaders/neon_term.frag", view,
-                                   {"LIGHT_BUFFER_UNIT 5"});
+                                   ch03::LightBuffer::shader_defines());
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
   glDisable(GL_CULL_FACE);
   glDisable(GL_STENCIL_TEST);
-  glBindTextureUnit(kLightBufferUnit + 0, light.diffuse());
-  glBindTextureUnit(kLightBufferUnit + 1, light.specular());
+  light.bind_textures();
   p.use();
   p.set("u_background", background);
   p.set("u_term", static_cast<int>(term));

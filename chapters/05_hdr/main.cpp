@@ -4,14 +4,14 @@
 // tonemapping curve brings it into the display's range. The lights' volumes are cut for the
 // exposure, read back from earlier frames without waiting. The modes switch the curve, show
 // what an 8-bit light accumulation loses, and show the bloom's intermediate images.
-#include <chrono>
 #include <iostream>
 #include <map>
 #include <memory>
-#include <sstream>
 
 #include <imgui.h>
 
+#include "chapters/04_neon/neon_scene.h"
+#include "chapters/04_neon/neon_stage.h"
 #include "chapters/05_hdr/exposure_feedback.h"
 #include "chapters/05_hdr/hdr_pipeline.h"
 #include "chapters/05_hdr/radiance_source.h"
@@ -43,7 +43,7 @@ const lp::CliSpec kCli{
               {"bloom-strength", "how much of the bloom is added", 0.08, 0, 1}}};
 
 // The reference images, per scene (a Shot names a view, not a scene): `--check` renders
-// the street's, `--check --scene assets/atrium/atrium.gltf` the atrium's.
+// the street's, `--check --scene assets/atrium/atrium.gltf` the atrium's (kChapter below).
 const std::vector<lp::Shot> kStreetShots = {
     // Each operator, 8-bit light accumulation, a night key, both bloom placements, bloom stages.
     {"street_level", "reinhard"}, {"street_level", "reinhard-extended"}, {"street_level", "aces"},
@@ -68,15 +68,9 @@ const std::vector<lp::Shot> kAtriumShots = {
     {"aisle", "reinhard", {{"sun", 25}, {"adapt-start", 30}}, {}, kTexturedFloor},
 };
 
-lp::Chapter chapter_for(int argc, char** argv) {
-  std::vector<lp::Shot> shots = kStreetShots;
-  try {
-    if (lp::parse_cli(argc, argv, kCli).scene.find("atrium") != std::string::npos) shots = kAtriumShots;
-  } catch (const lp::Error&) {
-    // run_chapter parses again and reports the problem.
-  }
-  return {.cli = kCli, .references = shots};
-}
+const lp::Chapter kChapter{.cli = kCli,
+                           .references = kStreetShots,
+                           .scene_references = {{"assets/atrium/atrium.gltf", kAtriumShots}}};
 
 // The chapter's knobs as the stage's settings.
 HdrSettings settings_for(const lp::Frame& f, float dt) {
@@ -98,85 +92,67 @@ HdrSettings settings_for(const lp::Frame& f, float dt) {
 }
 
 // The radiance target for this frame: reallocated when the size or the format changes.
-// Chapter 03's composite writes every pixel and tests nothing: no depth buffer.
+// Chapter 03's composite writes every pixel and tests nothing: a depth buffer only for the
+// glass of chapter 04's tubes, drawn over the image.
 class RadianceTargets {
  public:
+  explicit RadianceTargets(bool with_depth) : with_depth_(with_depth) {}
   RadianceTarget& get(const lp::Frame& f, lp::PassMetrics& metrics) {
     GLenum format = f.mode == "8bit" ? GL_RGBA8 : GL_RGBA16F;  // 8-bit: to see what it loses
     if (!target_ || target_->width() != f.width || target_->height() != f.height || target_->format() != format) {
-      target_ = std::make_unique<RadianceTarget>(f.width, f.height, format, false);
+      target_ = std::make_unique<RadianceTarget>(f.width, f.height, format, with_depth_);
       metrics.set_allocation(format == GL_RGBA8 ? "radiance colour RGBA8" : "radiance colour RGBA16F", target_->bytes());
     }
     return *target_;
   }
 
  private:
+  bool with_depth_;
   std::unique_ptr<RadianceTarget> target_;
-};
-
-// Frame time for the eye: the real one in the window, a fixed 1/60 s headless (so N frames
-// always simulate N/60 s). Headless, every new image (view, mode, knobs, size) starts
-// with a fresh eye; in the window only a change of mode or --adapt-start resets it.
-class FrameClock {
- public:
-  explicit FrameClock(bool window) : window_(window) {}
-  float dt() {
-    auto now = std::chrono::steady_clock::now();
-    float seconds = std::min(std::chrono::duration<float>(now - last_).count(), 0.1f);
-    last_ = now;
-    return window_ ? seconds : 1.f / 60.f;
-  }
-  bool new_shot(const lp::Frame& f) {
-    std::ostringstream key;
-    key << f.mode << ' ' << f.knob("adapt-start");
-    if (!window_) {
-      key << ' ' << f.width << 'x' << f.height;
-      for (const auto& [k, v] : f.knobs) key << ' ' << k << v;
-      for (int i = 0; i < 16; ++i) key << ' ' << f.camera.view[i / 4][i % 4];
-    }
-    bool changed = key.str() != last_shot_;
-    last_shot_ = key.str();
-    return changed;
-  }
-
- private:
-  bool window_;
-  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
-  std::string last_shot_;
 };
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  return lp::run_chapter(argc, argv, chapter_for(argc, argv), [](lp::App& app) {
+  return lp::run_chapter(argc, argv, kChapter, [](lp::App& app) {
     DeferredRadiance source(app.scene());
-    RadianceTargets targets;
+    // Chapter 04's tubes, where the scene has any (the night street with its signs), as a
+    // stage of the same deferred frame.
+    lp::ch04::NeonTubes tubes;
+    tubes.upload(lp::ch04::neon_lights(app.scene()));
+    lp::ch04::NeonStage neon(source.scene_gpu(), tubes);
+    if (tubes.count() > 0) source.frame().add_stage(neon);
+    RadianceTargets targets(tubes.count() > 0);
     HdrPipeline hdr;
     ExposureFeedback feedback;
-    FrameClock clock(app.context().is_window());
+    double adapted_from = -1;  // --adapt-start of the eye's last reset
     ExposureEstimate cut;
 
     while (app.next_frame()) {
       const lp::Frame& f = app.frame();
       if (f.reload_shaders) {
         source.reload_shaders();
+        neon.reload_shaders();
         hdr.reload_shaders();
       }
       // [frame]
+      // Each new image (and a new --adapt-start) starts with a fresh eye.
       const float start_scale = float(f.knob("adapt-start"));
-      if (clock.new_shot(f)) {
+      if (f.new_shot || start_scale != adapted_from) {
         hdr.reset_adaptation(start_scale);
         feedback.reset();
+        adapted_from = start_scale;
       }
-      const HdrSettings settings = settings_for(f, clock.dt());
+      const HdrSettings settings = settings_for(f, f.dt);
 
       // 1. The lights' volumes end where a light gives less than one output step after the
       //    largest exposure this frame can get: read back from an earlier frame, never waiting.
       cut = feedback.begin_frame(settings.adaptation, settings.delta, start_scale);
       source.set_cut_exposure(cut.exposure * output_slope(settings.tonemap.op, settings.tonemap.white));
 
-      // 2. The lit scene as radiance in a float target, by chapter 03's deferred path:
-      //    G-buffer, light volumes into the float light buffer, composite into our target.
+      // 2. The lit scene as radiance in a float target, by chapter 03's deferred frame:
+      //    G-buffer, light volumes (and chapter 04's tubes) into the float light buffer,
+      //    composite into our target.
       source.set_scales(float(f.knob("sun")), float(f.knob("glow")));
       RadianceTarget& radiance = targets.get(f, app.metrics());
       source.render(f.camera, radiance, &app.metrics());
@@ -201,13 +177,13 @@ int main(int argc, char** argv) {
         }
       });
     }
-    if (!app.context().is_window() && !app.options().check && !app.options().bench) {
+    if (std::ostream& out = app.report()) {
       ExposureState e = hdr.adaptation().read();
-      std::cout << "log-average luminance " << e.target << " (" << e.count << " pixels), adapted " << e.adapted
+      out << "log-average luminance " << e.target << " (" << e.count << " pixels), adapted " << e.adapted
                 << ", exposure " << e.exposure << '\n';
-      std::cout << "lights cut for exposure " << source.cut_exposure() << " (an exposure of at most " << cut.exposure;
-      if (cut.age < 0) std::cout << ", the stage's limit: no reading yet)\n";
-      else std::cout << " from the one read " << cut.age << " frames before, " << cut.read << ")\n";
+      out << "lights cut for exposure " << source.cut_exposure() << " (an exposure of at most " << cut.exposure;
+      if (cut.age < 0) out << ", the stage's limit: no reading yet)\n";
+      else out << " from the one read " << cut.age << " frames before, " << cut.read << ")\n";
     }
   });
 }

@@ -92,23 +92,21 @@ void ForwardRadiance::render(const FrameCamera& camera, const RadianceTarget& ta
 // --- Chapter 03's deferred path ----------------------------------------------------------------
 
 DeferredRadiance::DeferredRadiance(const Scene& scene, const ch02::Layout& layout, ch03::Strategy strategy)
-    : original_(scene), layout_(layout), strategy_(strategy), peak_reflectance_(ch03::peak_reflectance(scene)) {
-  set_scales(1, 1);
+    : original_(scene), scene_(std::make_unique<Scene>(rescaled_scene(scene, 1, 1))),
+      gpu_(std::make_unique<SceneGpu>(*scene_)), frame_(std::make_unique<ch03::DeferredFrame>(*gpu_, layout)),
+      peak_reflectance_(ch03::peak_reflectance(scene)), sun_(1), glow_(1) {
+  frame_->set_strategy(strategy);
 }
 
 void DeferredRadiance::set_scales(float sun, float glow) {
   if (sun == sun_ && glow == glow_) return;
-  if (!scene_) {
-    scene_ = std::make_unique<Scene>(rescaled_scene(original_, sun, glow));
-    gpu_ = std::make_unique<SceneGpu>(*scene_);
-  } else {
-    for (std::size_t i = 0; i < scene_->materials.size(); ++i)
-      scene_->materials[i].emissive = original_.materials[i].emissive * glow;
-    for (std::size_t i = 0; i < scene_->lights.size(); ++i)
-      scene_->lights[i].intensity = original_.lights[i].intensity * (original_.lights[i].type == LightType::Directional ? sun : 1.f);
-  }
+  // The GPU scene reads materials from *scene_ at draw time: rescale them in place.
+  for (std::size_t i = 0; i < scene_->materials.size(); ++i)
+    scene_->materials[i].emissive = original_.materials[i].emissive * glow;
+  for (std::size_t i = 0; i < scene_->lights.size(); ++i)
+    scene_->lights[i].intensity = original_.lights[i].intensity * (original_.lights[i].type == LightType::Directional ? sun : 1.f);
   // Chapter 02's geometry pass takes its emissive palette from the materials when it is made.
-  if (glow != glow_) geometry_ = std::make_unique<ch02::GeometryPass>(*gpu_);
+  if (glow != glow_) frame_->rebuild_geometry_pass();
   if (sun != sun_) lights_changed_ = true;
   sun_ = sun;
   glow_ = glow;
@@ -125,53 +123,18 @@ void DeferredRadiance::set_cut_exposure(float exposure) {
 
 float DeferredRadiance::cut_threshold() const { return ch03::cut_threshold(cut_exposure_, peak_reflectance_); }
 
-void DeferredRadiance::reload_shaders() {
-  geometry_->reload_shaders();
-  volumes_.reload_shaders();
-}
-
-std::size_t DeferredRadiance::allocated_bytes() const {
-  if (!gbuffer_) return 0;
-  return gbuffer_->bytes_per_pixel() * std::size_t(gbuffer_->width()) * gbuffer_->height() + light_->bytes();
-}
-
 void DeferredRadiance::render(const FrameCamera& camera, const RadianceTarget& target, PassMetrics* metrics) {
-  auto timed = [&](const std::string& name) {
-    return metrics ? std::optional<PassMetrics::Scope>(metrics->pass(name)) : std::nullopt;
-  };
-  const int w = target.width(), h = target.height();
-  if (!gbuffer_ || gbuffer_->width() != w || gbuffer_->height() != h) {
-    gbuffer_ = std::make_unique<ch02::GBuffer>(w, h, layout_);
-    light_ = std::make_unique<ch03::LightBuffer>(w, h, ch02::depth_format(layout_.depth));
-  }
   if (lights_changed_) {
-    ch03::LightSet set = ch03::build_light_set(scene_->lights, cut_threshold(), volumes_.shapes());
+    ch03::LightSet set = ch03::build_light_set(scene_->lights, cut_threshold(), volumes().shapes());
     if (!warned_)  // the same lights every time: say it once
       for (const auto& warning : set.warnings) std::cerr << "warning: " << warning << '\n';
     warned_ = true;
-    volumes_.set_lights(std::move(set));
+    volumes().set_lights(std::move(set));
     lights_changed_ = false;
   }
   // [deferred-frame]
-  {
-    auto t = timed("radiance: G-buffer (chapter 02)");
-    geometry_->draw(*gbuffer_, camera);
-  }
-  gbuffer_->bind_textures(0);
-  const ch03::SurfaceView view = ch03::surface_view(*gbuffer_);
-  light_->begin(gbuffer_->framebuffer());
-  {
-    auto t = timed("radiance: ambient + directional (chapter 03)");
-    volumes_.draw_global(*light_, view, scene_->ambient);
-  }
-  {
-    auto t = timed("radiance: local lights, " + ch03::kStrategies[int(strategy_)] + " (chapter 03)");
-    volumes_.draw_local(*light_, view, strategy_);
-  }
-  // Chapter 03's composite draws into the bound framebuffer: ours, not the sRGB output.
-  target.bind();
-  auto t = timed("radiance: composite albedo x L1 + L2 + emissive");
-  volumes_.composite(*light_, view, ch01::kBackground);
+  // Chapter 03's frame, into our float target instead of the sRGB output.
+  frame_->render(camera, {target.framebuffer(), target.width(), target.height()}, metrics);
   // [/deferred-frame]
 }
 

@@ -12,6 +12,7 @@
 #include "chapters/01_forward/forward.h"
 #include "chapters/01_forward/light_buffer.h"
 #include "chapters/02_gbuffer/gbuffer.h"
+#include "chapters/03_light_volumes/deferred_frame.h"
 #include "chapters/03_light_volumes/light_volumes.h"
 #include "common/camera.h"
 #include "common/gl.h"
@@ -78,10 +79,10 @@ class ForwardRadiance {
 // [/forward-radiance]
 
 // [deferred-radiance]
-// Chapter 03's deferred path as the radiance source: chapter 02's G-buffer, ambient and
-// directional light for every pixel, each local light through its stencil-masked volume into
-// chapter 03's float light buffer (L1 diffuse, L2 specular, RGBA16F), and chapter 03's
-// composite, albedo * L1 + L2 + emissive, into a RadianceTarget instead of the sRGB output.
+// Chapter 03's deferred frame as the radiance source: the same frame object chapter 03's
+// program draws (its G-buffer, light volumes into the float light buffer, composite), drawn
+// into a RadianceTarget instead of the sRGB output, with the lights cut for this chapter's
+// exposure. Stages added to it come along: chapter 04's tubes light the HDR street.
 class DeferredRadiance {
  public:
   explicit DeferredRadiance(const Scene& scene, const ch02::Layout& layout = ch02::our_layout(),
@@ -93,7 +94,7 @@ class DeferredRadiance {
   void set_cut_exposure(float exposure);
   float cut_exposure() const { return cut_exposure_; }  // as rounded
   float cut_threshold() const;                           // chapter 03's threshold for it
-  void reload_shaders();
+  void reload_shaders() { frame_->reload_shaders(); }
   // Draws the scene as `camera` sees it into `target` (any size; the G-buffer and the light
   // buffer follow it). With `metrics`, each pass is timed on its own.
   void render(const FrameCamera& camera, const RadianceTarget& target, PassMetrics* metrics = nullptr);
@@ -101,21 +102,17 @@ class DeferredRadiance {
   const Scene& scene() const { return *scene_; }  // rescaled
   const SceneGpu& scene_gpu() const { return *gpu_; }
   float peak_reflectance() const { return peak_reflectance_; }
-  const ch02::GBuffer& gbuffer() const { return *gbuffer_; }
-  const ch03::LightBuffer& light_buffer() const { return *light_; }
-  ch03::LightVolumes& volumes() { return volumes_; }
-  std::size_t allocated_bytes() const;  // G-buffer + light buffer
+  ch03::DeferredFrame& frame() { return *frame_; }  // add_stage() here
+  const ch02::GBuffer& gbuffer() const { return frame_->gbuffer(); }
+  const ch03::LightBuffer& light_buffer() const { return frame_->light(); }
+  ch03::LightVolumes& volumes() { return frame_->volumes(); }
+  std::size_t allocated_bytes() const { return frame_->allocated_bytes(); }  // G-buffer + light buffer
 
  private:
   const Scene& original_;
-  ch02::Layout layout_;
-  ch03::Strategy strategy_;
   std::unique_ptr<Scene> scene_;  // the rescaled copy the GPU scene points at
   std::unique_ptr<SceneGpu> gpu_;
-  std::unique_ptr<ch02::GeometryPass> geometry_;  // made again when the glow changes (its palette)
-  ch03::LightVolumes volumes_;
-  std::unique_ptr<ch02::GBuffer> gbuffer_;
-  std::unique_ptr<ch03::LightBuffer> light_;
+  std::unique_ptr<ch03::DeferredFrame> frame_;
   float peak_reflectance_;
   float sun_ = -1, glow_ = -1, cut_exposure_ = 1;
   bool lights_changed_ = true, warned_ = false;

@@ -11,11 +11,13 @@
 #include "chapters/01_forward/ground_truth.h"
 #include "chapters/02_gbuffer/deferred.h"
 #include "chapters/02_gbuffer/gbuffer.h"
+#include "chapters/03_light_volumes/deferred_frame.h"
 #include "chapters/03_light_volumes/light_counts.h"
 #include "chapters/03_light_volumes/light_prepass.h"
 #include "chapters/03_light_volumes/light_radius.h"
 #include "chapters/03_light_volumes/light_volumes.h"
 #include "common/context.h"
+#include "common/error.h"
 #include "common/metrics.h"
 #include "common/paths.h"
 #include "common/target.h"
@@ -40,18 +42,13 @@ class LightVolumesGl : public ::testing::Test {
     context_ = Context::create({.headless = true, .width = kW, .height = kH}).release();
     scene_ = new Scene(load_scene(from_root("assets/street/street.gltf")));
     gpu_ = new SceneGpu(*scene_);
-    geometry_ = new ch02::GeometryPass(*gpu_);
-    volumes_ = new LightVolumes();
-    gbuffer_ = new ch02::GBuffer(kW, kH);
-    light_ = new LightBuffer(kW, kH, ch02::depth_format(gbuffer_->layout().depth));
+    frame_ = new DeferredFrame(*gpu_);
+    volumes_ = &frame_->volumes();
     target_ = new OutputTarget(kW, kH);
   }
   static void TearDownTestSuite() {  // GL objects go before their context
     delete target_;
-    delete light_;
-    delete gbuffer_;
-    delete volumes_;
-    delete geometry_;
+    delete frame_;
     delete gpu_;
     delete scene_;
     delete context_;
@@ -69,31 +66,24 @@ class LightVolumesGl : public ::testing::Test {
     return build_light_set(lights, cut_threshold(1.f, peak_reflectance(*scene_)), volumes_->shapes());
   }
 
-  // The chapter's frame: G-buffer, global lights, local lights with `strategy`, composite.
+  // The chapter's frame (the program's own object): G-buffer, global lights, local lights
+  // with `strategy`, composite; the fragment counts and GL_SAMPLES_PASSED of the local lights.
   static Render render(const FrameCamera& cam, Strategy strategy,
-                       LightVolumes::Output output = LightVolumes::Output::Light,
-                       ch02::GBuffer* gbuffer = nullptr, LightBuffer* light = nullptr) {
-    if (!gbuffer) gbuffer = gbuffer_;
-    if (!light) light = light_;
-    volumes_->set_counting(true);
-    geometry_->draw(*gbuffer, cam);
-    gbuffer->bind_textures(0);
-    SurfaceView view = surface_view(*gbuffer);
-    light->begin(gbuffer->framebuffer());
-    volumes_->draw_global(*light, view, scene_->ambient);
+                       LightVolumes::Output output = LightVolumes::Output::Light, DeferredFrame* frame = nullptr) {
+    if (!frame) frame = frame_;
+    frame->volumes().set_counting(true);
+    frame->set_strategy(strategy);
+    const FrameShow show = output == LightVolumes::Output::HeatShaded ? FrameShow::HeatShaded
+                           : output == LightVolumes::Output::HeatLit  ? FrameShow::HeatLit
+                                                                      : FrameShow::Image;
     PassMetrics metrics;
-    {
-      auto pass = metrics.pass("local");
-      volumes_->draw_local(*light, view, strategy, output);
-    }
+    frame->render(cam, {target_->framebuffer(), kW, kH}, &metrics, {.show = show});
     metrics.end_frame();
     metrics.wait_all();
     Render r;
-    r.counts = volumes_->counts();
-    r.stats = volumes_->draw_stats();
-    r.samples = metrics.find("local")->samples;
-    target_->bind();
-    volumes_->composite(*light, view, ch01::kBackground);
+    r.counts = frame->volumes().counts();
+    r.stats = frame->volumes().draw_stats();
+    r.samples = metrics.find("local lights: " + kStrategies[int(strategy)])->samples;
     EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
     r.image = target_->read();
     return r;
@@ -102,19 +92,15 @@ class LightVolumesGl : public ::testing::Test {
   static Context* context_;
   static Scene* scene_;
   static SceneGpu* gpu_;
-  static ch02::GeometryPass* geometry_;
-  static LightVolumes* volumes_;
-  static ch02::GBuffer* gbuffer_;
-  static LightBuffer* light_;
+  static DeferredFrame* frame_;
+  static LightVolumes* volumes_;  // the frame's
   static OutputTarget* target_;
 };
 Context* LightVolumesGl::context_ = nullptr;
 Scene* LightVolumesGl::scene_ = nullptr;
 SceneGpu* LightVolumesGl::gpu_ = nullptr;
-ch02::GeometryPass* LightVolumesGl::geometry_ = nullptr;
+DeferredFrame* LightVolumesGl::frame_ = nullptr;
 LightVolumes* LightVolumesGl::volumes_ = nullptr;
-ch02::GBuffer* LightVolumesGl::gbuffer_ = nullptr;
-LightBuffer* LightVolumesGl::light_ = nullptr;
 OutputTarget* LightVolumesGl::target_ = nullptr;
 
 // Strategies add the same lights in the same order (light order) into the light buffer; a
@@ -177,14 +163,13 @@ TEST_F(LightVolumesGl, EveryStrategyGivesTheFullScreenImage) {
 TEST_F(LightVolumesGl, ReversedDepthWorksTheSame) {
   // Chapter 02's reversed-Z layout (D32F, 1 at the near plane, depth test GREATER): every
   // comparison flips, and depth clamp must clamp to the other ends. Same bounds as above.
-  volumes_->set_lights(light_set(scene_->lights));
-  ch02::GBuffer reversed(kW, kH, ch02::layout_named("reversed-z"));
-  LightBuffer light(kW, kH, ch02::depth_format(reversed.layout().depth));
+  DeferredFrame reversed(*gpu_, ch02::layout_named("reversed-z"));
+  reversed.volumes().set_lights(light_set(scene_->lights));
   for (const FrameCamera& cam : {camera("inside_light"), camera("street_level", 0, 30)}) {
-    Render reference = render(cam, Strategy::FullScreen, LightVolumes::Output::Light, &reversed, &light);
+    Render reference = render(cam, Strategy::FullScreen, LightVolumes::Output::Light, &reversed);
     ASSERT_GT(reference.counts.lit, 10000u);
     for (Strategy s : {Strategy::FrontFaces, Strategy::BackFaces, Strategy::Stencil, Strategy::StencilBits}) {
-      Render r = render(cam, s, LightVolumes::Output::Light, &reversed, &light);
+      Render r = render(cam, s, LightVolumes::Output::Light, &reversed);
       CompareResult cmp = compare(r.image, reference.image, kSameImage);
       EXPECT_TRUE(cmp.passed) << kStrategies[int(s)] << ": " << cmp.summary();
       EXPECT_EQ(r.counts.lit_inner, reference.counts.lit_inner) << kStrategies[int(s)];
@@ -256,7 +241,7 @@ TEST_F(LightVolumesGl, EachLightLeavesTheStencilClean) {
     for (Strategy strategy : {Strategy::Stencil, Strategy::StencilBits}) {
       render(camera(view), strategy);
       std::vector<std::uint32_t> texels(std::size_t(kW) * kH);
-      glGetTextureImage(light_->depth_stencil(), 0, GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8,
+      glGetTextureImage(frame_->light().depth_stencil(), 0, GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8,
                         GLsizei(texels.size() * 4), texels.data());
       std::size_t marked = 0;
       for (auto t : texels) marked += (t & 0xFFu) != 0;
@@ -276,9 +261,8 @@ TEST_F(LightVolumesGl, MatchesChapterTwosFullScreenShading) {
   ch01::LightBuffer all;
   all.upload(lights);
   ch02::DeferredLighting deferred;
-  geometry_->draw(*gbuffer_, cam);
-  target_->bind();
-  deferred.draw(*gbuffer_, all, scene_->ambient, ch01::kBackground, ch02::LightSelection::All);
+  target_->bind();  // the frame's G-buffer still holds `cam`'s surfaces
+  deferred.draw(frame_->gbuffer(), all, scene_->ambient, ch01::kBackground, ch02::LightSelection::All);
   ImageRGBA8 theirs = target_->read();
   CompareResult loose = compare(ours.image, theirs, {.threshold = 2, .max_failing_fraction = 0.0});
   CompareResult tight = compare(ours.image, theirs, {.threshold = 1, .max_failing_fraction = 0.001});
@@ -355,15 +339,11 @@ TEST_F(LightVolumesGl, HeatMapsCountWhatTheCountersCount) {
   for (auto output : {LightVolumes::Output::HeatShaded, LightVolumes::Output::HeatLit}) {
     Render r = render(cam, Strategy::Stencil, output);
     std::vector<float> l1(std::size_t(kW) * kH * 4);
-    glGetTextureImage(light_->diffuse(), 0, GL_RGBA, GL_FLOAT, GLsizei(l1.size() * 4), l1.data());
+    glGetTextureImage(frame_->light().diffuse(), 0, GL_RGBA, GL_FLOAT, GLsizei(l1.size() * 4), l1.data());
+    // The program's heat picture starts from a black light buffer (no global pass): L1 holds
+    // the counts alone.
     double sum = 0;
     for (std::size_t i = 0; i < l1.size(); i += 4) sum += l1[i];
-    // L1 also holds the global pass's ambient + directional light: subtract it.
-    light_->begin(gbuffer_->framebuffer());
-    volumes_->draw_global(*light_, surface_view(*gbuffer_), scene_->ambient);
-    std::vector<float> base(l1.size());
-    glGetTextureImage(light_->diffuse(), 0, GL_RGBA, GL_FLOAT, GLsizei(base.size() * 4), base.data());
-    for (std::size_t i = 0; i < base.size(); i += 4) sum -= base[i];
     const double want = double(output == LightVolumes::Output::HeatShaded ? r.counts.shaded : r.counts.lit);
     EXPECT_NEAR(sum, want, 0.01 * want);
   }
@@ -381,17 +361,7 @@ TEST_F(LightVolumesGl, DeferredLightingLosesTheColourOfHighlightsOnly) {
     LightPrePass prepass(*gpu_);
     LightBuffer light(kW, kH, LightPrePass::kDepthFormat, LightBuffer::Kind::PrePass);
     volumes_->set_lights(light_set(lights));
-    prepass.draw_geometry(cam, kW, kH);
-    prepass.bind_textures();
-    light.begin(prepass.framebuffer());
-    volumes_->draw_global(light, prepass.view(), scene_->ambient);
-    volumes_->draw_local(light, prepass.view(), Strategy::Stencil);
-    target_->bind();
-    glBlitNamedFramebuffer(prepass.framebuffer(), target_->framebuffer(), 0, 0, kW, kH, 0, 0, kW, kH, GL_DEPTH_BUFFER_BIT,
-                           GL_NEAREST);
-    glClearColor(ch01::kBackground.r, ch01::kBackground.g, ch01::kBackground.b, 1.f);
-    glClear(GL_COLOR_BUFFER_BIT);
-    prepass.draw_materials(light, mode);
+    prepass.render(*volumes_, light, cam, {target_->framebuffer(), kW, kH}, scene_->ambient, ch01::kBackground, mode);
     EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
     return target_->read();
   };
@@ -410,4 +380,151 @@ TEST_F(LightVolumesGl, DeferredLightingLosesTheColourOfHighlightsOnly) {
   CompareResult parted = compare(pre_colour, deferred_colour, {.threshold = 1, .max_failing_fraction = 0.0});
   EXPECT_GE(parted.max_error, 10.0) << "coloured lights: the white highlights should show";
   EXPECT_GT(parted.failing_fraction, 10 * same.failing_fraction) << parted.summary();
+}
+
+// --- The frame as later chapters extend it (deferred_frame.h) ----------------------------
+
+namespace {
+
+std::string test_hook(const std::string& file) { return from_root("tests/data/hooks/" + file).string(); }
+
+struct HookStage : FrameStage {
+  ShaderHooks hooks{"", ""};
+  ShaderHooks shader_hooks() const override { return hooks; }
+};
+
+// Scene lights without the local ones, or without the directional ones.
+LightSet without_local(LightSet s) {
+  s.points.clear();
+  s.cones.clear();
+  s.wide_spots.clear();
+  return s;
+}
+
+}  // namespace
+
+TEST_F(LightVolumesGl, AStageWithNoOverridesChangesNoPixel) {
+  // Every hook is a no-op by default: chapters 01-05 keep their images bit for bit.
+  DeferredFrame frame(*gpu_);
+  frame.volumes().set_lights(light_set(scene_->lights));
+  const FrameCamera cam = camera("street_level");
+  Render plain = render(cam, Strategy::Stencil, LightVolumes::Output::Light, &frame);
+  FrameStage nothing;
+  frame.add_stage(nothing);
+  Render staged = render(cam, Strategy::Stencil, LightVolumes::Output::Light, &frame);
+  EXPECT_EQ(plain.image.pixels, staged.image.pixels);
+  EXPECT_EQ(plain.counts.shaded, staged.counts.shaded);
+}
+
+TEST_F(LightVolumesGl, TheVisibilityHookReachesEveryLight) {
+  // A stage whose visibility is 0 everywhere (chapter 06's shadows plug in here) must leave
+  // exactly the image of a frame with no lights but the ambient: the same volumes are drawn
+  // and shaded, none of their fragments is lit.
+  const FrameCamera cam = camera("street_level");
+  DeferredFrame blocked(*gpu_), ambient_only(*gpu_);
+  blocked.volumes().set_lights(light_set(scene_->lights));
+  HookStage stage;
+  stage.hooks.visibility = test_hook("no_light_reaches.glsl");
+  blocked.add_stage(stage);
+  LightSet none = light_set(scene_->lights);
+  none = without_local(std::move(none));
+  none.directional.clear();
+  ambient_only.volumes().set_lights(std::move(none));
+  Render dark = render(cam, Strategy::Stencil, LightVolumes::Output::Light, &blocked);
+  Render truth = render(cam, Strategy::Stencil, LightVolumes::Output::Light, &ambient_only);
+  EXPECT_GT(dark.counts.shaded, 10000u) << "the volumes are still drawn";
+  EXPECT_EQ(dark.counts.lit, 0u);
+  EXPECT_EQ(dark.image.pixels, truth.image.pixels);
+}
+
+TEST_F(LightVolumesGl, TheVisibilityHookKnowsWhichLightItIs) {
+  // The hook gets each light's place in light order: blocking the odd ones must give the
+  // image of a frame that only has the even ones, with every strategy (instanced draws
+  // included: the index must follow the instance).
+  const FrameCamera cam = camera("street_level");
+  LightSet all = light_set(scene_->lights), even = all;
+  std::size_t index = 0;  // in light order: points, cones, wide spots
+  auto keep_even = [&](auto& lights) {
+    std::erase_if(lights, [&](const auto&) { return index++ % 2 != 0; });
+  };
+  keep_even(even.points);
+  keep_even(even.cones);
+  keep_even(even.wide_spots);
+  ASSERT_GT(all.cones.size() + all.wide_spots.size(), 0u) << "the street's spots test the index past the points";
+  DeferredFrame hooked(*gpu_), reference(*gpu_);
+  hooked.volumes().set_lights(std::move(all));
+  reference.volumes().set_lights(std::move(even));
+  HookStage stage;
+  stage.hooks.visibility = test_hook("every_other_light.glsl");
+  hooked.add_stage(stage);
+  for (Strategy s : {Strategy::FullScreen, Strategy::BackFaces, Strategy::Stencil, Strategy::StencilBits}) {
+    Render r = render(cam, s, LightVolumes::Output::Light, &hooked);
+    Render want = render(cam, s, LightVolumes::Output::Light, &reference);
+    EXPECT_EQ(r.image.pixels, want.image.pixels) << kStrategies[int(s)];
+    EXPECT_EQ(r.counts.lit, want.counts.lit) << kStrategies[int(s)];
+  }
+}
+
+TEST_F(LightVolumesGl, TheAmbientHookReplacesTheConstantAmbient) {
+  // Chapters 07 and 08 bring a per-pixel ambient term here: one that returns 0 must give the
+  // image of the frame whose ambient light is 0.
+  const FrameCamera cam = camera("street_level");
+  ASSERT_GT(glm::length(scene_->ambient), 0.f) << "the street has an ambient light to take away";
+  DeferredFrame hooked(*gpu_), dark(*gpu_);
+  hooked.volumes().set_lights(light_set(scene_->lights));
+  dark.volumes().set_lights(light_set(scene_->lights));
+  const Render lit = render(cam, Strategy::Stencil, LightVolumes::Output::Light, &dark);
+  dark.set_ambient(glm::vec3(0));
+  HookStage stage;
+  stage.hooks.ambient = test_hook("no_ambient.glsl");
+  hooked.add_stage(stage);
+  Render r = render(cam, Strategy::Stencil, LightVolumes::Output::Light, &hooked);
+  Render want = render(cam, Strategy::Stencil, LightVolumes::Output::Light, &dark);
+  EXPECT_EQ(r.image.pixels, want.image.pixels);
+  EXPECT_NE(r.image.pixels, lit.image.pixels) << "the ambient light must have mattered";
+}
+
+TEST_F(LightVolumesGl, TwoStagesCannotBothOwnAHook) {
+  DeferredFrame frame(*gpu_);
+  HookStage a, b, c;
+  a.hooks.visibility = test_hook("no_light_reaches.glsl");
+  b.hooks.visibility = test_hook("every_other_light.glsl");
+  c.hooks.ambient = test_hook("no_ambient.glsl");
+  frame.add_stage(a);
+  frame.add_stage(c);  // different hooks: fine
+  EXPECT_NO_THROW(frame.render(camera("street_level"), {target_->framebuffer(), kW, kH}));
+  frame.add_stage(b);
+  try {
+    frame.render(camera("street_level"), {target_->framebuffer(), kW, kH});
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("both supply its visibility hook"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(LightVolumesGl, AnotherChaptersCullingReplacesTheVolumes) {
+  // Chapter 09 brings its own local-light pass: the frame must call it instead of the
+  // volumes, name it in the timings, and keep everything else. One that adds nothing gives
+  // the frame without local lights.
+  struct Nothing : LocalLightPass {
+    int calls = 0;
+    std::string name() const override { return "nothing"; }
+    void draw(const LightBuffer&, const SurfaceView&, LightVolumes::Output) override { ++calls; }
+  } nothing;
+  const FrameCamera cam = camera("street_level");
+  DeferredFrame frame(*gpu_), global_only(*gpu_);
+  frame.volumes().set_lights(light_set(scene_->lights));
+  global_only.volumes().set_lights(without_local(light_set(scene_->lights)));
+  frame.set_local_lights(&nothing);
+  PassMetrics metrics;
+  frame.render(cam, {target_->framebuffer(), kW, kH}, &metrics);
+  metrics.end_frame();
+  metrics.wait_all();
+  const ImageRGBA8 replaced = target_->read();
+  EXPECT_EQ(nothing.calls, 1);
+  EXPECT_NE(metrics.find("local lights: nothing"), nullptr);
+  EXPECT_EQ(replaced.pixels, render(cam, Strategy::Stencil, LightVolumes::Output::Light, &global_only).image.pixels);
+  frame.set_local_lights(nullptr);  // chapter 03's volumes again
+  EXPECT_NE(render(cam, Strategy::Stencil, LightVolumes::Output::Light, &frame).image.pixels, replaced.pixels);
+  EXPECT_EQ(nothing.calls, 1);
 }

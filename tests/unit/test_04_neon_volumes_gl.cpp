@@ -20,9 +20,11 @@
 #include "chapters/02_gbuffer/encoding.h"
 #include "chapters/02_gbuffer/probe.h"
 #include "chapters/03_light_volumes/light_radius.h"
+#include "chapters/03_light_volumes/deferred_frame.h"
 #include "chapters/03_light_volumes/light_volumes.h"
 #include "chapters/04_neon/neon_forward.h"
 #include "chapters/04_neon/neon_scene.h"
+#include "chapters/04_neon/neon_stage.h"
 #include "chapters/04_neon/neon_volumes.h"
 #include "common/context.h"
 #include "common/paths.h"
@@ -41,9 +43,6 @@ struct World {
       : scene(load_scene(from_root(file))), gpu(scene), forward(gpu), geometry(gpu), tube_lights(neon_lights(scene)) {
     lights.upload(scene.lights);
     tubes.upload(tube_lights);
-    volumes.set_lights(ch03::build_light_set(scene.lights, ch03::cut_threshold(1.f, ch03::peak_reflectance(scene)),
-                                             volumes.shapes()));
-    neon.set_counting(true);
   }
 
   FrameCamera camera(const std::string& view) const { return frame_camera(scene.camera(view), float(kW) / kH); }
@@ -58,38 +57,29 @@ struct World {
     return target.read();
   }
 
-  // The chapter's frame (main.cpp): G-buffer, chapter 03's global and local lights, the
-  // capsules, chapter 03's composite, the glass (--term: the tubes' light alone, no glass).
-  // Leaves the neon counts in `neon` and the marks the neon pass left in `stencil_marks`.
+  // The chapter's frame, the program's own objects: chapter 03's deferred frame with the
+  // tubes as its stage (G-buffer, chapter 03's lights, the capsules, the composite, the glass;
+  // --term: the tubes' light alone, no glass), one frame per G-buffer layout. Leaves the
+  // neon counts in neon() and the marks the neon pass left in `stencil_marks`.
   ImageRGBA8 deferred_image(const FrameCamera& cam, const NeonDraw& how, const ch02::Layout& layout = ch02::our_layout()) {
-    ch02::GBuffer gbuffer(kW, kH, layout);
-    ch03::LightBuffer light(kW, kH, ch02::depth_format(layout.depth));
-    geometry.draw(gbuffer, cam);
-    gbuffer.bind_textures(0);
-    const ch03::SurfaceView view = ch03::surface_view(gbuffer);
-    light.begin(gbuffer.framebuffer());
-    if (how.term == Term::All) {
-      volumes.draw_global(light, view, scene.ambient);
-      volumes.draw_local(light, view, ch03::Strategy::Stencil);
-    } else {
-      light.clear();
+    Deferred& d = deferred[layout.name];
+    if (!d.frame) {
+      d.frame = std::make_unique<ch03::DeferredFrame>(gpu, layout);
+      d.frame->volumes().set_lights(ch03::build_light_set(
+          scene.lights, ch03::cut_threshold(1.f, ch03::peak_reflectance(scene)), d.frame->volumes().shapes()));
+      d.stage = std::make_unique<NeonStage>(gpu, tubes);
+      d.stage->volumes().set_counting(true);
+      d.frame->add_stage(*d.stage);
     }
-    neon.draw(tubes, light, view, how);
-    stencil_marks = count_stencil_marks(light, layout);
+    last = &d;
     OutputTarget target(kW, kH);
-    target.bind();
-    if (how.term != Term::All) {
-      neon.draw_term(light, view, how.term, ch01::kBackground);
-    } else {
-      volumes.composite(light, view, ch01::kBackground);
-      glBlitNamedFramebuffer(gbuffer.framebuffer(), target.framebuffer(), 0, 0, kW, kH, 0, 0, kW, kH, GL_DEPTH_BUFFER_BIT,
-                             GL_NEAREST);
-      target.bind();
-      forward.draw_glass(cam, tubes);
-    }
+    d.stage->set(how);
+    d.frame->render(cam, {target.framebuffer(), kW, kH}, nullptr, {.scene_lights = d.stage->wants_scene_lights()});
+    stencil_marks = count_stencil_marks(d.frame->light(), layout);
     EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
     return target.read();
   }
+  NeonVolumes& neon() { return last->stage->volumes(); }  // of the last deferred_image()
 
   // Pixels whose stencil the neon pass left marked (each tube must leave it at 0).
   static std::size_t count_stencil_marks(const ch03::LightBuffer& light, const ch02::Layout& layout) {
@@ -116,8 +106,12 @@ struct World {
   std::vector<NeonLight> tube_lights;
   NeonTubes tubes;
   ch01::LightBuffer lights;
-  ch03::LightVolumes volumes;
-  NeonVolumes neon;
+  struct Deferred {
+    std::unique_ptr<ch03::DeferredFrame> frame;
+    std::unique_ptr<NeonStage> stage;
+  };
+  std::map<std::string, Deferred> deferred;  // by layout name
+  Deferred* last = nullptr;
   ch02::SurfaceProbe probe;
   std::size_t stencil_marks = 0;
 };
@@ -390,9 +384,9 @@ TEST_F(NeonVolumesGl, CapsulesCutByTheNearAndTheFarPlane) {
   const FrameCamera far4 = with_planes(overview, 0, 4.f), near25 = with_planes(overview, 2.5f, 0);
   for (Method m : {Method::Improved, Method::Points}) {
     check(*room_, far4, draw_for(m), "far plane at 4 m");
-    EXPECT_GT(room_->neon.counts().lit, 5000u) << "the tubes light the floor in front of the far plane";
+    EXPECT_GT(room_->neon().counts().lit, 5000u) << "the tubes light the floor in front of the far plane";
     check(*room_, near25, draw_for(m), "near plane at 2.5 m");
-    EXPECT_GT(room_->neon.tube_counts()[2].lit, 1000u) << "the amber tube lights the wall behind the near plane";
+    EXPECT_GT(room_->neon().tube_counts()[2].lit, 1000u) << "the amber tube lights the wall behind the near plane";
   }
 }
 
@@ -402,7 +396,7 @@ TEST_F(NeonVolumesGl, TheStreetsSignsWithItsOtherLights) {
   // with every light whole.
   for (const std::string view : {"neon_signs", "inside_sign"}) {
     check(*street_, street_->camera(view), draw_for(Method::Improved), "street " + view);
-    EXPECT_GT(street_->neon.counts().lit, 10000u) << view;
+    EXPECT_GT(street_->neon().counts().lit, 10000u) << view;
   }
   EXPECT_TRUE(inside_volume(*street_, 0, street_->camera("inside_sign").position));
 }
@@ -424,7 +418,7 @@ TEST_F(NeonVolumesGl, CapsulesShadeAtMostTwentyPercentMoreThanTheTubesLight) {
                                    {street_, "neon_signs"}, {street_, "inside_sign"}, {street_, "street_level"}};
   for (const Case& c : cases) {
     c.world->deferred_image(c.world->camera(c.view), draw_for(Method::Improved));
-    const NeonCounts& all = c.world->neon.counts();
+    const NeonCounts& all = c.world->neon().counts();
     std::printf("  %-12s shaded %7llu, lit %7llu, with the doors open %7llu: overshading %.3f (%.3f without the doors)\n",
                 c.view.c_str(), (unsigned long long)all.shaded, (unsigned long long)all.lit,
                 (unsigned long long)all.lit_open, all.overshading(), double(all.shaded) / double(all.lit_open));
@@ -432,7 +426,7 @@ TEST_F(NeonVolumesGl, CapsulesShadeAtMostTwentyPercentMoreThanTheTubesLight) {
     EXPECT_LE(double(all.shaded), 1.2 * double(all.lit_open)) << c.view;
     for (std::size_t i = 0; i < c.world->tube_lights.size(); ++i) {
       const NeonLight& tube = c.world->tube_lights[i];
-      const NeonCounts& t = c.world->neon.tube_counts()[i];
+      const NeonCounts& t = c.world->neon().tube_counts()[i];
       EXPECT_EQ(t.samples, t.shaded) << c.view << ", " << tube.name << ": two counts of the same fragments";
       EXPECT_LE(t.lit, t.lit_open) << c.view << ", " << tube.name;
       EXPECT_LE(t.lit_open, t.shaded) << c.view << ", " << tube.name;
@@ -444,7 +438,7 @@ TEST_F(NeonVolumesGl, CapsulesShadeAtMostTwentyPercentMoreThanTheTubesLight) {
   // What the book says of the doors: from the pavement beside the signs, the green sign's
   // doors (above and below it, against the wall) darken most of its capsule's wall.
   street_->deferred_image(street_->camera("inside_sign"), draw_for(Method::Improved));
-  const NeonCounts& green = street_->neon.tube_counts()[2];
+  const NeonCounts& green = street_->neon().tube_counts()[2];
   ASSERT_EQ(street_->tube_lights[2].name, "sign_green");
   EXPECT_GT(double(green.lit_open), 2.0 * double(green.lit)) << "lit " << green.lit << ", doors open " << green.lit_open;
 }

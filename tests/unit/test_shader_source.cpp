@@ -85,3 +85,34 @@ TEST(ShaderSource, DriverLogsAreMappedToFiles) {
             "01_forward/shaders/forward.frag:7: error C1008: undefined variable \"x\"\n");
   EXPECT_EQ(map_shader_log("9:1(1): error: x\n", files), "<source 9>:1:1: error: x\n");
 }
+
+// A later chapter plugs its GLSL into an earlier chapter's shader through a define that
+// names the file (chapter 03's frame hooks): the file named is included, with line directives.
+TEST(ShaderSource, ComputedIncludeTakesTheFileADefineNames) {
+  TempRoot root;
+  root.write("t/main.frag", "#version 450\n#include HOOK  // a comment may follow\nvoid main() {}\n");
+  root.write("t/mine.glsl", "float hook() { return 2.0; }\n");
+  root.write("t/default.glsl", "float hook() { return 1.0; }\n");
+  ShaderSource s = preprocess_shader("t/main.frag", {"HOOK \"t/mine.glsl\""});
+  EXPECT_EQ(s.files, (std::vector<std::string>{"t/main.frag", "t/mine.glsl"}));
+  EXPECT_NE(s.text.find("#line 1 1\nfloat hook() { return 2.0; }"), std::string::npos) << s.text;
+  EXPECT_NE(s.text.find("#line 3 0\nvoid main()"), std::string::npos) << s.text;
+  EXPECT_EQ(preprocess_shader("t/main.frag", {"HOOK \"t/default.glsl\""}).files[1], "t/default.glsl");
+}
+
+TEST(ShaderSource, ComputedIncludeWithoutItsDefineNamesTheLine) {
+  TempRoot root;
+  root.write("t/main.frag", "#version 450\n\n#include HOOK\n");
+  try {
+    preprocess_shader("t/main.frag", {"HOOKED 1"});  // a define that only starts with the name
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("t/main.frag:3: #include HOOK: HOOK is not defined"), std::string::npos) << e.what();
+  }
+  try {
+    preprocess_shader("t/main.frag", {"HOOK 1"});
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("must be a quoted path"), std::string::npos) << e.what();
+  }
+}

@@ -3,6 +3,8 @@
 // pass that also starts the light buffer (it writes every pixel, so nothing is cleared).
 #include "01_forward/shaders/lighting.glsl"
 #include "02_gbuffer/shaders/gbuffer.glsl"
+#include FRAME_VISIBILITY  // hooks/full_visibility.glsl, or a later chapter's (shadows)
+#include FRAME_AMBIENT     // hooks/constant_ambient.glsl, or a later chapter's (AO, indirect)
 
 layout(early_fragment_tests) in;
 layout(std430, binding = 0) readonly buffer Lights { GpuLight lights[]; };
@@ -21,9 +23,10 @@ void main() {
     for (int i = 0; i < u_light_count; ++i) {
       vec3 to_light, radiance;
       light_incident(lights[i], s.position, to_light, radiance);
+      radiance *= directional_visibility(i, lights[i], s);
       blinn_phong(s.normal, to_eye, to_light, radiance, s.exponent, diffuse, specular);
     }
-    diffuse += u_ambient;  // the thesis starts L1 with the ambient light
+    diffuse += ambient_light(u_ambient, s, ivec2(gl_FragCoord.xy));  // the thesis starts L1 with the ambient light
   }
 #ifdef LIGHT_PREPASS
   out_diffuse = vec4(diffuse, dot(specular, vec3(0.2126, 0.7152, 0.0722)));

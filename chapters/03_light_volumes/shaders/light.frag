@@ -4,6 +4,7 @@
 // runs this same shader; they differ only in which pixels reach it.
 #include "01_forward/shaders/lighting.glsl"
 #include "02_gbuffer/shaders/gbuffer.glsl"
+#include FRAME_VISIBILITY  // hooks/full_visibility.glsl, or a later chapter's (shadows)
 
 // Depth and stencil tests before the shader, so what the stencil mask rejects is never
 // shaded (and GL_SAMPLES_PASSED counts shaded fragments).
@@ -14,6 +15,7 @@ flat in vec4 v_direction_range;
 flat in vec4 v_radiance;
 flat in vec4 v_spot;
 flat in float v_cut;
+flat in int v_light_index;  // in light order
 
 #ifdef COUNT_FRAGMENTS
 // [count]
@@ -45,6 +47,7 @@ void main() {
   if (!s.is_sky && distance(light.position_type.xyz, s.position) <= v_cut) {
     vec3 to_light, radiance;
     light_incident(light, s.position, to_light, radiance);
+    radiance *= local_visibility(v_light_index, light, s);
     blinn_phong(s.normal, normalize(gb_eye.xyz - s.position), to_light, radiance, s.exponent, diffuse, specular);
   }
   // [/light-pixel]

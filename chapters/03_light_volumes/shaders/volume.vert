@@ -13,12 +13,14 @@ layout(location = 6) in vec4 i_direction_cone;   // spots only
 uniform mat4 u_view_projection;
 uniform int u_shape;
 uniform bool u_spot;
+uniform int u_first_light;  // light order of this draw's first instance
 
 flat out vec4 v_position_type;
 flat out vec4 v_direction_range;
 flat out vec4 v_radiance;
 flat out vec4 v_spot;
 flat out float v_cut;
+flat out int v_light_index;
 
 void main() {
   GpuLight light = u_spot ? unpack_spot(i_position_radius, i_radiance_range, i_direction_cone)
@@ -28,6 +30,7 @@ void main() {
   v_radiance = light.radiance;
   v_spot = light.spot;
   v_cut = i_position_radius.w;
+  v_light_index = u_first_light + gl_InstanceID;
   // [place-volume]
   float r = i_position_radius.w;
   vec3 world;

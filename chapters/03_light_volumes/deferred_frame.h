@@ -1,0 +1,172 @@
+#pragma once
+// The deferred frame as one object, owned by chapter 03 and extended by the chapters after
+// it: chapter 02's G-buffer, ambient and directional light for every pixel, each local light
+// in its volume, and the composite F = albedo * L1 + L2 + emissive. The program, its tests
+// and its sweep all draw through it, so what they check is the frame the reader runs.
+//
+//   DeferredFrame frame(scene_gpu);
+//   frame.volumes().set_lights(build_light_set(scene.lights, threshold, frame.volumes().shapes()));
+//   frame.render(camera, {output_fbo, width, height}, &metrics);   // G-buffer .. composite
+//
+// [extending]
+// A later chapter extends the frame without editing it, in two ways:
+// - a FrameStage (add_stage): C++ hooks at fixed points of render(), and GLSL hooks that
+//   chapter 03's light shaders include (ShaderHooks: a visibility term per light, a per-pixel
+//   ambient term). Chapter 04 adds its tube lights this way; 06 will add shadows, 07 and 08
+//   ambient occlusion and indirect light.
+// - a LocalLightPass (set_local_lights): another way to bring the local lights into the light
+//   buffer than chapter 03's volumes; chapter 09's tiled and clustered culling.
+// Every hook does nothing by default: a frame without stages is chapter 03's image, bit for bit.
+// [/extending]
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "chapters/02_gbuffer/gbuffer.h"
+#include "chapters/03_light_volumes/light_volumes.h"
+#include "common/camera.h"
+#include "common/metrics.h"
+#include "common/scene_gpu.h"
+
+namespace lp::ch03 {
+
+class DeferredFrame;
+
+// Where the frame draws its image: a framebuffer of width x height (the sRGB output, or a
+// float target such as chapter 05's radiance). Stages that draw over the image test against
+// its depth-stencil attachment, which copy_depth_to_output() fills with the G-buffer's depth.
+struct FrameOutput {
+  GLuint framebuffer = 0;
+  int width = 0, height = 0;
+  void bind() const;  // binds it, sets the viewport, sRGB encoding on (no-op for float targets)
+};
+
+// [frame-stage]
+// A stage a later chapter adds to the frame. render() calls the hooks in this order:
+//   geometry -> before_lights -> global + local lights -> add_light -> composite -> after_composite
+class FrameStage {
+ public:
+  virtual ~FrameStage() = default;
+  // The GLSL files the light shaders include (see ShaderHooks); empty strings keep chapter 03's.
+  virtual ShaderHooks shader_hooks() const { return {"", ""}; }
+  // After the G-buffer, before any light: shadow maps, ambient occlusion... and binding what
+  // the GLSL hooks read (texture units from DeferredFrame::kFirstStageUnit on).
+  virtual void before_lights(DeferredFrame&, PassMetrics*) {}
+  // More light added into the light buffer (bound) after chapter 03's own: chapter 04's tubes.
+  virtual void add_light(DeferredFrame&, PassMetrics*) {}
+  // Draws the image into the bound output instead of chapter 03's composite when it returns
+  // true (chapter 04 shows its tubes' diffuse or specular term alone).
+  virtual bool composite(DeferredFrame&, PassMetrics*) { return false; }
+  // Over the finished image, into the bound output: glass, pictures.
+  virtual void after_composite(DeferredFrame&, PassMetrics*) {}
+};
+// [/frame-stage]
+
+// [local-light-pass]
+// How the local lights reach the light buffer. Chapter 03's volumes (VolumeLights) are the
+// default; chapter 09 brings tiled and clustered culling in compute.
+class LocalLightPass {
+ public:
+  virtual ~LocalLightPass() = default;
+  virtual std::string name() const = 0;  // for the timings: "stencil", "clustered", ...
+  // Adds every local light into `light` (its depth-stencil holds the G-buffer's depth and a
+  // zero stencil, which it must leave at zero), reading the surface through `view`.
+  virtual void draw(const LightBuffer& light, const SurfaceView& view, LightVolumes::Output output) = 0;
+};
+// [/local-light-pass]
+
+// Chapter 03's own local lights: its volumes, with one of its six culling strategies.
+class VolumeLights : public LocalLightPass {
+ public:
+  VolumeLights(LightVolumes& volumes, Strategy strategy) : volumes_(volumes), strategy_(strategy) {}
+  std::string name() const override { return kStrategies[int(strategy_)]; }
+  void draw(const LightBuffer& light, const SurfaceView& view, LightVolumes::Output output) override {
+    volumes_.draw_local(light, view, strategy_, output);
+  }
+  Strategy strategy() const { return strategy_; }
+  void set_strategy(Strategy strategy) { strategy_ = strategy; }
+
+ private:
+  LightVolumes& volumes_;
+  Strategy strategy_;
+};
+
+// What render() draws, besides the image itself: chapter 03's pictures of its light buffer.
+enum class FrameShow { Image, DiffuseLight, SpecularLight, HeatShaded, HeatLit };
+
+struct FrameSettings {
+  FrameShow show = FrameShow::Image;
+  // Chapter 03's global and local lights; off, the light buffer starts black and only the
+  // stages' light is in it (chapter 04's tubes alone).
+  bool scene_lights = true;
+  float heat_full_scale = 40.f;  // HeatShaded / HeatLit: fragments per pixel drawn white
+};
+
+class DeferredFrame {
+ public:
+  // Texture units a stage may bind for its GLSL hooks: after the G-buffer's (0..4) and the
+  // light buffer's (5, 6).
+  static constexpr GLuint kFirstStageUnit = 8;
+
+  // The scene's ambient light and chapter 01's background to start with; the icosphere of
+  // the point lights' volumes subdivided `sphere_subdivisions` times (LightVolumes).
+  explicit DeferredFrame(const SceneGpu& scene, const ch02::Layout& layout = ch02::our_layout(),
+                         int sphere_subdivisions = 2);
+  void reload_shaders();
+  // Chapter 02's geometry pass takes the emissive palette from the materials when it is
+  // made: after changing the scene's emissive colours, make it again (chapter 05's glow).
+  void rebuild_geometry_pass();
+
+  // Chapter 03's lights: set_lights(build_light_set(...)), counting, the pictures.
+  LightVolumes& volumes() { return volumes_; }
+  const LightVolumes& volumes() const { return volumes_; }
+  void set_strategy(Strategy strategy);             // which of chapter 03's culling strategies
+  void set_local_lights(LocalLightPass* pass);      // another chapter's; nullptr: chapter 03's again
+  void add_stage(FrameStage& stage);                // called in the order added
+  void set_ambient(const glm::vec3& ambient) { ambient_ = ambient; }
+  void set_background(const glm::vec3& background) { background_ = background; }
+  const glm::vec3& background() const { return background_; }
+
+  // The frame: G-buffer, lights, composite into `output`; each pass timed in `metrics`.
+  void render(const FrameCamera& camera, const FrameOutput& output, PassMetrics* metrics = nullptr,
+              const FrameSettings& settings = {});
+
+  // What the last render() left, for the stages and for pictures drawn after it.
+  const ch02::GBuffer& gbuffer() const { return *gbuffer_; }
+  const LightBuffer& light() const { return *light_; }
+  const SurfaceView& view() const { return view_; }  // with the stages' shader hooks
+  const FrameOutput& output() const { return output_; }
+  const FrameCamera& camera() const { return camera_; }  // as render() was given it
+  // The G-buffer's depth into the output's depth-stencil (same format), stencil zeroed, and
+  // the output bound: for what is drawn over the image with a depth test.
+  void copy_depth_to_output() const;
+  std::size_t allocated_bytes() const;  // G-buffer + light buffer
+
+ private:
+  void resize(int width, int height);
+  ShaderHooks hooks() const;
+
+  const SceneGpu& scene_;
+  ch02::Layout layout_;
+  std::unique_ptr<ch02::GeometryPass> geometry_;
+  LightVolumes volumes_;
+  VolumeLights volume_lights_;
+  LocalLightPass* local_ = &volume_lights_;
+  std::vector<FrameStage*> stages_;
+  std::unique_ptr<ch02::GBuffer> gbuffer_;
+  std::unique_ptr<LightBuffer> light_;
+  SurfaceView view_;
+  FrameOutput output_;
+  FrameCamera camera_;
+  glm::vec3 ambient_{0}, background_;
+};
+
+// A pass timed in `metrics` while the returned scope lives; nothing without metrics.
+std::optional<PassMetrics::Scope> timed(PassMetrics* metrics, const std::string& name);
+
+}  // namespace lp::ch03
