@@ -1,4 +1,8 @@
-# Chapter 01: reference images, outputs and bad input, through the program itself.
+# Chapter 01: the lighting model on the CPU, the forward renderer on a headless context, and
+# the program itself (reference images, outputs and bad input).
+lightpass_gtests(01_forward unit lightpass_01_forward unit/test_lighting.cpp)
+lightpass_gtests(01_forward gl lightpass_01_forward unit/test_forward_gl.cpp)
+
 set(P01 $<TARGET_FILE:01_forward>)
 foreach(mode per-pixel per-vertex unnormalized multi-pass)
   lightpass_program_test(01_forward.reference.${mode} 0 "references match" ${P01} --check --mode ${mode} --out ${CHECK_OUT}/01_forward)

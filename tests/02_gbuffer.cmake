@@ -1,12 +1,7 @@
 # Chapter 02: the G-buffer's maths on the CPU, the G-buffer on a headless context, and the
 # program itself (reference images of the lit result and of every buffer, outputs, bad input).
-add_executable(gbuffer_tests unit/test_02_encoding.cpp)
-target_link_libraries(gbuffer_tests PRIVATE lightpass_02_gbuffer GTest::gtest_main)
-gtest_discover_tests(gbuffer_tests TEST_PREFIX 02_gbuffer.unit. DISCOVERY_TIMEOUT 60)
-
-add_executable(gbuffer_gl_tests unit/test_02_gbuffer_gl.cpp)
-target_link_libraries(gbuffer_gl_tests PRIVATE lightpass_02_gbuffer GTest::gtest_main)
-gtest_discover_tests(gbuffer_gl_tests TEST_PREFIX 02_gbuffer.gl. DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
+lightpass_gtests(02_gbuffer unit lightpass_02_gbuffer unit/test_02_encoding.cpp)
+lightpass_gtests(02_gbuffer gl lightpass_02_gbuffer unit/test_02_gbuffer_gl.cpp)
 
 # The program: reference images of the lit result and of every buffer, outputs, bad input.
 set(P02 $<TARGET_FILE:02_gbuffer>)

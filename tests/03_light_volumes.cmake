@@ -1,13 +1,8 @@
 # Chapter 03: light volumes with stencil. Unit tests of the maths (no OpenGL), GPU tests on
 # a headless context (cross-checks, exact fragment counts), and the program itself.
 
-add_executable(test_03_light_volumes unit/test_03_light_volumes.cpp)
-target_link_libraries(test_03_light_volumes PRIVATE lightpass_03_light_volumes GTest::gtest_main)
-gtest_discover_tests(test_03_light_volumes DISCOVERY_TIMEOUT 60)
-
-add_executable(test_03_light_volumes_gl unit/test_03_light_volumes_gl.cpp)
-target_link_libraries(test_03_light_volumes_gl PRIVATE lightpass_03_light_volumes GTest::gtest_main)
-gtest_discover_tests(test_03_light_volumes_gl DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
+lightpass_gtests(03_light_volumes unit lightpass_03_light_volumes unit/test_03_light_volumes.cpp)
+lightpass_gtests(03_light_volumes gl lightpass_03_light_volumes unit/test_03_light_volumes_gl.cpp)
 
 # The program: reference images (every strategy, the hard cases, deferred lighting and the
 # book's pictures), outputs and bad input.

@@ -1,22 +1,17 @@
 # Chapter 04: the neon light. Unit tests of the maths and the capsule (no OpenGL), GPU tests
 # (the GLSL against the C++, the renderer against the ground truth), and the program itself:
 # reference images per mode, outputs and bad input.
-add_executable(neon_tests
+lightpass_gtests(04_neon unit lightpass_04_neon
   unit/test_04_neon_math.cpp
   unit/test_04_capsule.cpp
   unit/test_04_scene.cpp
 )
-target_link_libraries(neon_tests PRIVATE lightpass_04_neon GTest::gtest_main)
-gtest_discover_tests(neon_tests DISCOVERY_TIMEOUT 60 TEST_PREFIX "04_neon.")
-
-add_executable(neon_gl_tests unit/test_04_neon_gl.cpp)
-target_link_libraries(neon_gl_tests PRIVATE lightpass_04_neon GTest::gtest_main)
-gtest_discover_tests(neon_gl_tests DISCOVERY_TIMEOUT 60 TEST_PREFIX "04_neon." PROPERTIES TIMEOUT 300)
-
-# The deferred path (capsule volumes through chapter 03's stencil) against the forward pass.
-add_executable(neon_volumes_gl_tests unit/test_04_neon_volumes_gl.cpp)
-target_link_libraries(neon_volumes_gl_tests PRIVATE lightpass_04_neon GTest::gtest_main)
-gtest_discover_tests(neon_volumes_gl_tests DISCOVERY_TIMEOUT 60 TEST_PREFIX "04_neon." PROPERTIES TIMEOUT 300)
+# The GLSL against the C++ (test_04_neon_gl), and the deferred path (capsule volumes through
+# chapter 03's stencil) against the forward pass (test_04_neon_volumes_gl).
+lightpass_gtests(04_neon gl lightpass_04_neon
+  unit/test_04_neon_gl.cpp
+  unit/test_04_neon_volumes_gl.cpp
+)
 
 # The program: reference images per mode (tests/reference/04_neon/, made on llvmpipe), the
 # capsule volumes by default and the forward pass (--forward 1); the night street's signs.

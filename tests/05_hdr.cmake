@@ -1,19 +1,14 @@
 # Chapter 05: HDR. Unit tests of the maths (no OpenGL), GPU tests of the stage on a headless
 # context, and the program itself: reference images (street and atrium), eye adaptation over
 # frames, outputs and bad input.
-add_executable(hdr_unit_tests unit/test_05_hdr_math.cpp)
-target_link_libraries(hdr_unit_tests PRIVATE lightpass_05_hdr GTest::gtest_main)
-gtest_discover_tests(hdr_unit_tests TEST_PREFIX "05_hdr.unit." DISCOVERY_TIMEOUT 60)
-
-add_executable(hdr_gl_tests unit/test_05_hdr_gl.cpp)
-target_link_libraries(hdr_gl_tests PRIVATE lightpass_05_hdr GTest::gtest_main)
-gtest_discover_tests(hdr_gl_tests TEST_PREFIX "05_hdr.gl." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
-
-# The radiance: chapter 03's deferred path against chapter 01's forward renderer, the light
-# cut made for the exposure, the exposure read back from earlier frames.
-add_executable(hdr_radiance_gl_tests unit/test_05_hdr_radiance_gl.cpp)
-target_link_libraries(hdr_radiance_gl_tests PRIVATE lightpass_05_hdr GTest::gtest_main)
-gtest_discover_tests(hdr_radiance_gl_tests TEST_PREFIX "05_hdr.radiance." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
+lightpass_gtests(05_hdr unit lightpass_05_hdr unit/test_05_hdr_math.cpp)
+# The stage (test_05_hdr_gl), and the radiance (test_05_hdr_radiance_gl): chapter 03's deferred
+# path against chapter 01's forward renderer, the light cut made for the exposure, the exposure
+# read back from earlier frames.
+lightpass_gtests(05_hdr gl lightpass_05_hdr
+  unit/test_05_hdr_gl.cpp
+  unit/test_05_hdr_radiance_gl.cpp
+)
 
 set(P05 $<TARGET_FILE:05_hdr>)
 set(ATRIUM ${CMAKE_SOURCE_DIR}/assets/atrium/atrium.gltf)

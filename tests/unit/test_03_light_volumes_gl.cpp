@@ -15,10 +15,10 @@
 #include "chapters/03_light_volumes/light_prepass.h"
 #include "chapters/03_light_volumes/light_radius.h"
 #include "chapters/03_light_volumes/light_volumes.h"
-#include "common/context.h"
 #include "common/metrics.h"
 #include "common/paths.h"
 #include "common/target.h"
+#include "tests/unit/gl_environment.h"
 
 using namespace lp;
 using namespace lp::ch03;
@@ -37,7 +37,6 @@ struct Render {
 class LightVolumesGl : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    context_ = Context::create({.headless = true, .width = kW, .height = kH}).release();
     scene_ = new Scene(load_scene(from_root("assets/street/street.gltf")));
     gpu_ = new SceneGpu(*scene_);
     geometry_ = new ch02::GeometryPass(*gpu_);
@@ -46,7 +45,7 @@ class LightVolumesGl : public ::testing::Test {
     light_ = new LightBuffer(kW, kH, ch02::depth_format(gbuffer_->layout().depth));
     target_ = new OutputTarget(kW, kH);
   }
-  static void TearDownTestSuite() {  // GL objects go before their context
+  static void TearDownTestSuite() {  // GL objects go before the context (gl_environment.h)
     delete target_;
     delete light_;
     delete gbuffer_;
@@ -54,7 +53,6 @@ class LightVolumesGl : public ::testing::Test {
     delete geometry_;
     delete gpu_;
     delete scene_;
-    delete context_;
   }
 
   static FrameCamera camera(const std::string& view, float znear = 0, float zfar = 0) {
@@ -99,7 +97,6 @@ class LightVolumesGl : public ::testing::Test {
     return r;
   }
 
-  static Context* context_;
   static Scene* scene_;
   static SceneGpu* gpu_;
   static ch02::GeometryPass* geometry_;
@@ -108,7 +105,6 @@ class LightVolumesGl : public ::testing::Test {
   static LightBuffer* light_;
   static OutputTarget* target_;
 };
-Context* LightVolumesGl::context_ = nullptr;
 Scene* LightVolumesGl::scene_ = nullptr;
 SceneGpu* LightVolumesGl::gpu_ = nullptr;
 ch02::GeometryPass* LightVolumesGl::geometry_ = nullptr;

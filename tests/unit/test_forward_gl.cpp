@@ -7,12 +7,12 @@
 
 #include "chapters/01_forward/forward.h"
 #include "chapters/01_forward/ground_truth.h"
-#include "common/context.h"
 #include "common/error.h"
 #include "common/metrics.h"
 #include "common/paths.h"
 #include "common/shader.h"
 #include "common/target.h"
+#include "tests/unit/gl_environment.h"
 
 using namespace lp;
 using namespace lp::ch01;
@@ -24,16 +24,14 @@ constexpr int kW = 320, kH = 180;
 class ForwardGl : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    context_ = Context::create({.headless = true, .width = kW, .height = kH}).release();
     scene_ = new Scene(load_scene(from_root("assets/forward/forward.gltf")));
     gpu_ = new SceneGpu(*scene_);
     forward_ = new ForwardRenderer(*gpu_);
   }
-  static void TearDownTestSuite() {  // GL objects go before their context
+  static void TearDownTestSuite() {  // GL objects go before the context (gl_environment.h)
     delete forward_;
     delete gpu_;
     delete scene_;
-    delete context_;
   }
 
   ImageRGBA8 render(const std::string& view, ForwardMode mode, int w = kW, int h = kH) {
@@ -62,12 +60,10 @@ class ForwardGl : public ::testing::Test {
     return sphere_error(render(view, mode), truth, mask);
   }
 
-  static Context* context_;
   static Scene* scene_;
   static SceneGpu* gpu_;
   static ForwardRenderer* forward_;
 };
-Context* ForwardGl::context_ = nullptr;
 Scene* ForwardGl::scene_ = nullptr;
 SceneGpu* ForwardGl::gpu_ = nullptr;
 ForwardRenderer* ForwardGl::forward_ = nullptr;
