@@ -14,8 +14,10 @@ set(P05 $<TARGET_FILE:05_hdr>)
 set(ATRIUM ${CMAKE_SOURCE_DIR}/assets/atrium/atrium.gltf)
 lightpass_program_test(05_hdr.reference.street 0 "10 of 10 references match" ${P05} --check --out ${CHECK_OUT}/05_hdr)
 lightpass_program_test(05_hdr.reference.atrium 0 "6 of 6 references match" ${P05} --check --scene ${ATRIUM} --out ${CHECK_OUT}/05_hdr)
-lightpass_program_test(05_hdr.headless_writes_png 0 "wrote .*05_headless.png"
-  ${P05} --headless --size 160x90 --out ${CMAKE_BINARY_DIR}/out/05_headless.png)
+# The headless path writes the image --check compares (street_level, the default operator).
+lightpass_image_test(05_hdr.headless_matches_the_reference "wrote .*05_headless.png" ${CMAKE_BINARY_DIR}/out/05_headless.png
+  --matches ${CMAKE_SOURCE_DIR}/tests/reference/05_hdr/street_level_reinhard.png
+  RUN ${P05} --headless --size 320x180 --view street_level --out ${CMAKE_BINARY_DIR}/out/05_headless.png)
 # Eye adaptation, headless: 60 frames of 1/60 s after coming in from a scene 30x brighter.
 # Frame 1 starts at 30x the log-average; 59 updates later the gap has shrunk by
 # exp(-59/60 / 0.5) = 0.13992: adapted / average = 1 + 29 x 0.13992 = 5.05775. Float steps on the GPU
