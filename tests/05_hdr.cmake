@@ -1,26 +1,23 @@
 # Chapter 05: HDR. Unit tests of the maths (no OpenGL), GPU tests of the stage on a headless
 # context, and the program itself: reference images (street and atrium), eye adaptation over
 # frames, outputs and bad input.
-add_executable(hdr_unit_tests unit/test_05_hdr_math.cpp)
-target_link_libraries(hdr_unit_tests PRIVATE lightpass_05_hdr GTest::gtest_main)
-gtest_discover_tests(hdr_unit_tests TEST_PREFIX "05_hdr.unit." DISCOVERY_TIMEOUT 60)
-
-add_executable(hdr_gl_tests unit/test_05_hdr_gl.cpp)
-target_link_libraries(hdr_gl_tests PRIVATE lightpass_05_hdr GTest::gtest_main)
-gtest_discover_tests(hdr_gl_tests TEST_PREFIX "05_hdr.gl." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
-
-# The radiance: chapter 03's deferred path against chapter 01's forward renderer, the light
-# cut made for the exposure, the exposure read back from earlier frames.
-add_executable(hdr_radiance_gl_tests unit/test_05_hdr_radiance_gl.cpp)
-target_link_libraries(hdr_radiance_gl_tests PRIVATE lightpass_05_hdr GTest::gtest_main)
-gtest_discover_tests(hdr_radiance_gl_tests TEST_PREFIX "05_hdr.radiance." DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
+lightpass_gtests(05_hdr unit lightpass_05_hdr unit/test_05_hdr_math.cpp)
+# The stage (test_05_hdr_gl), and the radiance (test_05_hdr_radiance_gl): chapter 03's deferred
+# path against chapter 01's forward renderer, the light cut made for the exposure, the exposure
+# read back from earlier frames.
+lightpass_gtests(05_hdr gl lightpass_05_hdr
+  unit/test_05_hdr_gl.cpp
+  unit/test_05_hdr_radiance_gl.cpp
+)
 
 set(P05 $<TARGET_FILE:05_hdr>)
 set(ATRIUM ${CMAKE_SOURCE_DIR}/assets/atrium/atrium.gltf)
 lightpass_program_test(05_hdr.reference.street 0 "10 of 10 references match" ${P05} --check --out ${CHECK_OUT}/05_hdr)
 lightpass_program_test(05_hdr.reference.atrium 0 "6 of 6 references match" ${P05} --check --scene ${ATRIUM} --out ${CHECK_OUT}/05_hdr)
-lightpass_program_test(05_hdr.headless_writes_png 0 "wrote .*05_headless.png"
-  ${P05} --headless --size 160x90 --out ${CMAKE_BINARY_DIR}/out/05_headless.png)
+# The headless path writes the image --check compares (street_level, the default operator).
+lightpass_image_test(05_hdr.headless_matches_the_reference "wrote .*05_headless.png" ${CMAKE_BINARY_DIR}/out/05_headless.png
+  --matches ${CMAKE_SOURCE_DIR}/tests/reference/05_hdr/street_level_reinhard.png
+  RUN ${P05} --headless --size 320x180 --view street_level --out ${CMAKE_BINARY_DIR}/out/05_headless.png)
 # Eye adaptation, headless: 60 frames of 1/60 s after coming in from a scene 30x brighter.
 # Frame 1 starts at 30x the log-average; 59 updates later the gap has shrunk by
 # exp(-59/60 / 0.5) = 0.13992: adapted / average = 1 + 29 x 0.13992 = 5.05775. Float steps on the GPU

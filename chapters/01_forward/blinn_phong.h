@@ -86,6 +86,9 @@ inline Reflected blinn_phong(const glm::vec3& n, const glm::vec3& to_eye, const 
                              const glm::vec3& radiance, float exponent) {
   float n_dot_l = glm::dot(n, to_light);
   if (n_dot_l <= 0) return {};
+  // The eye exactly opposite the light (below the surface, where a silhouette's interpolated
+  // normal can put it) has no half vector, and sees no highlight: not normalize(0), a NaN.
+  if (to_light + to_eye == glm::vec3(0)) return {radiance * n_dot_l, glm::vec3(0)};
   glm::vec3 h = glm::normalize(to_light + to_eye);
   float n_dot_h = std::max(glm::dot(n, h), 0.f);
   // (n + 8) / 8 keeps the lobe's energy roughly constant as it narrows.

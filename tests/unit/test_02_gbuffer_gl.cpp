@@ -19,10 +19,10 @@
 #include "chapters/02_gbuffer/depth.h"
 #include "chapters/02_gbuffer/encoding.h"
 #include "chapters/02_gbuffer/probe.h"
-#include "common/context.h"
 #include "common/metrics.h"
 #include "common/paths.h"
 #include "common/target.h"
+#include "tests/unit/gl_environment.h"
 
 using namespace lp;
 using namespace lp::ch02;
@@ -231,20 +231,16 @@ Camera grazing_camera() {
 class GBufferGl : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    context_ = Context::create({.headless = true, .width = kW, .height = kH}).release();
     atrium_ = new World("assets/atrium/atrium.gltf");
     spheres_ = new World("assets/forward/forward.gltf");
   }
-  static void TearDownTestSuite() {  // GL objects go before their context
+  static void TearDownTestSuite() {  // GL objects go before the context (gl_environment.h)
     delete spheres_;
     delete atrium_;
-    delete context_;
   }
-  static Context* context_;
   static World* atrium_;
   static World* spheres_;
 };
-Context* GBufferGl::context_ = nullptr;
 World* GBufferGl::atrium_ = nullptr;
 World* GBufferGl::spheres_ = nullptr;
 

@@ -16,11 +16,11 @@
 #include "chapters/03_light_volumes/light_prepass.h"
 #include "chapters/03_light_volumes/light_radius.h"
 #include "chapters/03_light_volumes/light_volumes.h"
-#include "common/context.h"
 #include "common/error.h"
 #include "common/metrics.h"
 #include "common/paths.h"
 #include "common/target.h"
+#include "tests/unit/gl_environment.h"
 
 using namespace lp;
 using namespace lp::ch03;
@@ -39,19 +39,17 @@ struct Render {
 class LightVolumesGl : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    context_ = Context::create({.headless = true, .width = kW, .height = kH}).release();
     scene_ = new Scene(load_scene(from_root("assets/street/street.gltf")));
     gpu_ = new SceneGpu(*scene_);
     frame_ = new DeferredFrame(*gpu_);
     volumes_ = &frame_->volumes();
     target_ = new OutputTarget(kW, kH);
   }
-  static void TearDownTestSuite() {  // GL objects go before their context
+  static void TearDownTestSuite() {  // GL objects go before the context (gl_environment.h)
     delete target_;
     delete frame_;
     delete gpu_;
     delete scene_;
-    delete context_;
   }
 
   static FrameCamera camera(const std::string& view, float znear = 0, float zfar = 0) {
@@ -89,14 +87,12 @@ class LightVolumesGl : public ::testing::Test {
     return r;
   }
 
-  static Context* context_;
   static Scene* scene_;
   static SceneGpu* gpu_;
   static DeferredFrame* frame_;
   static LightVolumes* volumes_;  // the frame's
   static OutputTarget* target_;
 };
-Context* LightVolumesGl::context_ = nullptr;
 Scene* LightVolumesGl::scene_ = nullptr;
 SceneGpu* LightVolumesGl::gpu_ = nullptr;
 DeferredFrame* LightVolumesGl::frame_ = nullptr;

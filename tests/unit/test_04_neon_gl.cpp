@@ -8,11 +8,11 @@
 #include "chapters/01_forward/ground_truth.h"
 #include "chapters/04_neon/neon_forward.h"
 #include "chapters/04_neon/neon_scene.h"
-#include "common/context.h"
 #include "common/paths.h"
 #include "common/shader.h"
 #include "common/target.h"
 #include "test_04_configs.h"
+#include "tests/unit/gl_environment.h"
 
 using namespace lp;
 using namespace lp::ch04;
@@ -25,16 +25,14 @@ constexpr int kW = 320, kH = 180;
 class NeonGl : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    context_ = Context::create({.headless = true, .width = kW, .height = kH}).release();
     scene_ = new Scene(load_scene(from_root("assets/neon/neon.gltf")));
     gpu_ = new SceneGpu(*scene_);
     forward_ = new NeonForward(*gpu_);
   }
-  static void TearDownTestSuite() {  // GL objects go before their context
+  static void TearDownTestSuite() {  // GL objects go before the context (gl_environment.h)
     delete forward_;
     delete gpu_;
     delete scene_;
-    delete context_;
   }
 
   // The scene's view rendered with `how`, as the 8-bit image the program writes.
@@ -52,12 +50,10 @@ class NeonGl : public ::testing::Test {
     return target.read();
   }
 
-  static Context* context_;
   static Scene* scene_;
   static SceneGpu* gpu_;
   static NeonForward* forward_;
 };
-Context* NeonGl::context_ = nullptr;
 Scene* NeonGl::scene_ = nullptr;
 SceneGpu* NeonGl::gpu_ = nullptr;
 NeonForward* NeonGl::forward_ = nullptr;

@@ -26,9 +26,9 @@
 #include "chapters/04_neon/neon_scene.h"
 #include "chapters/04_neon/neon_stage.h"
 #include "chapters/04_neon/neon_volumes.h"
-#include "common/context.h"
 #include "common/paths.h"
 #include "common/target.h"
+#include "tests/unit/gl_environment.h"
 
 using namespace lp;
 using namespace lp::ch04;
@@ -273,14 +273,12 @@ Excess over_allowance(const ImageRGBA8& a, const ImageRGBA8& b, const Allowance&
 class NeonVolumesGl : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    context_ = Context::create({.headless = true, .width = kW, .height = kH}).release();
     room_ = new World("assets/neon/neon.gltf");
     street_ = new World("assets/street_neon/street_neon.gltf");
   }
-  static void TearDownTestSuite() {  // GL objects go before their context
+  static void TearDownTestSuite() {  // GL objects go before the context (gl_environment.h)
     delete street_;
     delete room_;
-    delete context_;
   }
 
   // Renders `cam` both ways and holds every pixel to its allowance; returns the excess.
@@ -315,11 +313,9 @@ class NeonVolumesGl : public ::testing::Test {
     return frame_camera(c, float(kW) / kH);
   }
 
-  static Context* context_;
   static World* room_;
   static World* street_;
 };
-Context* NeonVolumesGl::context_ = nullptr;
 World* NeonVolumesGl::room_ = nullptr;
 World* NeonVolumesGl::street_ = nullptr;
 

@@ -13,8 +13,8 @@
 #include "chapters/05_hdr/hdr_pipeline.h"
 #include "chapters/05_hdr/radiance_source.h"
 #include "chapters/05_hdr/reference.h"
-#include "common/context.h"
 #include "common/paths.h"
+#include "tests/unit/gl_environment.h"
 
 using namespace lp;
 using namespace lp::ch05;
@@ -60,12 +60,10 @@ bool any_nan(const ImageF& img) {
 class HdrGl : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    context_ = Context::create({.headless = true, .width = 64, .height = 64}).release();
     pipeline_ = new HdrPipeline();
   }
-  static void TearDownTestSuite() {  // GL objects go before their context
+  static void TearDownTestSuite() {  // GL objects go before the context (gl_environment.h)
     delete pipeline_;
-    delete context_;
   }
   void TearDown() override { EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR)); }
 
@@ -106,10 +104,8 @@ class HdrGl : public ::testing::Test {
     return *la;
   }
 
-  static Context* context_;
   static HdrPipeline* pipeline_;
 };
-Context* HdrGl::context_ = nullptr;
 HdrPipeline* HdrGl::pipeline_ = nullptr;
 
 }  // namespace

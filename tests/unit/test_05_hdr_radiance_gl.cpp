@@ -18,9 +18,9 @@
 #include "chapters/05_hdr/exposure_feedback.h"
 #include "chapters/05_hdr/hdr_pipeline.h"
 #include "chapters/05_hdr/radiance_source.h"
-#include "common/context.h"
 #include "common/paths.h"
 #include "common/target.h"
+#include "tests/unit/gl_environment.h"
 
 using namespace lp;
 using namespace lp::ch05;
@@ -57,8 +57,6 @@ float stage_exposure(GLuint radiance, int w, int h) {
 
 class HdrRadianceGl : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() { context_ = Context::create({.headless = true, .width = kW, .height = kH}).release(); }
-  static void TearDownTestSuite() { delete context_; }
   void TearDown() override { EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR)); }
 
   static float exposure_of(GLuint radiance, int w = kW, int h = kH) { return stage_exposure(radiance, w, h); }
@@ -73,9 +71,7 @@ class HdrRadianceGl : public ::testing::Test {
     return out.read();
   }
 
-  static Context* context_;
 };
-Context* HdrRadianceGl::context_ = nullptr;
 
 // The local lights of a scene with the radius chapter 03 cuts them at (0: left out).
 struct CutLight {

@@ -1,18 +1,24 @@
 // Chapter 01 on the GPU (llvmpipe in CI): the forward renderer against the CPU ground
-// truth, and the modes against each other. Bounds hold on any conforming renderer.
+// truth, the modes against each other, and the GLSL lighting against its C++ twin on the hard
+// cases. Bounds hold on any conforming renderer.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
+#include "chapters/01_forward/blinn_phong.h"
 #include "chapters/01_forward/forward.h"
 #include "chapters/01_forward/ground_truth.h"
-#include "common/context.h"
 #include "common/error.h"
 #include "common/metrics.h"
 #include "common/paths.h"
 #include "common/shader.h"
 #include "common/target.h"
+#include "tests/unit/lighting_cases.h"
+#include "tests/unit/gl_environment.h"
 
 using namespace lp;
 using namespace lp::ch01;
@@ -24,16 +30,14 @@ constexpr int kW = 320, kH = 180;
 class ForwardGl : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    context_ = Context::create({.headless = true, .width = kW, .height = kH}).release();
     scene_ = new Scene(load_scene(from_root("assets/forward/forward.gltf")));
     gpu_ = new SceneGpu(*scene_);
     forward_ = new ForwardRenderer(*gpu_);
   }
-  static void TearDownTestSuite() {  // GL objects go before their context
+  static void TearDownTestSuite() {  // GL objects go before the context (gl_environment.h)
     delete forward_;
     delete gpu_;
     delete scene_;
-    delete context_;
   }
 
   ImageRGBA8 render(const std::string& view, ForwardMode mode, int w = kW, int h = kH) {
@@ -62,12 +66,10 @@ class ForwardGl : public ::testing::Test {
     return sphere_error(render(view, mode), truth, mask);
   }
 
-  static Context* context_;
   static Scene* scene_;
   static SceneGpu* gpu_;
   static ForwardRenderer* forward_;
 };
-Context* ForwardGl::context_ = nullptr;
 Scene* ForwardGl::scene_ = nullptr;
 SceneGpu* ForwardGl::gpu_ = nullptr;
 ForwardRenderer* ForwardGl::forward_ = nullptr;
@@ -177,4 +179,65 @@ TEST_F(ForwardGl, GlErrorsNameThePassThatCausedThem) {
   }
   EXPECT_NE(message.find("GL_INVALID_ENUM in pass 'broken pass'"), std::string::npos) << message;
   EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+}
+
+// --- The GLSL twin on the hard cases (tests/unit/lighting_cases.h) -----------------------------
+
+namespace {
+
+// Mirrors `struct Case` in shaders/lighting_eval.comp.
+struct GpuCase {
+  glm::vec4 position_exponent, normal, to_eye;
+};
+
+}  // namespace
+
+TEST(LightingGlsl, HardCasesMatchTheCppTwin) {
+  // lighting.glsl's light_incident() and blinn_phong() on every hard case, in a compute
+  // shader, against blinn_phong.h. Where no light may reach the eye, exactly 0 (no NaN, no
+  // sliver); elsewhere finite and equal to the C++ within float rounding: 10^-5 of the value
+  // for a few ulps of normalize/division (GLSL allows 2.5 ulp for a division), plus, for the
+  // specular, what pow() does to n . h's rounding: near 1, n . h moves in steps of 6e-8 (2^-24)
+  // and the GPU may round normalize() and the dot product differently from the CPU, up to 4
+  // such steps, which the exponent multiplies: exponent x 4 x 2^-24 relative.
+  const auto cases = lp::test::lighting_hard_cases();
+  std::vector<GpuCase> gpu_cases;
+  std::vector<GpuLight> lights;
+  for (const auto& c : cases) {
+    gpu_cases.push_back({glm::vec4(c.position, c.exponent), glm::vec4(c.normal, 0), glm::vec4(c.to_eye, 0)});
+    lights.push_back(pack_light(c.light));
+  }
+  ShaderProgram program({{GL_COMPUTE_SHADER, "01_forward/shaders/lighting_eval.comp"}});
+  gl::Buffer in = gl::make_buffer(gpu_cases.data(), gpu_cases.size() * sizeof(GpuCase));
+  gl::Buffer light_buffer = gl::make_buffer(lights.data(), lights.size() * sizeof(GpuLight));
+  gl::Buffer out = gl::make_buffer(nullptr, cases.size() * 2 * sizeof(glm::vec4), GL_DYNAMIC_STORAGE_BIT);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, light_buffer.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, out.id());
+  program.use();
+  program.set("u_count", int(cases.size()));
+  glDispatchCompute(GLuint((cases.size() + 63) / 64), 1, 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::vector<glm::vec4> results(cases.size() * 2);
+  glGetNamedBufferSubData(out.id(), 0, GLsizeiptr(results.size() * sizeof(glm::vec4)), results.data());
+  ASSERT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const auto& c = cases[i];
+    const glm::vec3 d(results[2 * i]), s(results[2 * i + 1]);
+    Incident inc = incident(c.light, c.position);
+    const Reflected cpu = blinn_phong(c.normal, c.to_eye, inc.to_light, inc.radiance, c.exponent);
+    std::printf("  %-52s GLSL diffuse %-11.6g specular %-11.6g  C++ %-11.6g %-11.6g\n", c.name.c_str(), d.x, s.x, cpu.diffuse.x,
+                cpu.specular.x);
+    if (c.dark) {
+      EXPECT_EQ(d, glm::vec3(0)) << c.name;
+      EXPECT_EQ(s, glm::vec3(0)) << c.name;
+      continue;
+    }
+    ASSERT_TRUE(std::isfinite(d.x + d.y + d.z + s.x + s.y + s.z)) << c.name;
+    const double spec_tolerance = 1e-5 + double(c.exponent) * 4 * 0x1p-24;
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(d[k], cpu.diffuse[k], 1e-5 * std::abs(cpu.diffuse[k])) << c.name;
+      EXPECT_NEAR(s[k], cpu.specular[k], spec_tolerance * std::max(std::abs(cpu.specular[k]), std::abs(s[k]))) << c.name;
+    }
+  }
 }

@@ -2,9 +2,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "chapters/01_forward/blinn_phong.h"
 #include "chapters/01_forward/light_buffer.h"
+#include "tests/unit/lighting_cases.h"
 
 using namespace lp;
 using namespace lp::ch01;
@@ -131,4 +134,103 @@ TEST(Lighting, ExtraLightsAreDeterministic) {
     EXPECT_LE(l.position.x, 5.f);
   }
   EXPECT_EQ(lights_for_count(s, 0).size(), 1u);  // 0: the scene's own lights
+}
+
+// --- Hard cases (tests/unit/lighting_cases.h; the GLSL twin is held to the same ones in
+// test_forward_gl.cpp) ------------------------------------------------------------------------
+
+namespace {
+
+Reflected evaluate(const lp::test::LightingCase& c) {
+  Incident in = incident(c.light, c.position);
+  return blinn_phong(c.normal, c.to_eye, in.to_light, in.radiance, c.exponent);
+}
+
+bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+const lp::test::LightingCase& hard_case(const std::string& name) {
+  static const auto cases = lp::test::lighting_hard_cases();
+  for (const auto& c : cases)
+    if (c.name == name) return c;
+  throw std::runtime_error("no hard case '" + name + "'");
+}
+
+}  // namespace
+
+TEST(LightingHardCases, NoLightReachesTheEyeFromBehindTheSurfaceOrFromADegenerateNormal) {
+  // Exactly zero, both terms: not small, not NaN (a NaN compares unequal to 0 and fails).
+  for (const auto& c : lp::test::lighting_hard_cases()) {
+    if (!c.dark) continue;
+    Reflected r = evaluate(c);
+    EXPECT_EQ(r.diffuse, glm::vec3(0)) << c.name;
+    EXPECT_EQ(r.specular, glm::vec3(0)) << c.name;
+  }
+  // The first case is what makes the specular test necessary: its half vector is above the
+  // surface, so the lobe alone would light it.
+  const auto& below = hard_case("light below the horizon, half vector above it");
+  Incident in = incident(below.light, below.position);
+  EXPECT_LT(glm::dot(below.normal, in.to_light), 0.f);
+  EXPECT_GT(glm::dot(below.normal, glm::normalize(in.to_light + below.to_eye)), 0.9f);
+}
+
+TEST(LightingHardCases, ALampAtTheShadedPointIsFiniteAndHeldAtOneCentimetre) {
+  const auto& c = hard_case("lamp at the shaded point");
+  Reflected r = evaluate(c);
+  // to_light = +y by convention (here the normal, n . l = 1), 1 / max(d^2, 10^-4) = 10^4:
+  // diffuse 3 x 10^4 exactly, specular at the lobe's peak (30 + 8) / 8.
+  EXPECT_EQ(r.diffuse, glm::vec3(3e4f));
+  EXPECT_FLOAT_EQ(r.specular.x, 3e4f * 38.f / 8.f);
+}
+
+TEST(LightingHardCases, SharpExponentsPeakAtTheirNormalisationAndStayFinite) {
+  // At h = n the lobe is (n + 8) / 8 exactly (pow(1, n) = 1 for every n), however large n is:
+  // 1025 at the model's largest exponent 2^13, 125001 at 10^6. (The sun's radiance is 2.)
+  EXPECT_EQ(evaluate(hard_case("exponent 2^13, h = n")).specular, glm::vec3(2.f * 1025.f));
+  EXPECT_EQ(evaluate(hard_case("exponent 10^6, h = n")).specular, glm::vec3(2.f * 125001.f));
+  // Just off the peak: pow's value for the n . h the code computes (float: near 1 it moves in
+  // steps of 6e-8, which raised to 10^6 is 6 %), to float precision, strictly below the peak.
+  for (const char* name : {"exponent 2^13, h 0.5 degrees off n", "exponent 10^6, h 0.1 degrees off n",
+                           "exponent 10^30, h 2 degrees off n (pow underflows)"}) {
+    const auto& c = hard_case(name);
+    Reflected r = evaluate(c);
+    Incident in = incident(c.light, c.position);
+    const float n_dot_h = glm::dot(c.normal, glm::normalize(in.to_light + c.to_eye));
+    const double n_dot_l = glm::dot(c.normal, in.to_light);
+    const double expected = 2.0 * (double(c.exponent) + 8) / 8 * std::pow(double(n_dot_h), double(c.exponent)) * n_dot_l;
+    ASSERT_TRUE(finite(r.specular)) << name;
+    EXPECT_NEAR(r.specular.x, expected, 1e-5 * expected + 1e-30) << name;
+    EXPECT_LT(r.specular.x, 2.0 * (double(c.exponent) + 8) / 8) << name;
+  }
+  // The three: the lobe at 0.5 degrees keeps 73 % of its peak at 2^13; 0.1 degrees takes
+  // 10^6 down to about a fifth; 2 degrees takes 10^30 to exactly 0, not NaN (inf x 0).
+  const float peak13 = 2.f * 1025.f, peak6 = 2.f * 125001.f;
+  EXPECT_NEAR(evaluate(hard_case("exponent 2^13, h 0.5 degrees off n")).specular.x / peak13, 0.73, 0.01);
+  EXPECT_NEAR(evaluate(hard_case("exponent 10^6, h 0.1 degrees off n")).specular.x / peak6, 0.22, 0.03);
+  EXPECT_EQ(evaluate(hard_case("exponent 10^30, h 2 degrees off n (pow underflows)")).specular, glm::vec3(0));
+}
+
+TEST(LightingHardCases, TheEyeOppositeTheLightHasNoHighlightNotNaN) {
+  // l + v = 0: the half vector has no direction. The eye is below the surface (n . v =
+  // -n . l < 0), so nothing is reflected towards it; the diffuse is the light's, n . l x 2.
+  const auto& c = hard_case("eye exactly opposite the light");
+  Reflected r = evaluate(c);
+  Incident in = incident(c.light, c.position);
+  ASSERT_EQ(in.to_light + c.to_eye, glm::vec3(0));
+  EXPECT_EQ(r.specular, glm::vec3(0));
+  EXPECT_FLOAT_EQ(r.diffuse.x, 2.f * glm::dot(c.normal, in.to_light));
+}
+
+TEST(LightingHardCases, ShadeIsFiniteEverywhere) {
+  // Through shade() (what the ground truth calls), every case: finite, ambient and emissive
+  // added on top.
+  for (const auto& c : lp::test::lighting_hard_cases()) {
+    Scene s;
+    s.lights = {c.light};
+    s.ambient = glm::vec3(0.01f);
+    glm::vec3 out = shade({c.position, c.normal, c.to_eye, glm::vec3(0.5f), glm::vec3(0.04f), c.exponent}, s, glm::vec3(0.1f));
+    EXPECT_TRUE(finite(out)) << c.name;
+    if (c.dark) {
+      EXPECT_EQ(out, glm::vec3(0.5f * 0.01f + 0.1f)) << c.name;
+    }
+  }
 }

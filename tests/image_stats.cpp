@@ -1,0 +1,140 @@
+// image_stats: what a program test asserts about an image it wrote, beyond "it was written".
+//
+//   image_stats IMAGE.png [--size WxH] [--background R,G,B] [--mean LO HI] [--lit LO HI]
+//               [--matches REFERENCE.png] [--differs-from OTHER.png MIN_MEAN_STEPS] [--near OTHER.png MAX_MEAN_STEPS]
+//
+// Prints the image's statistics, then checks each one asked for:
+//   --mean LO HI       the mean over every pixel's R, G and B, in 8-bit steps, lies in [LO, HI]
+//   --lit LO HI        the fraction of pixels whose brightest channel is more than 8 steps above
+//                      the background's (--background, default 0,0,0) lies in [LO, HI]: a black,
+//                      blank or all-white image fails
+//   --size WxH         the image has this size
+//   --matches REF      compare() with the defaults of --check: at most 0.1 % of the pixels off
+//                      by more than 3 steps
+//   --differs-from OTHER MIN   the mean per-pixel difference (largest channel, 8-bit steps)
+//                      from OTHER is at least MIN: two images that must not look the same
+//   --near OTHER MAX   that mean difference is at most MAX: two images that must look the same
+//                      where a pixel-by-pixel threshold would be the wrong test
+// Exit code 0 when every check holds, 1 when one fails or an image cannot be read, 2 for a bad
+// command line.
+#include <cstdio>
+#include <algorithm>
+#include <cstdlib>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "common/error.h"
+#include "common/image.h"
+
+using namespace lp;
+
+namespace {
+
+constexpr int kLitSteps = 8;  // above the background: more than a GPU's few steps of noise
+
+double number(const std::string& s, const char* what) {
+  char* end = nullptr;
+  double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || *end) throw UsageError(std::string(what) + " expects a number, got '" + s + "'");
+  return v;
+}
+
+struct Stats {
+  double mean = 0, lit = 0;
+};
+
+Stats stats(const ImageRGBA8& img, const int background[3]) {
+  Stats s;
+  const std::size_t n = std::size_t(img.width) * img.height;
+  std::size_t lit = 0;
+  double sum = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint8_t* p = img.pixels.data() + i * 4;
+    int above = -255;
+    for (int c = 0; c < 3; ++c) {
+      sum += p[c];
+      above = std::max(above, int(p[c]) - background[c]);
+    }
+    lit += above > kLitSteps;
+  }
+  s.mean = n ? sum / (3.0 * n) : 0;
+  s.lit = n ? double(lit) / n : 0;
+  return s;
+}
+
+int run(int argc, char** argv) {
+  if (argc < 2) throw UsageError("expects an image");
+  const std::string path = argv[1];
+  std::vector<std::string> args(argv + 2, argv + argc);
+  int background[3] = {0, 0, 0};
+  for (std::size_t i = 0; i < args.size(); ++i)
+    if (args[i] == "--background") {
+      int r = 0, g = 0, b = 0;
+      if (i + 1 >= args.size() || std::sscanf(args[i + 1].c_str(), "%d,%d,%d", &r, &g, &b) != 3)
+        throw UsageError("--background expects R,G,B");
+      background[0] = r, background[1] = g, background[2] = b;
+    }
+  const ImageRGBA8 img = load_png(path);
+  const Stats s = stats(img, background);
+  std::printf("%s: %dx%d, mean %.2f steps, lit %.2f %% (brightest channel > %d steps above %d,%d,%d)\n", path.c_str(),
+              img.width, img.height, s.mean, 100.0 * s.lit, kLitSteps, background[0], background[1], background[2]);
+  int failed = 0;
+  auto fail = [&](const std::string& why) {
+    std::printf("FAIL: %s\n", why.c_str());
+    failed = 1;
+  };
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&](std::size_t k) -> const std::string& {
+      if (i + k >= args.size()) throw UsageError(a + " expects more values");
+      return args[i + k];
+    };
+    if (a == "--background") {
+      ++i;
+    } else if (a == "--mean" || a == "--lit") {
+      const double lo = number(value(1), a.c_str()), hi = number(value(2), a.c_str());
+      const double v = a == "--mean" ? s.mean : s.lit;
+      if (v < lo || v > hi) fail(a.substr(2) + " " + std::to_string(v) + " outside [" + value(1) + ", " + value(2) + "]");
+      i += 2;
+    } else if (a == "--size") {
+      int w = 0, h = 0;
+      if (std::sscanf(value(1).c_str(), "%dx%d", &w, &h) != 2) throw UsageError("--size expects WxH");
+      if (w != img.width || h != img.height)
+        fail("size " + std::to_string(img.width) + "x" + std::to_string(img.height) + ", expected " + value(1));
+      i += 1;
+    } else if (a == "--matches") {
+      const CompareResult r = compare(img, load_png(value(1)));
+      std::printf("against %s: %s\n", value(1).c_str(), r.summary().c_str());
+      if (!r.passed) fail("does not match " + value(1));
+      i += 1;
+    } else if (a == "--differs-from" || a == "--near") {
+      const bool differ = a == "--differs-from";
+      const double bound = number(value(2), a.c_str());
+      const CompareResult r = compare(img, load_png(value(1)));
+      std::printf("against %s: mean difference %.3f steps (%s %s wanted)\n", value(1).c_str(), r.mean_error,
+                  differ ? "at least" : "at most", value(2).c_str());
+      if (r.size_mismatch) fail("not the size of " + value(1));
+      else if (differ ? r.mean_error < bound : r.mean_error > bound) fail(std::string(differ ? "too close to " : "too far from ") + value(1));
+      i += 2;
+    } else {
+      throw UsageError("unknown option '" + a + "'");
+    }
+  }
+  return failed;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "image_stats: %s\nusage: image_stats IMAGE.png [--size WxH] [--background R,G,B] [--mean LO HI] "
+                         "[--lit LO HI] [--matches REF.png] [--differs-from OTHER.png MIN_MEAN_STEPS] [--near OTHER.png MAX_MEAN_STEPS]\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "image_stats: %s\n", e.what());
+    return 1;
+  }
+}
