@@ -24,10 +24,14 @@ constexpr int kBenchWarmup = 5;
 constexpr int kBenchFrames = 60;
 }  // namespace
 
-std::string Shot::name() const {
+std::string Shot::name(const CliSpec& spec) const {
   std::ostringstream s;
   s << view << '_' << mode;
-  for (const auto& [k, v] : knobs) s << '_' << k << v;
+  for (const auto& [k, v] : knobs) {
+    auto knob = std::find_if(spec.knobs.begin(), spec.knobs.end(), [&](const Knob& x) { return x.name == k; });
+    if (knob != spec.knobs.end() && !knob->choices.empty()) s << '_' << k << '-' << knob->choice(v);
+    else s << '_' << k << v;
+  }
   return s.str();
 }
 
@@ -51,6 +55,12 @@ std::vector<std::string> Chapter::reference_scenes() const {
   std::vector<std::string> scenes = {cli.default_scene};
   for (const auto& [path, shots] : scene_references) scenes.push_back(path);
   return scenes;
+}
+
+const std::string& Frame::choice(const std::string& name) const {
+  for (const auto& k : spec->knobs)
+    if (k.name == name && !k.choices.empty()) return k.choice(knob(name));
+  throw Error("internal: the chapter reads --" + name + " as a choice, and it is not one");
 }
 
 double Frame::knob(const std::string& name) const {
@@ -99,6 +109,7 @@ App::App(const Chapter& chapter, Options options) : chapter_(chapter), options_(
   scene_gpu_ = std::make_unique<SceneGpu>(*scene_);
   frame_.mode = options_.mode;
   frame_.knobs = options_.knobs;
+  frame_.spec = &chapter_.cli;
 
   if (context_->is_window()) {
     gui_ = std::make_unique<Gui>(context_->window());
@@ -241,6 +252,15 @@ void App::panel(const std::function<void()>& chapter_controls) {
   }
   for (const auto& k : chapter_.cli.knobs) {
     double& v = frame_.knobs[k.name];
+    if (!k.choices.empty()) {
+      if (ImGui::BeginCombo(k.name.c_str(), k.choice(v).c_str())) {
+        for (std::size_t i = 0; i < k.choices.size(); ++i)
+          if (ImGui::Selectable(k.choices[i].c_str(), std::size_t(v) == i)) { v = double(i); metrics_.reset(); }
+        ImGui::EndCombo();
+      }
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", k.help.c_str());
+      continue;
+    }
     ImGuiSliderFlags flags = k.max > 100 * std::max(1.0, k.min) ? ImGuiSliderFlags_Logarithmic : 0;
     if (k.integer) {
       int i = static_cast<int>(v);
@@ -296,7 +316,7 @@ void App::present() {
 
 void App::finish_job(const Job& job) {
   if (GLenum e = glGetError(); e != GL_NO_ERROR)
-    throw Error(std::string("OpenGL reported ") + gl::error_name(e) + " while rendering " + job.shot.name());
+    throw Error(std::string("OpenGL reported ") + gl::error_name(e) + " while rendering " + job.shot.name(chapter_.cli));
   ImageRGBA8 image = target_->read();
   if (job.kind == Job::Image) {
     save_png(job.out, image);
@@ -308,11 +328,11 @@ void App::finish_job(const Job& job) {
     print_bench();
     return;
   }
-  auto reference = source_root() / "tests" / "reference" / chapter_.cli.program / (job.shot.name() + ".png");
+  auto reference = source_root() / "tests" / "reference" / chapter_.cli.program / (job.shot.name(chapter_.cli) + ".png");
   auto out_dir = options_.out.empty() ? source_root() / "out" / "check" / chapter_.cli.program
                                       : std::filesystem::path(options_.out);
   std::filesystem::create_directories(out_dir);
-  auto actual_path = out_dir / (job.shot.name() + ".png");
+  auto actual_path = out_dir / (job.shot.name(chapter_.cli) + ".png");
   if (options_.update_references) {
     save_png(reference, image);
     std::cout << "updated reference " << reference.string() << '\n';
@@ -320,7 +340,7 @@ void App::finish_job(const Job& job) {
   }
   if (!std::filesystem::exists(reference)) {
     save_png(actual_path, image);
-    std::cout << "MISSING " << job.shot.name() << ": no reference " << reference.string() << " (render kept at "
+    std::cout << "MISSING " << job.shot.name(chapter_.cli) << ": no reference " << reference.string() << " (render kept at "
               << actual_path.string() << "; make references on purpose with --check --update-references)\n";
     ++missing_;
     return;
@@ -333,12 +353,12 @@ void App::finish_job(const Job& job) {
   bool other = !made_by.empty() && made_by != context_->renderer();
   if (other && job.shot.other_renderer) tolerance = *job.shot.other_renderer;
   CompareResult r = compare(image, load_png(reference), tolerance);
-  std::cout << (r.passed ? "ok       " : "MISMATCH ") << std::left << std::setw(28) << job.shot.name() << ' ' << r.summary()
+  std::cout << (r.passed ? "ok       " : "MISMATCH ") << std::left << std::setw(28) << job.shot.name(chapter_.cli) << ' ' << r.summary()
             << (other && job.shot.other_renderer ? " [other renderer]" : "") << '\n';
   if (!r.passed) {
     ++failures_;
     save_png(actual_path, image);
-    auto diff_path = out_dir / (job.shot.name() + "_diff.png");
+    auto diff_path = out_dir / (job.shot.name(chapter_.cli) + "_diff.png");
     save_png(diff_path, diff_heatmap(image, load_png(reference), tolerance.threshold));
     std::cout << "         actual " << actual_path.string() << "\n         diff   " << diff_path.string()
               << "\n         expected " << reference.string() << '\n';
@@ -414,7 +434,7 @@ int run_chapter(int argc, const char* const* argv, const Chapter& chapter, const
       const std::vector<std::string> scenes = chapter.reference_scenes();
       const auto file = std::filesystem::path(options.scene).filename();
       if (std::any_of(scenes.begin(), scenes.end(), [&](const auto& s) { return std::filesystem::path(s).filename() == file; }))
-        for (const auto& s : chapter.references_for(options.scene)) std::cout << ' ' << s.name();
+        for (const auto& s : chapter.references_for(options.scene)) std::cout << ' ' << s.name(chapter.cli);
       else
         std::cout << " (none of this scene)";
       std::cout << "\nreference scenes:";

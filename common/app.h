@@ -40,7 +40,8 @@ struct Shot {
   // (e.g. which mip level a minified texel reads): the allowance that difference needs.
   // Unset: the same tolerance everywhere.
   std::optional<CompareOptions> other_renderer = {};
-  std::string name() const;  // file name stem: "<view>_<mode>[_<knob><value>...]"
+  // File name stem: "<view>_<mode>[_<knob><value>...]", a choice knob as "_<knob>-<name>".
+  std::string name(const CliSpec& spec) const;
 };
 
 struct Chapter {
@@ -74,6 +75,8 @@ struct Frame {
   void bind_output() const;    // target, the viewport, sRGB encoding of linear output
   double knob(const std::string& name) const;
   int knob_int(const std::string& name) const { return static_cast<int>(knob(name)); }
+  const std::string& choice(const std::string& name) const;  // a choice knob's name
+  const CliSpec* spec = nullptr;  // the chapter's, for choice()
 };
 
 class App {

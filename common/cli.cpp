@@ -51,6 +51,24 @@ std::string format_number(double v) {
 
 }  // namespace
 
+const std::string& Knob::choice(double value) const {
+  const auto i = static_cast<std::size_t>(value);
+  if (choices.empty() || value < 0 || i >= choices.size())
+    throw Error("internal: --" + name + " has no choice " + format_number(value));
+  return choices[i];
+}
+
+Knob choice_knob(std::string name, std::string help, std::vector<std::string> choices, int default_index) {
+  const double last = double(choices.size()) - 1;
+  return {std::move(name), std::move(help), double(default_index), 0, last, true, std::move(choices)};
+}
+
+std::string knob_text(const CliSpec& spec, const std::string& name, double value) {
+  for (const auto& k : spec.knobs)
+    if (k.name == name && !k.choices.empty()) return k.choice(value);
+  return format_number(value);
+}
+
 double Options::knob(const std::string& name) const {
   auto it = knobs.find(name);
   if (it == knobs.end()) throw Error("internal: the chapter reads an undeclared knob --" + name);
@@ -77,9 +95,17 @@ std::string usage(const CliSpec& spec) {
        "  --list             list the scene's views, the modes and the knobs\n"
        "  --help             this text\n";
   for (const auto& k : spec.knobs) {
-    u << "  --" << k.name << (k.integer ? " N" : " X") << std::string(std::max<int>(1, 16 - int(k.name.size())), ' ')
-      << k.help << " (" << format_number(k.min) << ".." << format_number(k.max) << ", default "
-      << format_number(k.default_value) << ")\n";
+    const bool named = !k.choices.empty();
+    u << "  --" << k.name << (named ? " NAME" : k.integer ? " N" : " X")
+      << std::string(std::max<int>(1, (named ? 13 : 16) - int(k.name.size())), ' ') << k.help;
+    if (named) {
+      u << " (";
+      for (std::size_t i = 0; i < k.choices.size(); ++i) u << (i ? " " : "") << k.choices[i];
+      u << "; default " << k.choice(k.default_value) << ")\n";
+    } else {
+      u << " (" << format_number(k.min) << ".." << format_number(k.max) << ", default " << format_number(k.default_value)
+        << ")\n";
+    }
   }
   return u.str();
 }
@@ -119,6 +145,17 @@ Options parse_cli(int argc, const char* const* argv, const CliSpec& spec) {
       auto knob = std::find_if(spec.knobs.begin(), spec.knobs.end(),
                                [&](const Knob& k) { return arg == "--" + k.name; });
       if (knob == spec.knobs.end()) throw UsageError("unknown option '" + arg + "'");
+      if (!knob->choices.empty()) {
+        const std::string name = value();
+        auto it = std::find(knob->choices.begin(), knob->choices.end(), name);
+        if (it == knob->choices.end()) {
+          std::string known;
+          for (const auto& c : knob->choices) known += " " + c;
+          throw UsageError(arg + " must be one of:" + known + "; got '" + name + "'");
+        }
+        o.knobs[knob->name] = double(it - knob->choices.begin());
+        continue;
+      }
       double v = parse_number(arg, value());
       if (knob->integer && v != std::floor(v)) throw UsageError(arg + " expects an integer, got " + format_number(v));
       if (v < knob->min || v > knob->max)

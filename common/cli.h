@@ -8,14 +8,21 @@
 
 namespace lp {
 
-// A numeric chapter option, e.g. {"lights", "number of lights", 4, 1, 100000, true}.
+// A numeric chapter option, e.g. {"lights", "number of lights", 4, 1, 100000, true}, or one
+// that chooses among named things (choice_knob): given by name (--show diffuse), held as the
+// index of the name.
 struct Knob {
   std::string name;
   std::string help;
   double default_value = 0;
   double min = 0, max = 0;
   bool integer = false;
+  std::vector<std::string> choices = {};  // names, in index order; empty for a number
+  const std::string& choice(double value) const;  // the name of index `value`
 };
+// {name, help, the index of the default among `choices`}: e.g. choice_knob("show", "what to
+// draw", {"result", "diffuse"}).
+Knob choice_knob(std::string name, std::string help, std::vector<std::string> choices, int default_index = 0);
 
 struct CliSpec {
   std::string program;       // "01_forward"
@@ -45,6 +52,9 @@ struct Options {
   double knob(const std::string& name) const;  // throws Error for a knob the spec lacks
   int knob_int(const std::string& name) const { return static_cast<int>(knob(name)); }
 };
+
+// `--name value` as the command line writes it: a choice knob's name, else the number.
+std::string knob_text(const CliSpec& spec, const std::string& name, double value);
 
 Options parse_cli(int argc, const char* const* argv, const CliSpec& spec);
 

@@ -38,4 +38,36 @@ ImageRGBA8 OutputTarget::read() const {
   return img;
 }
 
+ColourTarget::ColourTarget(int w, int h, GLenum format, bool with_depth)
+    : width_(w), height_(h), format_(format), has_depth_(with_depth),
+      colour_(gl::make_texture_2d(format, w, h)),
+      depth_(with_depth ? gl::make_texture_2d(GL_DEPTH24_STENCIL8, w, h) : gl::Texture(GL_TEXTURE_2D)) {
+  glNamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT0, colour_.id(), 0);
+  if (with_depth) glNamedFramebufferTexture(fbo_.id(), GL_DEPTH_STENCIL_ATTACHMENT, depth_.id(), 0);
+  if (glCheckNamedFramebufferStatus(fbo_.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw Error("the colour framebuffer (" + std::to_string(w) + "x" + std::to_string(h) + ", format " +
+                std::to_string(format) + ") is incomplete");
+}
+
+std::size_t ColourTarget::bytes() const {
+  return std::size_t(width_) * std::size_t(height_) *
+         (gl::bytes_per_texel(format_) + (has_depth_ ? gl::bytes_per_texel(GL_DEPTH24_STENCIL8) : 0));
+}
+
+void ColourTarget::bind() const {
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
+  glViewport(0, 0, width_, height_);
+  glDisable(GL_FRAMEBUFFER_SRGB);
+}
+
+ImageF ColourTarget::read() const { return read_texture(colour_.id(), width_, height_); }
+
+ImageF read_texture(GLuint texture, int w, int h) {
+  ImageF img = ImageF::blank(w, h, 4);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, GLsizei(img.data.size() * sizeof(float)), img.data.data());
+  flip_vertically(img);
+  return img;
+}
+
 }  // namespace lp

@@ -1,6 +1,8 @@
 #pragma once
 // The image a chapter renders into: sRGB8 colour and 24-bit depth + 8-bit stencil, as
 // textures. The window blits it to the screen; headless runs and tests read it back.
+#include <cstddef>
+
 #include "common/gl.h"
 #include "common/image.h"
 
@@ -22,5 +24,31 @@ class OutputTarget {
   gl::Framebuffer fbo_;
   gl::Texture colour_, depth_;
 };
+
+// A colour texture of any renderable format (GL_RGBA16F for float light, GL_RGBA32F for a
+// measurement, GL_RGBA8) with an optional DEPTH24_STENCIL8, to render into and read back as
+// floats: chapter 05's radiance, the sweeps' linear images.
+class ColourTarget {
+ public:
+  ColourTarget(int width, int height, GLenum format, bool with_depth = true);
+  GLuint framebuffer() const { return fbo_.id(); }
+  GLuint texture() const { return colour_.id(); }
+  GLenum format() const { return format_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  std::size_t bytes() const;  // colour and depth
+  void bind() const;          // binds it and sets the viewport; no sRGB encoding
+  ImageF read() const;        // RGBA floats as stored, top row first
+
+ private:
+  int width_, height_;
+  GLenum format_;
+  bool has_depth_;
+  gl::Framebuffer fbo_;
+  gl::Texture colour_, depth_;
+};
+
+// A colour texture read back as RGBA floats, top row first.
+ImageF read_texture(GLuint texture, int width, int height);
 
 }  // namespace lp

@@ -22,14 +22,14 @@ lightpass_program_test(02_gbuffer.bench_prints_both_passes 0 "\"name\":\"geometr
 # most 1 step apart on average. The GL tests hold each layout's pixels within what its formats
 # lose (a few steps, on few pixels); on llvmpipe the means are 0.005 (reversed-z) to 0.41
 # (srgb-colour) steps. A layout that writes nothing, black or NaN is tens of steps away.
-set(layout_index 0)
 foreach(layout ours source float xyz10 oct8 oct10 srgb-colour d32f reversed-z)
   lightpass_image_test(02_gbuffer.every_layout_renders.${layout} "G-buffer layout '${layout}'" ${CMAKE_BINARY_DIR}/out/02_layout_${layout}.png
     --near ${CMAKE_SOURCE_DIR}/tests/reference/02_gbuffer/overview_deferred.png 1
-    RUN ${P02} --headless --size 320x180 --layout ${layout_index} --out ${CMAKE_BINARY_DIR}/out/02_layout_${layout}.png)
-  math(EXPR layout_index "${layout_index} + 1")
+    RUN ${P02} --headless --size 320x180 --layout ${layout} --out ${CMAKE_BINARY_DIR}/out/02_layout_${layout}.png)
 endforeach()
-lightpass_program_test(02_gbuffer.bad_layout 2 "--layout must be between 0 and 8" ${P02} --layout 9)
+lightpass_program_test(02_gbuffer.bad_layout 2 "--layout must be one of: ours source .* reversed-z. got 'oct12'" ${P02} --layout oct12)
+# A layout is named, not numbered: an index is a usage error that lists the names.
+lightpass_program_test(02_gbuffer.layout_by_number 2 "--layout must be one of: ours" ${P02} --layout 4)
 lightpass_program_test(02_gbuffer.bad_mode 2 "unknown mode 'gbuffer'" ${P02} --mode gbuffer)
 # The street's emissive buffer through the program: the image the GL test holds in-process
 # (StreetEmissiveViewMatchesItsReference), windows and lamps glowing.

@@ -31,7 +31,8 @@ add_test(NAME 05_hdr.adaptation_over_frames COMMAND sh -c
 add_test(NAME 05_hdr.cut_follows_the_exposure COMMAND sh -c
   "'${P05}' --headless --size 96x54 --frames 8 --out '${CMAKE_BINARY_DIR}/out/05_cut.png' | awk '/^log-average/ { e = $NF } /^lights cut for exposure/ { c = $5; read = /frames before/ } END { print \"cut / exposure = \" c / e; exit !(e > 0 && read && c >= e && c <= 1.32 * e) }'")
 lightpass_program_test(05_hdr.bench_prints_json 0 "\"name\":\"hdr: tonemap\""
-  ${P05} --bench --frames 2 --size 160x90 --scene ${ATRIUM} --bloom 1)
+  ${P05} --bench --frames 2 --size 160x90 --scene ${ATRIUM} --bloom after)
 lightpass_program_test(05_hdr.bad_mode 2 "unknown mode 'sepia'" ${P05} --mode sepia)
-lightpass_program_test(05_hdr.bad_knob 2 "--bloom must be between 0 and 2" ${P05} --bloom 3)
-lightpass_program_test(05_hdr.bad_average 2 "--average expects an integer" ${P05} --average 1.5)
+lightpass_program_test(05_hdr.bad_knob 2 "--bloom must be one of: off after before. got '3'" ${P05} --bloom 3)
+lightpass_program_test(05_hdr.bad_average 2 "--average must be one of: mip-chain compute naive-mip-chain generate-mipmap" ${P05} --average 1.5)
+lightpass_program_test(05_hdr.bad_number 2 "--sun expects a number" ${P05} --sun bright)

@@ -27,11 +27,10 @@ std::vector<std::string> modes() {
   return m;
 }
 
-std::string layout_help() {
-  std::ostringstream h;
-  h << "G-buffer layout:";
-  for (size_t i = 0; i < layouts().size(); ++i) h << ' ' << i << ' ' << layouts()[i].name;
-  return h.str();
+std::vector<std::string> layout_names() {
+  std::vector<std::string> names;
+  for (const auto& l : layouts()) names.push_back(l.name);
+  return names;
 }
 
 // [references]
@@ -68,7 +67,7 @@ const lp::Chapter kChapter{
             .default_scene = "assets/atrium/atrium.gltf",
             .modes = modes(),
             .knobs = {{"lights", "lights to use (0: the scene's own; more adds point lights)", 0, 0, 100000, true},
-                      {"layout", layout_help(), 0, 0, double(layouts().size() - 1), true}}},
+                      choice_knob("layout", "G-buffer layout (the table in the book)", layout_names())}},
     .references = references(),
 };
 

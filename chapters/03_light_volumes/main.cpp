@@ -24,7 +24,7 @@ namespace {
 using namespace lp;
 using namespace lp::ch03;
 
-enum Show { kResult, kDiffuse, kSpecular, kVolumes, kStencilMask, kHeatShaded, kHeatLit };
+enum Show { kResult, kDiffuse, kSpecular, kVolumes, kStencilMask, kHeatShaded, kHeatLit };  // --show's order
 constexpr float kHeatFullScale = 40.f;  // fragments per pixel shown white
 
 std::vector<std::string> modes() {
@@ -58,9 +58,10 @@ const lp::Chapter kChapter{
             .default_scene = "assets/street/street.gltf",
             .modes = modes(),
             .knobs = {{"lights", "local lights (0: the scene's own; more adds lights like them)", 0, 0, 100000, true},
-                      {"show", "0 result, 1 L1 diffuse light, 2 L2 specular light, 3 volumes, 4 one light's stencil mask, "
-                               "5 fragments shaded per pixel, 6 fragments lit per pixel", 0, 0, 6, true},
-                      {"light", "the light whose stencil mask --show 4 draws (light order)", 0, 0, 100000, true},
+                      choice_knob("show", "result, the L1 diffuse or L2 specular light, the volumes, one light's stencil "
+                                          "mask (--light), fragments shaded or lit per pixel",
+                                  {"result", "diffuse", "specular", "volumes", "stencil-mask", "heat-shaded", "heat-lit"}),
+                      {"light", "the light whose stencil mask --show stencil-mask draws (light order)", 0, 0, 100000, true},
                       {"far", "far plane in metres (0: the camera's own); small values cut volumes", 0, 0, 10000, false},
                       {"exposure", "the exposure the light cut is relative to", 1, 0.01, 100, false},
                       {"cut", "light cut: 1 one sRGB step at black for the brightest material, 0 the sources' 1/256", 1, 0, 1, true},

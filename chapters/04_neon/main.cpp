@@ -27,7 +27,7 @@ namespace {
 using namespace lp;
 using namespace lp::ch04;
 
-enum Show { kResult, kVolumes, kMasks, kWaste };
+enum Show { kResult, kVolumes, kMasks, kWaste };  // --show's order
 
 // The program's modes: the chapter's result first (the default), then what it is measured against.
 const std::vector<std::string> kModes = {"improved", "ground-truth", "source", "points", "representative-point",
@@ -41,10 +41,11 @@ const CliSpec kCli{
     .modes = kModes,
     .knobs = {{"samples", "ground-truth: samples along each tube", 256, 1, 65536, true},
               {"points", "points: point lights per tube", 8, 1, 4096, true},
-              {"term", "0: the whole image, 1: the neon diffuse alone, 2: the neon specular alone", 0, 0, 2, true},
+              choice_knob("term", "the whole image, or the neon diffuse or specular alone", {"all", "diffuse", "specular"}),
               {"forward", "0: capsule volumes over the G-buffer (chapters 02, 03), 1: one forward pass", 0, 0, 1, true},
-              {"show", "0 result, 1 the capsules as wireframes, 2 and each tube's stencil mask tinted, 3 what the "
-                       "capsules shade: green lit, red not lit, blue kept dark by barn doors (deferred only)", 0, 0, 3, true},
+              choice_knob("show", "the result; the capsules as wireframes; and each tube's stencil mask tinted; what the "
+                                  "capsules shade: green lit, red not lit, blue kept dark by barn doors (deferred only)",
+                          {"result", "capsules", "masks", "waste"}),
               {"count", "count fragments shaded and lit by the tubes (atomic counters, costs a little time)", 1, 0, 1,
                true}}};
 

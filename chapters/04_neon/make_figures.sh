@@ -36,7 +36,7 @@ if [ "${1:-}" != "--plots-only" ]; then
   shot() { "$p04" --headless --size 640x360 "$@" | tail -n 1; }
   shot "${street[@]}" --view neon_signs --out "$out/04_street_neon.png"
   shot "${street[@]}" --view inside_sign --out "$out/04_street_inside_sign.png"
-  shot "${street[@]}" --view above_signs --show 2 --out "$out/04_street_capsules.png"
-  shot "${street[@]}" --view neon_signs --show 3 --out "$out/04_street_waste.png"
-  shot --view close --show 3 --out "$out/04_close_waste.png"
+  shot "${street[@]}" --view above_signs --show masks --out "$out/04_street_capsules.png"
+  shot "${street[@]}" --view neon_signs --show waste --out "$out/04_street_waste.png"
+  shot --view close --show waste --out "$out/04_close_waste.png"
 fi

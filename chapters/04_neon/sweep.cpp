@@ -39,36 +39,10 @@ struct Variant {
   NeonDraw draw;
 };
 
-// A linear float render target (the light before 8-bit quantisation and clipping).
-class FloatTarget {
- public:
-  FloatTarget(int w, int h)
-      : w_(w), h_(h), colour_(gl::make_texture_2d(GL_RGBA32F, w, h)), depth_(gl::make_texture_2d(GL_DEPTH24_STENCIL8, w, h)) {
-    glNamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT0, colour_.id(), 0);
-    glNamedFramebufferTexture(fbo_.id(), GL_DEPTH_STENCIL_ATTACHMENT, depth_.id(), 0);
-  }
-  void bind() const {
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
-    glViewport(0, 0, w_, h_);
-    glDisable(GL_FRAMEBUFFER_SRGB);
-  }
-  ImageF read() const {
-    ImageF img = ImageF::blank(w_, h_, 4);
-    glGetTextureImage(colour_.id(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(img.data.size() * sizeof(float)), img.data.data());
-    flip_vertically(img);
-    return img;
-  }
-
- private:
-  int w_, h_;
-  gl::Texture colour_, depth_;
-  gl::Framebuffer fbo_;
-};
-
 class Sweep {
  public:
   Sweep(const Settings& s, const Scene& scene, const SceneGpu& gpu)
-      : s_(s), scene_(scene), forward_(gpu), srgb_(s.width, s.height), linear_(s.width, s.height) {
+      : s_(s), scene_(scene), forward_(gpu), srgb_(s.width, s.height), linear_(s.width, s.height, GL_RGBA32F) {
     tubes_.upload(neon_lights(scene));
     lights_.upload(scene.lights);
   }
@@ -113,7 +87,7 @@ class Sweep {
   NeonTubes tubes_;
   ch01::LightBuffer lights_;
   OutputTarget srgb_;
-  FloatTarget linear_;
+  ColourTarget linear_;  // the linear light before 8-bit quantisation and clipping
   PassMetrics metrics_;
 };
 

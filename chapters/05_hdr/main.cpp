@@ -35,8 +35,10 @@ const lp::CliSpec kCli{
               {"white", "reinhard-extended: exposed value shown as white", 4, 0.01, 1e6},
               {"tau", "eye adaptation time constant, seconds (0: instant)", 0.5, 0, 600},
               {"adapt-start", "first frame: eye adapted to this times its average", 1, 1e-4, 1e6},
-              {"average", "0 mip chain, 1 compute, 2 naive mip chain, 3 glGenerateMipmap", 0, 0, 3, true},
-              {"bloom", "0 off, 1 added after tonemapping (source), 2 before (energy-conserving)", 0, 0, 2, true},
+              lp::choice_knob("average", "log-average: our mip chain, a compute reduction, the naive mip chain, "
+                                         "glGenerateMipmap", kAverageMethodNames),
+              lp::choice_knob("bloom", "off, added after tonemapping (the source), or before (energy-conserving)",
+                              {"off", "after", "before"}),
               {"bloom-level", "blur at 1/2^N of the resolution", 2, 0, 8, true},
               {"bloom-radius", "Gaussian sigma as a fraction of the image height", 0.02, 0, 0.5},
               {"bloom-threshold", "exposed luminance above which a pixel blooms", 1, 0, 1e6},

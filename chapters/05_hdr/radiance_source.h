@@ -20,37 +20,18 @@
 #include "common/metrics.h"
 #include "common/scene.h"
 #include "common/scene_gpu.h"
+#include "common/target.h"
 
 namespace lp::ch05 {
 
-// A colour texture (GL_RGBA16F or GL_RGBA8) to render the lit scene into, and a depth
-// buffer for a renderer that draws geometry into it (the forward one; the deferred path's
-// composite needs none).
-class RadianceTarget {
- public:
-  RadianceTarget(int width, int height, GLenum format, bool with_depth = true);
-  GLuint framebuffer() const { return fbo_.id(); }
-  GLuint texture() const { return colour_.id(); }
-  GLenum format() const { return format_; }
-  int width() const { return width_; }
-  int height() const { return height_; }
-  std::size_t bytes() const;
-  void bind() const;  // binds it and sets the viewport
-  ImageF read() const;  // RGBA floats as stored, top row first
-
- private:
-  int width_, height_;
-  GLenum format_;
-  bool has_depth_;
-  gl::Framebuffer fbo_;
-  gl::Texture colour_, depth_;
-};
+// The lit scene's radiance: a colour target (common/target.h), GL_RGBA16F (the float path)
+// or GL_RGBA8 (what an 8-bit light accumulation keeps), with a depth buffer only for
+// what is drawn over the composite (chapter 04's glass).
+using RadianceTarget = ColourTarget;
 
 // An RGBA16F (or RGBA32F) texture holding `image` (RGB or RGBA, top row first): the tests
 // and the sweep feed hand-made radiance buffers to the stage with it.
 gl::Texture upload_radiance(const ImageF& image, GLenum format = GL_RGBA16F);
-// A colour texture read back as RGBA floats, top row first.
-ImageF read_texture(GLuint texture, int width, int height);
 
 // The scene with its lights rescaled for this chapter: directional lights ("the sun") times
 // `sun`, emissive surfaces times `glow`. The assets are tuned for chapters 1-4, which show

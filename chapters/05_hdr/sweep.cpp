@@ -136,12 +136,10 @@ void log_average_sweep(const Settings& s, SceneSource& atrium, const std::string
 
 // The bloom term alone (what gets added), at full resolution, as floats.
 ImageF bloom_term(HdrPipeline& hdr, GLuint radiance, int w, int h, HdrSettings s) {
-  gl::Texture colour = gl::make_texture_2d(GL_RGBA32F, w, h);
-  gl::Framebuffer fbo;
-  glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, colour.id(), 0);
+  ColourTarget term(w, h, GL_RGBA32F, false);
   s.view = HdrSettings::View::Bloom;
-  hdr.process(radiance, w, h, s, fbo.id());
-  return read_texture(colour.id(), w, h);
+  hdr.process(radiance, w, h, s, term.framebuffer());
+  return term.read();
 }
 
 void bloom_sweep(const Settings& s, SceneSource& street, const std::string& timer) {

@@ -5,7 +5,7 @@
 namespace lp::ch05 {
 
 Tonemapper::Tonemapper()
-    : program_({{GL_VERTEX_SHADER, "05_hdr/shaders/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "05_hdr/shaders/tonemap.frag"}}) {
+    : program_({{GL_VERTEX_SHADER, "02_gbuffer/shaders/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "05_hdr/shaders/tonemap.frag"}}) {
   glSamplerParameteri(bilinear_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glSamplerParameteri(bilinear_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glSamplerParameteri(bilinear_.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);

@@ -10,7 +10,8 @@ using namespace lp;
 
 namespace {
 const CliSpec kSpec{.program = "test", .summary = "a test", .default_scene = "assets/x.gltf",
-                    .modes = {"a", "b"}, .knobs = {{"lights", "lights", 4, 0, 100, true}, {"radius", "r", 0.5, 0.01, 10, false}}};
+                    .modes = {"a", "b"}, .knobs = {{"lights", "lights", 4, 0, 100, true}, {"radius", "r", 0.5, 0.01, 10, false},
+                              choice_knob("show", "what to draw", {"result", "diffuse", "heat-lit"})}};
 
 Options parse(std::vector<const char*> args) {
   args.insert(args.begin(), "test");
@@ -67,4 +68,19 @@ TEST(Cli, UsageListsModesAndKnobs) {
   std::string u = usage(kSpec);
   EXPECT_NE(u.find("--lights N"), std::string::npos);
   EXPECT_NE(u.find("one of: a b"), std::string::npos);
+}
+
+TEST(Cli, ChoiceKnobsTakeNames) {
+  // A knob that chooses among named things is given by name and held as its index.
+  EXPECT_EQ(parse({}).knob("show"), 0);
+  EXPECT_EQ(parse({"--show", "heat-lit"}).knob("show"), 2);
+  EXPECT_EQ(kSpec.knobs[2].choice(1), "diffuse");
+  EXPECT_EQ(knob_text(kSpec, "show", 2), "heat-lit");
+  EXPECT_EQ(knob_text(kSpec, "lights", 16), "16");
+  EXPECT_EQ(usage_error({"--show", "heat"}), "--show must be one of: result diffuse heat-lit; got 'heat'");
+  EXPECT_EQ(usage_error({"--show", "1"}), "--show must be one of: result diffuse heat-lit; got '1'");
+  EXPECT_EQ(usage_error({"--show"}), "--show needs a value");
+  const std::string u = usage(kSpec);
+  EXPECT_NE(u.find("--show NAME"), std::string::npos) << u;
+  EXPECT_NE(u.find("(result diffuse heat-lit; default result)"), std::string::npos) << u;
 }
