@@ -14,10 +14,12 @@ stay outside the marker. The part after `num` is
   book/figures/, or to the repository root when it starts with `book/` or `tools/`) whose
   COL equals VALUE for every filter (as text, or as numbers when both parse: `segments=128`
   matches "128.0"), and takes COLUMN. A value with `,` `]` or spaces at its ends is quoted:
-  `rule="sources: 1/256"`. `FILE[].COLUMN` selects every row.
+  `rule="sources: 1/256"`. `COL!=VALUE` keeps the rows that differ, `COL^=PREFIX` the rows
+  whose COL starts with PREFIX. `FILE[].COLUMN` selects every row.
 * A reference must select exactly one row, unless it is the argument of an aggregate:
   `max(...)`, `min(...)`, `mean(...)`, `sum(...)`, `count(...)` over the selected rows.
 * Expressions combine references, numbers and names with `+ - * / **`, parentheses, `abs()`,
+  `round(x, digits)` (digits may be negative: `round(x, -2)` to hundreds),
   and `min(a, b, ...)`/`max(a, b, ...)` of several values. Names are defined after the
   format: `<!-- num a / b %.1f; a = X.csv[k=1].ms; b = X.csv[k=2].ms -->1.3<!-- /num -->×`.
 * FORMAT is a Python format spec (default `.3g`); `,` groups thousands with a space, the
@@ -86,7 +88,10 @@ def parse_filters(text: str):
         eq = text.find("=", i)
         if eq < 0:
             raise NumberError(f"filter '{text[i:]}' has no '='")
-        col = text[i:eq].strip()
+        op = "="
+        if eq > i and text[eq - 1] in "!^":
+            op = text[eq - 1] + "="
+        col = text[i:eq - (op != "=")].strip()
         i = eq + 1
         while i < n and text[i] == " ":
             i += 1
@@ -97,18 +102,24 @@ def parse_filters(text: str):
             end = text.find(",", i)
             end = n if end < 0 else end
             value, i = text[i:end].strip(), end
-        filters.append((col, value))
+        filters.append((col, op, value))
     return filters
+
+
+def keep(row, col, op, value):
+    if op == "^=":
+        return row[col].startswith(value)
+    return same(row[col], value) == (op == "=")
 
 
 def select(ref: re.Match, base: Path):
     """The values of COLUMN over the rows the filters select (a list, maybe empty)."""
     t = table(ref["file"], base)
     filters = parse_filters(ref["filters"])
-    for col, _ in filters + [(ref["col"], None)]:
+    for col, _, _ in filters + [(ref["col"], None, None)]:
         if col not in t.columns:
             raise NumberError(f"{ref['file']} has no column '{col}' (it has {', '.join(t.columns)})")
-    rows = [r for r in t.rows if all(same(r[c], v) for c, v in filters)]
+    rows = [r for r in t.rows if all(keep(r, c, op, v) for c, op, v in filters)]
     if not rows:
         raise NumberError(f"{ref.group(0)}: no row of {ref['file']} matches")
     values = []
@@ -184,6 +195,8 @@ def evaluate(expr: str, defs: dict, base: Path, _depth: int = 0):
             f = node.func.id
             if f == "abs" and len(node.args) == 1:
                 return abs(one(node.args[0]))
+            if f == "round" and len(node.args) == 2:
+                return float(round(one(node.args[0]), int(one(node.args[1]))))
             if f in AGGREGATES and node.args:
                 values = [v for a in node.args for v in many(a)]
                 if f == "count":
@@ -193,7 +206,7 @@ def evaluate(expr: str, defs: dict, base: Path, _depth: int = 0):
                 if f == "mean":
                     return sum(values) / len(values)
                 return max(values) if f == "max" else min(values)
-        raise NumberError(f"'{expr}': only numbers, cell references, names, + - * / **, abs, "
+        raise NumberError(f"'{expr}': only numbers, cell references, names, + - * / **, abs, round, "
                           "min, max, mean, sum and count are allowed")
 
     return one(tree.body)

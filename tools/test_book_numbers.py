@@ -114,12 +114,20 @@ class TestExpressions(Fixture):
         self.assertEqual(book_numbers.value_of("t.csv[segments=1024].ms * 100 %,.0f", self.figures), "1 234 560")
         self.assertEqual(book_numbers.value_of("(t.csv[segments=128,mode=per-pixel].ms - 1) / 2 %.2f", self.figures), "0.15")
 
+    def test_round_to_hundreds(self):
+        self.assertEqual(book_numbers.value_of("round(t.csv[segments=1024].ms, -2) %,.0f", self.figures), "12 300")
+
     def test_numbers_match_as_numbers(self):
         self.assertEqual(book_numbers.value_of("t.csv[segments=128.0,mode=per-pixel].ms %.2f", self.figures), "1.30")
 
     def test_quoted_values_and_default_format(self):
         (self.figures / "q.csv").write_text('rule,v\n"sources: 1/256, cut",0.123456\n')
         self.assertEqual(book_numbers.value_of('q.csv[rule="sources: 1/256, cut"].v', self.figures), "0.123")
+
+    def test_not_equal_and_prefix_filters(self):
+        self.assertEqual(book_numbers.value_of("max(t.csv[mode!=per-pixel].ms) %.2f", self.figures), "0.15")
+        self.assertEqual(book_numbers.value_of("count(t.csv[mode^=per-].ms) %.0f", self.figures), "5")
+        self.assertEqual(book_numbers.value_of("count(t.csv[mode^=per-p].ms) %.0f", self.figures), "3")
 
     def test_no_negative_zero(self):
         self.assertEqual(book_numbers.format_value(-0.0001, ".2f"), "0.00")
