@@ -23,7 +23,7 @@ stay outside the marker. The part after `num` is
   and `min(a, b, ...)`/`max(a, b, ...)` of several values. Names are defined after the
   format: `<!-- num a / b %.1f; a = X.csv[k=1].ms; b = X.csv[k=2].ms -->1.3<!-- /num -->×`.
 * FORMAT is a Python format spec (default `.3g`); `,` groups thousands with a space, the
-  book's style ("1 265"). A `%` inside a filter value is fine: the format is the last
+  book's style ("1 265"); `.1^e` writes 3.9·10^-3 and `.1⁻e` writes 3.9·10⁻³. A `%` inside a filter value is fine: the format is the last
   `%SPEC` before the first `;`.
 
 `--check` (exit 1) fails when a text differs from its value, or a file, row or column is
@@ -212,9 +212,16 @@ def evaluate(expr: str, defs: dict, base: Path, _depth: int = 0):
     return one(tree.body)
 
 
+SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+
+
 def format_value(v: float, fmt: str) -> str:
     if math.isnan(v) or math.isinf(v):
         raise NumberError(f"the value is {v}")
+    if fmt.endswith(("^e", "⁻e")):  # 8·10^-9 or 8·10⁻⁹: the book's scientific notation
+        mantissa, _, exponent = format_value(v, fmt[:-2] + "e").partition("e")
+        exponent = str(int(exponent))
+        return f"{mantissa}·10" + (f"^{exponent}" if fmt[-2] == "^" else exponent.translate(SUPERSCRIPT))
     try:
         s = format(v, fmt)
     except ValueError:

@@ -129,6 +129,11 @@ class TestExpressions(Fixture):
         self.assertEqual(book_numbers.value_of("count(t.csv[mode^=per-].ms) %.0f", self.figures), "5")
         self.assertEqual(book_numbers.value_of("count(t.csv[mode^=per-p].ms) %.0f", self.figures), "3")
 
+    def test_scientific_styles(self):
+        self.assertEqual(book_numbers.format_value(0.00390625, ".1^e"), "3.9·10^-3")
+        self.assertEqual(book_numbers.format_value(1.2273e-06, ".1⁻e"), "1.2·10⁻⁶")
+        self.assertEqual(book_numbers.format_value(8.08e-9, ".0^e"), "8·10^-9")
+
     def test_no_negative_zero(self):
         self.assertEqual(book_numbers.format_value(-0.0001, ".2f"), "0.00")
 
