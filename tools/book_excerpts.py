@@ -15,7 +15,8 @@ excerpt.
 --check fails (exit 1) when
   * a block differs from its region, or a tag or file is missing;
   * a relative link in the book points at nothing;
-  * a chapter's "Source files" list names a file that does not exist;
+  * a chapter's prev/next links or its "Source files" list differ from what
+    tools/book_nav.py generates (every file of chapters/NN_*/, each one existing);
   * a number marker disagrees with its CSV (tools/book_numbers.py; the syntax is there).
 --update rewrites the blocks from the code and the numbers from the CSVs.
 
@@ -28,6 +29,7 @@ import textwrap
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+import book_nav  # noqa: E402
 import book_numbers  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -67,6 +69,7 @@ def tagged_regions(root: Path = ROOT):
 def check(root: Path = ROOT, update: bool = False):
     """(problems, unused, excerpts, numbers) over root/book/*.md; unused: unused-tag reports."""
     problems, excerpts, numbers, used = [], 0, 0, set()
+    problems += book_nav.check(root, update)
     for md in sorted((root / "book").glob("*.md")):
         text = md.read_text()
 

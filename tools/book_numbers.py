@@ -41,6 +41,7 @@ ROOT = Path(__file__).resolve().parent.parent
 FIGURES = ROOT / "book" / "figures"
 MARKER = re.compile(r"<!-- num (?P<spec>.+?) -->(?P<text>[^\n]*?)<!-- /num -->", re.S)
 REF = re.compile(r'(?P<file>[\w./-]+\.csv)\[(?P<filters>(?:[^\]"]|"[^"]*")*)\]\.(?P<col>\w+(?:-[A-Za-z]\w*)*)')
+LINE_START = re.compile(r"^[ \t>]*<!-- num ", re.M)
 AGGREGATES = {"max", "min", "mean", "sum", "count"}
 
 
@@ -253,7 +254,12 @@ def process(text: str, where: str, base: Path = FIGURES):
             problems.append(f"{where}:{line}: the text says {m['text']!r}, the data {value!r} ({m['spec'].strip()})")
         return f"<!-- num {m['spec']} -->{value}<!-- /num -->"
 
-    return MARKER.sub(replace, text), problems, count
+    new = MARKER.sub(replace, text)
+    for m in LINE_START.finditer(text):
+        line = text.count("\n", 0, m.start()) + 1
+        problems.append(f"{where}:{line}: a marker starts the line: Markdown reads a line that begins with '<!--' "
+                        "as raw HTML (no links or emphasis after it); put a word before it")
+    return new, problems, count
 
 
 def run(files, update: bool):

@@ -11,6 +11,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import book_excerpts  # noqa: E402
+import book_nav  # noqa: E402
 import book_numbers  # noqa: E402
 
 CSV = """# GPU time: a comment line, skipped
@@ -37,6 +38,8 @@ class Fixture(unittest.TestCase):
         book_numbers._tables.clear()
 
     def run_text(self, text):
+        if text.startswith("<!--"):
+            text = "n: " + text  # a marker may not start a line (a test of its own below)
         return book_numbers.process(text, "x.md", self.figures)
 
 
@@ -59,6 +62,11 @@ class TestMismatch(Fixture):
         (self.figures / "t.csv").write_text(CSV.replace("0.80,0.22", "0.80,0.25"))
         book_numbers._tables.clear()
         self.assertEqual(len(self.run_text(text)[1]), 1)
+
+    def test_a_marker_at_the_start_of_a_line_fails(self):
+        _, problems, _ = self.run_text("text\n  <!-- num t.csv[segments=64,mode=per-pixel].ms %.2f -->0.80<!-- /num --> ms")
+        self.assertEqual(len(problems), 1)
+        self.assertIn("starts the line", problems[0])
 
     def test_the_line_of_the_problem_is_named(self):
         _, problems, _ = self.run_text("a\nb\n<!-- num t.csv[segments=64,mode=per-pixel].ms %.2f -->9<!-- /num -->")
@@ -144,6 +152,7 @@ class TestExcerptTags(unittest.TestCase):
         self.root = Path(self.tmp.name)
         (self.root / "book" / "figures").mkdir(parents=True)
         (self.root / "chapters").mkdir()
+        (self.root / "README.md").write_text("# r\n")  # the chapters' "contents" link
         (self.root / "chapters" / "a.h").write_text(
             "// [outer]\nint a;\n  // [inner]\nint b;\n  // [/inner]\n// [/outer]\n// [lonely]\nint c;\n// [/lonely]\n")
 
@@ -151,7 +160,8 @@ class TestExcerptTags(unittest.TestCase):
         self.tmp.cleanup()
 
     def write_book(self, body):
-        (self.root / "book" / "01-x.md").write_text(f"<!-- excerpt: chapters/a.h#outer -->\n```cpp\n{body}```\n")
+        (self.root / "book" / "01-x.md").write_text(f"# 1. X\n\n<!-- excerpt: chapters/a.h#outer -->\n```cpp\n{body}```\n")
+        book_nav.check(self.root, update=True)  # the generated links, which the check also holds
 
     def test_nested_tag_lines_are_stripped(self):
         self.assertEqual(book_excerpts.region("chapters/a.h", "outer", self.root), "int a;\nint b;\n")
@@ -168,6 +178,38 @@ class TestExcerptTags(unittest.TestCase):
         problems, _, _, _ = book_excerpts.check(self.root)
         self.assertEqual(len(problems), 1)
         self.assertIn("differs from the code", problems[0])
+
+
+
+class TestNav(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.root = Path(self.tmp.name)
+        (self.root / "book").mkdir()
+        (self.root / "chapters" / "01_a" / "shaders").mkdir(parents=True)
+        (self.root / "chapters" / "01_a" / "a.cpp").write_text("")
+        (self.root / "chapters" / "01_a" / "shaders" / "a.frag").write_text("")
+        (self.root / "book" / "01-a.md").write_text("# 1. A\n\n> Program: here.\n\nText.\n")
+        (self.root / "book" / "02-b.md").write_text("# 2. B\n\nText.\n")
+        book_nav.check(self.root, update=True)
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def test_links_and_sources_are_generated_and_then_hold(self):
+        a = (self.root / "book" / "01-a.md").read_text()
+        self.assertIn("[2. B →](02-b.md)", a)
+        self.assertIn("[`shaders/a.frag`](../chapters/01_a/shaders/a.frag)", a)
+        self.assertIn("[← 1. A](01-a.md)", (self.root / "book" / "02-b.md").read_text())
+        self.assertEqual(book_nav.check(self.root), [])
+
+    def test_a_new_source_file_makes_the_list_stale(self):
+        (self.root / "chapters" / "01_a" / "b.h").write_text("")
+        self.assertEqual(len(book_nav.check(self.root)), 1)
+
+    def test_a_renamed_chapter_makes_the_links_stale(self):
+        (self.root / "book" / "02-b.md").write_text((self.root / "book" / "02-b.md").read_text().replace("# 2. B", "# 2. Bee"))
+        self.assertEqual(len(book_nav.check(self.root)), 1)  # 01-a.md still says "2. B"
 
 
 if __name__ == "__main__":
