@@ -46,9 +46,14 @@ def github_slug(text: str) -> str:
     return "".join(out)
 
 
+def prefix_of(name: str) -> str:
+    """c03- for 03-light-volumes.md; a-scenes- for an appendix-scenes.md."""
+    return f"c{name[:2]}-" if re.match(r"\d\d-", name) else "a-" + re.sub(r"^appendix-|\.md$", "", name) + "-"
+
+
 def chapter_ids(md: Path):
     """(the title's id, {forge id: page id}) for one chapter."""
-    prefix = f"c{md.name[:2]}-"
+    prefix = prefix_of(md.name)
     ids, seen, title_id, fence = {}, {}, None, False
     for line in md.read_text().split("\n"):
         if line.startswith("```"):
@@ -92,11 +97,11 @@ def rewrite(md: Path, titles: dict, all_ids: dict) -> str:
             if t == "../README.md#chapters":
                 return head + "](#TOC)"
             if not file and frag:
-                return head + f"](#{own.get(frag, 'c' + md.name[:2] + '-' + frag)})"
-            if re.fullmatch(r"\d\d-[\w-]+\.md", file):
+                return head + f"](#{own.get(frag, prefix_of(md.name) + frag)})"
+            if re.fullmatch(r"[\w-]+\.md", file):
                 if file not in titles:
-                    return lm.group(0)
-                return head + f"](#{all_ids[file].get(frag, 'c' + file[:2] + '-' + frag) if frag else titles[file]})"
+                    return head + f"](../book/{t})"  # a page of the book that is not in this one
+                return head + f"](#{all_ids[file].get(frag, prefix_of(file) + frag) if frag else titles[file]})"
             if file.startswith("figures/"):
                 return head + f"](../book/{t})"  # a link to a CSV or a picture: out/ is beside book/
             return lm.group(0)
@@ -110,7 +115,8 @@ def main() -> int:
     if not shutil.which("pandoc"):
         print("book_html.py: pandoc is not installed (Debian: sudo apt-get install pandoc)")
         return 1
-    chapters = sorted((ROOT / "book").glob("[0-9][0-9]-*.md"))
+    # the numbered chapters, then the appendices
+    chapters = sorted((ROOT / "book").glob("[0-9][0-9]-*.md")) + sorted((ROOT / "book").glob("appendix-*.md"))
     titles, all_ids = {}, {}
     for md in chapters:
         titles[md.name], all_ids[md.name] = chapter_ids(md)
