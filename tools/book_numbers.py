@@ -26,7 +26,9 @@ stay outside the marker. The part after `num` is
   book's style ("1 265"); `.1^e` writes 3.9·10^-3 and `.1⁻e` writes 3.9·10⁻³. A `%` inside a filter value is fine: the format is the last
   `%SPEC` before the first `;`.
 
-`--check` (exit 1) fails when a text differs from its value, or a file, row or column is
+A marker may not begin a line (Markdown would read the line as raw HTML) and may not hold
+`--` (it would end the comment early on a forge). `--check` (exit 1) fails when a text differs
+from its value, or a file, row or column is
 missing, or a selection is ambiguous; `--update` rewrites the texts from the data. Lines in
 a CSV starting with `#` are comments. tools/book_excerpts.py --check runs this check too.
 """
@@ -245,6 +247,9 @@ def process(text: str, where: str, base: Path = FIGURES):
         nonlocal count
         count += 1
         line = text.count("\n", 0, m.start()) + 1
+        if "--" in m["spec"]:
+            problems.append(f"{where}:{line}: '--' inside a marker ends the HTML comment early on a forge (GFM); write it otherwise")
+            return m.group(0)
         try:
             value = value_of(m["spec"], base)
         except NumberError as e:

@@ -68,6 +68,13 @@ class TestMismatch(Fixture):
         self.assertEqual(len(problems), 1)
         self.assertIn("starts the line", problems[0])
 
+    def test_a_double_dash_in_a_marker_fails(self):
+        _, problems, _ = self.run_text("n: <!-- num t.csv[segments=64,mode=per-pixel].ms - -1 %.2f -->1.80<!-- /num -->")
+        self.assertEqual(problems, [])
+        _, problems, _ = self.run_text("n: <!-- num t.csv[segments=64,mode=per-pixel].ms --1 %.2f -->1.80<!-- /num -->")
+        self.assertEqual(len(problems), 1)
+        self.assertIn("'--'", problems[0])
+
     def test_the_line_of_the_problem_is_named(self):
         _, problems, _ = self.run_text("a\nb\n<!-- num t.csv[segments=64,mode=per-pixel].ms %.2f -->9<!-- /num -->")
         self.assertTrue(problems[0].startswith("x.md:3:"), problems[0])
