@@ -13,11 +13,12 @@ In book/NN-name.md they sit between markers, written by --update and compared by
 
 A chapter without the markers gets them: the sources list after the chapter's opening
 blockquote (or its title), a nav line after it and one at the end. The sources are the files
-of chapters/NN_*/ (the program, its library, its shaders; not CMakeLists.txt), so the list
-names only files that exist and lists every one. tools/book_excerpts.py --check runs this
+of chapters/NN_*/ that git tracks (the program, its library, its shaders; not CMakeLists.txt),
+so the list names only files that exist and lists every one. tools/book_excerpts.py --check runs this
 check; --update here (or there) rewrites the markers.
 """
 import re
+import subprocess
 import sys
 from pathlib import Path
 
@@ -47,11 +48,25 @@ def nav_line(files, i) -> str:
     return "<!-- nav -->\n" + " · ".join(parts) + "\n<!-- /nav -->"
 
 
+def tracked(root: Path):
+    """The files git tracks under chapters/ (None outside a git checkout): a scratch file in
+    someone's tree is not a source of the chapter."""
+    try:
+        r = subprocess.run(["git", "-C", str(root), "ls-files", "-z", "chapters"], capture_output=True, timeout=30)
+    except (OSError, subprocess.SubprocessError):
+        return None
+    if r.returncode != 0:
+        return None
+    return {(root / f).resolve() for f in r.stdout.decode().split("\0") if f}
+
+
 def source_files(root: Path, md: Path):
     dirs = sorted((root / "chapters").glob(f"{md.name[:2]}_*"))
+    known = tracked(root)
     files = []
     for d in dirs:
-        files += sorted(p for p in d.rglob("*") if p.is_file() and p.suffix in SOURCE_SUFFIXES and "testdata" not in p.parts)
+        files += sorted(p for p in d.rglob("*") if p.is_file() and p.suffix in SOURCE_SUFFIXES and "testdata" not in p.parts
+                        and (known is None or p.resolve() in known))
     return files
 
 
