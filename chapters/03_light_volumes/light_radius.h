@@ -17,7 +17,8 @@ namespace lp::ch03 {
 inline constexpr float kLinearEightBitStep = 1.f / 256.f;
 // Our output is sRGB-encoded, and the encoding is steepest at black (slope 12.92): there a
 // linear 1 / (255 * 12.92) already moves the output by one step. Light dropped below this
-// changes no output pixel by more than one step, however dark the surroundings.
+// changes no output pixel by more than one step per light, however dark the surroundings:
+// a pixel that k cut lights reach can lose up to k steps (chapter 05 accounts for that).
 inline constexpr float kSrgbFirstStep = 1.f / (255.f * 12.92f);
 
 // What a surface can make of the light arriving at it: the pixel is radiance x n.l x

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Chapter 04's figures: the sweep (CSV and images), its plots (SVG, tools/plot.py) and the
+# Chapter 04's figures: the sweep (CSV and images), its plots (SVG, tools/figures_04.py) and the
 # geometry diagrams (diagrams.py), all into book/figures/.
 #
 #   chapters/04_neon/make_figures.sh [BUILD_DIR] [SWEEP OPTIONS...]   (default build/)
@@ -12,21 +12,8 @@ if [ "${1:-}" != "--plots-only" ]; then
   shift || true
   "$build/chapters/04_neon/04_neon_sweep" --out "$out" "$@"
 fi
-plot() { python3 "$root/tools/plot.py" "$@"; }
-plot --csv "$out/04_points.csv" --x n --y p99_rel_pct --group series --filter term=specular --xlog --ylog \
-  --title "Neon specular against the truth as N grows" --xlabel "point lights (or samples) per tube" \
-  --ylabel "p99 relative error (%)" --out "$out/04_points_specular.svg"
-plot --csv "$out/04_points.csv" --x n --y p99_rel_pct --group series --filter term=diffuse --xlog --ylog \
-  --title "Neon diffuse against the truth as N grows" --xlabel "point lights (or samples) per tube" \
-  --ylabel "p99 relative error (%)" --out "$out/04_points_diffuse.svg"
-plot --csv "$out/04_points.csv" --x n --y min_ms --group series --filter term=diffuse --xlog --ylog \
-  --title "Cost of the forward pass as N grows" --xlabel "point lights (or samples) per tube" \
-  --ylabel "ms per frame (fastest)" --out "$out/04_points_time.svg"
-for term in diffuse specular; do
-  plot --csv "$out/04_methods.csv" --x min_ms --y p99_rel_pct --group method --filter view=overview --filter "term=$term" \
-    --ylog --title "Neon $term: error against cost (overview)" --xlabel "ms per frame (fastest)" \
-    --ylabel "p99 relative error (%)" --out "$out/04_methods_$term.svg"
-done
+# Every plot of the chapter, from the CSVs (one recipe, through tools/plot.py).
+python3 "$root/tools/figures_04.py" "$out"
 python3 "$root/chapters/04_neon/diagrams.py" "$out"
 # The capsule volumes (the program, deferred path): the night street with its signs, the
 # capsules and their stencil masks, and what the capsules shade without lighting.
