@@ -47,3 +47,9 @@ add_test(NAME 03_light_volumes.bench_reads_back_every_frame_it_reports COMMAND $
   --no-match "\"frames\":([013-9]|[0-9][0-9])"
   -- env LIGHTPASS_TIMER=queries ${P03} --bench --frames 2 --size 160x90 --count 0)
 set_tests_properties(03_light_volumes.bench_reads_back_every_frame_it_reports PROPERTIES TIMEOUT 300)
+# The stencil strategy's GL_SAMPLES_PASSED ("fragments") includes its marking draws; the bench
+# reports the fragments shaded and the marking ones apart, from the chapter's own counters
+# (that they add up to GL_SAMPLES_PASSED is LightVolumesGl.SamplesPassedAreShadedPlusMarking).
+lightpass_program_test(03_light_volumes.bench_reports_shaded_and_marking_apart 0
+  "\"name\":\"local lights: stencil\",[^}]*\"fragments\":[1-9][0-9]*,\"counts\":\\{\"shaded\":[1-9][0-9]*,\"lit\":[1-9][0-9]*,\"marking\":[1-9][0-9]*\\}"
+  ${P03} --bench --frames 1 --size 160x90)
