@@ -320,7 +320,9 @@ void App::print_bench(const Measurement& m) const {
   nlohmann::ordered_json j;
   j["program"] = chapter_.cli.program;
   j["renderer"] = context_->renderer();
-  j["timer"] = m.software ? "llvmpipe: CPU time with glFinish around each pass" : "GL_TIME_ELAPSED queries";
+  j["timer"] = m.software                ? "llvmpipe: CPU time with glFinish around each pass"
+               : context_->is_software() ? "GL_TIME_ELAPSED queries on llvmpipe (LIGHTPASS_TIMER=queries)"
+                                         : "GPU time (GL_TIME_ELAPSED)";
   j["platform"] = context_->platform();
   j["width"] = target_->width();
   j["height"] = target_->height();
@@ -336,7 +338,7 @@ void App::print_bench(const Measurement& m) const {
   auto& passes = j["passes"] = nlohmann::json::array();
   for (const auto& p : m.passes) {
     // fragments: GL_SAMPLES_PASSED over every draw of the pass (a stencil strategy's
-    // marking draws too); counts: what the chapter counted itself, e.g. shaded and marked.
+    // marking draws too); counts: what the chapter counted itself, e.g. shaded and marking.
     nlohmann::ordered_json pass = {{"name", p.name}, {"mean_ms", p.mean_ms}, {"min_ms", p.min_ms}, {"fragments", p.fragments}};
     if (p.fragments_saturated) pass["fragments_saturated"] = true;
     if (!p.counts.empty()) {
