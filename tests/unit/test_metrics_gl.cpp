@@ -62,6 +62,8 @@ class MetricsGl : public ::testing::Test {
 static_assert(std::is_same_v<decltype(query_result_u64(0)), std::uint64_t>);
 static_assert(std::is_same_v<decltype(PassMetrics::Stats::samples), std::uint64_t>);
 static_assert(std::is_same_v<decltype(PassMeasurement::fragments), std::uint64_t>);
+// No destructor throws (it was noexcept(false), and aborted inside std::optional's).
+static_assert(std::is_nothrow_destructible_v<PassMetrics::Scope>);
 
 TEST_F(MetricsGl, MeasureReportsEveryFrameItDrewAndItsFragments) {
   Empty target(40, 30);
