@@ -20,8 +20,7 @@
 namespace lp {
 
 namespace {
-constexpr int kBenchWarmup = 5;
-constexpr int kBenchFrames = 60;
+constexpr int kBenchFrames = 60;  // measured after measure()'s warm-up (common/measure.h)
 }  // namespace
 
 std::string Shot::name(const CliSpec& spec) const {
@@ -78,7 +77,7 @@ std::string default_output(const std::string& file) {
 struct App::Job {
   enum Kind { Image, Check, Bench } kind = Image;
   Shot shot;
-  int width = 0, height = 0, frames = 1, warmup = 0;
+  int width = 0, height = 0, frames = 1;
   std::string out;
 };
 
@@ -130,10 +129,7 @@ App::App(const Chapter& chapter, Options options) : chapter_(chapter), options_(
             .shot = {.view = view_, .mode = options_.mode, .knobs = options_.knobs},
             .width = options_.width, .height = options_.height, .frames = options_.frames,
             .out = options_.out.empty() ? default_output(chapter_.cli.program + ".png") : options_.out};
-    if (options_.bench) {
-      job.warmup = kBenchWarmup;
-      if (options_.frames == 1) job.frames = kBenchFrames;
-    }
+    if (options_.bench && !options_.frames_given) job.frames = kBenchFrames;
     jobs_.push_back(job);
   }
 }
@@ -162,19 +158,28 @@ void App::prepare_frame(int w, int h, const Camera& camera) {
 bool App::next_frame() {
   if (!context_->is_window()) {
     if (started_) {
-      metrics_.end_frame();
       const Job& job = jobs_[job_];
-      if (++job_frame_ == job.warmup && job.warmup > 0) metrics_.reset();
-      if (job_frame_ == job.warmup + job.frames) {
+      bool done = false;
+      if (bench_) {
+        done = !bench_->frame_done();  // ends the frame; throws a pass's OpenGL error
+      } else {
+        metrics_.end_frame();
+        metrics_.throw_if_error();  // an OpenGL error in a pass, reported once, outside any destructor
+        done = ++job_frame_ == job.frames;
+      }
+      if (done) {
         finish_job(job);
         ++job_;
         job_frame_ = 0;
+        bench_.reset();
       }
     }
     started_ = true;
     frame_.reload_shaders = false;
     if (job_ >= jobs_.size()) return false;
     const Job& job = jobs_[job_];
+    // --bench: the one measurement of common/measure.h (warm-up, then job.frames frames).
+    if (job.kind == Job::Bench && !bench_) bench_ = std::make_unique<MeasureLoop>(metrics_, MeasureOptions{.frames = job.frames});
     frame_.mode = job.shot.mode;
     frame_.knobs = options_.knobs;
     for (const auto& [k, v] : job.shot.knobs) frame_.knobs[k] = v;
@@ -189,6 +194,7 @@ bool App::next_frame() {
     if (!panel_drawn_) panel();
     present();
     metrics_.end_frame();
+    metrics_.throw_if_error();
     context_->swap_and_poll();
   }
   started_ = true;
@@ -325,7 +331,7 @@ void App::finish_job(const Job& job) {
     return;
   }
   if (job.kind == Job::Bench) {
-    print_bench();
+    print_bench(bench_->result());
     return;
   }
   auto reference = source_root() / "tests" / "reference" / chapter_.cli.program / (job.shot.name(chapter_.cli) + ".png");
@@ -365,11 +371,13 @@ void App::finish_job(const Job& job) {
   }
 }
 
-void App::print_bench() const {
+void App::print_bench(const Measurement& m) const {
   nlohmann::ordered_json j;
   j["program"] = chapter_.cli.program;
   j["renderer"] = context_->renderer();
-  j["timer"] = context_->is_software() ? "llvmpipe: CPU time with glFinish around each pass" : "GPU time (GL_TIME_ELAPSED)";
+  j["timer"] = m.software                ? "llvmpipe: CPU time with glFinish around each pass"
+               : context_->is_software() ? "GL_TIME_ELAPSED queries on llvmpipe (LIGHTPASS_TIMER=queries)"
+                                         : "GPU time (GL_TIME_ELAPSED)";
   j["platform"] = context_->platform();
   j["width"] = target_->width();
   j["height"] = target_->height();
@@ -377,14 +385,26 @@ void App::print_bench() const {
   j["view"] = jobs_[job_].shot.view;
   j["mode"] = frame_.mode;
   j["knobs"] = frame_.knobs;
-  j["frames"] = jobs_[job_].frames;
+  j["frames"] = m.frames;  // measured and read back: what the means are over
+  j["warmup_frames"] = m.warmup_frames;  // before them, until the times settled (common/measure.h)
+  j["warmup_seconds"] = m.warmup_seconds;
+  j["warmup_settled"] = m.settled;
+  j["fragment_counter_bits"] = query_counter_bits(GL_SAMPLES_PASSED);
   auto& passes = j["passes"] = nlohmann::json::array();
-  double total = 0;
-  for (const auto& s : metrics_.stats()) {
-    passes.push_back({{"name", s.name}, {"mean_ms", s.mean_ms}, {"min_ms", s.min_ms}, {"fragments", s.samples}, {"frames", s.frames}});
-    total += s.mean_ms;
+  for (const auto& p : m.passes) {
+    // fragments: GL_SAMPLES_PASSED over every draw of the pass (a stencil strategy's
+    // marking draws too); counts: what the chapter counted itself, e.g. shaded and marking.
+    nlohmann::ordered_json pass = {{"name", p.name}, {"mean_ms", p.mean_ms}, {"min_ms", p.min_ms}, {"fragments", p.fragments}};
+    if (p.fragments_saturated) pass["fragments_saturated"] = true;
+    if (!p.counts.empty()) {
+      nlohmann::ordered_json counts = nlohmann::ordered_json::object();
+      for (const auto& [what, value] : p.counts) counts[what] = value;
+      pass["counts"] = counts;
+    }
+    pass["frames"] = p.frames;
+    passes.push_back(pass);
   }
-  j["total_ms"] = total;
+  j["total_ms"] = m.total_ms();
   j["render_target_bytes"] = metrics_.allocated_bytes();
   auto& alloc = j["allocations"] = nlohmann::json::array();
   for (const auto& a : metrics_.allocations()) alloc.push_back({{"name", a.name}, {"bytes", a.bytes}});

@@ -23,6 +23,7 @@
 #include "common/cli.h"
 #include "common/context.h"
 #include "common/image.h"
+#include "common/measure.h"
 #include "common/metrics.h"
 #include "common/scene.h"
 #include "common/scene_gpu.h"
@@ -107,7 +108,7 @@ class App {
   void prepare_frame(int width, int height, const Camera& camera);
   void finish_job(const Job& job);
   void present();
-  void print_bench() const;
+  void print_bench(const Measurement& m) const;
 
   Chapter chapter_;
   Options options_;
@@ -127,6 +128,7 @@ class App {
   std::string last_mode_;
   bool view_changed_ = false;
   std::unique_ptr<OutputTarget> target_;
+  std::unique_ptr<MeasureLoop> bench_;  // the --bench job being measured
   struct Gui;
   std::unique_ptr<Gui> gui_;
 };

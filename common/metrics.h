@@ -4,15 +4,28 @@
 // its timer queries miss most of the work: there each pass is timed with glFinish and the
 // CPU clock instead (honest, at the cost of a stall that a software renderer hardly notices)
 // and fragments that passed the depth and stencil tests, counted exactly with
-// GL_SAMPLES_PASSED occlusion queries. Counts are deterministic: CI can assert them.
+// GL_SAMPLES_PASSED occlusion queries, read as 64-bit numbers. Counts are deterministic: CI
+// can assert them. To measure a frame (warm-up, frames, means) use common/measure.h.
+//
+// No destructor here throws: an OpenGL error seen when a pass ends is recorded (the first
+// one, with its pass's name) and error() reports it; the frame loop (App::next_frame,
+// measure()) turns it into an Error outside any destructor.
 #include <chrono>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/gl.h"
 
 namespace lp {
+
+// The result of a finished query as a 64-bit number (glGetQueryObjectui64v): every query
+// read in the tree goes through here, so no count is ever truncated to 32 bits on the way.
+std::uint64_t query_result_u64(GLuint query);
+// GL_QUERY_COUNTER_BITS of a query target (e.g. GL_SAMPLES_PASSED): how wide the
+// implementation's counter is. A count equal to 2^bits - 1 may have saturated.
+int query_counter_bits(GLenum target);
 
 class PassMetrics {
  public:
@@ -21,21 +34,28 @@ class PassMetrics {
   struct Stats {
     std::string name;
     double last_ms = 0, mean_ms = 0, min_ms = 0;
-    std::uint64_t samples = 0;  // fragments passed in the last collected frame
+    std::uint64_t samples = 0;  // fragments passed in the last collected frame (GL_SAMPLES_PASSED)
+    bool samples_saturated = false;  // `samples` is the counter's largest value: it may be more
     int frames = 0;             // frames collected since reset()
+    // Exact counts the chapter made itself in this pass (e.g. with atomic counters: fragments
+    // shaded, stencil-marking fragments), reported beside `samples`; see count().
+    std::vector<std::pair<std::string, std::uint64_t>> counts;
   };
 
   class Scope {
    public:
-    Scope(Scope&& o) noexcept : active_(o.active_), name_(o.name_), cpu_ms_(o.cpu_ms_), start_(o.start_) { o.active_ = false; }
+    Scope(Scope&& o) noexcept
+        : owner_(o.owner_), index_(o.index_), cpu_ms_(o.cpu_ms_), start_(o.start_) { o.owner_ = nullptr; }
     Scope(const Scope&) = delete;
-    ~Scope() noexcept(false);  // throws Error naming the pass if OpenGL reported an error in it
+    Scope& operator=(const Scope&) = delete;
+    Scope& operator=(Scope&&) = delete;
+    ~Scope();  // ends the queries; records an OpenGL error in the pass (never throws)
    private:
     friend class PassMetrics;
-    Scope(const std::string* name, double* cpu_ms);
-    bool active_ = true;
-    const std::string* name_;
-    double* cpu_ms_;  // software renderer: where the CPU-clock time goes; else null
+    Scope(PassMetrics* owner, std::size_t index, double* cpu_ms);
+    PassMetrics* owner_;  // null once moved from
+    std::size_t index_;   // the pass
+    double* cpu_ms_;      // software renderer: where the CPU-clock time goes; else null
     std::chrono::steady_clock::time_point start_;
   };
 
@@ -46,8 +66,20 @@ class PassMetrics {
   void wait_all();   // gathers everything still in flight (end of a benchmark or a test)
   void reset();      // forget the statistics (e.g. after warm-up frames)
 
+  // An exact count the chapter made itself inside pass `pass` (measured this frame or
+  // before), reported with the pass's statistics under `what` (replacing an earlier value).
+  void count(const std::string& pass, const std::string& what, std::uint64_t value);
+
   const std::vector<Stats>& stats() const { return stats_; }
   const Stats* find(const std::string& name) const;
+  // Times are CPU times with glFinish around each pass (llvmpipe, softpipe; known after the
+  // first pass). The environment variable LIGHTPASS_TIMER=queries turns this off.
+  bool software() const { return software_ == 1; }
+
+  // The first OpenGL error seen in a pass since the start ("OpenGL reported GL_X in pass
+  // 'name'"), or empty. throw_if_error() throws it as an Error: call it from a frame loop.
+  const std::string& error() const { return error_; }
+  void throw_if_error() const;
 
   // Render targets the chapter allocated, for the "what does this cost in memory" report.
   void set_allocation(const std::string& name, std::size_t bytes);
@@ -69,12 +101,17 @@ class PassMetrics {
     double sum_ms = 0;
   };
   void collect(Pass& pass, int stats_index, Slot& slot, bool wait);
+  void end_scope(std::size_t index, double* cpu_ms, std::chrono::steady_clock::time_point start) noexcept;
+  void record_error(GLenum e, const std::string& where) noexcept;
 
   std::vector<Pass> passes_;
   std::vector<Stats> stats_;
   std::vector<Allocation> allocations_;
   std::uint64_t frame_ = 0;
   int software_ = -1;  // unknown until the first pass: 1 on llvmpipe/softpipe
+  int samples_bits_ = 64;
+  std::string error_;
+  std::string inject_error_in_;  // tests: LIGHTPASS_TEST_GL_ERROR_IN_PASS, see metrics.cpp
 };
 
 }  // namespace lp

@@ -56,3 +56,13 @@ add_test(NAME 02_gbuffer.reference_same_renderer_is_strict
 add_test(NAME 02_gbuffer.reference_other_renderer_allowance
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/other_renderer.sh ${P02} 02_gbuffer ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR}/other_renderer_02
   -- "aisle_deferred .*allowed 2.000%\\) \\[other renderer\\]" "aisle_specular .*allowed 0.100%\\)$")
+
+# The sweep measures through common/measure.h and every row of its table names what measured
+# it: the renderer, the size and the frames (here 2, as asked; what the means are over).
+set(SWEEP02_OUT ${CMAKE_BINARY_DIR}/out/02_sweep)
+add_test(NAME 02_gbuffer.sweep_rows_name_renderer_size_and_frames COMMAND ${EXPECT} 0
+  "^lights,method,total_ms,geometry_ms,lighting_ms,fragments_shaded,renderer,width,height,frames$"
+  "^1,forward,[0-9.e-]+,0,[0-9.e-]+,[1-9][0-9]*,[^,]+.*,32,18,2$"
+  "^1,deferred,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,576,[^,]+.*,32,18,2$"
+  -- sh -c "$<TARGET_FILE:02_gbuffer_sweep> --out ${SWEEP02_OUT} --only lights --light-size 32x18 --max-lights 1 --frames 2 >/dev/null && cat ${SWEEP02_OUT}/02_lights.csv")
+set_tests_properties(02_gbuffer.sweep_rows_name_renderer_size_and_frames PROPERTIES TIMEOUT 120)

@@ -36,3 +36,21 @@ lightpass_program_test(03_light_volumes.no_such_light_to_show 1 "there is no lig
 lightpass_image_test(03_light_volumes.window_screenshot "window screenshot, 320x180" ${CMAKE_BINARY_DIR}/out/03_window.png
   --size 320x180 --background ${BACKGROUND_SRGB8} --lit 0.3 1
   RUN xvfb-run -a -s "-screen 0 320x180x24" ${P03} --size 320x180 --frames 3 --out ${CMAKE_BINARY_DIR}/out/03_window.png)
+
+# --bench waits for every frame it reports: with the timer queries that a GPU uses (forced on
+# llvmpipe, whose results then arrive after the frame, as on a GPU), --frames 2 reports 2
+# frames for the whole run and for every pass, and the geometry pass has a time and fragments.
+# (Before the fix it printed before the last frame's queries were back: a pass with 1 frame.)
+add_test(NAME 03_light_volumes.bench_reads_back_every_frame_it_reports COMMAND ${EXPECT} 0
+  "\"frames\":2,\"warmup_frames\":[0-9]+"
+  "\"name\":\"geometry: G-buffer \\(chapter 02\\)\",\"mean_ms\":(0\\.0*[1-9]|[1-9])[^}]*\"fragments\":[1-9][0-9]*,\"frames\":2}"
+  "\"name\":\"composite: albedo x L1 \\+ L2 \\+ emissive \\(chapter 03\\)\"[^}]*\"frames\":2}"
+  --no-match "\"frames\":([013-9]|[0-9][0-9])"
+  -- env LIGHTPASS_TIMER=queries ${P03} --bench --frames 2 --size 160x90 --count 0)
+set_tests_properties(03_light_volumes.bench_reads_back_every_frame_it_reports PROPERTIES TIMEOUT 300)
+# The stencil strategy's GL_SAMPLES_PASSED ("fragments") includes its marking draws; the bench
+# reports the fragments shaded and the marking ones apart, from the chapter's own counters
+# (that they add up to GL_SAMPLES_PASSED is LightVolumesGl.SamplesPassedAreShadedPlusMarking).
+lightpass_program_test(03_light_volumes.bench_reports_shaded_and_marking_apart 0
+  "\"name\":\"local lights: stencil\",[^}]*\"fragments\":[1-9][0-9]*,\"counts\":\\{\"shaded\":[1-9][0-9]*,\"lit\":[1-9][0-9]*,\"marking\":[1-9][0-9]*\\}"
+  ${P03} --bench --frames 1 --size 160x90)

@@ -36,3 +36,11 @@ lightpass_program_test(05_hdr.bad_mode 2 "unknown mode 'sepia'" ${P05} --mode se
 lightpass_program_test(05_hdr.bad_knob 2 "--bloom must be one of: off after before. got '3'" ${P05} --bloom 3)
 lightpass_program_test(05_hdr.bad_average 2 "--average must be one of: mip-chain compute naive-mip-chain generate-mipmap" ${P05} --average 1.5)
 lightpass_program_test(05_hdr.bad_number 2 "--sun expects a number" ${P05} --sun bright)
+
+# An OpenGL error inside a timed pass (made on purpose by PassMetrics's test hook, inside the
+# std::optional scope of HdrPipeline::process, where a throwing destructor used to abort the
+# program): reported once with its pass, exit code 1, no abort.
+add_test(NAME 05_hdr.gl_error_in_a_pass_is_reported_with_the_pass COMMAND ${EXPECT} 1
+  "^05_hdr: error: OpenGL reported GL_INVALID_ENUM in pass 'hdr: tonemap'$" --no-match "Abort|terminate|wrote "
+  -- env "LIGHTPASS_TEST_GL_ERROR_IN_PASS=hdr: tonemap" ${P05} --headless --size 64x36 --out ${CMAKE_BINARY_DIR}/out/05_gl_error.png)
+set_tests_properties(05_hdr.gl_error_in_a_pass_is_reported_with_the_pass PROPERTIES TIMEOUT 120)

@@ -7,7 +7,8 @@
 // - 02_position_error.csv: reconstructed-position error against distance from the camera for
 //   each depth format (cameras from 3 m to 500 m, near 0.1 m, far 1000 m);
 // - 02_lights.csv: forward against deferred time as lights grow (GPU time on a GPU, CPU time
-//   on llvmpipe: the CSV's first line says which).
+//   on llvmpipe: the CSV's first line says which; common/measure.h measures).
+// Every row of the rendered tables names the renderer, the size and the frames measured.
 //
 //   02_gbuffer_sweep [--out DIR] [--size WxH] [--light-size WxH] [--frames N] [--max-lights N]
 //                    [--only encodings|layouts|position|lights]
@@ -22,7 +23,6 @@
 //   tools/plot.py --csv 02_layouts.csv --x bytes_per_pixel --y image_max --group layout
 //     --filter view=forward/close_128 --xlog --out 02_layouts_bytes.svg
 #include <algorithm>
-#include <chrono>
 #include <map>
 #include <cmath>
 #include <cstdio>
@@ -41,7 +41,7 @@
 #include "chapters/02_gbuffer/probe.h"
 #include "common/context.h"
 #include "common/error.h"
-#include "common/metrics.h"
+#include "common/measure.h"
 #include "common/paths.h"
 #include "common/sweep.h"
 #include "common/target.h"
@@ -186,7 +186,8 @@ SurfaceError surface_error(const SurfaceImages& a, const SurfaceImages& referenc
   return e;
 }
 
-void layout_sweep(const Settings& s, const std::string& scene_file, const std::vector<std::string>& views, std::ofstream& csv) {
+void layout_sweep(const Settings& s, const std::string& scene_file, const std::vector<std::string>& views, std::ofstream& csv,
+                  const std::string& renderer) {
   Scene scene = load_scene(from_root(scene_file));
   SceneGpu gpu(scene);
   Renderer r(scene, gpu);
@@ -205,7 +206,7 @@ void layout_sweep(const Settings& s, const std::string& scene_file, const std::v
       csv << layout.name << ',' << gbuffer.bytes_per_pixel() << ',' << scene.path.stem().string() << '/' << view << ','
           << c.mean_error << ',' << c.p99_error << ',' << c.max_error << ',' << c.failing_fraction << ','
           << se.normal.mean * kDegrees << ',' << se.normal.max * kDegrees << ',' << se.position_p99 << ','
-          << se.position_max << '\n';
+          << se.position_max << ',' << csv_measure_values(renderer, s.width, s.height, 1) << '\n';
       std::cout << view << ' ' << layout.name << " (" << gbuffer.bytes_per_pixel() << " B): image " << c.summary()
                 << "\n    normal mean " << se.normal.mean * kDegrees << " max " << se.normal.max * kDegrees
                 << " deg, position p99 " << se.position_p99 << " max " << se.position_max << std::endl;
@@ -241,7 +242,7 @@ void position_sweep(const Settings& s, const std::string& renderer) {
   std::ofstream csv(s.out + "/02_position_error.csv");
   csv << "# " << renderer << ", " << s.width << "x" << s.height << ", near 0.1 m, far 1000 m\n"
       << "# |reconstructed - float reference| against distance from the camera, the atrium seen from 3..500 m\n"
-      << "layout,depth,distance_m,pixels,mean_abs_m,p99_abs_m,max_abs_m,mean_rel,p99_rel,max_rel\n";
+      << "layout,depth,distance_m,pixels,mean_abs_m,p99_abs_m,max_abs_m,mean_rel,p99_rel,max_rel," << csv_measure_columns() << "\n";
   // Layouts that differ from ours only in where depth comes from.
   std::vector<std::string> names = {"ours", "d32f", "reversed-z", "source"};
   const std::vector<double> bin_edges = {2, 4, 8, 16, 32, 64, 128, 256, 512, 1024};
@@ -278,7 +279,7 @@ void position_sweep(const Settings& s, const std::string& renderer) {
       double centre = std::sqrt(bin_edges[b - 1] * bin_edges[b]);
       csv << name << ',' << depth_format_name(layout.depth) << (layout.depth_target ? " + R32F copy" : "") << ',' << centre
           << ',' << a.size() << ',' << mean(a) << ',' << p99(a) << ',' << a.back() << ',' << mean(r) << ',' << p99(r) << ','
-          << r.back() << '\n';
+          << r.back() << ',' << csv_measure_values(renderer, s.width, s.height, 1) << '\n';
       std::cout << name << " at ~" << centre << " m: p99 " << p99(a) << " m (relative " << p99(r) << ")\n";
     }
   }
@@ -286,7 +287,7 @@ void position_sweep(const Settings& s, const std::string& renderer) {
 
 // ---- time as lights grow ---------------------------------------------------------------------
 
-void light_sweep(const Settings& s, const std::string& timer, bool software) {
+void light_sweep(const Settings& s, const std::string& timer, const std::string& renderer, bool software) {
   Scene scene = load_scene(from_root("assets/atrium/atrium.gltf"));
   SceneGpu gpu(scene);
   Renderer r(scene, gpu);
@@ -297,69 +298,47 @@ void light_sweep(const Settings& s, const std::string& timer, bool software) {
   csv << "# " << (software ? "llvmpipe CPU wall time (glFinish per pass): " + timer.substr(timer.find(':') + 2) : timer)
       << ", " << s.light_width << "x" << s.light_height << "\n# atrium overview, G-buffer '" << our_layout().name
       << "', mean of " << s.frames << " frames after warm-up\n"
-      << "lights,method,total_ms,geometry_ms,lighting_ms,fragments_shaded\n";
+      << "lights,method,total_ms,geometry_ms,lighting_ms,fragments_shaded," << csv_measure_columns() << "\n";
   // [time-passes]
-  // On a GPU each pass is timed with GL_TIME_ELAPSED queries. llvmpipe defers rasterising
-  // until something needs the pixels (binning), so its queries time the wrong work (the
-  // lighting pass's query absorbs the geometry pass, forward's absorbs almost nothing);
-  // there each pass is closed with glFinish and timed on the CPU's clock instead.
+  // Each pass in a PassMetrics scope; measure() warms up until the times settle, then
+  // measures s.frames frames and reads every one back (common/measure.h). On a GPU the
+  // scopes are GL_TIME_ELAPSED queries; llvmpipe defers rasterising until something needs
+  // the pixels, so there PassMetrics closes each pass with glFinish and reads the CPU clock.
   PassMetrics metrics;
-  std::map<std::string, double> cpu_ms;
-  auto pass = [&](const std::string& name, const std::function<void()>& draw) {
-    if (!software) {
-      auto p = metrics.pass(name);
-      draw();
-      return;
-    }
-    auto p = metrics.pass(name);  // still counts the fragments
-    auto t0 = std::chrono::steady_clock::now();
-    draw();
-    glFinish();
-    cpu_ms[name] += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  };
-  auto run = [&](const std::function<void()>& frame) {
-    metrics = PassMetrics();
-    for (int i = 0; i < 3 + s.frames; ++i) {
-      if (i == 3) { metrics.reset(); cpu_ms.clear(); }
-      frame();
-      metrics.end_frame();
-    }
-    metrics.wait_all();
-  };
-  auto ms = [&](const std::string& name) { return software ? cpu_ms[name] / s.frames : metrics.find(name)->mean_ms; };
-  // [/time-passes]
-  // A GPU raises its clocks only under load: run both renderers for a while before timing,
-  // or the first rows measure the clock ramp, not the work.
-  for (int i = 0; i < 30; ++i) {
-    target.bind();
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    r.forward.draw(camera, ch01::ForwardMode::PerPixel, r.lights);
-    r.geometry.draw(gbuffer, camera);
-    target.bind();
-    r.lighting.draw(gbuffer, r.lights, scene.ambient, ch01::kBackground);
-    if (software && i >= 2) break;
-  }
-  glFinish();
-  for (int n = 1; n <= s.max_lights; n *= 2) {
-    r.lights.upload(ch01::lights_for_count(scene, n));
-    run([&] {
+  const MeasureOptions frames{.frames = s.frames};
+  auto forward = [&] {
+    return measure(metrics, [&] {
       target.bind();
       glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-      if (software) glFinish();
-      pass("forward", [&] { r.forward.draw(camera, ch01::ForwardMode::PerPixel, r.lights); });
-    });
-    double f = ms("forward");
-    csv << n << ",forward," << f << ",0," << f << ',' << metrics.find("forward")->samples << '\n';
-    std::cout << n << " lights: forward " << f << " ms (" << metrics.find("forward")->samples << " fragments)";
-    run([&] {
-      pass("geometry", [&] { r.geometry.draw(gbuffer, camera); });
+      auto p = metrics.pass("forward");
+      r.forward.draw(camera, ch01::ForwardMode::PerPixel, r.lights);
+    }, frames);
+  };
+  auto deferred = [&] {
+    return measure(metrics, [&] {
+      {
+        auto p = metrics.pass("geometry");
+        r.geometry.draw(gbuffer, camera);
+      }
       target.bind();
-      pass("lighting", [&] { r.lighting.draw(gbuffer, r.lights, scene.ambient, ch01::kBackground); });
-    });
-    double g = ms("geometry"), l = ms("lighting");
-    csv << n << ",deferred," << g + l << ',' << g << ',' << l << ',' << metrics.find("lighting")->samples << '\n';
-    std::cout << ", deferred " << g + l << " ms (geometry " << g << ", lighting " << l << ", "
-              << metrics.find("lighting")->samples << " fragments)" << std::endl;
+      auto p = metrics.pass("lighting");
+      r.lighting.draw(gbuffer, r.lights, scene.ambient, ch01::kBackground);
+    }, frames);
+  };
+  // [/time-passes]
+  for (int n = 1; n <= s.max_lights; n *= 2) {
+    r.lights.upload(ch01::lights_for_count(scene, n));
+    const Measurement fm = forward();
+    const PassMeasurement& f = fm.pass("forward");
+    csv << n << ",forward," << f.mean_ms << ",0," << f.mean_ms << ',' << f.fragments << ','
+        << csv_measure_values(renderer, s.light_width, s.light_height, fm.frames) << '\n';
+    std::cout << n << " lights: forward " << f.mean_ms << " ms (" << f.fragments << " fragments)";
+    const Measurement dm = deferred();
+    const PassMeasurement &g = dm.pass("geometry"), &l = dm.pass("lighting");
+    csv << n << ",deferred," << g.mean_ms + l.mean_ms << ',' << g.mean_ms << ',' << l.mean_ms << ',' << l.fragments << ','
+        << csv_measure_values(renderer, s.light_width, s.light_height, dm.frames) << '\n';
+    std::cout << ", deferred " << g.mean_ms + l.mean_ms << " ms (geometry " << g.mean_ms << ", lighting " << l.mean_ms << ", "
+              << l.fragments << " fragments)" << std::endl;
     if (software && n >= 256) break;  // a CPU renderer takes minutes beyond this
   }
 }
@@ -383,13 +362,13 @@ int main(int argc, char** argv) {
           << "# image error in 8-bit sRGB steps (largest channel difference per pixel); normal and position against "
              "the float layout\n"
           << "layout,bytes_per_pixel,view,image_mean,image_p99,image_max,fraction_over_1,normal_mean_deg,normal_max_deg,"
-             "position_rel_p99,position_rel_max\n";
-      layout_sweep(s, "assets/atrium/atrium.gltf", {"overview", "aisle", "corner"}, csv);
-      layout_sweep(s, "assets/forward/forward.gltf", {"overview", "close_128", "grazing"}, csv);
-      layout_sweep(s, "assets/street/street.gltf", {"street_level"}, csv);
+             "position_rel_p99,position_rel_max," << csv_measure_columns() << "\n";
+      layout_sweep(s, "assets/atrium/atrium.gltf", {"overview", "aisle", "corner"}, csv, context->renderer());
+      layout_sweep(s, "assets/forward/forward.gltf", {"overview", "close_128", "grazing"}, csv, context->renderer());
+      layout_sweep(s, "assets/street/street.gltf", {"street_level"}, csv, context->renderer());
     }
     if (s.only.empty() || s.only == "position") position_sweep(s, context->renderer());
-    if (s.only.empty() || s.only == "lights") light_sweep(s, timer, context->is_software());
+    if (s.only.empty() || s.only == "lights") light_sweep(s, timer, context->renderer(), context->is_software());
     std::cout << "wrote the CSV files in " << s.out << '\n';
   });
 }

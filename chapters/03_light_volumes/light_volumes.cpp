@@ -255,8 +255,7 @@ LightVolumes::LightVolumes(int sphere_subdivisions, int cone_sides)
       sphere_vertices_(gl::make_buffer(shapes_.sphere.positions.data(), shapes_.sphere.positions.size() * sizeof(glm::vec3))),
       sphere_indices_(gl::make_buffer(shapes_.sphere.indices.data(), shapes_.sphere.indices.size() * sizeof(std::uint32_t))),
       cone_vertices_(gl::make_buffer(shapes_.cone.positions.data(), shapes_.cone.positions.size() * sizeof(glm::vec3))),
-      cone_indices_(gl::make_buffer(shapes_.cone.indices.data(), shapes_.cone.indices.size() * sizeof(std::uint32_t))),
-      counters_(gl::make_buffer(nullptr, 3 * sizeof(GLuint), GL_DYNAMIC_STORAGE_BIT)) {
+      cone_indices_(gl::make_buffer(shapes_.cone.indices.data(), shapes_.cone.indices.size() * sizeof(std::uint32_t))) {
   set_lights({});
 }
 
@@ -360,18 +359,18 @@ struct LightVolumes::Draw {
 };
 
 void LightVolumes::draw_local(const LightBuffer& target, const SurfaceView& view, Strategy strategy, Output output) {
-  std::vector<std::string> extra;
-  if (counting_) extra.push_back("COUNT_FRAGMENTS 1");
+  const std::vector<std::string> counting = counting_ ? FragmentCounters::defines() : std::vector<std::string>{};
+  std::vector<std::string> extra = counting;
   if (output == Output::HeatShaded) extra.push_back("HEAT_SHADED 1");
   if (output == Output::HeatLit) extra.push_back("HEAT_LIT 1");
   if (target.kind() == LightBuffer::Kind::PrePass) extra.push_back("LIGHT_PREPASS 1");
   const ShaderProgram& shade = program("03_light_volumes/shaders/light.frag", view, extra);
-  const ShaderProgram& mark = program("03_light_volumes/shaders/stencil.frag", view);
+  const ShaderProgram& mark = program("03_light_volumes/shaders/stencil.frag", view, counting);
   set_volume_uniforms(shade, view);
   set_volume_uniforms(mark, view);
   if (counting_) {
-    glClearNamedBufferData(counters_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
-    glBindBufferBase(GL_ATOMIC_COUNTER_BUFFER, 0, counters_.id());
+    counters_.reset(count_start_);
+    counters_.bind();
   }
   stats_ = {};
   target.bind();
@@ -533,10 +532,8 @@ void draw_stencil_volumes(const SurfaceView& view, int count, const std::functio
 // [/volume-hook]
 
 FragmentCounts LightVolumes::counts() const {
-  GLuint c[3] = {0, 0, 0};
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT);
-  glGetNamedBufferSubData(counters_.id(), 0, sizeof(c), c);
-  return {c[0], c[1], c[2]};
+  const std::vector<std::uint64_t> c = counters_.read();
+  return {.shaded = c[0], .lit = c[1], .lit_inner = c[2], .marking = c[3]};
 }
 
 void LightVolumes::composite(const LightBuffer& light, const SurfaceView& view, const glm::vec3& background) {

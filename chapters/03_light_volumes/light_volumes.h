@@ -27,6 +27,7 @@
 
 #include "chapters/02_gbuffer/deferred.h"
 #include "chapters/02_gbuffer/gbuffer.h"
+#include "chapters/03_light_volumes/fragment_counters.h"
 #include "chapters/03_light_volumes/light_instances.h"
 #include "chapters/03_light_volumes/volume_meshes.h"
 #include "common/camera.h"
@@ -114,12 +115,15 @@ class LightBuffer {
 };
 // [/light-buffer]
 
-// Exact counts of the lighting shader's invocations (atomic counters, early fragment tests;
-// 32 bits each, so exact up to 2^32 fragments a frame).
+// Exact counts of the lighting shader's invocations (64-bit counters made of 32-bit atomics,
+// fragment_counters.h; early fragment tests).
 struct FragmentCounts {
   std::uint64_t shaded = 0;     // fragments the lighting shader ran for, over all lights
   std::uint64_t lit = 0;        // of those, the ones the light added anything to
   std::uint64_t lit_inner = 0;  // of those, the ones within 99% of the light's cut radius
+  std::uint64_t marking = 0;    // fragments of the stencil-marking draws that passed the depth
+                                // test: they shade nothing, but GL_SAMPLES_PASSED counts them
+                                // (the pass's samples = shaded + marking)
   double overshading() const { return lit ? double(shaded) / double(lit) : 0.0; }
 };
 
@@ -168,7 +172,12 @@ class LightVolumes {
   void composite(const LightBuffer& light, const SurfaceView& view, const glm::vec3& background);
 
   // Counting costs an atomic operation per fragment: on for tests and the panel, off for timing.
-  void set_counting(bool on) { counting_ = on; }
+  // The counters start each draw_local at `start` (0; tests start them near 2^32 to see them
+  // cross it), and counts() returns start + what was counted.
+  void set_counting(bool on, std::uint64_t start = 0) {
+    counting_ = on;
+    count_start_ = start;
+  }
   bool counting() const { return counting_; }
   FragmentCounts counts() const;  // of the last draw_local (waits for the GPU)
   const DrawStats& draw_stats() const { return stats_; }
@@ -207,7 +216,9 @@ class LightVolumes {
   VolumeShapes shapes_;
   LightSet lights_;
   gl::Buffer sphere_vertices_, sphere_indices_, cone_vertices_, cone_indices_;
-  gl::Buffer points_, cones_, wide_spots_, directional_, counters_;
+  gl::Buffer points_, cones_, wide_spots_, directional_;
+  FragmentCounters counters_{4};  // shaded, lit, lit_inner (light.frag), marking (stencil.frag)
+  std::uint64_t count_start_ = 0;
   gl::VertexArray points_vao_, cones_vao_, wide_vao_;
   std::map<std::string, ShaderProgram> programs_;
   ch02::FullScreenPass full_screen_;

@@ -150,6 +150,14 @@ int main(int argc, char** argv) {
                        f.mode == "light-prepass" ? PrePassSpecular::White : PrePassSpecular::Chroma, &app.metrics());
       }
       FragmentCounts counts = volumes.counting() ? volumes.counts() : FragmentCounts{};
+      if (volumes.counting()) {
+        // The local-light pass's own counts beside its GL_SAMPLES_PASSED (which also counts
+        // the stencil-marking draws' fragments): --bench reports them apart.
+        const std::string local = is_prepass(f.mode) ? "local lights: stencil" : "local lights: " + f.mode;
+        app.metrics().count(local, "shaded", counts.shaded);
+        app.metrics().count(local, "lit", counts.lit);
+        app.metrics().count(local, "marking", counts.marking);
+      }
       if (std::ostream& out = app.report()) {
         glFinish();
         double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

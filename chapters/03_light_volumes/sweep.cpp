@@ -4,12 +4,13 @@
 //                        full-screen pass on the same frame; overshading (shaded / lit)
 //   03_tessellation.csv  the volumes' triangles against overshading and time
 //   03_cut.csv           where a light is cut against the error it leaves (vs uncut) and cost
-// Timings are GPU time on a GPU and CPU time on llvmpipe; each CSV's first line says which.
-// Fragment counts are exact and the same on every machine (they come from a separate frame
-// with the atomic counters on, so the timed frames do not pay for them).
+// Timings are GPU time on a GPU and CPU time on llvmpipe (common/measure.h: warm-up until
+// the times settle, then --frames frames); each CSV's first line says which, and every row
+// names the renderer, the size and the frames measured. Fragment counts are exact, 64-bit and
+// the same on every machine (they come from a separate frame with the atomic counters on, so
+// the timed frames do not pay for them).
 //
 //   03_light_volumes_sweep [--out DIR] [--size WxH] [--frames N] [--max-lights N] [--view NAME]
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -28,7 +29,7 @@
 #include "common/cli.h"
 #include "common/context.h"
 #include "common/error.h"
-#include "common/metrics.h"
+#include "common/measure.h"
 #include "common/paths.h"
 #include "common/sweep.h"
 #include "common/target.h"
@@ -47,42 +48,13 @@ struct Settings {
   std::string view = "street_level";
 };
 
-// The passes of one frame, timed over `frames` frames after a warm-up: mean ms per pass
-// (GL_TIME_ELAPSED) and the wall-clock time of a whole frame, finished with glFinish.
-// On llvmpipe the timer queries are not to be trusted (the software rasteriser defers its
-// work and the time lands in whichever query is open when it flushes): there only the
-// wall clock of the whole frame means something.
-struct Timing {
-  std::map<std::string, double> ms;
-  std::map<std::string, std::uint64_t> samples;
-  double wall_ms = 0;
-  double total() const {
-    double t = 0;
-    for (const auto& [k, v] : ms) t += v;
-    return t;
-  }
-};
-
-Timing measure(int frames, const std::function<void(PassMetrics&)>& frame) {
+// The passes of one frame, timed with the one measurement (common/measure.h), and the
+// wall-clock time of a whole frame, finished with glFinish on both sides. On llvmpipe the
+// passes are CPU times with glFinish around each (PassMetrics), so they add up to about the
+// wall clock there.
+Measurement measure_frames(int frames, const std::function<void(PassMetrics&)>& frame) {
   PassMetrics metrics;
-  double wall = 0;
-  for (int i = 0; i < 2 + frames; ++i) {
-    if (i == 2) metrics.reset();
-    glFinish();
-    auto start = std::chrono::steady_clock::now();
-    frame(metrics);
-    glFinish();
-    if (i >= 2) wall += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    metrics.end_frame();
-  }
-  metrics.wait_all();
-  Timing t;
-  for (const auto& s : metrics.stats()) {
-    t.ms[s.name] = s.mean_ms;
-    t.samples[s.name] = s.samples;
-  }
-  t.wall_ms = frames > 0 ? wall / frames : 0;
-  return t;
+  return measure(metrics, [&] { frame(metrics); }, {.frames = frames, .wall_clock = true});
 }
 
 class Sweep {
@@ -95,7 +67,7 @@ class Sweep {
   // Counts from one frame with the counters on, then the timed frames with them off; each
   // frame is the chapter's own (deferred_frame.cpp), into the sweep's output image.
   struct Result {
-    Timing time;
+    Measurement time;
     double local_ms = 0;  // the local lights' pass
     FragmentCounts counts;
     DrawStats stats;
@@ -105,19 +77,23 @@ class Sweep {
     auto volume_frame = [&](PassMetrics& m) { frame.render(camera_, {target_.framebuffer(), s_.width, s_.height}, &m); };
     Result r;
     frame.volumes().set_counting(true);
-    measure(0, volume_frame);
+    {
+      PassMetrics metrics;  // one frame, no warm-up: only its counts are wanted
+      measure(metrics, [&] { volume_frame(metrics); }, {.frames = 1, .skip_warmup = true});
+    }
     r.counts = frame.volumes().counts();
     r.stats = frame.volumes().draw_stats();
     frame.volumes().set_counting(false);
-    r.time = measure(s_.frames, volume_frame);
-    r.local_ms = r.time.ms["local lights: " + kStrategies[int(strategy)]];
+    r.time = measure_frames(s_.frames, volume_frame);
+    r.local_ms = r.time.pass("local lights: " + kStrategies[int(strategy)]).mean_ms;
     return r;
   }
 
-  void lights(const std::string& timer) {
+  void lights(const std::string& timer, const std::string& renderer) {
     std::ofstream csv(s_.out + "/03_lights.csv");
     csv << "# " << timer << ", " << s_.width << "x" << s_.height << ", street, view " << s_.view << "\n"
-        << "lights,method,total_ms,lighting_ms,wall_ms,light_evaluations,fragments_lit,overshading,draw_calls\n";
+        << "lights,method,total_ms,lighting_ms,wall_ms,light_evaluations,fragments_lit,overshading,draw_calls,"
+        << csv_measure_columns() << "\n";
     DeferredFrame frame(gpu_);
     LightVolumes& volumes = frame.volumes();
     ch01::ForwardRenderer forward(gpu_);
@@ -135,32 +111,35 @@ class Sweep {
         Strategy strategy = static_cast<Strategy>(k);
         if (strategy == Strategy::FullScreen && n > brute_force_cap) continue;
         Result r = run(frame, strategy);
-        // The counters are 32 bits: the full-screen pass at 4096 lights and 1080p passes 2^32.
-        // It shades every pixel for every light by construction (a test checks it), so
-        // there the count is computed instead.
-        if (strategy == Strategy::FullScreen) {
-          r.counts.shaded = std::uint64_t(volumes.lights().local_count()) * s_.width * s_.height;
-        }
+        // The counters are 64 bits: the full-screen pass at 4096 lights and 1080p shades
+        // more than 2^32 fragments. It shades every pixel for every light by construction: a
+        // cross-check of the counters where they cross 2^32.
+        const std::uint64_t every_pixel = std::uint64_t(volumes.lights().local_count()) * s_.width * s_.height;
+        if (strategy == Strategy::FullScreen && r.counts.shaded != every_pixel)
+          std::cerr << "warning: the full-screen pass counted " << r.counts.shaded << " fragments, not " << every_pixel << '\n';
         lit = r.counts.lit;
-        csv << n << ',' << kStrategies[k] << ',' << r.time.total() << ',' << r.local_ms << ',' << r.time.wall_ms << ',' << r.counts.shaded
-            << ',' << r.counts.lit << ',' << r.counts.overshading() << ',' << r.stats.draw_calls << '\n';
-        std::cout << n << " lights, " << kStrategies[k] << ": " << r.time.total() << " ms (local lights "
-                  << r.local_ms << ", wall clock " << r.time.wall_ms << "), shaded " << r.counts.shaded << ", lit " << r.counts.lit
+        const double local_ms = r.local_ms;
+        csv << n << ',' << kStrategies[k] << ',' << r.time.total_ms() << ',' << local_ms << ',' << r.time.wall_ms << ',' << r.counts.shaded
+            << ',' << r.counts.lit << ',' << r.counts.overshading() << ',' << r.stats.draw_calls << ','
+            << csv_measure_values(renderer, s_.width, s_.height, r.time.frames) << '\n';
+        std::cout << n << " lights, " << kStrategies[k] << ": " << r.time.total_ms() << " ms (local lights "
+                  << local_ms << ", wall clock " << r.time.wall_ms << "), shaded " << r.counts.shaded << ", lit " << r.counts.lit
                   << ", overshading " << r.counts.overshading() << std::endl;
       }
       if (n > brute_force_cap) continue;
       // Chapter 01: every object once, every light per fragment (the fragments include overdraw).
-      Timing f = measure(s_.frames, [&](PassMetrics& m) {
+      Measurement f = measure_frames(s_.frames, [&](PassMetrics& m) {
         target_.bind();
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         auto p = m.pass("forward");
         forward.draw(camera_, ch01::ForwardMode::PerPixel, all);
       });
-      std::uint64_t evaluations = f.samples["forward"] * std::uint64_t(all.count());
-      csv << n << ",forward (ch. 01)," << f.total() << ',' << f.ms["forward"] << ',' << f.wall_ms << ',' << evaluations << ',' << lit << ','
-          << double(evaluations) / double(lit) << ",1\n";
+      std::uint64_t evaluations = f.pass("forward").fragments * std::uint64_t(all.count());
+      csv << n << ",forward (ch. 01)," << f.total_ms() << ',' << f.pass("forward").mean_ms << ',' << f.wall_ms << ',' << evaluations << ','
+          << lit << ',' << double(evaluations) / double(lit) << ",1," << csv_measure_values(renderer, s_.width, s_.height, f.frames)
+          << '\n';
       // Chapter 02: the G-buffer, then every light for every pixel in one full-screen pass.
-      Timing d = measure(s_.frames, [&](PassMetrics& m) {
+      Measurement d = measure_frames(s_.frames, [&](PassMetrics& m) {
         {
           auto p = m.pass("geometry");
           geometry_.draw(gbuffer_, camera_);
@@ -170,19 +149,21 @@ class Sweep {
         deferred.draw(gbuffer_, all, scene_.ambient, ch01::kBackground, ch02::LightSelection::All);
       });
       evaluations = std::uint64_t(s_.width) * s_.height * std::uint64_t(all.count());
-      csv << n << ",full-screen pass (ch. 02)," << d.total() << ',' << d.ms["lighting"] << ',' << d.wall_ms << ',' << evaluations << ',' << lit
-          << ',' << double(evaluations) / double(lit) << ",1\n";
-      std::cout << n << " lights: forward " << f.total() << " ms (wall " << f.wall_ms << "), chapter 02 " << d.total()
+      csv << n << ",full-screen pass (ch. 02)," << d.total_ms() << ',' << d.pass("lighting").mean_ms << ',' << d.wall_ms << ','
+          << evaluations << ',' << lit << ',' << double(evaluations) / double(lit) << ",1,"
+          << csv_measure_values(renderer, s_.width, s_.height, d.frames) << '\n';
+      std::cout << n << " lights: forward " << f.total_ms() << " ms (wall " << f.wall_ms << "), chapter 02 " << d.total_ms()
                 << " ms (wall " << d.wall_ms << ")" << std::endl;
     }
   }
 
-  void tessellation(const std::string& timer) {
+  void tessellation(const std::string& timer, const std::string& renderer) {
     std::ofstream csv(s_.out + "/03_tessellation.csv");
     const int n = std::min(1024, s_.max_lights);
     csv << "# " << timer << ", " << s_.width << "x" << s_.height << ", street, view " << s_.view << ", " << n
         << " lights, stencil strategy\n"
-        << "subdivisions,triangles,circumradius,total_ms,lighting_ms,wall_ms,fragments_shaded,fragments_lit,overshading\n";
+        << "subdivisions,triangles,circumradius,total_ms,lighting_ms,wall_ms,fragments_shaded,fragments_lit,overshading,"
+        << csv_measure_columns() << "\n";
     std::vector<Light> lights = lights_for_count(scene_, n);
     for (int subdivisions : {0, 1, 2, 3}) {
       DeferredFrame frame(gpu_, ch02::our_layout(), subdivisions);
@@ -190,8 +171,9 @@ class Sweep {
       volumes.set_lights(build_light_set(lights, cut_threshold(1.f, peak_reflectance(scene_)), volumes.shapes()));
       Result r = run(frame, Strategy::Stencil);
       csv << subdivisions << ',' << volumes.shapes().sphere.triangle_count() << ',' << icosphere_circumradius(subdivisions) << ','
-          << r.time.total() << ',' << r.local_ms << ',' << r.time.wall_ms << ',' << r.counts.shaded << ',' << r.counts.lit << ','
-          << r.counts.overshading() << '\n';
+          << r.time.total_ms() << ',' << r.local_ms << ',' << r.time.wall_ms << ',' << r.counts.shaded << ','
+          << r.counts.lit << ',' << r.counts.overshading() << ',' << csv_measure_values(renderer, s_.width, s_.height, r.time.frames)
+          << '\n';
       std::cout << "icosphere " << subdivisions << ": overshading " << r.counts.overshading() << ", local lights "
                 << r.local_ms << " ms" << std::endl;
     }
@@ -199,11 +181,12 @@ class Sweep {
 
   // The light cut: the sources' 1/256 of the light against ours, on the street as it is and
   // with every range removed (the inverse square alone, where the cut decides everything).
-  void cut(const std::string& timer) {
+  void cut(const std::string& timer, const std::string& renderer) {
     std::ofstream csv(s_.out + "/03_cut.csv");
     csv << "# " << timer << ", " << s_.width << "x" << s_.height << ", street (312 lights), view " << s_.view
         << "; error: 8-bit sRGB steps against chapter 02's uncut full-screen shading\n"
-        << "lights,rule,threshold,mean_radius,lighting_ms,wall_ms,fragments_shaded,max_error,p99_error,mean_error\n";
+        << "lights,rule,threshold,mean_radius,lighting_ms,wall_ms,fragments_shaded,max_error,p99_error,mean_error,"
+        << csv_measure_columns() << "\n";
     DeferredFrame frame(gpu_);
     LightVolumes& volumes = frame.volumes();
     ch02::DeferredLighting deferred;
@@ -233,8 +216,8 @@ class Sweep {
         Result r = run(frame, Strategy::Stencil);
         CompareResult e = compare(target_.read(), truth, {.threshold = 1, .max_failing_fraction = 1.0});
         csv << (ranged ? "with ranges" : "no ranges") << ',' << rule.name << ',' << rule.threshold << ',' << radius << ','
-            << r.local_ms << ',' << r.time.wall_ms << ',' << r.counts.shaded << ',' << e.max_error << ',' << e.p99_error << ','
-            << e.mean_error << '\n';
+            << r.local_ms << ',' << r.time.wall_ms << ',' << r.counts.shaded << ',' << e.max_error << ','
+            << e.p99_error << ',' << e.mean_error << ',' << csv_measure_values(renderer, s_.width, s_.height, r.time.frames) << '\n';
         std::cout << (ranged ? "with ranges, " : "no ranges, ") << rule.name << ": mean radius " << radius << " m, max error "
                   << e.max_error << " steps, shaded " << r.counts.shaded << std::endl;
       }
@@ -273,9 +256,9 @@ int main(int argc, char** argv) {
     std::string timer = (software ? "llvmpipe CPU time: " : "GPU time: ") + context->renderer();
     std::cout << timer << ", " << s.width << "x" << s.height << '\n';
     Sweep sweep(s, scene, gpu, software);
-    sweep.lights(timer);
-    sweep.tessellation(timer);
-    sweep.cut(timer);
+    sweep.lights(timer, context->renderer());
+    sweep.tessellation(timer, context->renderer());
+    sweep.cut(timer, context->renderer());
     std::cout << "wrote " << s.out << "/03_lights.csv, 03_tessellation.csv and 03_cut.csv\n";
   });
 }

@@ -139,6 +139,13 @@ int main(int argc, char** argv) {
       if (deferred) app.metrics().set_allocation("G-buffer (chapter 02) + light buffer (chapter 03)", frame.allocated_bytes());
 
       const NeonCounts& c = neon.counts();
+      if (neon.counting()) {
+        // The neon pass's own counts beside its GL_SAMPLES_PASSED (which also counts the
+        // stencil-marking draws' fragments): --bench reports them apart.
+        app.metrics().count("neon: capsule volumes, stencil", "shaded", c.shaded);
+        app.metrics().count("neon: capsule volumes, stencil", "lit", c.lit);
+        app.metrics().count("neon: capsule volumes, stencil", "marking", c.marking);
+      }
       if (std::ostream& out = app.report()) {
         glFinish();
         double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -1,10 +1,12 @@
 #include "chapters/04_neon/neon_volumes.h"
 
+#include "common/metrics.h"
+
 namespace lp::ch04 {
 
 namespace {
 
-constexpr GLsizeiptr kCounterStride = 16;  // per tube: shaded, lit, lit_open (and padding)
+constexpr int kCountersPerTube = 4;  // shaded, lit, lit_open (neon_volume.frag), marking (stencil.frag)
 
 const char* const kCapsule = "04_neon/shaders/capsule.vert";
 
@@ -33,14 +35,14 @@ void NeonVolumes::draw(const NeonTubes& tubes, const ch03::LightBuffer& light, c
   counts_ = {};
   per_tube_.assign(std::size_t(tubes.count()), {});
   if (tubes.count() == 0) return;
-  std::vector<std::string> extra;
-  if (counting_) extra.push_back("COUNT_FRAGMENTS 1");
+  const std::vector<std::string> counting = counting_ ? ch03::FragmentCounters::defines() : std::vector<std::string>{};
+  std::vector<std::string> extra = counting;
   if (waste) extra.push_back("SHOW_WASTE 1");
   // [neon-programs]
   // The mask: the capsule placed by capsule.vert, chapter 03's empty stencil shader. The
   // light: the same capsule, and a fragment shader that lights the G-buffer's surface with
   // neon_light() (shaders/neon_volume.frag).
-  const ShaderProgram& mark = program(kCapsule, "03_light_volumes/shaders/stencil.frag", view);
+  const ShaderProgram& mark = program(kCapsule, "03_light_volumes/shaders/stencil.frag", view, counting);
   const ShaderProgram& shade = program(kCapsule, "04_neon/shaders/neon_volume.frag", view, extra);
   for (const ShaderProgram* p : {&mark, &shade}) {
     p->use();
@@ -51,12 +53,9 @@ void NeonVolumes::draw(const NeonTubes& tubes, const ch03::LightBuffer& light, c
   shade.set("u_samples", how.samples);
   // [/neon-programs]
   if (counting_) {
-    const GLsizeiptr bytes = kCounterStride * tubes.count();
-    if (counters_size_ < bytes) {  // storage is immutable: a larger buffer when needed
-      counters_ = gl::make_buffer(nullptr, std::size_t(bytes), GL_DYNAMIC_STORAGE_BIT);
-      counters_size_ = bytes;
-    }
-    glClearNamedBufferData(counters_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+    counters_.resize(kCountersPerTube * tubes.count());
+    counters_.reset(count_start_);
+    counters_.bind();
   }
   // A second, independent count: GL_SAMPLES_PASSED around each light pass. Only one such
   // query can be active, and a measured pass (PassMetrics) already runs one: then this one
@@ -69,35 +68,34 @@ void NeonVolumes::draw(const NeonTubes& tubes, const ch03::LightBuffer& light, c
   // Chapter 03's stencil strategy, with a capsule for the volume: per tube, the mask (both
   // faces, no colour), then the light (back faces, where the mask is set).
   ch03::draw_stencil_volumes(view, tubes.count(), [&](int i, ch03::VolumePass pass) {
+    const ShaderProgram& p = pass == ch03::VolumePass::Mark ? mark : shade;
+    p.use();
+    if (counting_) p.set("u_counter_base", kCountersPerTube * i);  // this tube's counters
     if (pass == ch03::VolumePass::Mark) {
-      mark.use();
       tubes.draw_capsule(i);
       return;
     }
-    shade.use();
-    if (counting_) glBindBufferRange(GL_ATOMIC_COUNTER_BUFFER, 0, counters_.id(), kCounterStride * i, kCounterStride);
     if (query) glBeginQuery(GL_SAMPLES_PASSED, samples_.id());
     tubes.draw_capsule(i);
     if (query) {
       glEndQuery(GL_SAMPLES_PASSED);
-      GLuint64 passed = 0;
-      glGetQueryObjectui64v(samples_.id(), GL_QUERY_RESULT, &passed);
-      per_tube_[std::size_t(i)].samples = passed;
+      per_tube_[std::size_t(i)].samples = query_result_u64(samples_.id());  // 64-bit (common/metrics.h)
     }
   });
   // [/neon-volumes]
   if (counting_) {
-    std::vector<GLuint> c(std::size_t(kCounterStride / 4) * tubes.count());
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT);
-    glGetNamedBufferSubData(counters_.id(), 0, kCounterStride * tubes.count(), c.data());
+    const std::vector<std::uint64_t> c = counters_.read();
     for (int i = 0; i < tubes.count(); ++i) {
       NeonCounts& t = per_tube_[std::size_t(i)];
-      t.shaded = c[4 * i];
-      t.lit = c[4 * i + 1];
-      t.lit_open = c[4 * i + 2];
+      const std::size_t k = std::size_t(kCountersPerTube) * std::size_t(i);
+      t.shaded = c[k];
+      t.lit = c[k + 1];
+      t.lit_open = c[k + 2];
+      t.marking = c[k + 3];
       counts_.shaded += t.shaded;
       counts_.lit += t.lit;
       counts_.lit_open += t.lit_open;
+      counts_.marking += t.marking;
       counts_.samples += t.samples;
     }
   }

@@ -26,13 +26,15 @@
 
 namespace lp::ch04 {
 
-// Exact counts of the neon pass (atomic counters in the volume shader, early fragment tests),
-// summed over the tubes.
+// Exact counts of the neon pass (chapter 03's 64-bit counters in the volume shader, early
+// fragment tests), summed over the tubes.
 struct NeonCounts {
   std::uint64_t shaded = 0;     // fragments the volume shader ran for
   std::uint64_t lit = 0;        // of those, the ones the tube added anything to
   std::uint64_t lit_open = 0;   // ... would have added anything to, were its barn doors open
-  std::uint64_t samples = 0;    // GL_SAMPLES_PASSED over the light passes (== shaded); 0 when
+  std::uint64_t marking = 0;    // fragments of the stencil-marking draws that passed the depth
+                                // test (they shade nothing; GL_SAMPLES_PASSED counts them)
+  std::uint64_t samples = 0;    // GL_SAMPLES_PASSED over the light draws (== shaded); 0 when
                                 // drawn inside a measured pass, whose query is the active one
   double overshading() const { return lit ? double(shaded) / double(lit) : 0.0; }
 };
@@ -50,8 +52,13 @@ class NeonVolumes {
   void draw(const NeonTubes& tubes, const ch03::LightBuffer& light, const ch03::SurfaceView& view, const NeonDraw& how,
             bool waste = false);
 
-  // Counting costs atomic operations and a query per tube: on for tests and the panel.
-  void set_counting(bool on) { counting_ = on; }
+  // Counting costs atomic operations and a query per tube: on for tests and the panel. The
+  // counters start each draw at `start` (0; tests start them near 2^32 to see them cross it):
+  // every tube's counts are start + what was counted.
+  void set_counting(bool on, std::uint64_t start = 0) {
+    counting_ = on;
+    count_start_ = start;
+  }
   bool counting() const { return counting_; }
   const NeonCounts& counts() const { return counts_; }                    // of the last draw
   const std::vector<NeonCounts>& tube_counts() const { return per_tube_; }  // per tube
@@ -70,8 +77,8 @@ class NeonVolumes {
                                std::vector<std::string> extra = {});
   std::map<std::string, ShaderProgram> programs_;
   ch02::FullScreenPass full_screen_;
-  gl::Buffer counters_;
-  GLsizeiptr counters_size_ = 0;
+  ch03::FragmentCounters counters_;  // per tube: shaded, lit, lit_open, marking
+  std::uint64_t count_start_ = 0;
   gl::Query samples_{GL_SAMPLES_PASSED};
   bool counting_ = false;
   NeonCounts counts_;

@@ -1,7 +1,8 @@
 // Chapter 04's measurements: every method's error against the ground truth (diffuse and
 // specular apart) and its cost, on the neon scene's views; then N point lights as N grows.
 // Writes CSV files and the images the book shows; timings are GPU time on a GPU and CPU time
-// on llvmpipe, and the CSV says which.
+// on llvmpipe (common/measure.h: warm-up until the times settle, then --frames frames), the
+// CSV says which, and every row names the renderer, the size and the frames measured.
 //
 //   04_neon_sweep [--out DIR] [--size WxH] [--frames N] [--reference-samples N]
 #include <cmath>
@@ -16,7 +17,7 @@
 #include "chapters/04_neon/neon_scene.h"
 #include "common/context.h"
 #include "common/error.h"
-#include "common/metrics.h"
+#include "common/measure.h"
 #include "common/paths.h"
 #include "common/sweep.h"
 #include "common/target.h"
@@ -31,6 +32,7 @@ struct Settings {
   int width = 640, height = 360;
   int frames = 10;
   int reference_samples = 2048;
+  std::string renderer;  // GL_RENDERER, for the CSV rows
 };
 
 // A method as the sweep names it: the renderer's method and its sample count.
@@ -60,20 +62,15 @@ class Sweep {
     glEnable(GL_FRAMEBUFFER_SRGB);
     return linear_.read();
   }
-  // Mean time of the whole forward pass over `frames` frames, after a warm-up.
-  PassMetrics::Stats time(const FrameCamera& camera, NeonDraw how) {
+  // The whole forward pass, measured (common/measure.h): mean and fastest of s_.frames frames.
+  PassMeasurement time(const FrameCamera& camera, NeonDraw how) {
     srgb_.bind();
-    for (int i = 0; i < 2 + s_.frames; ++i) {
-      if (i == 2) metrics_.reset();
+    Measurement m = measure(metrics_, [&] {
       clear();
-      {
-        auto pass = metrics_.pass("frame");
-        forward_.draw(camera, how, lights_, tubes_);
-      }
-      metrics_.end_frame();
-    }
-    metrics_.wait_all();
-    return *metrics_.find("frame");
+      auto pass = metrics_.pass("frame");
+      forward_.draw(camera, how, lights_, tubes_);
+    }, {.frames = s_.frames});
+    return m.pass("frame");
   }
 
  private:
@@ -136,10 +133,11 @@ Truth render_truth(Sweep& sweep, const FrameCamera& camera, int samples) {
   return t;
 }
 
-void write_row(std::ofstream& csv, const std::string& prefix, const std::string& term, const Errors& e,
-               const PassMetrics::Stats& time) {
+void write_row(std::ofstream& csv, const Settings& s, const std::string& prefix, const std::string& term, const Errors& e,
+               const PassMeasurement& time) {
   csv << prefix << ',' << term << ',' << e.mean_steps << ',' << e.p99_steps << ',' << 100 * e.mean_rel << ','
-      << 100 * e.p99_rel << ',' << time.mean_ms << ',' << time.min_ms << '\n';
+      << 100 * e.p99_rel << ',' << time.mean_ms << ',' << time.min_ms << ','
+      << csv_measure_values(s.renderer, s.width, s.height, time.frames) << '\n';
 }
 
 void methods_sweep(const Settings& s, const Scene& scene, Sweep& sweep, const std::string& timer) {
@@ -147,7 +145,7 @@ void methods_sweep(const Settings& s, const Scene& scene, Sweep& sweep, const st
   csv << "# " << timer << ", " << s.width << "x" << s.height << ", truth " << s.reference_samples << " samples per tube\n"
       << "# steps: 8-bit sRGB; rel: |m - t| / max(t, 1/256) in %; ms: the whole forward pass, mean and fastest of "
       << s.frames << " frames\n"
-      << "view,method,term,mean_steps,p99_steps,mean_rel_pct,p99_rel_pct,ms,min_ms\n";
+      << "view,method,term,mean_steps,p99_steps,mean_rel_pct,p99_rel_pct,ms,min_ms," << csv_measure_columns() << "\n";
   const std::vector<Variant> variants = {
       {"ground-truth-256", {.method = Method::GroundTruth, .samples = 256}},
       {"source", {.method = Method::Source}},
@@ -162,7 +160,7 @@ void methods_sweep(const Settings& s, const Scene& scene, Sweep& sweep, const st
     Truth truth = render_truth(sweep, camera, s.reference_samples);
     if (view != "close") save_png(s.out + "/04_" + view + "_truth.png", truth.image8[0]);
     for (const auto& v : variants) {
-      PassMetrics::Stats time = sweep.time(camera, v.draw);
+      PassMeasurement time = sweep.time(camera, v.draw);
       std::cout << view << ' ' << v.name << ": " << time.mean_ms << " ms (fastest " << time.min_ms << ")";
       for (Term term : {Term::Diffuse, Term::Specular}) {
         if (v.draw.method == Method::AnalyticDiffuse && term == Term::Specular) continue;  // it has none
@@ -170,7 +168,7 @@ void methods_sweep(const Settings& s, const Scene& scene, Sweep& sweep, const st
         how.term = term;
         Errors e = errors(sweep.render8(camera, how), truth.image8[int(term)], sweep.render_linear(camera, how),
                           truth.linear[int(term)]);
-        write_row(csv, view + ',' + v.name, term == Term::Diffuse ? "diffuse" : "specular", e, time);
+        write_row(csv, s, view + ',' + v.name, term == Term::Diffuse ? "diffuse" : "specular", e, time);
         std::cout << (term == Term::Diffuse ? " | diffuse" : " | specular") << " mean " << e.mean_steps << " p99 "
                   << e.p99_steps << " steps, rel mean " << 100 * e.mean_rel << "% p99 " << 100 * e.p99_rel << "%";
       }
@@ -194,16 +192,16 @@ void points_sweep(const Settings& s, const Scene& scene, Sweep& sweep, const std
       << " samples per tube\n"
       << "# steps: 8-bit sRGB; rel: |m - t| / max(t, 1/256) in %; ms: the whole forward pass, mean and fastest of "
       << s.frames << " frames\n"
-      << "n,series,term,mean_steps,p99_steps,mean_rel_pct,p99_rel_pct,ms,min_ms\n";
+      << "n,series,term,mean_steps,p99_steps,mean_rel_pct,p99_rel_pct,ms,min_ms," << csv_measure_columns() << "\n";
   FrameCamera camera = frame_camera(scene.camera("overview"), float(s.width) / s.height);
   Truth truth = render_truth(sweep, camera, s.reference_samples);
   auto row = [&](int n, const std::string& series, NeonDraw how) {
-    PassMetrics::Stats time = sweep.time(camera, how);
+    PassMeasurement time = sweep.time(camera, how);
     for (Term term : {Term::Diffuse, Term::Specular}) {
       how.term = term;
       Errors e = errors(sweep.render8(camera, how), truth.image8[int(term)], sweep.render_linear(camera, how),
                         truth.linear[int(term)]);
-      write_row(csv, std::to_string(n) + ',' + series, term == Term::Diffuse ? "diffuse" : "specular", e, time);
+      write_row(csv, s, std::to_string(n) + ',' + series, term == Term::Diffuse ? "diffuse" : "specular", e, time);
     }
     std::cout << series << ' ' << n << ": " << time.mean_ms << " ms (fastest " << time.min_ms << ")" << std::endl;
   };
@@ -224,6 +222,7 @@ int main(int argc, char** argv) {
   }, [&] {
     std::filesystem::create_directories(s.out);
     auto context = Context::create({.headless = true, .width = s.width, .height = s.height});
+    s.renderer = context->renderer();
     Scene scene = load_scene(from_root("assets/neon/neon.gltf"));
     SceneGpu gpu(scene);
     std::string timer = (context->is_software() ? "llvmpipe CPU time: " : "GPU time: ") + context->renderer();

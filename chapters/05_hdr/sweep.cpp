@@ -6,12 +6,13 @@
 //  - eye adaptation over frames (GPU against the C++ formula);
 //  - the book's pictures: 8-bit against float, each operator, the adaptation strip, the
 //    bloom stages, what the naive mip chain never sees.
-// Timings are GPU time on a GPU and CPU time on llvmpipe; the CSV files say which.
+// Timings are GPU time on a GPU and CPU time on llvmpipe (common/measure.h: warm-up until the
+// times settle, then --frames frames); the CSV files say which, and every row of a rendered
+// table names the renderer, the size and the frames measured.
 //
 //   05_hdr_sweep [--out DIR] [--frames N] [--sizes WxH,WxH,...] [--bloom-size WxH]
 //                [--figure-size WxH] [--no-figures] [--no-sweeps]
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -27,7 +28,7 @@
 #include "chapters/05_hdr/reference.h"
 #include "common/context.h"
 #include "common/error.h"
-#include "common/metrics.h"
+#include "common/measure.h"
 #include "common/paths.h"
 #include "common/cli.h"
 #include "common/sweep.h"
@@ -46,7 +47,7 @@ struct Settings {
   int figure_width = 640, figure_height = 360;
   bool no_figures = false;
   bool no_sweeps = false;  // figures and adaptation only
-  bool software = false;  // llvmpipe: time with the CPU clock
+  std::string renderer;   // GL_RENDERER, for the CSV rows
 };
 
 // "640x360,1920x1080" -> sizes (the --sizes option).
@@ -61,34 +62,16 @@ std::vector<std::pair<int, int>> parse_sizes(const std::string& text) {
   return sizes;
 }
 
-// Runs `work` for two warm-up frames and then `frames` measured ones; returns the mean in ms.
-// On a GPU: GL_TIME_ELAPSED queries. On llvmpipe those do not see compute dispatches, so
-// there it is wall-clock time around the work with glFinish on both sides (CPU time).
-double measure_ms(int frames, bool software, const std::function<void()>& work) {
-  if (software) {
-    double total = 0;
-    for (int i = 0; i < 2 + frames; ++i) {
-      glFinish();
-      auto start = std::chrono::steady_clock::now();
-      work();
-      glFinish();
-      if (i >= 2) total += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    }
-    return total / frames;
-  }
+// `work` as one measured pass (common/measure.h): on a GPU its GL_TIME_ELAPSED time, which
+// covers compute dispatches; on llvmpipe the CPU clock with glFinish on both sides.
+PassMeasurement measure_work(int frames, const std::function<void()>& work) {
   PassMetrics metrics;
-  for (int i = 0; i < 2 + frames; ++i) {
-    if (i == 2) metrics.reset();
-    {
-      auto p = metrics.pass("work");
-      work();
-    }
-    metrics.end_frame();
-  }
-  metrics.wait_all();
-  return metrics.find("work")->mean_ms;
+  Measurement m = measure(metrics, [&] {
+    auto p = metrics.pass("work");
+    work();
+  }, {.frames = frames});
+  return m.pass("work");
 }
-
 
 // The chapter's radiance: chapter 03's deferred path, the volumes cut as on the program's
 // first frame (for the stage's largest exposure: nothing the eye could see is cut).
@@ -109,7 +92,7 @@ struct SceneSource {
 void log_average_sweep(const Settings& s, SceneSource& atrium, const std::string& timer) {
   std::ofstream csv(s.out + "/05_log_average.csv");
   csv << "# " << timer << "; delta 1e-4; rel_error = |exp(mean_log_gpu - mean_log_exact) - 1|; exact = double-precision CPU reduction of the same RGBA16F buffer\n"
-      << "width,height,buffer,method,pixels,pixels_counted,lost_fraction,rel_error,ms\n";
+      << "width,height,buffer,method,pixels,pixels_counted,lost_fraction,rel_error,ms,renderer,frames\n";
   LogAverage la;
   const float delta = 1e-4f;
   for (auto [w, h] : s.sizes) {
@@ -123,10 +106,13 @@ void log_average_sweep(const Settings& s, SceneSource& atrium, const std::string
         la.compute(texture, w, h, method, delta);
         LogAverageResult r = la.read();
         double error = std::abs(std::exp(double(r.mean_log) - exact.mean_log) - 1.0);
-        double ms = measure_ms(s.frames, s.software, [&] { la.compute(texture, w, h, method, delta); });
+        PassMeasurement t = measure_work(s.frames, [&] { la.compute(texture, w, h, method, delta); });
+        double ms = t.mean_ms;
         double pixels = double(w) * h;
+        // (width and height are already columns here: the renderer and frames complete them)
         csv << w << ',' << h << ',' << name << ',' << kAverageMethodNames[m] << ',' << std::size_t(pixels) << ','
-            << std::size_t(r.count) << ',' << 1.0 - r.count / pixels << ',' << error << ',' << ms << '\n';
+            << std::size_t(r.count) << ',' << 1.0 - r.count / pixels << ',' << error << ',' << ms << ','
+            << csv_quoted(s.renderer) << ',' << t.frames << '\n';
         std::cout << "  " << name << ' ' << kAverageMethodNames[m] << ": error " << error << ", counted " << r.count << ", "
                   << ms << " ms" << std::endl;
       }
@@ -149,7 +135,8 @@ void bloom_sweep(const Settings& s, SceneSource& street, const std::string& time
   std::ofstream csv(s.out + "/05_bloom.csv");
   csv << "# " << timer << "; " << w << "x" << h << " street_level, glow 8; error of the bloom term against the level-0 (full-resolution) bloom of the same radius: "
          "rel_rms = rms(difference) / rms(full), max_abs in exposed units\n"
-      << "radius,level,blur_width,blur_height,sigma_texels,taps,ms_bright,ms_blur,ms_total,rel_rms,max_abs\n";
+      << "radius,level,blur_width,blur_height,sigma_texels,taps,ms_bright,ms_blur,ms_total,rel_rms,max_abs,"
+      << csv_measure_columns() << "\n";
   HdrPipeline hdr;
   for (float radius : {0.02f, 0.05f}) {
     ImageF full;
@@ -173,12 +160,14 @@ void bloom_sweep(const Settings& s, SceneSource& street, const std::string& time
       // The passes timed alone, each with the exposure the pipeline just computed.
       Bloom bloom;
       GLuint exposure = hdr.adaptation().state_buffer();
-      double bright_ms = measure_ms(s.frames, s.software, [&] { bloom.bright_pass(radiance.texture(), w, h, exposure, chain); });
-      double blur_ms = measure_ms(s.frames, s.software, [&] { bloom.blur(chain); });
-      double total_ms = measure_ms(s.frames, s.software, [&] { bloom.bright_pass(radiance.texture(), w, h, exposure, chain); bloom.blur(chain); });
+      double bright_ms = measure_work(s.frames, [&] { bloom.bright_pass(radiance.texture(), w, h, exposure, chain); }).mean_ms;
+      double blur_ms = measure_work(s.frames, [&] { bloom.blur(chain); }).mean_ms;
+      PassMeasurement total = measure_work(s.frames, [&] { bloom.bright_pass(radiance.texture(), w, h, exposure, chain); bloom.blur(chain); });
+      double total_ms = total.mean_ms;
       double rel_rms = sf > 0 ? std::sqrt(se / sf) : 0.0;
       csv << radius << ',' << level << ',' << b.level_size().x << ',' << b.level_size().y << ',' << b.sigma_texels() << ','
-          << b.taps() << ',' << bright_ms << ',' << blur_ms << ',' << total_ms << ',' << rel_rms << ',' << max_abs << '\n';
+          << b.taps() << ',' << bright_ms << ',' << blur_ms << ',' << total_ms << ',' << rel_rms << ',' << max_abs << ','
+          << csv_measure_values(s.renderer, w, h, total.frames) << '\n';
       std::cout << "  radius " << radius << " level " << level << ": " << total_ms << " ms, rel rms " << rel_rms << std::endl;
     }
   }
@@ -195,14 +184,15 @@ void adaptation_sweep(const Settings& s, SceneSource& atrium, const std::string&
   std::ofstream csv(s.out + "/05_adaptation.csv");
   csv << "# " << timer << "; atrium aisle, sun 25; eye adapted to 30x the scene's log-average at frame 0; tau 0.5 s, 60 frames/s; "
          "adapted_cpu = the C++ formula (hdr_math.h) from the same first value\n"
-      << "frame,time_s,target,adapted_gpu,adapted_cpu,exposure\n";
+      << "frame,time_s,target,adapted_gpu,adapted_cpu,exposure," << csv_measure_columns() << "\n";
   std::vector<ImageRGBA8> strip;
   float cpu = 0;
   for (int frame = 0; frame <= 150; ++frame) {
     hdr.process(radiance.texture(), w, h, hs, target.framebuffer());
     ExposureState e = hdr.adaptation().read();
     cpu = frame == 0 ? e.adapted : adapt(cpu, e.target, hs.adaptation.dt, hs.adaptation.tau);
-    csv << frame << ',' << frame / 60.0 << ',' << e.target << ',' << e.adapted << ',' << cpu << ',' << e.exposure << '\n';
+    csv << frame << ',' << frame / 60.0 << ',' << e.target << ',' << e.adapted << ',' << cpu << ',' << e.exposure << ','
+        << csv_measure_values(s.renderer, w, h, 1) << '\n';
     if (!s.no_figures && (frame == 0 || frame == 15 || frame == 30 || frame == 60 || frame == 90 || frame == 150)) strip.push_back(target.read());
   }
   if (s.no_figures) return;
@@ -246,7 +236,8 @@ void figures(const Settings& s, SceneSource& street, SceneSource& atrium) {
   std::ofstream clip(s.out + "/05_clipping.csv");
   clip << "# " << w << "x" << h << "; what an RGBA8 light accumulation loses: pixels with a channel above 1 (clipped), "
           "and the float buffer's luminance percentiles\n"
-       << "scene,view,sun,glow,pixels_above_1,fraction_above_1,max_luminance,p1_luminance,p50_luminance,p99_luminance,log_average\n";
+       << "scene,view,sun,glow,pixels_above_1,fraction_above_1,max_luminance,p1_luminance,p50_luminance,p99_luminance,log_average,"
+       << csv_measure_columns() << "\n";
   for (auto& [scene, name, view, sun, glow] :
        {std::tuple{&street, "street", "street_level", 1.f, 8.f}, std::tuple{&atrium, "atrium", "aisle", 25.f, 1.f}}) {
     RadianceTarget hdr16 = scene->render(view, w, h, sun, glow), ldr8 = scene->render(view, w, h, sun, glow, GL_RGBA8);
@@ -263,7 +254,7 @@ void figures(const Settings& s, SceneSource& street, SceneSource& atrium) {
       auto pct = [&](double p) { return lum[std::min(lum.size() - 1, std::size_t(p * lum.size()))]; };
       clip << name << ',' << view << ',' << sun << ',' << glow << ',' << above << ',' << double(above) / (w * h) << ','
            << lum.back() << ',' << pct(0.01) << ',' << pct(0.5) << ',' << pct(0.99) << ','
-           << exact_log_average(radiance, 1e-4f).luminance << '\n';
+           << exact_log_average(radiance, 1e-4f).luminance << ',' << csv_measure_values(s.renderer, w, h, 1) << '\n';
     }
     HdrSettings hs;
     shoot(ldr8.texture(), hs, std::string("05_") + name + "_8bit");
@@ -315,7 +306,7 @@ int main(int argc, char** argv) {
     if (!sizes.empty()) s.sizes = parse_sizes(sizes);
     std::filesystem::create_directories(s.out);
     auto context = Context::create({.headless = true, .width = 64, .height = 64});
-    s.software = context->is_software();
+    s.renderer = context->renderer();
     std::string timer = (context->is_software() ? "llvmpipe CPU wall-clock time (glFinish around the work): " : "GPU time (GL_TIME_ELAPSED): ") + context->renderer();
     std::cout << timer << std::endl;
     SceneSource street("assets/street/street.gltf"), atrium("assets/atrium/atrium.gltf");

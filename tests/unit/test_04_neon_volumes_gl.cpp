@@ -438,3 +438,37 @@ TEST_F(NeonVolumesGl, CapsulesShadeAtMostTwentyPercentMoreThanTheTubesLight) {
   ASSERT_EQ(street_->tube_lights[2].name, "sign_green");
   EXPECT_GT(double(green.lit_open), 2.0 * double(green.lit)) << "lit " << green.lit << ", doors open " << green.lit_open;
 }
+
+// Chapter 03's 64-bit counters in the capsules too, one set per tube: started 100 below 2^32,
+// every tube's counts carry across it exactly (a 32-bit counter would wrap to a small number).
+TEST_F(NeonVolumesGl, CountersCountPast32Bits) {
+  const FrameCamera cam = street_->camera("neon_signs");
+  street_->deferred_image(cam, draw_for(Method::Improved));
+  const std::vector<NeonCounts> from_zero = street_->neon().tube_counts();
+  const std::uint64_t start = (std::uint64_t(1) << 32) - 100;
+  street_->neon().set_counting(true, start);
+  street_->deferred_image(cam, draw_for(Method::Improved));
+  street_->neon().set_counting(true);
+  const std::vector<NeonCounts>& crossed = street_->neon().tube_counts();
+  ASSERT_EQ(crossed.size(), from_zero.size());
+  int crossing = 0;
+  for (std::size_t i = 0; i < crossed.size(); ++i) {
+    const std::string& name = street_->tube_lights[i].name;
+    EXPECT_EQ(crossed[i].shaded, start + from_zero[i].shaded) << name;
+    EXPECT_EQ(crossed[i].lit, start + from_zero[i].lit) << name;
+    EXPECT_EQ(crossed[i].lit_open, start + from_zero[i].lit_open) << name;
+    EXPECT_EQ(crossed[i].marking, start + from_zero[i].marking) << name;
+    EXPECT_EQ(crossed[i].samples, from_zero[i].samples) << name << ": the query counts from 0";
+    crossing += from_zero[i].shaded > 100;
+  }
+  EXPECT_GT(crossing, 0) << "no tube shaded enough fragments to cross 2^32";
+}
+
+// The neon pass's marking draws pass fragments as well (capsule faces in front of the
+// surface): counted apart from those shaded, as --bench reports them.
+TEST_F(NeonVolumesGl, MarkingIsCountedApartFromShading) {
+  street_->deferred_image(street_->camera("neon_signs"), draw_for(Method::Improved));
+  const NeonCounts& all = street_->neon().counts();
+  EXPECT_GT(all.marking, 0u);
+  EXPECT_EQ(all.samples, all.shaded) << "the query around the light draws sees no marking";
+}

@@ -19,14 +19,13 @@ flat in int v_light_index;  // in light order
 
 #ifdef COUNT_FRAGMENTS
 // [count]
-// Exact counts for the tests and the panel: every invocation is a fragment shaded; it is
-// lit when the light adds anything at all to it. (The third count leaves out the last 1%
-// of the radius, where a depth test may meet a volume's face within the depth buffer's
-// precision: there the volumes may miss a fragment the full-screen pass lights, by at most
-// the cut threshold.)
-layout(binding = 0, offset = 0) uniform atomic_uint u_shaded;
-layout(binding = 0, offset = 4) uniform atomic_uint u_lit;
-layout(binding = 0, offset = 8) uniform atomic_uint u_lit_inner;
+// Exact counts for the tests and the panel, 64-bit (fragment_counters.glsl): every invocation
+// is a fragment shaded; it is lit when the light adds anything at all to it. (The third count
+// leaves out the last 1% of the radius, where a depth test may meet a volume's face within the
+// depth buffer's precision: there the volumes may miss a fragment the full-screen pass lights,
+// by at most the cut threshold.) Counter 3 is stencil.frag's: the marking draws' fragments.
+#include "03_light_volumes/shaders/fragment_counters.glsl"
+const uint kCountShaded = 0u, kCountLit = 1u, kCountLitInner = 2u;
 // [/count]
 #endif
 
@@ -53,9 +52,9 @@ void main() {
   // [/light-pixel]
   bool lit = any(greaterThan(diffuse + specular, vec3(0.0)));
 #ifdef COUNT_FRAGMENTS
-  atomicCounterIncrement(u_shaded);
-  if (lit) atomicCounterIncrement(u_lit);
-  if (lit && distance(light.position_type.xyz, s.position) <= 0.99 * v_cut) atomicCounterIncrement(u_lit_inner);
+  count_fragment(kCountShaded);
+  if (lit) count_fragment(kCountLit);
+  if (lit && distance(light.position_type.xyz, s.position) <= 0.99 * v_cut) count_fragment(kCountLitInner);
 #endif
 #if defined(HEAT_SHADED)
   out_diffuse = vec4(1.0);  // fragments shaded per pixel, summed by the blending

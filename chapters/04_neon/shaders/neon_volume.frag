@@ -21,10 +21,10 @@ uniform int u_samples;  // ground truth: samples per tube; points: point lights 
 // [count]
 // Exact counts for the tests and the panel: every invocation is a fragment shaded; it is
 // lit when the tube adds anything at all to it; lit_open asks the same with the barn doors
-// open, to tell what the capsule wastes from what the doors take away.
-layout(binding = 0, offset = 0) uniform atomic_uint u_shaded;
-layout(binding = 0, offset = 4) uniform atomic_uint u_lit;
-layout(binding = 0, offset = 8) uniform atomic_uint u_lit_open;
+// open, to tell what the capsule wastes from what the doors take away. 64-bit, chapter 03's
+// counters, from this tube's first (u_counter_base); counter 3 is the marking draws'.
+#include "03_light_volumes/shaders/fragment_counters.glsl"
+const uint kCountShaded = 0u, kCountLit = 1u, kCountLitOpen = 2u;
 // [/count]
 #endif
 
@@ -53,9 +53,9 @@ void main() {
   }
 #endif
 #ifdef COUNT_FRAGMENTS
-  atomicCounterIncrement(u_shaded);
-  if (lit) atomicCounterIncrement(u_lit);
-  if (lit_open) atomicCounterIncrement(u_lit_open);
+  count_fragment(kCountShaded);
+  if (lit) count_fragment(kCountLit);
+  if (lit_open) count_fragment(kCountLitOpen);
 #endif
 #ifdef SHOW_WASTE
   // The picture of what each capsule shades, summed over the tubes: green where its tube
