@@ -1,6 +1,7 @@
 #include "common/raytrace.h"
 
 #include <embree3/rtcore.h>
+#include <sched.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -292,9 +293,15 @@ Ray PrimaryRays::operator()(int x, int y) const {
 
 // --- Parallel images ----------------------------------------------------------------------
 
+int available_cores() {
+  cpu_set_t set;
+  if (sched_getaffinity(0, sizeof set, &set) == 0) return std::max(1, CPU_COUNT(&set));
+  return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
 void parallel_rows(int height, int threads, const std::function<void(int)>& row) {
   if (threads < 0) throw Error("parallel_rows: " + std::to_string(threads) + " threads");
-  if (threads == 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (threads == 0) threads = available_cores();
   threads = std::min(threads, std::max(height, 1));
   std::atomic<int> next{0};
   std::atomic<bool> failed{false};

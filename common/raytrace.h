@@ -76,7 +76,7 @@ class RayScene {
 // along the normal, to the side the ray goes, by more than the position's rounding error.
 // A float coordinate of magnitude m is exact to half an ulp, m * 2^-24; interpolating a
 // hit from its triangle's vertices (or reconstructing it from depth) adds a few ulps of
-// the largest coordinate involved. 2^-16 * max(1 m, m) is 128 ulps of that magnitude: far
+// the largest coordinate involved. 2^-16 * max(1 m, m) is 128 to 256 ulps of that size: far
 // above the rounding of a hit (so no ray starts inside its own surface), yet 15 um at 1 m
 // and 1.5 mm at 100 m (so contact occlusion is kept). Positions with a larger error (D24
 // depth far from the camera) pass theirs as `error`.
@@ -110,7 +110,10 @@ class PrimaryRays {
 // Width and height between 1 and 16384: Error otherwise (names `what`).
 void check_image_size(int width, int height, const std::string& what);
 
-// Calls row(y) for y in [0, height) on `threads` threads (0: every core). Rows are handed
+// The cores this process may run on (its CPU affinity, as nproc counts them).
+int available_cores();
+
+// Calls row(y) for y in [0, height) on `threads` threads (0: available_cores()). Rows are handed
 // out one at a time, so uneven rows balance; the first exception is rethrown after all join.
 void parallel_rows(int height, int threads, const std::function<void(int y)>& row);
 

@@ -268,13 +268,18 @@ TEST(RayTrace, MonteCarloErrorShrinksAsOneOverSqrtN) {
 // --- Determinism ----------------------------------------------------------------------------
 
 namespace {
+// [trace-ao]
+// Ambient occlusion of the surfaces a camera sees: 16 rays of length 0.5 m per pixel.
 ImageF ao_image(const RayScene& scene, const Scene& s, std::uint64_t seed, int threads) {
   const int w = 64, h = 36;
-  auto points = surface_points(primary_hits(scene, frame_camera(s.cameras.at(0), float(w) / h), w, h, threads));
+  FrameCamera camera = frame_camera(s.cameras.at(0), float(w) / h);
+  auto points = surface_points(primary_hits(scene, camera, w, h, threads));
   return trace_image(w, h, 1, seed, [&](int x, int y, Pcg32& rng, float* out) {
-    if (const auto& p = points[std::size_t(y) * w + x]) out[0] = float(test::occluded_rays(scene, *p, 0.5f, 16, rng)) / 16;
+    if (const auto& p = points[std::size_t(y) * w + x])
+      out[0] = float(test::occluded_rays(scene, *p, 0.5f, 16, rng)) / 16;
   }, threads);
 }
+// [/trace-ao]
 }  // namespace
 
 TEST(RayTrace, SameSeedGivesTheSameBitsForAnyThreadCountAndAnotherSeedDiffers) {
