@@ -358,6 +358,11 @@ std::vector<std::optional<SurfacePoint>> surface_points(const std::vector<std::o
 }
 
 std::vector<std::optional<SurfacePoint>> surface_points(const ImageF& position, const ImageF& normal, float error) {
+  return surface_points(position, normal, [error](int, int, glm::vec3) { return error; });
+}
+
+std::vector<std::optional<SurfacePoint>> surface_points(const ImageF& position, const ImageF& normal,
+                                                        const PositionError& error) {
   if (position.width != normal.width || position.height != normal.height || position.channels < 3 || normal.channels < 3)
     throw Error("surface_points: the position and normal images must be the same size with at least 3 channels");
   std::vector<std::optional<SurfacePoint>> points(std::size_t(position.width) * position.height);
@@ -367,7 +372,7 @@ std::vector<std::optional<SurfacePoint>> surface_points(const ImageF& position, 
       glm::vec3 n(normal.at(x, y, 0), normal.at(x, y, 1), normal.at(x, y, 2));
       float len = glm::length(n);
       if (len > 0 && std::isfinite(len) && finite(p))
-        points[std::size_t(y) * position.width + x] = SurfacePoint{p, n / len, std::max(error, position_error(p))};
+        points[std::size_t(y) * position.width + x] = SurfacePoint{p, n / len, std::max(error(x, y, p), position_error(p))};
     }
   return points;
 }

@@ -129,7 +129,12 @@ std::vector<std::optional<Hit>> primary_hits(const RayScene& scene, const FrameC
 // The points the primary hits see, normals turned toward the camera; nullopt for the sky.
 std::vector<std::optional<SurfacePoint>> surface_points(const std::vector<std::optional<Hit>>& hits);
 // The points of float images of world positions and unit normals (the G-buffer's, read
-// back): a zero normal is the sky, as the G-buffer writes it. `error` as in spawn_origin.
+// back): a zero normal is the sky, as the G-buffer writes it. `error` as in spawn_origin:
+// one bound for every pixel, or error(x, y, position) per pixel (e.g. chapter 02's bound
+// for a position reconstructed from depth, which grows with the distance).
+using PositionError = std::function<float(int x, int y, glm::vec3 position)>;
+std::vector<std::optional<SurfacePoint>> surface_points(const ImageF& position, const ImageF& normal,
+                                                        const PositionError& error);
 std::vector<std::optional<SurfacePoint>> surface_points(const ImageF& position, const ImageF& normal, float error = 0);
 
 // --- The cache of ground-truth images ------------------------------------------------------

@@ -5,5 +5,5 @@ target_link_libraries(raytrace_tests PRIVATE lightpass_raytrace GTest::gtest_mai
 gtest_discover_tests(raytrace_tests TEST_PREFIX raytrace.unit. DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
 
 add_executable(raytrace_gl_tests unit/test_raytrace_gl.cpp)
-target_link_libraries(raytrace_gl_tests PRIVATE lightpass_raytrace lightpass_01_forward GTest::gtest_main)
+target_link_libraries(raytrace_gl_tests PRIVATE lightpass_raytrace lightpass_02_gbuffer GTest::gtest_main)
 gtest_discover_tests(raytrace_gl_tests TEST_PREFIX raytrace.gl. DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
