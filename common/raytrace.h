@@ -44,6 +44,7 @@ struct Hit {
 };
 
 // One bounding volume hierarchy over every triangle of every instance, in world space.
+// Both sides of a triangle are hit (no culling; Hit::front_face tells which side).
 // Queries are const and thread-safe. Throws Error (what and where) for a scene with no
 // triangles, an index past the vertices, a mesh that does not exist or a non-finite vertex.
 class RayScene {

@@ -391,6 +391,14 @@ TEST(RayTrace, CacheComputesOncePerKey) {
   EXPECT_EQ(calls, 4) << "another scene";
   cached_image(key, compute, dir.path);
   EXPECT_EQ(calls, 4) << "the first entry is still there";
+  Scene lit = s, neon = s, moved_file = s;
+  lit.lights.push_back(Light{});
+  neon.node_extras.push_back(NodeExtras{"sign", glm::mat4(1), R"({"neon":[]})"});
+  moved_file.path = "/elsewhere/" + s.path.filename().string();
+  EXPECT_NE(truth_key(lit, camera, 4, 2, "ao").text, truth_key(s, camera, 4, 2, "ao").text) << "a light";
+  EXPECT_NE(truth_key(neon, camera, 4, 2, "ao").text, truth_key(s, camera, 4, 2, "ao").text) << "a node's extras";
+  EXPECT_EQ(truth_key(moved_file, camera, 4, 2, "ao").text, truth_key(s, camera, 4, 2, "ao").text)
+      << "the same content in another folder (the GPU machine's copy of the tree)";
   EXPECT_NE(key.text.find("v" + std::to_string(kTruthCacheVersion) + "\n"), std::string::npos) << key.text;
 }
 
