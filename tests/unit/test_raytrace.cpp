@@ -301,6 +301,22 @@ TEST(RayTrace, SameSeedGivesTheSameBitsForAnyThreadCountAndAnotherSeedDiffers) {
   EXPECT_GT(differ, occluded / 4) << "another seed, other samples";
 }
 
+TEST(RayTrace, RebuildingTheHierarchyGivesTheSameBits) {
+  // Embree builds in parallel (TBB); the hierarchy, and so which of two surfaces at equal
+  // distance a ray reports, must not depend on how the build was scheduled.
+  Scene s = load_scene(from_root("assets/atrium/atrium.gltf"));
+  RayScene first(s);
+  ImageF reference = ao_image(first, s, 9, 2);
+  std::size_t occluded = 0;
+  for (float v : reference.data) occluded += v > 0;
+  ASSERT_GT(occluded, reference.data.size() / 50) << "some pixels must see occluders";
+  for (int build = 0; build < 3; ++build) {
+    RayScene again(s);
+    ImageF rebuilt = ao_image(again, s, 9, 2);
+    EXPECT_EQ(std::memcmp(rebuilt.data.data(), reference.data.data(), reference.data.size() * sizeof(float)), 0);
+  }
+}
+
 TEST(RayTrace, ParallelRowsRethrowsAWorkersException) {
   EXPECT_THROW(parallel_rows(100, 4, [](int y) { if (y == 57) throw Error("row 57"); }), Error);
   EXPECT_THROW(trace_image(0, 10, 1, 0, [](int, int, Pcg32&, float*) {}), Error);
