@@ -262,6 +262,17 @@ Ray SurfacePoint::ray(glm::vec3 direction, float length) const {
   return Ray{spawn_origin(position, normal, direction, error), direction, 0, length};
 }
 
+Ray SurfacePoint::ray_towards(glm::vec3 target, float target_error) const {
+  const float stop = std::max(position_error(target), target_error);
+  // A target within both offsets of the point is the point itself: nothing lies between.
+  if (!(glm::length(target - position) > std::max(error, position_error(position)) + stop))
+    return Ray{position, normal, 0, 0};
+  glm::vec3 origin = spawn_origin(position, normal, target - position, error);
+  glm::vec3 to_target = target - origin;
+  float distance = glm::length(to_target);
+  return Ray{origin, to_target / distance, 0, std::max(0.f, distance - stop)};
+}
+
 // --- Primary rays -------------------------------------------------------------------------
 
 void check_image_size(int width, int height, const std::string& what) {

@@ -93,6 +93,9 @@ struct SurfacePoint {
   float error = 0;            // passed to spawn_origin
   // A ray of length `length` leaving the point in the unit direction.
   Ray ray(glm::vec3 direction, float length) const;
+  // A ray toward `target` (a light, a point on an emitter) that stops short of it by the
+  // target's own offset, so a target lying on a surface is not hidden by that surface.
+  Ray ray_towards(glm::vec3 target, float target_error = 0) const;
 };
 
 // The rays of the rasterised pixels: through the centre (x + 0.5, y + 0.5) of pixel (x, y),

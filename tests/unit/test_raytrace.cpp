@@ -156,6 +156,23 @@ TEST(RayTrace, OccludedAgreesWithIntersectOnAnAssetScene) {
   EXPECT_GT(hits, 1000) << "the rays must hit often enough for the comparison to mean something";
 }
 
+TEST(RayTrace, RayTowardsATargetStopsShortOfTheSurfaceTheTargetLiesOn) {
+  // A floor, a ceiling 3 m up with a "light" on it, and a blocker that can be put between.
+  glm::mat4 ceiling = glm::translate(glm::mat4(1), glm::vec3(0, 3, 0)) *
+                      glm::rotate(glm::mat4(1), glm::radians(180.f), glm::vec3(1, 0, 0)) * floor_model(10);
+  glm::mat4 blocker = glm::translate(glm::mat4(1), glm::vec3(0, 1.5f, 0));
+  RayScene open(quads({floor_model(10), ceiling}));
+  RayScene blocked(quads({floor_model(10), ceiling, blocker}));
+  const glm::vec3 light(0.2f, 3, 0.1f);  // exactly on the ceiling
+  SurfacePoint p = floor_point(open, 0, 0);
+  EXPECT_FALSE(open.occluded(p.ray_towards(light))) << "the ceiling the light is on does not hide it";
+  EXPECT_TRUE(blocked.occluded(p.ray_towards(light)));
+  Ray r = p.ray_towards(light);
+  EXPECT_NEAR(glm::length(r.direction), 1, 1e-6);
+  EXPECT_NEAR(r.tmax, glm::length(light - r.origin) - position_error(light), 1e-6);
+  EXPECT_EQ(p.ray_towards(p.position).tmax, 0.f) << "a target at the point itself: an empty ray";
+}
+
 // --- Primary rays -----------------------------------------------------------------------
 
 TEST(RayTrace, PrimaryRayGoesThroughThePixelCentreFromTheNearPlaneTopRowFirst) {
