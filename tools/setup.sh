@@ -7,6 +7,7 @@ LIGHTPASS_PACKAGES=(
   libglfw3-dev libepoxy-dev                 # window + OpenGL/EGL function loading
   libegl-mesa0 libgl1-mesa-dri libegl-dev   # headless rendering (Mesa llvmpipe through EGL)
   libglm-dev libstb-dev libtinygltf-dev nlohmann-json3-dev libimgui-dev
+  libembree-dev                             # the ray-traced ground truth (common/raytrace.h)
   libgtest-dev python3                      # tests, book excerpt check, plots
   xvfb xauth                                # the window path is tested under a virtual display
 )
