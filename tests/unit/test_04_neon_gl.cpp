@@ -3,6 +3,8 @@
 // vertex shader against the region the tubes light. Bounds hold on any conforming renderer.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cstdio>
 
 #include "chapters/01_forward/ground_truth.h"
@@ -158,9 +160,12 @@ TEST_F(NeonGl, ImprovedMatchesTheGroundTruthOnTheScene) {
 }
 
 TEST_F(NeonGl, CapsuleCoversEveryPixelTheTubeLights) {
-  // A dim tube (small volume), drawn twice: the scene lit by it alone (ground truth, diffuse
-  // term) and its capsule volume by shaders/capsule.vert. A point inside a convex volume
-  // projects inside its outline, so every lit pixel must be covered by the capsule.
+  // A dim tube (small volume), drawn twice: the scene lit by it alone (the ground truth,
+  // diffuse term, which is not cut: "lit" does not depend on the volume) and its capsule
+  // volume by shaders/capsule.vert. A point inside a convex volume projects inside its
+  // outline, so every pixel the tube lights by more than the cut must be covered; outside,
+  // the uncut light is below the cut (kNeonCut: one sRGB step at black on a white matte
+  // surface, and the scene's albedos are at most 0.8): at most 1 step, 1 pixel code.
   NeonLight dim = neon_lights(*scene_)[0];
   dim.intensity = 0.002f;
   ImageRGBA8 lit = render("overview", {.method = Method::GroundTruth, .samples = 64, .term = Term::Diffuse}, {dim});
@@ -179,15 +184,22 @@ TEST_F(NeonGl, CapsuleCoversEveryPixelTheTubeLights) {
   tubes.draw_capsules();
   ImageRGBA8 outline = target.read();
   glEnable(GL_DEPTH_TEST);
-  int lit_pixels = 0, uncovered = 0, covered = 0;
+  int lit_pixels = 0, uncovered = 0, covered = 0, faint_outside = 0, brightest_outside = 0;
   for (int i = 0; i < kW * kH; ++i) {
-    bool is_lit = lit.pixels[i * 4] + lit.pixels[i * 4 + 1] + lit.pixels[i * 4 + 2] > 0;
-    bool in_outline = outline.pixels[i * 4] + outline.pixels[i * 4 + 1] + outline.pixels[i * 4 + 2] > 0;
-    lit_pixels += is_lit;
+    const int code = std::max({lit.pixels[i * 4], lit.pixels[i * 4 + 1], lit.pixels[i * 4 + 2]});
+    const bool in_outline = outline.pixels[i * 4] + outline.pixels[i * 4 + 1] + outline.pixels[i * 4 + 2] > 0;
+    lit_pixels += code > 1;
     covered += in_outline;
-    uncovered += is_lit && !in_outline;
+    uncovered += code > 1 && !in_outline;
+    if (!in_outline) {
+      faint_outside += code == 1;
+      brightest_outside = std::max(brightest_outside, code);
+    }
   }
+  std::printf("  lit by more than a step %d, covered %d, outside the outline: at most %d step(s), %d pixels at 1\n", lit_pixels,
+              covered, brightest_outside, faint_outside);
   EXPECT_GT(lit_pixels, 500);
   EXPECT_EQ(uncovered, 0);
+  EXPECT_LE(brightest_outside, 1) << "what the cut leaves out";
   EXPECT_LT(covered, kW * kH);  // the outline is a capsule, not the whole screen
 }
