@@ -255,8 +255,11 @@ TEST(NeonAnalyticDiffuse, ContinuousAsTheTubeSinksBelowTheHorizon) {
 
 TEST(NeonMethods, ErrorsOnTheTestConfigurations) {
   // 3000 configurations (500 per exponent 1 .. 2048), 3 cm .. 2.5 m from a 2 m tube; the
-  // truth is 8192 samples. The bounds are the measured values with a margin of about 1.5x
-  // (or, for the exact ones, derived); the book's table prints these lines.
+  // truth is 8192 samples. Errors are relative: the diffuse to the truth, the specular to the
+  // truth plus 2 % of the lobe's peak there (test_04_configs.h: a highlight of nearly nothing
+  // must not divide by nothing). The bounds are the measured values (printed, llvmpipe's
+  // machine, g++ 12 -O3) with a margin of 1.5x, both ways for the alternatives (a change in
+  // them is noticed), or, for the exact ones, derived; the book quotes these lines.
   NeonLight tube = test_tube();
   std::printf("relative errors against the ground truth (8192 samples):\n");
   auto gt = method_errors([&](const NeonSurface& s) { return ground_truth_terms(s, tube, 256); }, true, "ground truth, 256");
@@ -273,18 +276,22 @@ TEST(NeonMethods, ErrorsOnTheTestConfigurations) {
   EXPECT_LT(gt.first.max, 0.03f);
   EXPECT_LT(gt.second.p99, 0.01f);
   EXPECT_LT(gt.second.max, 0.9f);
-  // Improved: diffuse exact; specular measured 0.0001 mean, 0.0004 p99, 0.15 max (one grazing view).
+  // Improved: diffuse exact (float rounding); specular measured 0.0029 % mean, 0.036 % p99,
+  // 2.84 % max (one grazing view of a rough surface): the book's 0.003 % / 0.04 % / 3 %.
   EXPECT_LT(improved.first.max, 1e-3f);
-  EXPECT_LT(improved.second.mean, 5e-4f);
-  EXPECT_LT(improved.second.p99, 2e-3f);
-  EXPECT_LT(improved.second.max, 0.25f);
-  // The others are far off, each for its known reason (see the hard-case tests below);
-  // the bounds pin the measured values so a change in them is noticed.
-  EXPECT_GT(points8.first.p99, 0.3f);
-  EXPECT_LT(points64.first.median, points8.first.median);
-  EXPECT_GT(karis.first.median, 0.5f);  // the "+2" in metres
-  EXPECT_GT(source.first.median, 0.3f);
-  EXPECT_GT(source.second.median, 0.3f);
+  EXPECT_LT(improved.second.mean, 1.5f * 2.9e-5f);
+  EXPECT_LT(improved.second.p99, 1.5f * 3.61e-4f);
+  EXPECT_LT(improved.second.max, 1.5f * 0.0284f);
+  // The others are far off, each for its known reason (see the hard-case tests below),
+  // pinned within 1.5x of what was measured.
+  auto pinned = [](float value, float measured) { return value > measured / 1.5f && value < measured * 1.5f; };
+  EXPECT_TRUE(pinned(points8.first.median, 0.01474f)) << points8.first.median;
+  EXPECT_TRUE(pinned(points64.first.median, 1.87e-4f)) << points64.first.median;
+  EXPECT_TRUE(pinned(points8.second.p99, 0.958f)) << points8.second.p99;
+  EXPECT_TRUE(pinned(karis.first.median, 0.8375f)) << karis.first.median;  // the "+2" in metres
+  EXPECT_TRUE(pinned(karis.second.p99, 17.50f)) << karis.second.p99;
+  EXPECT_TRUE(pinned(source.first.median, 0.8789f)) << source.first.median;
+  EXPECT_TRUE(pinned(source.second.median, 0.5182f)) << source.second.median;
   EXPECT_LT(improved.second.p99, std::min({points64.second.p99, karis.second.p99, source.second.p99}));
 }
 
