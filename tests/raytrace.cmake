@@ -1,16 +1,12 @@
 # The ray-traced ground truth (common/raytrace.h): on the CPU, and against the rasteriser on
-# a headless context. Every test is named raytrace.*, so `ctest -R '^raytrace\.'` runs them.
-add_executable(raytrace_tests unit/test_raytrace.cpp)
-target_link_libraries(raytrace_tests PRIVATE lightpass_raytrace GTest::gtest_main)
-gtest_discover_tests(raytrace_tests TEST_PREFIX raytrace.unit. DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
-
-add_executable(raytrace_gl_tests unit/test_raytrace_gl.cpp)
-target_link_libraries(raytrace_gl_tests PRIVATE lightpass_raytrace lightpass_02_gbuffer GTest::gtest_main)
-gtest_discover_tests(raytrace_gl_tests TEST_PREFIX raytrace.gl. DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
+# a headless context. Every test is named common.raytrace.*, so `ctest -R '^common\.raytrace\.'`
+# runs them.
+lightpass_gtests(common.raytrace unit lightpass_raytrace unit/test_raytrace.cpp)
+lightpass_gtests(common.raytrace gl "lightpass_raytrace;lightpass_02_gbuffer" unit/test_raytrace_gl.cpp)
 
 # The throughput benchmark (book/00-introduction.md): bad input, and a run that writes its CSV.
 set(RAYTRACE_BENCH $<TARGET_FILE:raytrace_bench>)
-lightpass_program_test(raytrace.bench_bad_radius 2 "--radius must be a length in metres above 0, not '-1'" ${RAYTRACE_BENCH} --radius -1)
-lightpass_program_test(raytrace.bench_unknown_option 2 "unknown option '--frobnicate'" ${RAYTRACE_BENCH} --frobnicate)
-lightpass_program_test(raytrace.bench_smoke_writes_csv 0 "wrote .*00_raytrace_smoke.csv"
+lightpass_program_test(common.raytrace.bench_bad_radius 2 "--radius must be a length in metres above 0, not '-1'" ${RAYTRACE_BENCH} --radius -1)
+lightpass_program_test(common.raytrace.bench_unknown_option 2 "unknown option '--frobnicate'" ${RAYTRACE_BENCH} --frobnicate)
+lightpass_program_test(common.raytrace.bench_smoke_writes_csv 0 "wrote .*00_raytrace_smoke.csv"
   ${RAYTRACE_BENCH} --seconds 1 --size 32x18 --samples 2 --machine smoke --out ${CMAKE_BINARY_DIR}/out)

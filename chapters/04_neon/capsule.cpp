@@ -92,7 +92,7 @@ NeonGpu pack_neon(const NeonLight& light, float volume_radius) {
   g.rows[3] = glm::vec4(0.5f * (light.start + light.end), light.caps ? 1.f : 0.f);
   const BarnDoors& d = light.barn_doors;
   g.barn_doors = glm::vec4(d.distance, d.count, d.transmittance, d.softness);
-  g.extra = glm::vec4(light.radius, 0, 0, 0);
+  g.extra = glm::vec4(light.radius, doors_radius(light), 0, 0);
   return g;
 }
 // [/pack-neon]
@@ -118,6 +118,7 @@ UnpackedNeon unpack_neon(const NeonGpu& g) {
   l.specular = specular;
   l.caps = g.rows[3].w > 0.5f;
   l.radius = g.extra.x;
+  u.doors_radius = g.extra.y;
   l.barn_doors = {g.barn_doors.x, g.barn_doors.y, g.barn_doors.z, g.barn_doors.w};
   return u;
 }

@@ -41,7 +41,7 @@ CapsuleMesh make_capsule(int segments = 16, int rings = 4);
 struct NeonGpu {
   glm::mat4 rows{0};
   glm::vec4 barn_doors{0};  // distance, count, transmittance, softness (count 0: none)
-  glm::vec4 extra{0};       // x: the glass tube's radius; yzw: 0
+  glm::vec4 extra{0};       // x: the glass tube's radius; y: the doors' radius; zw: 0
 };
 static_assert(sizeof(NeonGpu) == 96);
 // [/neon-gpu]
@@ -53,6 +53,7 @@ NeonGpu pack_neon(const NeonLight& light, float volume_radius);
 struct UnpackedNeon {
   NeonLight light;
   float volume_radius = 0;
+  float doors_radius = 0;  // neon.h's doors_radius()
   glm::mat3 basis{1};  // columns Ri, Rj, Rk
 };
 UnpackedNeon unpack_neon(const NeonGpu& gpu);

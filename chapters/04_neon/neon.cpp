@@ -1,6 +1,7 @@
 #include "chapters/04_neon/neon.h"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <numbers>
 
@@ -159,7 +160,7 @@ float volume_mask(const glm::vec3& x, const NeonLight& light, float radius) {
 }
 
 // [barn-doors]
-float barn_doors_mask(const glm::vec3& x, const NeonLight& light, float radius) {
+float barn_doors_mask(const glm::vec3& x, const NeonLight& light, float doors_radius) {
   const BarnDoors& doors = light.barn_doors;
   if (!doors.enabled()) return 1.f;
   float t = closest_on_segment(x, light.start, light.end);
@@ -174,7 +175,7 @@ float barn_doors_mask(const glm::vec3& x, const NeonLight& light, float radius) 
   float cos_angle = glm::dot(across, across) > 1e-12f ? glm::dot(light.door_axis, glm::normalize(across)) : 0.f;
   float pattern = std::cos(doors.count * std::acos(std::clamp(cos_angle, -1.f, 1.f)));
   float open = saturate(2.f * doors.transmittance - pattern);  // 1 between the doors
-  float sharpness = std::clamp(doors.softness * radius / dist, 1e-3f, 1e3f);  // sharper near the tube
+  float sharpness = std::clamp(doors.softness * doors_radius / dist, 1e-3f, 1e3f);  // sharper near the tube
   return open <= 0 ? 0.f : std::pow(open, sharpness);
 }
 // [/barn-doors]
@@ -401,8 +402,13 @@ Terms source_terms(const NeonSurface& s, const NeonLight& light) {
 }
 // [/source]
 
-NeonResult neon_light(const NeonSurface& s, const NeonLight& light, Method method, int samples, float radius) {
-  float mask = volume_mask(s.position, light, radius) * barn_doors_mask(s.position, light, radius);
+NeonResult neon_light(const NeonSurface& s, const NeonLight& light, Method method, int samples, float radius,
+                      float doors) {
+  // The truth is not cut (an infinite radius keeps only a cylinder's ends): what every method
+  // is measured against includes the light the volume's cut leaves out.
+  if (method == Method::GroundTruth) radius = std::numeric_limits<float>::infinity();
+  float mask = volume_mask(s.position, light, radius);
+  if (mask != 0 && light.barn_doors.enabled()) mask *= barn_doors_mask(s.position, light, doors < 0 ? doors_radius(light) : doors);
   if (mask == 0) return {};
   Terms t;
   switch (method) {

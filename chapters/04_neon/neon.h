@@ -12,6 +12,8 @@
 
 #include <glm/glm.hpp>
 
+#include "chapters/03_light_volumes/light_radius.h"
+
 namespace lp::ch04 {
 
 // [neon-light]
@@ -94,13 +96,30 @@ bool clip_to_horizon(const LineFrame& f, const glm::vec3& normal, float& s0, flo
 // integral of (I max(colour) / L) / r^2 along the tube as if every piece of it were seen
 // head-on, largest beside the middle: (I max(colour) / L) (2 / r) atan(L / 2r). (A real
 // surface sees the pieces at an angle and gets between 2/pi and all of it.) The volume
-// radius is where the bound falls to `threshold`, one 8-bit step by default.
+// radius is where the bound falls to `threshold`.
 float max_irradiance_at(const NeonLight& light, float r);
-float volume_radius(const NeonLight& light, float threshold = 1.f / 256.f);
+// [neon-cut]
+// Where a tube's volume ends. Chapter 03 cuts a light where it falls to one sRGB step at black
+// for the scene's brightest material (light_radius.h), and its lamps fade to zero at their
+// glTF range anyway. A tube has no range: its light falls as 1/r^2 for ever, and that rule
+// would end our tubes' volumes 430-900 m away (peak reflectance 94 in the room, 247 on the
+// street's glass), beyond every view: no volume at all. So a tube is cut where its light falls
+// to one sRGB step at black for a white matte surface, chapter 03's step without the peak:
+// 40-57 m for the scenes' tubes. (The source's linear 1/256 cut at 12-16 m, where a white
+// surface drops by 12.7 steps to black.) Beyond the cut a surface loses at most one step,
+// times what it reflects beyond a white matte one; the tests bound what is lost.
+inline constexpr float kNeonCut = ch03::kSrgbFirstStep;
+// [/neon-cut]
+float volume_radius(const NeonLight& light, float threshold = kNeonCut);
+// The barn doors' edges soften with the distance relative to the thesis's light radius R. Ours
+// is fixed where the tube's light falls to 1/256 (the source's cut), so the doors keep their
+// shape wherever the volume ends.
+inline constexpr float kDoorsReach = 1.f / 256.f;
+inline float doors_radius(const NeonLight& light) { return volume_radius(light, kDoorsReach); }
 // 1 inside the light's volume (capsule, or cylinder without caps), 0 outside.
 float volume_mask(const glm::vec3& x, const NeonLight& light, float volume_radius);
-// The barn-doors factor in [0, 1] (1 where there are no doors).
-float barn_doors_mask(const glm::vec3& x, const NeonLight& light, float volume_radius);
+// The barn-doors factor in [0, 1] (1 where there are no doors), doors_radius() scaling its softness.
+float barn_doors_mask(const glm::vec3& x, const NeonLight& light, float doors_radius);
 
 // --- The methods, for a tube of unit intensity and white colour -----------------------------
 // Each returns (diffuse, specular) light for I = 1; neon_light() scales by colour x intensity.
@@ -122,7 +141,10 @@ SourceFit fit_source(float length);
 Terms source_terms(const NeonSurface& s, const NeonLight& light);
 
 // One tube's light on a surface point by `method` (samples: ground truth and points), with
-// the volume and the barn doors applied, in colour.
-NeonResult neon_light(const NeonSurface& s, const NeonLight& light, Method method, int samples, float volume_radius);
+// the volume and the barn doors applied, in colour. The ground truth is not cut: its volume
+// has no radius (a cylinder's ends still bound it: they are part of the light). doors_radius
+// < 0: doors_radius(light), computed.
+NeonResult neon_light(const NeonSurface& s, const NeonLight& light, Method method, int samples, float volume_radius,
+                      float doors_radius = -1);
 
 }  // namespace lp::ch04

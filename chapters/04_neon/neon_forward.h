@@ -31,7 +31,7 @@ class NeonTubes {
  public:
   static constexpr GLuint kBinding = 1;  // layout(std430, binding = 1) in the shaders
   NeonTubes();
-  void upload(const std::vector<NeonLight>& tubes, float threshold = 1.f / 256.f);
+  void upload(const std::vector<NeonLight>& tubes, float threshold = kNeonCut);
   void bind() const { glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBinding, buffer_.id()); }
   int count() const { return count_; }
   const std::vector<NeonGpu>& packed() const { return packed_; }

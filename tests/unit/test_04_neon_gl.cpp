@@ -3,6 +3,8 @@
 // vertex shader against the region the tubes light. Bounds hold on any conforming renderer.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cstdio>
 
 #include "chapters/01_forward/ground_truth.h"
@@ -68,8 +70,10 @@ struct GpuCase {
 
 TEST_F(NeonGl, GlslMatchesTheCpp) {
   // Every method on 600 configurations around three tubes (capsule, cylinder with barn doors,
-  // zero length): the GPU result equals neon_light() in C++ to float rounding, 1e-3 of the
-  // value (a few ulps through sqrt/atan/pow chains, and the same quadrature nodes).
+  // zero length): the GPU result equals neon_light() in C++ to float rounding, a few ulps
+  // through sqrt/atan/pow chains and the same quadrature nodes. Measured on llvmpipe: 3.2e-4
+  // of the value at worst (the source's method; the improved 9.2e-5, the others less),
+  // bounded at 1.5x that: 5e-4.
   NeonLight plain = test_tube(), doors = test_tube(), dot = test_tube();
   doors.caps = false;
   doors.barn_doors = {0.1f, 3, 0.3f, 0.8f};
@@ -128,7 +132,7 @@ TEST_F(NeonGl, GlslMatchesTheCpp) {
   for (size_t m = 0; m < worst.size(); ++m) {
     std::printf("  %-22s worst relative difference GPU vs CPU %.2e (with barn doors %.2e)\n", kMethodNames[m].c_str(),
                 worst[m], worst_doors[m]);
-    EXPECT_LT(worst[m], 1e-3f) << kMethodNames[m];
+    EXPECT_LT(worst[m], 5e-4f) << kMethodNames[m];
     EXPECT_LT(worst_doors[m], 3e-2f) << kMethodNames[m];
   }
 }
@@ -136,7 +140,8 @@ TEST_F(NeonGl, GlslMatchesTheCpp) {
 TEST_F(NeonGl, ImprovedMatchesTheGroundTruthOnTheScene) {
   // The whole 320 x 180 overview, each neon term alone, in 8-bit sRGB steps (what a reader
   // sees): the improved method is indistinguishable from 256 samples along each tube; the
-  // alternatives are not (their errors pinned from measurement, 1.5x margin).
+  // alternatives are not, their errors pinned within 1.5x of what llvmpipe measured (both
+  // ways: a change in them is noticed).
   std::vector<NeonLight> tubes = neon_lights(*scene_);
   for (Term term : {Term::Diffuse, Term::Specular}) {
     ImageRGBA8 truth = render("overview", {.method = Method::GroundTruth, .samples = 256, .term = term}, tubes);
@@ -151,16 +156,23 @@ TEST_F(NeonGl, ImprovedMatchesTheGroundTruthOnTheScene) {
                 improved.mean_abs, improved.p99, points.mean_abs, points.p99, karis.mean_abs, karis.p99, source.mean_abs, source.p99);
     EXPECT_LT(improved.mean_abs, 0.05) << name;
     EXPECT_LE(improved.p99, 1.0) << name;
-    EXPECT_GE(points.p99, 1.5) << name;
-    EXPECT_GT(karis.mean_abs, 5 * improved.mean_abs) << name;
-    EXPECT_GT(source.mean_abs, 5 * improved.mean_abs) << name;
+    // Measured: diffuse 8 points p99 2.00, representative mean 14.07, source mean 23.95;
+    // specular 11.0, 6.45, 61.08.
+    const bool diffuse = term == Term::Diffuse;
+    auto pinned = [](double value, double measured) { return value > measured / 1.5 && value < measured * 1.5; };
+    EXPECT_TRUE(pinned(points.p99, diffuse ? 2.0 : 11.0)) << name << ": " << points.p99;
+    EXPECT_TRUE(pinned(karis.mean_abs, diffuse ? 14.07 : 6.45)) << name << ": " << karis.mean_abs;
+    EXPECT_TRUE(pinned(source.mean_abs, diffuse ? 23.95 : 61.08)) << name << ": " << source.mean_abs;
   }
 }
 
 TEST_F(NeonGl, CapsuleCoversEveryPixelTheTubeLights) {
-  // A dim tube (small volume), drawn twice: the scene lit by it alone (ground truth, diffuse
-  // term) and its capsule volume by shaders/capsule.vert. A point inside a convex volume
-  // projects inside its outline, so every lit pixel must be covered by the capsule.
+  // A dim tube (small volume), drawn twice: the scene lit by it alone (the ground truth,
+  // diffuse term, which is not cut: "lit" does not depend on the volume) and its capsule
+  // volume by shaders/capsule.vert. A point inside a convex volume projects inside its
+  // outline, so every pixel the tube lights by more than the cut must be covered; outside,
+  // the uncut light is below the cut (kNeonCut: one sRGB step at black on a white matte
+  // surface, and the scene's albedos are at most 0.8): at most 1 step, 1 pixel code.
   NeonLight dim = neon_lights(*scene_)[0];
   dim.intensity = 0.002f;
   ImageRGBA8 lit = render("overview", {.method = Method::GroundTruth, .samples = 64, .term = Term::Diffuse}, {dim});
@@ -179,15 +191,22 @@ TEST_F(NeonGl, CapsuleCoversEveryPixelTheTubeLights) {
   tubes.draw_capsules();
   ImageRGBA8 outline = target.read();
   glEnable(GL_DEPTH_TEST);
-  int lit_pixels = 0, uncovered = 0, covered = 0;
+  int lit_pixels = 0, uncovered = 0, covered = 0, faint_outside = 0, brightest_outside = 0;
   for (int i = 0; i < kW * kH; ++i) {
-    bool is_lit = lit.pixels[i * 4] + lit.pixels[i * 4 + 1] + lit.pixels[i * 4 + 2] > 0;
-    bool in_outline = outline.pixels[i * 4] + outline.pixels[i * 4 + 1] + outline.pixels[i * 4 + 2] > 0;
-    lit_pixels += is_lit;
+    const int code = std::max({lit.pixels[i * 4], lit.pixels[i * 4 + 1], lit.pixels[i * 4 + 2]});
+    const bool in_outline = outline.pixels[i * 4] + outline.pixels[i * 4 + 1] + outline.pixels[i * 4 + 2] > 0;
+    lit_pixels += code > 1;
     covered += in_outline;
-    uncovered += is_lit && !in_outline;
+    uncovered += code > 1 && !in_outline;
+    if (!in_outline) {
+      faint_outside += code == 1;
+      brightest_outside = std::max(brightest_outside, code);
+    }
   }
+  std::printf("  lit by more than a step %d, covered %d, outside the outline: at most %d step(s), %d pixels at 1\n", lit_pixels,
+              covered, brightest_outside, faint_outside);
   EXPECT_GT(lit_pixels, 500);
   EXPECT_EQ(uncovered, 0);
+  EXPECT_LE(brightest_outside, 1) << "what the cut leaves out";
   EXPECT_LT(covered, kW * kH);  // the outline is a capsule, not the whole screen
 }

@@ -95,6 +95,11 @@ std::vector<CutLight> cut_lights(const Scene& scene, float threshold) {
 //     shaders use, the normal by its octahedral code; or as the GPU stored them, read back:
 //     the larger of the two) at the exact position, plus |gradient| x the depth format's
 //     reconstruction bound (chapter 02's allowance, here in radiance rather than steps).
+//     What the GPU stored widens it only as far as the format lets it (chapter 02's
+//     kStoredExcess): each stored value is held to its format's bound first (colours within a
+//     code, the exponent within 1.8 %, the normal within the 16-bit octahedral angle), then its
+//     error may exceed the C++ codes' by at most one code of both colours, (L_d + ambient +
+//     L_s) / 255, what moving albedo and specular colour by one more code can change.
 //  2. The cut: the lights beyond their cut radius are left out, exactly as forward has them;
 //     a light within the reconstruction bound (and 10^-5 of float distance) of its radius
 //     may be in or out, so the deferred value lies between "without it" and "with it".
@@ -124,6 +129,7 @@ Allowance cross_check_allowance(const Scene& scene, const std::vector<CutLight>&
   for (const Light& l : scene.lights)
     if (l.type == LightType::Directional) directional.push_back(l);
   Scene in, maybe, all;  // light subsets for ch01::shade (no meshes: it only reads lights and ambient)
+  std::size_t stored_out_of_bounds = 0;
   for (int y = 0; y < kH; ++y)
     for (int x = 0; x < kW; ++x) {
       glm::vec3 f = rgb(forward, x, y), d = rgb(deferred, x, y);
@@ -166,6 +172,22 @@ Allowance cross_check_allowance(const Scene& scene, const std::vector<CutLight>&
             {ch02::decode_octahedral(ch02::encode_octahedral(n, 16), 16), colour(rgb(exact.albedo, x, y)),
              colour(rgb(exact.specular, x, y)), ch02::decode_exponent(ch02::encode_exponent(exponent))},
             {rgb(stored.normal, x, y), rgb(stored.albedo, x, y), rgb(stored.specular, x, y), stored.normal.at(x, y, 3)}};
+        {  // the stored values within the format's bounds
+          float colour_off = 0;
+          for (int k = 0; k < 3; ++k)
+            colour_off = std::max({colour_off, 255.f * std::abs(stored.albedo.at(x, y, k) - exact.albedo.at(x, y, k)),
+                                   255.f * std::abs(stored.specular.at(x, y, k) - exact.specular.at(x, y, k))});
+          const glm::vec3 sn = rgb(stored.normal, x, y);
+          const double normal_off = std::atan2(double(glm::length(glm::cross(sn, n))), double(glm::dot(sn, n)));
+          const double exponent_off = std::abs(double(stored.normal.at(x, y, 3)) / exponent - 1.0);
+          if (!(colour_off <= 1.f + 1e-3f && normal_off <= ch02::octahedral_error_bound(16) + 1e-6 &&
+                exponent_off <= ch02::exponent_relative_error_bound() * (1 + 1e-4)) &&
+              stored_out_of_bounds++ == 0)
+            ADD_FAILURE() << "(" << x << ", " << y << "): the G-buffer stored values beyond its formats: colour " << colour_off
+                          << " codes, normal " << normal_off << " rad, exponent " << exponent_off;
+        }
+        const glm::vec3 one_code = ch01::shade({p, n, glm::normalize(eye - p), glm::vec3(1), glm::vec3(1), exponent}, all, glm::vec3(0)) / 255.f;
+        glm::vec3 model_only(0);
         for (const Stored& q : candidates) {
           auto shade = [&](const Scene& lights, glm::vec3 pos, glm::vec3 em) {
             return ch01::shade({pos, q.n, glm::normalize(eye - pos), q.albedo, q.specular, q.exponent}, lights, em);
@@ -187,7 +209,9 @@ Allowance cross_check_allowance(const Scene& scene, const std::vector<CutLight>&
           glm::vec3 extra_slope = maybe.lights.empty() ? glm::vec3(0) : with_gradient(maybe, glm::vec3(0), extra);
           if (maybe.lights.empty()) extra = glm::vec3(0);
           const glm::vec3 lo = sure - sure_slope, hi = sure + sure_slope + extra + extra_slope;
-          model_error = glm::max(model_error, glm::max(glm::abs(hi - truth), glm::abs(lo - truth)));
+          const glm::vec3 e = glm::max(glm::abs(hi - truth), glm::abs(lo - truth));
+          if (&q == &candidates[0]) model_only = e;
+          model_error = glm::max(model_error, glm::min(e, model_only + one_code));
         }
         for (int c = 0; c < 3; ++c) {
           const double albedo = std::max(stored.albedo.at(x, y, c), 0.f);
@@ -198,6 +222,7 @@ Allowance cross_check_allowance(const Scene& scene, const std::vector<CutLight>&
       }
       for (int c = 0; c < 3; ++c) a.value.at(x, y, c) = model_error[c] + rounding[c];
     }
+  EXPECT_EQ(stored_out_of_bounds, 0u) << "pixels whose stored values are beyond the G-buffer's formats";
   return a;
 }
 
@@ -290,6 +315,11 @@ TEST_F(HdrRadianceGl, DeferredRadianceEqualsForwardWithinTheGBufferBound) {
       }
     std::sort(allowance_steps.begin(), allowance_steps.end());
     EXPECT_EQ(sky_mismatch, 0u) << v.name << ": both draw the same triangles with the same depth test";
+    // The allowance stays a few steps: its 99th percentile after Reinhard, measured 3.32
+    // (street) and 1.34 (atrium) output steps on llvmpipe, held within 1.5x. (Its largest,
+    // 14.5 steps on the street, is the C++ model's own: a lamp's cut radius within the
+    // reconstruction bound of the pixel, not the write path, which kStoredExcess caps.)
+    EXPECT_LT(allowance_steps[allowance_steps.size() * 99 / 100], 1.5 * (v.name == std::string("street") ? 3.32 : 1.34)) << v.name;
     std::cout << v.name << ": exposure " << check.exposure << ", largest |deferred - forward| / allowance " << worst
               << "; the allowance after Reinhard, in output steps: median " << allowance_steps[allowance_steps.size() / 2]
               << ", p99 " << allowance_steps[allowance_steps.size() * 99 / 100] << ", max " << allowance_steps.back() << '\n';

@@ -21,17 +21,15 @@ namespace {
 class MetricsGl : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    context_ = Context::create({.headless = true, .width = 64, .height = 64}).release();
     // An empty fragment shader over one triangle that covers the viewport: one fragment per
     // pixel, and nothing else to wait for.
     fill_ = new ShaderProgram({{GL_VERTEX_SHADER, "02_gbuffer/shaders/fullscreen.vert"},
                                {GL_FRAGMENT_SHADER, "03_light_volumes/shaders/stencil.frag"}});
     vao_ = new gl::VertexArray();
   }
-  static void TearDownTestSuite() {  // GL objects go before their context
+  static void TearDownTestSuite() {  // GL objects go before the context (gl_environment.h)
     delete vao_;
     delete fill_;
-    delete context_;
   }
   void SetUp() override {
     while (glGetError() != GL_NO_ERROR) {}
@@ -53,7 +51,6 @@ class MetricsGl : public ::testing::Test {
     glBindVertexArray(vao_->id());
     glDrawArraysInstanced(GL_TRIANGLES, 0, 3, instances);
   }
-  static inline Context* context_ = nullptr;
   static inline ShaderProgram* fill_ = nullptr;
   static inline gl::VertexArray* vao_ = nullptr;
 };

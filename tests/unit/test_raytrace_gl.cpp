@@ -20,13 +20,8 @@ namespace {
 
 constexpr int kW = 320, kH = 180;
 
-class RayTraceGl : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() { context_ = Context::create({.headless = true, .width = kW, .height = kH}).release(); }
-  static void TearDownTestSuite() { delete context_; }
-  static Context* context_;
-};
-Context* RayTraceGl::context_ = nullptr;
+// The context is the binary's, made by gl_environment.h.
+class RayTraceGl : public ::testing::Test {};
 
 struct Agreement {
   std::size_t pixels_with_geometry = 0, silhouette = 0, silhouette_mismatches = 0, interior_mismatches = 0;

@@ -47,6 +47,7 @@ struct Neon {
   vec3 door;        // Ri: the first barn door's side
   float len;
   float volume_radius, tube_radius, specular;
+  float doors_radius;  // the barn doors' softness scale (neon.h's doors_radius())
   bool caps;
   vec3 power;       // colour x intensity
   vec4 barn_doors;
@@ -75,6 +76,7 @@ Neon neon_unpack(NeonGpu g) {
   t.caps = g.rows[3].w > 0.5;
   t.power = vec3(g.rows[0].w, g.rows[1].w, g.rows[2].w);
   t.tube_radius = max(g.extra.x, 1e-4);
+  t.doors_radius = g.extra.y;
   t.barn_doors = g.barn_doors;
   return t;
 }
@@ -355,7 +357,7 @@ float neon_barn_doors(vec3 x, Neon t) {
   float cos_angle = dot(across, across) > 1e-12 ? dot(t.door, normalize(across)) : 0.0;
   float pattern = cos(doors.y * acos(clamp(cos_angle, -1.0, 1.0)));
   float open = clamp(2.0 * doors.z - pattern, 0.0, 1.0);
-  float sharpness = clamp(doors.w * t.volume_radius / dist, 1e-3, 1e3);
+  float sharpness = clamp(doors.w * t.doors_radius / dist, 1e-3, 1e3);
   return open <= 0.0 ? 0.0 : pow(open, sharpness);
 }
 
@@ -363,7 +365,10 @@ float neon_barn_doors(vec3 x, Neon t) {
 NeonResult neon_light(NeonSurface s, NeonGpu light, NeonMethod method) {
   Neon t = neon_unpack(light);
   NeonResult result = NeonResult(vec3(0.0), vec3(0.0));
-  float mask = neon_volume_mask(s.position, t) * neon_barn_doors(s.position, t);
+  // The truth is not cut: no radius, only a cylinder's ends (as neon.cpp).
+  Neon bounds = t;
+  if (method.kind == NEON_GROUND_TRUTH) bounds.volume_radius = 3.0e38;
+  float mask = neon_volume_mask(s.position, bounds) * neon_barn_doors(s.position, t);
   if (mask == 0.0) return result;
   vec2 terms;
   if (method.kind == NEON_GROUND_TRUTH) terms = neon_ground_truth(s, t, method.samples);
