@@ -504,6 +504,7 @@ TEST_F(NeonVolumesGl, MarkingIsCountedApartFromShading) {
   const NeonCounts& all = street_->neon().counts();
   EXPECT_GT(all.marking, 0u);
   EXPECT_EQ(all.samples, all.shaded) << "the query around the light draws sees no marking";
+}
 
 TEST_F(NeonVolumesGl, TheCutLosesAtMostOneStepTimesWhatTheSurfaceReflects) {
   // The cut's own error, on the night street where the volumes end inside the view: the
