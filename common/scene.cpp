@@ -756,7 +756,7 @@ class Loader {
       glm::vec3 axis(cam.world[i]);
       float len = glm::length(axis);
       if (!(len > 1e-12f) || !std::isfinite(len)) bad("its node's transform has a zero (or non-finite) scale");
-      cam.world[i] = glm::vec4(axis / len, 0);
+      cam.world[i] = glm::vec4(glm::normalize(axis), 0);  // (not axis / len: the same bits as before)
     }
     s_.cameras.push_back(cam);
   }
