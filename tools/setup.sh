@@ -9,6 +9,7 @@ LIGHTPASS_PACKAGES=(
   libglm-dev libstb-dev libtinygltf-dev nlohmann-json3-dev libimgui-dev
   libgtest-dev python3                      # tests, book excerpt check, plots
   xvfb xauth                                # the window path is tested under a virtual display
+  clang libclang-rt-14-dev                  # the scene loader's fuzz target (libFuzzer, tools/fuzz-scene)
 )
 
 lightpass_install_packages() {
