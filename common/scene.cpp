@@ -57,7 +57,7 @@ std::string number_text(double v) {
 
 // Reads a whole regular file, saying why it cannot: a directory, a device such as /dev/null,
 // a file this user may not read, or one larger than the loader accepts. Empty: fine.
-std::string read_problem(const fs::path& path, std::vector<unsigned char>* out) {
+std::string read_problem(const fs::path& path, std::vector<unsigned char>* out, std::size_t max_bytes) {
   std::error_code ec;
   auto status = fs::status(path, ec);
   if (ec || !fs::exists(status)) return "no such file";
@@ -65,9 +65,8 @@ std::string read_problem(const fs::path& path, std::vector<unsigned char>* out) 
   if (!fs::is_regular_file(status)) return "not a regular file";
   auto size = fs::file_size(path, ec);
   if (ec) return ec.message();
-  if (size > SceneLimits::kMaxFileBytes)
-    return "the file is " + std::to_string(size) + " bytes, more than the loader accepts (" +
-           std::to_string(SceneLimits::kMaxFileBytes) + ")";
+  if (size > max_bytes)
+    return "the file is " + std::to_string(size) + " bytes, more than the loader accepts (" + std::to_string(max_bytes) + ")";
   std::ifstream in(path, std::ios::binary);
   if (!in) return errno == EACCES ? "permission denied" : std::strerror(errno);
   out->resize(size);
@@ -78,6 +77,7 @@ std::string read_problem(const fs::path& path, std::vector<unsigned char>* out) 
 // tinygltf's file access, through read_problem: its own reads a directory as a file of
 // 2^63 bytes (std::bad_alloc) and says "File not found" for a file it may not read.
 struct FileContext {
+  std::size_t max_bytes = 0;
   std::vector<std::string> problems;  // "cannot read <path>: <why>", in the order met
 };
 
@@ -87,7 +87,7 @@ bool fs_exists(const std::string& path, void*) {
 }
 std::string fs_expand(const std::string& path, void*) { return path; }  // no ~ or $VAR expansion
 bool fs_read(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
-  std::string why = read_problem(path, out);
+  std::string why = read_problem(path, out, static_cast<FileContext*>(user)->max_bytes);
   if (why.empty()) return true;
   std::string message = "cannot read '" + path + "': " + why;
   if (err) *err += message;
@@ -104,6 +104,7 @@ bool fs_write(std::string* err, const std::string&, const std::vector<unsigned c
 // error: the image stays empty, the reason is kept, and the material gets a fallback.
 struct ImageContext {
   tinygltf::Model* model = nullptr;
+  SceneLimits limits;
   std::map<int, std::string> problems;   // image index -> why it is empty
   std::vector<std::string> converted;    // 16-bit images read as 8 bits
 };
@@ -111,6 +112,7 @@ struct ImageContext {
 bool load_image(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
                 const unsigned char* bytes, int size, void* user) {
   auto& ctx = *static_cast<ImageContext*>(user);
+  const SceneLimits& limits = ctx.limits;
   std::string name = !image->uri.empty() ? image->uri : !image->name.empty() ? image->name : "image " + std::to_string(index);
   if (image->bufferView >= 0) {
     // tinygltf hands over &buffer[byteOffset] with byteLength unchecked: check them here.
@@ -136,11 +138,11 @@ bool load_image(tinygltf::Image* image, const int index, std::string* err, std::
     ctx.problems[index] = std::string("not an image stb_image can read (") + (why ? why : "unknown format") + ")";
     return true;
   }
-  if (w <= 0 || h <= 0 || w > SceneLimits::kMaxImageSide || h > SceneLimits::kMaxImageSide ||
-      std::size_t(w) * std::size_t(h) > SceneLimits::kMaxImageTexels) {
+  if (w <= 0 || h <= 0 || w > limits.max_image_side || h > limits.max_image_side ||
+      std::size_t(w) * std::size_t(h) > limits.max_image_texels) {
     ctx.problems[index] = "it is " + std::to_string(w) + "x" + std::to_string(h) + ", more than the loader accepts (" +
-                          std::to_string(SceneLimits::kMaxImageSide) + " a side, " +
-                          std::to_string(SceneLimits::kMaxImageTexels) + " texels)";
+                          std::to_string(limits.max_image_side) + " a side, " +
+                          std::to_string(limits.max_image_texels) + " texels)";
     return true;
   }
   bool sixteen = stbi_is_16_bit_from_memory(bytes, size);
@@ -317,8 +319,8 @@ struct UvTransform {
 
 class Loader {
  public:
-  Loader(const tinygltf::Model& m, Scene& s, const ImageContext& images, const FileContext& files)
-      : m_(m), s_(s), images_(images), files_(files) {}
+  Loader(const tinygltf::Model& m, Scene& s, const ImageContext& images, const FileContext& files, const SceneLimits& limits)
+      : m_(m), s_(s), images_(images), files_(files), limits(limits) {}
 
   void load() {
     note_unsupported_document();
@@ -340,6 +342,7 @@ class Loader {
       if (!finite(s_.ambient) || glm::any(glm::lessThan(s_.ambient, glm::vec3(0))))
         throw Error(file() + ": the scene's extras.lightpass.ambient must be three finite numbers >= 0");
     }
+    check_expansion(scene.nodes);
     for (int root : scene.nodes) visit(root, glm::mat4(1), 0);
     std::size_t drawable = 0;
     for (const auto& inst : s_.instances) drawable += s_.meshes[inst.mesh].primitives.size();
@@ -548,13 +551,53 @@ class Loader {
     return m;
   }
 
+  // What the node graph expands to, counted without expanding it (a child listed by k parents
+  // counts k times), saturating: a DAG past the limits is refused before any work is done.
+  void check_expansion(const std::vector<int>& roots) {
+    struct Expansion { std::uint64_t visits = 0, instances = 0, lights = 0, cameras = 0; };
+    constexpr std::uint64_t kCap = std::uint64_t(1) << 62;
+    auto sum = [&](Expansion& a, const Expansion& b) {
+      a.visits = std::min(kCap, a.visits + b.visits);
+      a.instances = std::min(kCap, a.instances + b.instances);
+      a.lights = std::min(kCap, a.lights + b.lights);
+      a.cameras = std::min(kCap, a.cameras + b.cameras);
+    };
+    std::vector<std::optional<Expansion>> memo(m_.nodes.size());
+    std::vector<char> on_path(m_.nodes.size(), 0);
+    std::function<Expansion(int, int)> count = [&](int n, int depth) -> Expansion {
+      if (n < 0 || n >= static_cast<int>(m_.nodes.size())) throw Error(file() + ": node " + std::to_string(n) + " does not exist");
+      if (depth > 64 || on_path[n]) throw Error(file() + ": the node hierarchy is deeper than 64 (a cycle?)");
+      if (memo[n]) return *memo[n];
+      const auto& node = m_.nodes[n];
+      auto light = node.extensions.find("KHR_lights_punctual");
+      Expansion e{1, node.mesh >= 0, light != node.extensions.end() && light->second.Has("light"), node.camera >= 0};
+      on_path[n] = 1;
+      for (int child : node.children) sum(e, count(child, depth + 1));
+      on_path[n] = 0;
+      memo[n] = e;
+      return e;
+    };
+    Expansion total;
+    for (int root : roots) sum(total, count(root, 0));
+    auto refuse = [&](std::uint64_t n, std::size_t limit, const std::string& what) {
+      if (n > limit)
+        throw Error(file() + ": more than " + std::to_string(limit) + " " + what + " (nodes shared as children of many parents?); the loader stops there");
+    };
+    refuse(total.instances, limits.max_instances, "mesh instances");
+    refuse(total.lights, limits.max_lights, "lights");
+    refuse(total.cameras, limits.max_cameras, "cameras");
+    if (total.visits > limits.max_node_visits)
+      throw Error(file() + ": the node hierarchy expands to more than " + std::to_string(limits.max_node_visits) +
+                  " nodes (children shared by many parents); the loader stops there");
+  }
+
   void visit(int node_index, const glm::mat4& parent, int depth) {
     if (node_index < 0 || node_index >= static_cast<int>(m_.nodes.size()))
       throw Error(file() + ": node " + std::to_string(node_index) + " does not exist");
     if (depth > 64) throw Error(file() + ": the node hierarchy is deeper than 64 (a cycle?)");
     // Nodes that list the same children share them: a small file can expand to 2^64 nodes.
-    if (++visits_ > SceneLimits::kMaxNodeVisits)
-      throw Error(file() + ": the node hierarchy expands to more than " + std::to_string(SceneLimits::kMaxNodeVisits) +
+    if (++visits_ > limits.max_node_visits)
+      throw Error(file() + ": the node hierarchy expands to more than " + std::to_string(limits.max_node_visits) +
                   " nodes (children shared by many parents); the loader stops there");
     const auto& node = m_.nodes[node_index];
     auto label = [&] { return node.name.empty() ? "node" + std::to_string(node_index) : node.name; };
@@ -568,10 +611,22 @@ class Loader {
       return;
     }
     const std::string name = label();
+    // What each visit copies is bounded too: a long name or big extras on a shared node.
+    std::size_t copied = name.size() * (1 + (node.mesh >= 0) + (node.camera >= 0) + node.extras.Has("lightpass"));
+    if ((copied_bytes_ += copied) > limits.max_name_bytes)
+      throw Error(file() + ": the node names and extras would take more than " + std::to_string(limits.max_name_bytes >> 20) +
+                  " MiB (nodes shared by many parents?); the loader stops there");
     if (node.mesh >= 0) add_instance(node, name, world);
     if (node.camera >= 0) add_camera(node, name, world);
-    if (node.extras.Has("lightpass"))
-      s_.node_extras.push_back({.name = name, .world = world, .lightpass_json = json_text(node.extras.Get("lightpass")).dump()});
+    if (node.extras.Has("lightpass")) {
+      if (s_.node_extras.size() >= limits.max_node_extras)
+        throw Error(file() + ": more than " + std::to_string(limits.max_node_extras) + " nodes with extras.lightpass; the loader stops there");
+      if (extras_json_.empty()) extras_json_.resize(m_.nodes.size());
+      if (!extras_json_[node_index]) extras_json_[node_index] = json_text(node.extras.Get("lightpass")).dump();
+      if ((copied_bytes_ += extras_json_[node_index]->size()) > limits.max_name_bytes)
+        throw Error(file() + ": the nodes' extras would take more than " + std::to_string(limits.max_name_bytes >> 20) + " MiB; the loader stops there");
+      s_.node_extras.push_back({.name = name, .world = world, .lightpass_json = *extras_json_[node_index]});
+    }
     if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end() && it->second.Has("light"))
       add_light(it->second.Get("light").GetNumberAsInt(), name, world);
     for (int child : node.children) visit(child, world, depth + 1);
@@ -580,8 +635,8 @@ class Loader {
   void add_instance(const tinygltf::Node& node, const std::string& name, const glm::mat4& world) {
     if (node.mesh >= static_cast<int>(m_.meshes.size()))
       throw Error(file() + ": node '" + name + "' uses mesh " + std::to_string(node.mesh) + ", which does not exist");
-    if (s_.instances.size() >= SceneLimits::kMaxInstances)
-      throw Error(file() + ": more than " + std::to_string(SceneLimits::kMaxInstances) +
+    if (s_.instances.size() >= limits.max_instances)
+      throw Error(file() + ": more than " + std::to_string(limits.max_instances) +
                   " mesh instances (nodes shared as children of many parents?); the loader stops there");
     if (mesh_of_gltf_[node.mesh] < 0) mesh_of_gltf_[node.mesh] = mesh(node.mesh);
     Instance inst{.name = name, .mesh = mesh_of_gltf_[node.mesh], .model = world};
@@ -639,9 +694,9 @@ class Loader {
     if (attr("POSITION") < 0) throw Error(where + ": no POSITION attribute");
     AccessorReader pos(m_, attr("POSITION"), where + " POSITION");
     const size_t n = pos.count();
-    if (n > SceneLimits::kMaxVertices - std::min(SceneLimits::kMaxVertices, s_.vertices.size()))
+    if (n > limits.max_vertices - std::min(limits.max_vertices, s_.vertices.size()))
       throw Error(where + ": POSITION " + pos.name() + " has " + std::to_string(n) + " vertices; with the scene's " +
-                  std::to_string(s_.vertices.size()) + " that is more than the loader accepts (" + std::to_string(SceneLimits::kMaxVertices) + ")");
+                  std::to_string(s_.vertices.size()) + " that is more than the loader accepts (" + std::to_string(limits.max_vertices) + ")");
     std::vector<Vertex> verts(n);
     for (size_t i = 0; i < n; ++i) verts[i].position = pos.vec<3>(i);
     auto read = [&](const char* name, auto assign) {
@@ -662,9 +717,9 @@ class Loader {
     std::vector<std::uint32_t> local;
     if (prim.indices >= 0) {
       AccessorReader idx(m_, prim.indices, where + " indices");
-      if (idx.count() > SceneLimits::kMaxIndices)
+      if (idx.count() > limits.max_indices)
         throw Error(where + ": indices " + idx.name() + " has " + std::to_string(idx.count()) + " elements, more than the loader accepts (" +
-                    std::to_string(SceneLimits::kMaxIndices) + ")");
+                    std::to_string(limits.max_indices) + ")");
       local.resize(idx.count());
       for (size_t i = 0; i < idx.count(); ++i) {
         std::uint32_t k = idx.index(i);
@@ -697,10 +752,10 @@ class Loader {
       verts = std::move(flat);
       for (size_t i = 0; i < local.size(); ++i) local[i] = static_cast<std::uint32_t>(i);
     }
-    if (verts.size() > SceneLimits::kMaxVertices - std::min(SceneLimits::kMaxVertices, s_.vertices.size()) ||
-        local.size() > SceneLimits::kMaxIndices - std::min(SceneLimits::kMaxIndices, s_.indices.size()))
-      throw Error(where + ": the scene would hold more than " + std::to_string(SceneLimits::kMaxVertices) + " vertices or " +
-                  std::to_string(SceneLimits::kMaxIndices) + " indices, more than the loader accepts");
+    if (verts.size() > limits.max_vertices - std::min(limits.max_vertices, s_.vertices.size()) ||
+        local.size() > limits.max_indices - std::min(limits.max_indices, s_.indices.size()))
+      throw Error(where + ": the scene would hold more than " + std::to_string(limits.max_vertices) + " vertices or " +
+                  std::to_string(limits.max_indices) + " indices, more than the loader accepts");
 
     const std::size_t base = s_.vertices.size();
     s_.vertices.insert(s_.vertices.end(), verts.begin(), verts.end());
@@ -737,6 +792,8 @@ class Loader {
   void add_camera(const tinygltf::Node& node, const std::string& name, const glm::mat4& world) {
     if (node.camera >= static_cast<int>(m_.cameras.size())) throw Error(file() + ": node '" + name + "' uses a camera that does not exist");
     const auto& c = m_.cameras[node.camera];
+    if (s_.cameras.size() >= limits.max_cameras)
+      throw Error(file() + ": more than " + std::to_string(limits.max_cameras) + " cameras; the loader stops there");
     if (c.type != "perspective") {
       unsupported(c.type + " cameras (skipped: only perspective cameras are views)");
       return;
@@ -765,6 +822,8 @@ class Loader {
     if (index < 0 || index >= static_cast<int>(m_.lights.size()))
       throw Error(file() + ": node '" + name + "' uses light " + std::to_string(index) + ", which does not exist");
     ++lights_declared_;
+    if (s_.lights.size() >= limits.max_lights)
+      throw Error(file() + ": more than " + std::to_string(limits.max_lights) + " lights; the loader stops there");
     const auto& gl = m_.lights[index];
     Light l;
     l.name = gl.name.empty() ? name : gl.name;
@@ -797,7 +856,9 @@ class Loader {
     s_.lights.push_back(l);
   }
 
-  void drop_light(const std::string& name, const std::string& why) { warn("light '" + name + "' is left out: " + why); }
+  void drop_light(const std::string& name, const std::string& why) {
+    if (dropped_lights_.insert(name).second) warn("light '" + name + "' is left out: " + why);  // once per light, however many nodes use it
+  }
 
   // The world-space bounds of every instance, exact (each distinct vertex transformed) while
   // that is cheap, else the transformed corners of each mesh's own bounds (a little larger).
@@ -907,10 +968,14 @@ class Loader {
   Scene& s_;
   const ImageContext& images_;
   const FileContext& files_;
+  const SceneLimits limits;
   int default_material_ = 0;
   std::vector<int> mesh_of_gltf_;
   std::vector<UvTransform> uv_transform_;  // per Scene::materials index
   std::vector<std::optional<glm::mat4>> local_;  // per node, once: a shared child is met many times
+  std::vector<std::optional<std::string>> extras_json_;  // per node, once
+  std::set<std::string> dropped_lights_;
+  std::size_t copied_bytes_ = 0;
   std::map<std::pair<int, bool>, int> texture_of_key_;
   std::map<std::string, int> unsupported_;
   std::size_t visits_ = 0, skipped_primitives_ = 0, lights_declared_ = 0;
@@ -981,9 +1046,9 @@ void generate_tangents(std::vector<Vertex>& v, const std::vector<std::uint32_t>&
 }
 // [/generated-tangents]
 
-Scene load_scene_from_memory(const std::vector<unsigned char>& bytes, const std::filesystem::path& path) {
+Scene load_scene_from_memory(const std::vector<unsigned char>& bytes, const std::filesystem::path& path, const SceneLimits& limits) {
   if (bytes.empty()) throw Error("cannot load scene '" + path.string() + "': the file is empty");
-  if (bytes.size() > SceneLimits::kMaxFileBytes) throw Error("cannot load scene '" + path.string() + "': the file is too large");
+  if (bytes.size() > limits.max_file_bytes) throw Error("cannot load scene '" + path.string() + "': the file is too large");
   // A .glb starts with the magic "glTF", whatever the file is called.
   const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
   const unsigned char* json = bytes.data();
@@ -999,8 +1064,8 @@ Scene load_scene_from_memory(const std::vector<unsigned char>& bytes, const std:
 
   tinygltf::TinyGLTF loader;
   tinygltf::Model model;
-  FileContext files;
-  ImageContext images{.model = &model};
+  FileContext files{.max_bytes = limits.max_file_bytes};
+  ImageContext images{.model = &model, .limits = limits};
   loader.SetFsCallbacks({.FileExists = fs_exists, .ExpandFilePath = fs_expand, .ReadWholeFile = fs_read,
                          .WriteWholeFile = fs_write, .user_data = &files});
   loader.SetImageLoader(load_image, &images);
@@ -1019,16 +1084,16 @@ Scene load_scene_from_memory(const std::vector<unsigned char>& bytes, const std:
       throw Error("cannot load scene '" + path.string() + "': it requires the extension " + e + ", which lightpass does not support");
   Scene scene;
   scene.path = path;
-  Loader(model, scene, images, files).load();
+  Loader(model, scene, images, files, limits).load();
   return scene;
 }
 
-Scene load_scene(const std::filesystem::path& path) {
+Scene load_scene(const std::filesystem::path& path, const SceneLimits& limits) {
   std::vector<unsigned char> bytes;
-  std::string why = read_problem(path, &bytes);
+  std::string why = read_problem(path, &bytes, limits.max_file_bytes);
   if (why == "no such file") throw Error("cannot open scene '" + path.string() + "': no such file");
   if (!why.empty()) throw Error("cannot read scene '" + path.string() + "': " + why);
-  return load_scene_from_memory(bytes, path);
+  return load_scene_from_memory(bytes, path, limits);
 }
 
 }  // namespace lp

@@ -117,15 +117,20 @@ struct Scene {
 };
 
 // What a hostile or huge file may cost before it is refused with a message that names the
-// limit (a DAG of nodes that list the same children can expand exponentially).
+// limit (a DAG of nodes that list the same children can expand exponentially). The fuzz
+// target passes smaller ones: it explores the checks, not the scale.
 struct SceneLimits {
-  static constexpr std::size_t kMaxFileBytes = std::size_t(1) << 30;      // the .gltf/.glb and each .bin
-  static constexpr std::size_t kMaxInstances = 1'000'000;                 // mesh nodes after expansion
-  static constexpr std::size_t kMaxNodeVisits = 4'000'000;                // nodes visited, meshes or not
-  static constexpr std::size_t kMaxVertices = std::size_t(1) << 26;       // 64 M vertices (3 GiB)
-  static constexpr std::size_t kMaxIndices = std::size_t(1) << 28;        // 256 M indices (1 GiB)
-  static constexpr int kMaxImageSide = 32768;                             // texels, either side
-  static constexpr std::size_t kMaxImageTexels = std::size_t(1) << 26;    // 64 M texels per image
+  std::size_t max_file_bytes = std::size_t(1) << 30;      // the .gltf/.glb and each .bin
+  std::size_t max_instances = 1'000'000;                 // mesh nodes after expansion
+  std::size_t max_node_visits = 4'000'000;                // nodes visited, meshes or not
+  std::size_t max_lights = 100'000;                      // light nodes after expansion
+  std::size_t max_cameras = 10'000;                      // camera nodes after expansion
+  std::size_t max_node_extras = 100'000;                  // nodes with extras.lightpass
+  std::size_t max_name_bytes = std::size_t(1) << 28;      // names and extras copied (256 MiB)
+  std::size_t max_vertices = std::size_t(1) << 26;       // 64 M vertices (3 GiB)
+  std::size_t max_indices = std::size_t(1) << 28;        // 256 M indices (1 GiB)
+  int max_image_side = 32768;                             // texels, either side
+  std::size_t max_image_texels = std::size_t(1) << 26;    // 64 M texels per image
 };
 
 // The name of the view the loader adds after the file's own cameras (framing the bounds).
@@ -136,11 +141,12 @@ inline constexpr const char* kAutoView = "auto";
 // ...). Missing textures are not errors: a checker stands in, with a warning. Missing normals
 // are generated flat, missing tangents from the UVs. A scene without cameras gets a view
 // framing its bounds, one without lights a default rig (each said in Scene::notes).
-Scene load_scene(const std::filesystem::path& path);
+Scene load_scene(const std::filesystem::path& path, const SceneLimits& limits = {});
 // The same from bytes already in memory (a .gltf's JSON or a .glb, told apart by content);
 // `path` names the file in messages and its folder is where relative URIs are found.
 // Needs no GL context (the fuzz target calls it).
-Scene load_scene_from_memory(const std::vector<unsigned char>& bytes, const std::filesystem::path& path);
+Scene load_scene_from_memory(const std::vector<unsigned char>& bytes, const std::filesystem::path& path,
+                             const SceneLimits& limits = {});
 
 // Fills in normals (area-weighted over the triangles that share a vertex: flat for triangles
 // that share none) and tangents (from UVs, or any perpendicular without UVs).

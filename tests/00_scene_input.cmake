@@ -80,6 +80,7 @@ scene_test(accessor_count_overflow 1 "accessor 0 .4611686018427387904 elements o
 scene_test(huge_index_count 1 "indices: accessor 4 .4000000000 elements" ${PS01} --headless --scene tests/data/huge_index_count.gltf)
 scene_test(node_dag_is_bounded 1 "more than 1000000 mesh instances" ${PS01} --headless --scene tests/data/node_dag.gltf)
 scene_test(node_dag_without_meshes_is_bounded 1 "expands to more than 4000000 nodes" ${PS01} --headless --scene tests/data/node_dag_no_mesh.gltf)
+scene_test(node_dag_of_lights_is_bounded 1 "more than 100000 lights" ${PS01} --headless --scene tests/data/node_dag_light.gltf)
 scene_render_test(sixteen_bit_png_is_converted 0 "16-bit images read as 8 bits per channel: 'rgb16.png'"
   ${PS01} --headless --size 64x36 --scene tests/data/texture_16bit.gltf --out ${SCENE_OUT}/rgb16.png)
 # llvmpipe's GL_MAX_TEXTURE_SIZE is 16384 (CI renders with it; a GPU allowing 32768 would take the image).

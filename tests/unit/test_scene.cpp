@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <nlohmann/json.hpp>
+
 #include "common/error.h"
 #include "common/paths.h"
 #include "common/scene.h"
@@ -324,6 +326,7 @@ TEST(Scene, SharedChildrenCannotExpandWithoutBound) {
   auto start = std::chrono::steady_clock::now();
   EXPECT_TRUE(contains(load_error("node_dag.gltf"), "more than 1000000 mesh instances")) << load_error("node_dag.gltf");
   EXPECT_TRUE(contains(load_error("node_dag_no_mesh.gltf"), "expands to more than 4000000 nodes")) << load_error("node_dag_no_mesh.gltf");
+  EXPECT_TRUE(contains(load_error("node_dag_light.gltf"), "more than 100000 lights")) << load_error("node_dag_light.gltf");
   // 2^40 instances unbounded; bounded, a few million visits. 60 s is far above that even under
   // AddressSanitizer, and far below what the unbounded walk takes.
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 60.0);
@@ -382,4 +385,20 @@ TEST(Scene, AFileThisUserMayNotReadSaysPermissionDenied) {
   std::filesystem::permissions(path, std::filesystem::perms::none);
   EXPECT_TRUE(contains(load_error(path), "cannot read scene '" + path.string() + "': permission denied")) << load_error(path);
   std::filesystem::remove(path);
+}
+
+TEST(Scene, LightsThatGiveNoLightWarnThatTheImageWillBeBlack) {
+  // minimal.gltf with its one light at zero intensity and no ambient, written beside its buffer.
+  nlohmann::json doc = nlohmann::json::parse(std::ifstream(from_root("tests/data/minimal.gltf")));
+  doc["extensions"]["KHR_lights_punctual"]["lights"][0]["intensity"] = 0;
+  doc["scenes"][0]["extras"]["lightpass"]["ambient"] = {0, 0, 0};
+  auto dir = std::filesystem::temp_directory_path() / "lightpass_black";
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy_file(from_root("tests/data/minimal.bin"), dir / "minimal.bin", std::filesystem::copy_options::overwrite_existing);
+  doc["buffers"][0]["uri"] = "minimal.bin";
+  std::ofstream(dir / "black.gltf") << doc.dump();
+  Scene s = load_scene(dir / "black.gltf");
+  EXPECT_EQ(s.lights.size(), 1u) << "a zero light is allowed, and no default rig replaces it";
+  EXPECT_TRUE(contains(all_warnings(s), "the image will be black")) << all_warnings(s);
+  std::filesystem::remove_all(dir);
 }

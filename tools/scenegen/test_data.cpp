@@ -199,6 +199,7 @@ say what each must give). Files without their own `.bin` use `minimal.bin`.
 | `huge_index_count.gltf` | index accessor with count 4 000 000 000 |
 | `node_dag.gltf` | 40 nodes, each listing the next twice as children: 2^40 instances of the plane |
 | `node_dag_no_mesh.gltf` | the same DAG without a mesh at its leaves (the plane is a separate root) |
+| `node_dag_light.gltf` | the same DAG with minimal's light at its leaves (2^40 light nodes) |
 | `texture_16bit.gltf` (+ `rgb16.png`) | base colour texture is a 16-bit RGB PNG |
 | `texture_20000x1.gltf` (+ `wide_20000x1.png`) | base colour texture 20000 x 1 (past llvmpipe's GL_MAX_TEXTURE_SIZE 16384) |
 | `texture_40000x1.gltf` (+ `wide_40000x1.png`) | base colour texture 40000 x 1 (past the loader's 32768) |
@@ -361,7 +362,7 @@ void write_hostile_cases(const fs::path& dir) {
     doc["accessors"][size_t(idx)]["count"] = 4000000000ull;
     write_doc(dir, "huge_index_count", doc);
   }
-  for (bool mesh_at_leaf : {true, false}) {
+  for (const char* leaf_has : {"mesh", "nothing", "light"}) {
     json doc = minimal_doc();
     json plane;
     for (auto& n : doc["nodes"])
@@ -369,10 +370,12 @@ void write_hostile_cases(const fs::path& dir) {
     const size_t first = doc["nodes"].size();
     for (size_t i = 0; i < 40; ++i) doc["nodes"].push_back({{"name", "dag" + std::to_string(i)}, {"children", {first + i + 1, first + i + 1}}});
     json leaf = {{"name", "leaf"}};
-    if (mesh_at_leaf) leaf["mesh"] = plane["mesh"];
+    const std::string what = leaf_has;
+    if (what == "mesh") leaf["mesh"] = plane["mesh"];
+    if (what == "light") leaf["extensions"] = {{"KHR_lights_punctual", {{"light", 0}}}};
     doc["nodes"].push_back(leaf);
     doc["scenes"][0]["nodes"].push_back(first);
-    write_doc(dir, mesh_at_leaf ? "node_dag" : "node_dag_no_mesh", doc);
+    write_doc(dir, what == "mesh" ? "node_dag" : what == "light" ? "node_dag_light" : "node_dag_no_mesh", doc);
   }
   {
     write_bytes(dir / "rgb16.png", png16(4, 4));
