@@ -732,7 +732,18 @@ class Loader {
       local.resize(n);
       for (size_t i = 0; i < n; ++i) local[i] = static_cast<std::uint32_t>(i);
     }
-    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN) local = to_triangles(local, mode);
+    auto too_many = [&](std::size_t vertices, std::size_t indices) {
+      // Checked before allocating: a strip triples its indices, un-indexing makes one vertex per index.
+      if (vertices > limits.max_vertices - std::min(limits.max_vertices, s_.vertices.size()) ||
+          indices > limits.max_indices - std::min(limits.max_indices, s_.indices.size()))
+        throw Error(where + ": the scene would hold more than " + std::to_string(limits.max_vertices) + " vertices or " +
+                    std::to_string(limits.max_indices) + " indices, more than the loader accepts");
+    };
+    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+      too_many(0, local.size() > 2 ? (local.size() - 2) * 3 : 0);
+      local = to_triangles(local, mode);
+    }
+    too_many(has_normal ? n : local.size(), local.size());
     if (local.size() % 3) throw Error(where + ": " + std::to_string(local.size()) + " indices is not a whole number of triangles");
 
     int material = prim.material >= 0 && prim.material < default_material_ ? prim.material : default_material_;
@@ -752,10 +763,6 @@ class Loader {
       verts = std::move(flat);
       for (size_t i = 0; i < local.size(); ++i) local[i] = static_cast<std::uint32_t>(i);
     }
-    if (verts.size() > limits.max_vertices - std::min(limits.max_vertices, s_.vertices.size()) ||
-        local.size() > limits.max_indices - std::min(limits.max_indices, s_.indices.size()))
-      throw Error(where + ": the scene would hold more than " + std::to_string(limits.max_vertices) + " vertices or " +
-                  std::to_string(limits.max_indices) + " indices, more than the loader accepts");
 
     const std::size_t base = s_.vertices.size();
     s_.vertices.insert(s_.vertices.end(), verts.begin(), verts.end());

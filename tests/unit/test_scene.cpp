@@ -402,3 +402,22 @@ TEST(Scene, LightsThatGiveNoLightWarnThatTheImageWillBeBlack) {
   EXPECT_TRUE(contains(all_warnings(s), "the image will be black")) << all_warnings(s);
   std::filesystem::remove_all(dir);
 }
+
+TEST(Scene, VertexAndIndexLimitsAreCheckedBeforeAllocating) {
+  auto error = [](const char* file, SceneLimits limits) {
+    try {
+      load_scene(from_root(std::string("tests/data/") + file), limits);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  EXPECT_TRUE(contains(error("minimal.gltf", {.max_vertices = 3}), "has 4 vertices; with the scene's 0 that is more than the loader accepts (3)"))
+      << error("minimal.gltf", {.max_vertices = 3});
+  // 8 corners fit in 20, but flat shading un-indexes them into 36 vertices.
+  EXPECT_TRUE(contains(error("indexed_nonormals.gltf", {.max_vertices = 20}), "would hold more than 20 vertices"))
+      << error("indexed_nonormals.gltf", {.max_vertices = 20});
+  // A 6-vertex fan is 12 indices: past a limit of 10 before it is converted.
+  EXPECT_TRUE(contains(error("strip_fan.gltf", {.max_indices = 10}), "mesh 'fan' primitive 0: the scene would hold more than"))
+      << error("strip_fan.gltf", {.max_indices = 10});
+}
