@@ -101,9 +101,19 @@ App::App(const Chapter& chapter, Options options) : chapter_(chapter), options_(
   bool batch = options_.check || options_.bench;
   context_ = Context::create({.headless = options_.headless || batch, .width = options_.width,
                               .height = options_.height, .title = "lightpass " + chapter_.cli.program});
-  scene_ = std::make_unique<Scene>(load_scene(from_root(options_.scene)));
+  scene_ = std::make_unique<Scene>(load_scene(resolve_input(options_.scene)));
   for (const auto& w : scene_->warnings) std::cerr << "warning: " << w << '\n';
-  if (scene_->cameras.empty()) throw Error(scene_->path.string() + " has no camera: add a perspective camera node to render it");
+  for (const auto& n : scene_->notes) std::cout << "note: " << n << '\n';
+  if (!options_.out.empty()) {
+    // --out names a PNG (an image) or, with --check, a folder: a missing folder is made, and said.
+    std::filesystem::path dir = options_.check ? std::filesystem::path(options_.out) : std::filesystem::path(options_.out).parent_path();
+    std::error_code ec;
+    if (!dir.empty() && !std::filesystem::exists(dir, ec)) {
+      std::filesystem::create_directories(dir, ec);
+      if (ec) throw Error("--out: cannot create the directory '" + dir.string() + "': " + ec.message());
+      std::cout << "note: created the directory '" << dir.string() << "' for --out\n";
+    }
+  }
   view_ = options_.view.empty() ? scene_->cameras.front().name : scene_->camera(options_.view).name;
   scene_gpu_ = std::make_unique<SceneGpu>(*scene_);
   frame_.mode = options_.mode;
@@ -445,7 +455,8 @@ int run_chapter(int argc, const char* const* argv, const Chapter& chapter, const
   }
   try {
     if (options.list) {
-      Scene scene = load_scene(from_root(options.scene));
+      Scene scene = load_scene(resolve_input(options.scene));
+      for (const auto& w : scene.warnings) std::cerr << "warning: " << w << '\n';
       std::cout << "views:";
       for (const auto& c : scene.cameras) std::cout << ' ' << c.name;
       std::cout << "\nmodes:";

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 
 #include "common/error.h"
@@ -165,6 +167,12 @@ Options parse_cli(int argc, const char* const* argv, const CliSpec& spec) {
     }
   }
   if (o.update_references && !o.check) throw UsageError("--update-references only makes sense with --check");
+  if (!o.out.empty() && !o.check) {
+    // Only PNG is written; a name that says otherwise would be a PNG under a wrong name.
+    std::string ext = std::filesystem::path(o.out).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (ext != ".png") throw UsageError("--out " + o.out + ": only PNG images are written; give a name ending in .png");
+  }
   return o;
 }
 

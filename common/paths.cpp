@@ -18,6 +18,13 @@ std::filesystem::path from_root(const std::filesystem::path& relative) {
   return source_root() / relative;
 }
 
+std::filesystem::path resolve_input(const std::filesystem::path& given) {
+  if (given.is_absolute()) return given;
+  std::error_code ec;
+  if (std::filesystem::exists(given, ec)) return given;
+  return from_root(given);
+}
+
 std::filesystem::path shader_root() { return source_root() / "chapters"; }
 
 std::string read_text_file(const std::filesystem::path& path, std::string_view what) {

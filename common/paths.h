@@ -13,6 +13,11 @@ std::filesystem::path source_root();
 // through unchanged.
 std::filesystem::path from_root(const std::filesystem::path& relative);
 
+// A file the reader names on the command line (--scene): relative to the current directory
+// when it exists there, else to the source root (so "assets/forward/forward.gltf" works from
+// any folder). The path returned is the one tried last, for the error message.
+std::filesystem::path resolve_input(const std::filesystem::path& given);
+
 // Where shaders are found: #include "01_forward/shaders/x.glsl" is relative to this.
 std::filesystem::path shader_root();
 

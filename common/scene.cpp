@@ -5,10 +5,19 @@
 #include "common/scene.h"
 
 #include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
 #include <cstring>
+#include <fstream>
 #include <functional>
 #include <iostream>
 #include <limits>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <set>
+#include <sstream>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -20,36 +29,209 @@
 namespace lp {
 namespace {
 
+namespace fs = std::filesystem;
+
+// Sizes from the file are 64-bit and hostile: every sum and product that decides whether a
+// read stays inside a buffer is checked, so offsets near 2^64 cannot wrap around the check.
+bool add(std::size_t a, std::size_t b, std::size_t& out) { return !__builtin_add_overflow(a, b, &out); }
+bool mul(std::size_t a, std::size_t b, std::size_t& out) { return !__builtin_mul_overflow(a, b, &out); }
+
+bool finite(float v) { return std::isfinite(v); }
+template <int N>
+bool finite(const glm::vec<N, float>& v) {
+  for (int i = 0; i < N; ++i)
+    if (!std::isfinite(v[i])) return false;
+  return true;
+}
+bool finite(const glm::mat4& m) {
+  for (int c = 0; c < 4; ++c)
+    if (!finite(m[c])) return false;
+  return true;
+}
+
+std::string number_text(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+// Reads a whole regular file, saying why it cannot: a directory, a device such as /dev/null,
+// a file this user may not read, or one larger than the loader accepts. Empty: fine.
+std::string read_problem(const fs::path& path, std::vector<unsigned char>* out, std::size_t max_bytes) {
+  std::error_code ec;
+  auto status = fs::status(path, ec);
+  if (ec || !fs::exists(status)) return "no such file";
+  if (fs::is_directory(status)) return "it is a directory";
+  if (!fs::is_regular_file(status)) return "not a regular file";
+  auto size = fs::file_size(path, ec);
+  if (ec) return ec.message();
+  if (size > max_bytes)
+    return "the file is " + std::to_string(size) + " bytes, more than the loader accepts (" + std::to_string(max_bytes) + ")";
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return errno == EACCES ? "permission denied" : std::strerror(errno);
+  out->resize(size);
+  if (size && !in.read(reinterpret_cast<char*>(out->data()), std::streamsize(size))) return "read error";
+  return "";
+}
+
+// tinygltf's file access, through read_problem: its own reads a directory as a file of
+// 2^63 bytes (std::bad_alloc) and says "File not found" for a file it may not read.
+struct FileContext {
+  std::size_t max_bytes = 0;
+  std::vector<std::string> problems;  // "cannot read <path>: <why>", in the order met
+};
+
+bool fs_exists(const std::string& path, void*) {
+  std::error_code ec;
+  return fs::exists(path, ec);
+}
+std::string fs_expand(const std::string& path, void*) { return path; }  // no ~ or $VAR expansion
+bool fs_read(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+  std::string why = read_problem(path, out, static_cast<FileContext*>(user)->max_bytes);
+  if (why.empty()) return true;
+  std::string message = "cannot read '" + path + "': " + why;
+  if (err) *err += message;
+  static_cast<FileContext*>(user)->problems.push_back(message);
+  return false;
+}
+bool fs_write(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (err) *err += "the loader writes no files";
+  return false;
+}
+
+// Decodes images with stb_image, always to 8-bit RGBA (16-bit PNGs are converted), and
+// refuses sizes past SceneLimits before decoding. A picture that cannot be used is not an
+// error: the image stays empty, the reason is kept, and the material gets a fallback.
+struct ImageContext {
+  tinygltf::Model* model = nullptr;
+  SceneLimits limits;
+  std::map<int, std::string> problems;   // image index -> why it is empty
+  std::vector<std::string> converted;    // 16-bit images read as 8 bits
+};
+
+bool load_image(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+                const unsigned char* bytes, int size, void* user) {
+  auto& ctx = *static_cast<ImageContext*>(user);
+  const SceneLimits& limits = ctx.limits;
+  std::string name = !image->uri.empty() ? image->uri : !image->name.empty() ? image->name : "image " + std::to_string(index);
+  if (image->bufferView >= 0) {
+    // tinygltf hands over &buffer[byteOffset] with byteLength unchecked: check them here.
+    const auto& m = *ctx.model;
+    std::size_t end = 0;
+    bool inside = std::size_t(image->bufferView) < m.bufferViews.size();
+    if (inside) {
+      const auto& view = m.bufferViews[std::size_t(image->bufferView)];
+      inside = view.buffer >= 0 && std::size_t(view.buffer) < m.buffers.size() && add(view.byteOffset, view.byteLength, end) &&
+               end <= m.buffers[std::size_t(view.buffer)].data.size();
+    }
+    if (!inside) {
+      if (err) *err += "image " + std::to_string(index) + " ('" + name + "'): its bufferView " + std::to_string(image->bufferView) +
+                       " does not lie inside its buffer\n";
+      return false;
+    }
+  }
+  image->image.clear();
+  image->width = image->height = 0;
+  int w = 0, h = 0, channels = 0;
+  if (size <= 0 || !stbi_info_from_memory(bytes, size, &w, &h, &channels)) {
+    const char* why = stbi_failure_reason();
+    ctx.problems[index] = std::string("not an image stb_image can read (") + (why ? why : "unknown format") + ")";
+    return true;
+  }
+  if (w <= 0 || h <= 0 || w > limits.max_image_side || h > limits.max_image_side ||
+      std::size_t(w) * std::size_t(h) > limits.max_image_texels) {
+    ctx.problems[index] = "it is " + std::to_string(w) + "x" + std::to_string(h) + ", more than the loader accepts (" +
+                          std::to_string(limits.max_image_side) + " a side, " +
+                          std::to_string(limits.max_image_texels) + " texels)";
+    return true;
+  }
+  bool sixteen = stbi_is_16_bit_from_memory(bytes, size);
+  stbi_uc* pixels = stbi_load_from_memory(bytes, size, &w, &h, &channels, 4);  // 16-bit: converted to 8
+  if (!pixels) {
+    const char* why = stbi_failure_reason();
+    ctx.problems[index] = std::string("it cannot be decoded (") + (why ? why : "corrupt") + ")";
+    return true;
+  }
+  if (sixteen) ctx.converted.push_back(name);
+  image->width = w;
+  image->height = h;
+  image->component = 4;
+  image->bits = 8;
+  image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+  image->image.assign(pixels, pixels + std::size_t(w) * std::size_t(h) * 4);
+  stbi_image_free(pixels);
+  return true;
+}
+
+// tinygltf turns JSON into its own values recursively: a file of a million '[' overflows the
+// stack. Nesting deeper than any real glTF (a few levels; extras a few more) is refused first.
+constexpr int kMaxJsonDepth = 256;
+bool json_too_deep(const unsigned char* text, std::size_t size) {
+  int depth = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < size; ++i) {
+    unsigned char c = text[i];
+    if (in_string) {
+      if (c == '\\') ++i;
+      else if (c == '"') in_string = false;
+    } else if (c == '"') in_string = true;
+    else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonDepth) return true;
+    } else if (c == ']' || c == '}') --depth;
+  }
+  return false;
+}
+
+// Extensions whose meaning we implement (or that change nothing we read): a file may require these.
+const std::set<std::string>& supported_extensions() {
+  static const std::set<std::string> s = {"KHR_lights_punctual", "KHR_materials_specular", "KHR_materials_emissive_strength",
+                                          "KHR_texture_transform", "KHR_mesh_quantization"};
+  return s;
+}
+
 // Reads accessor elements as floats (or as indices), checking every byte it touches, so a
 // malformed file becomes an error message rather than an out-of-bounds read.
 class AccessorReader {
  public:
   AccessorReader(const tinygltf::Model& m, int index, const std::string& where) : where_(where) {
-    if (index < 0 || index >= static_cast<int>(m.accessors.size()))
-      fail("accessor " + std::to_string(index) + " does not exist");
+    std::string name = "accessor " + std::to_string(index);
+    if (index < 0 || index >= static_cast<int>(m.accessors.size())) fail(name + " does not exist");
     acc_ = &m.accessors[index];
-    if (acc_->sparse.isSparse) fail("sparse accessors are not supported");
+    if (acc_->sparse.isSparse) fail(name + " is sparse; sparse accessors are not supported");
     if (acc_->bufferView < 0 || acc_->bufferView >= static_cast<int>(m.bufferViews.size()))
-      fail("accessor " + std::to_string(index) + " has no buffer view");
+      fail(name + " has no buffer view (a compressed mesh? see extensionsRequired)");
     const auto& view = m.bufferViews[acc_->bufferView];
-    if (view.buffer < 0 || view.buffer >= static_cast<int>(m.buffers.size())) fail("buffer view has no buffer");
+    if (view.buffer < 0 || view.buffer >= static_cast<int>(m.buffers.size()))
+      fail(name + ": buffer view " + std::to_string(acc_->bufferView) + " has no buffer");
     const auto& buffer = m.buffers[view.buffer];
     components_ = tinygltf::GetNumComponentsInType(acc_->type);
     component_bytes_ = tinygltf::GetComponentSizeInBytes(acc_->componentType);
-    if (components_ <= 0 || component_bytes_ <= 0) fail("accessor has an unknown type");
-    int elem = components_ * component_bytes_;
+    if (components_ <= 0 || component_bytes_ <= 0) fail(name + " has an unknown type");
+    const std::size_t elem = std::size_t(components_) * std::size_t(component_bytes_);
     stride_ = view.byteStride ? view.byteStride : elem;
-    size_t start = view.byteOffset + acc_->byteOffset;
-    size_t need = acc_->count ? start + stride_ * (acc_->count - 1) + elem : start;
-    if (view.byteOffset + view.byteLength > buffer.data.size() || need > view.byteOffset + view.byteLength)
-      fail("accessor " + std::to_string(index) + " reads past the end of its buffer ('" + buffer.uri + "')");
-    data_ = buffer.data.data() + start;
+    if (stride_ < elem)
+      fail(name + ": byteStride " + std::to_string(stride_) + " is less than one element (" + std::to_string(elem) + " bytes)");
+    // The view inside the buffer, the accessor inside the view: offset + stride (count - 1) + element.
+    std::size_t view_end = 0, last = 0, need = 0;
+    bool ok = add(view.byteOffset, view.byteLength, view_end) && view_end <= buffer.data.size();
+    if (ok && acc_->count > 0)
+      ok = mul(stride_, acc_->count - 1, last) && add(acc_->byteOffset, last, need) && add(need, elem, need) && need <= view.byteLength;
+    else if (ok)
+      ok = acc_->byteOffset <= view.byteLength;
+    if (!ok)
+      fail(name + " (" + std::to_string(acc_->count) + " elements of " + std::to_string(elem) + " bytes, stride " +
+           std::to_string(stride_) + ", offset " + std::to_string(acc_->byteOffset) + ") reads past the end of buffer view " +
+           std::to_string(acc_->bufferView) + " or its buffer ('" + buffer.uri.substr(0, 64) + "', " +
+           std::to_string(buffer.data.size()) + " bytes)");
+    data_ = buffer.data.data() + view.byteOffset + acc_->byteOffset;
+    name_ = name;
   }
   size_t count() const { return acc_->count; }
   int components() const { return components_; }
+  const std::string& name() const { return name_; }
 
   float component(size_t i, int c) const {
-    const unsigned char* p = data_ + i * stride_ + c * component_bytes_;
+    const unsigned char* p = data_ + i * stride_ + std::size_t(c) * std::size_t(component_bytes_);
     switch (acc_->componentType) {
       case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, p, 4); return f; }
       case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return acc_->normalized ? *p / 255.f : *p;
@@ -58,7 +240,7 @@ class AccessorReader {
       case TINYGLTF_COMPONENT_TYPE_BYTE: { auto v = static_cast<std::int8_t>(*p); return acc_->normalized ? std::max(v / 127.f, -1.f) : v; }
       case TINYGLTF_COMPONENT_TYPE_SHORT: {
         std::int16_t v; std::memcpy(&v, p, 2); return acc_->normalized ? std::max(v / 32767.f, -1.f) : v; }
-      default: fail("unsupported component type for a vertex attribute");
+      default: fail(name_ + ": unsupported component type for a vertex attribute");
     }
   }
   std::uint32_t index(size_t i) const {
@@ -67,13 +249,14 @@ class AccessorReader {
       case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return *p;
       case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t v; std::memcpy(&v, p, 2); return v; }
       case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { std::uint32_t v; std::memcpy(&v, p, 4); return v; }
-      default: fail("indices must be unsigned byte, short or int");
+      default: fail(name_ + ": indices must be unsigned byte, short or int");
     }
   }
   template <int N>
   glm::vec<N, float> vec(size_t i) const {
     glm::vec<N, float> v(0);
     for (int c = 0; c < std::min(N, components_); ++c) v[c] = component(i, c);
+    if (!finite(v)) fail(name_ + " holds a number that is not finite (element " + std::to_string(i) + ")");
     return v;
   }
 
@@ -83,24 +266,11 @@ class AccessorReader {
   const unsigned char* data_ = nullptr;
   int components_ = 0, component_bytes_ = 0;
   size_t stride_ = 0;
-  std::string where_;
+  std::string where_, name_;
 };
 
 glm::vec3 vec3_or(const std::vector<double>& v, glm::vec3 fallback) {
   return v.size() >= 3 ? glm::vec3(v[0], v[1], v[2]) : fallback;
-}
-
-glm::mat4 local_matrix(const tinygltf::Node& n) {
-  if (n.matrix.size() == 16) {
-    glm::mat4 m;
-    for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = static_cast<float>(n.matrix[i]);
-    return m;
-  }
-  glm::mat4 t = glm::translate(glm::mat4(1), vec3_or(n.translation, glm::vec3(0)));
-  glm::quat q(1, 0, 0, 0);
-  if (n.rotation.size() == 4) q = glm::quat(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]), float(n.rotation[2]));
-  glm::mat4 s = glm::scale(glm::mat4(1), vec3_or(n.scale, glm::vec3(1)));
-  return t * glm::mat4_cast(q) * s;
 }
 
 ImageRGBA8 fallback_checker(glm::u8vec4 a, glm::u8vec4 b) {
@@ -134,31 +304,61 @@ nlohmann::json json_text(const tinygltf::Value& v) {
   return nullptr;
 }
 
+// KHR_texture_transform of one texture: uv' = T(offset) R(rotation) S(scale) uv.
+struct UvTransform {
+  glm::vec2 offset{0}, scale{1};
+  float rotation = 0;
+  bool identity() const { return offset == glm::vec2(0) && scale == glm::vec2(1) && rotation == 0; }
+  bool operator==(const UvTransform&) const = default;
+  glm::vec2 apply(glm::vec2 uv) const {
+    glm::vec2 s = uv * scale;
+    float c = std::cos(rotation), n = std::sin(rotation);
+    return glm::vec2(c * s.x + n * s.y, -n * s.x + c * s.y) + offset;
+  }
+};
+
 class Loader {
  public:
-  Loader(const tinygltf::Model& m, Scene& s) : m_(m), s_(s) {}
+  Loader(const tinygltf::Model& m, Scene& s, const ImageContext& images, const FileContext& files, const SceneLimits& limits)
+      : m_(m), s_(s), images_(images), files_(files), limits(limits) {}
 
   void load() {
+    note_unsupported_document();
     s_.materials.reserve(m_.materials.size() + 1);
-    for (size_t i = 0; i < m_.materials.size(); ++i) s_.materials.push_back(material(m_.materials[i]));
+    for (size_t i = 0; i < m_.materials.size(); ++i) s_.materials.push_back(material(m_.materials[i], int(i)));
     default_material_ = static_cast<int>(s_.materials.size());
     s_.materials.push_back(Material{.name = "default", .base_color = glm::vec4(0.8f, 0.8f, 0.8f, 1), .specular_color = glm::vec3(0.04f)});
+    uv_transform_.resize(s_.materials.size());
+    for (size_t i = 0; i < m_.materials.size(); ++i) uv_transform_[i] = material_uv_transform(m_.materials[i], int(i));
     mesh_of_gltf_.assign(m_.meshes.size(), -1);
 
     int scene_index = m_.defaultScene >= 0 ? m_.defaultScene : 0;
-    if (m_.scenes.empty()) throw Error(s_.path.string() + ": the file has no scene");
-    if (scene_index >= static_cast<int>(m_.scenes.size())) throw Error(s_.path.string() + ": default scene does not exist");
+    if (m_.scenes.empty()) throw Error(file() + ": the file has no scene");
+    if (scene_index >= static_cast<int>(m_.scenes.size())) throw Error(file() + ": default scene does not exist");
     const auto& scene = m_.scenes[scene_index];
     if (scene.extras.Has("lightpass")) {
       const auto& lp = scene.extras.Get("lightpass");
       if (lp.Has("ambient")) s_.ambient = number3(lp.Get("ambient"), glm::vec3(0));
+      if (!finite(s_.ambient) || glm::any(glm::lessThan(s_.ambient, glm::vec3(0))))
+        throw Error(file() + ": the scene's extras.lightpass.ambient must be three finite numbers >= 0");
     }
+    check_expansion(scene.nodes);
     for (int root : scene.nodes) visit(root, glm::mat4(1), 0);
-    if (s_.instances.empty()) throw Error(s_.path.string() + ": the scene has no meshes to draw");
+    std::size_t drawable = 0;
+    for (const auto& inst : s_.instances) drawable += s_.meshes[inst.mesh].primitives.size();
+    if (drawable == 0) {
+      std::string why = skipped_primitives_ ? " (" + std::to_string(skipped_primitives_) + " primitives are points or lines, which are skipped)" : "";
+      throw Error(file() + ": the scene has no triangles to draw" + why);
+    }
     compute_bounds();
+    add_auto_view();
+    add_default_lights();
+    report_unsupported();
   }
 
  private:
+  std::string file() const { return s_.path.string(); }
+
   static glm::vec3 number3(const tinygltf::Value& v, glm::vec3 fallback) {
     if (!v.IsArray() || v.ArrayLen() < 3) return fallback;
     glm::vec3 r;
@@ -166,23 +366,59 @@ class Loader {
     return r;
   }
 
+  // What the file uses and lightpass does not do, said once for the whole file.
+  void unsupported(const std::string& feature) { ++unsupported_[feature]; }
+  void unsupported_once(const std::string& feature) { unsupported_[feature] = 1; }
+  void note_unsupported_document() {
+    for (const auto& e : m_.extensionsUsed)
+      if (!supported_extensions().count(e)) unsupported_once("extension " + e);
+    if (!m_.animations.empty()) unsupported_["animations (the scene is shown at rest)"] = int(m_.animations.size());
+    if (!m_.skins.empty()) unsupported_["skins (drawn in the bind pose)"] = int(m_.skins.size());
+    for (const auto& s : m_.samplers) {
+      bool ours = (s.wrapS == TINYGLTF_TEXTURE_WRAP_REPEAT && s.wrapT == TINYGLTF_TEXTURE_WRAP_REPEAT) &&
+                  (s.minFilter == -1 || s.minFilter == TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR) &&
+                  (s.magFilter == -1 || s.magFilter == TINYGLTF_TEXTURE_FILTER_LINEAR);
+      if (!ours) unsupported("sampler wrap/filter modes (textures always repeat, trilinear)");
+    }
+  }
+  void report_unsupported() {
+    if (!images_.converted.empty()) {
+      std::string names;
+      for (size_t i = 0; i < images_.converted.size() && i < 3; ++i) names += (i ? ", '" : "'") + images_.converted[i] + "'";
+      if (images_.converted.size() > 3) names += ", ...";
+      unsupported_["16-bit images read as 8 bits per channel: " + names] += 0;
+    }
+    if (unsupported_.empty()) return;
+    std::string text = s_.path.filename().string() + " uses what lightpass does not support; ignored or converted:";
+    bool first = true;
+    for (const auto& [feature, count] : unsupported_) {
+      text += std::string(first ? " " : "; ") + feature + (count > 1 ? " (x" + std::to_string(count) + ")" : "");
+      first = false;
+    }
+    warn(text);
+  }
+
   int texture(int gltf_index, bool srgb, const std::string& material_name) {
     if (gltf_index < 0) return -1;
-    for (size_t i = 0; i < texture_keys_.size(); ++i)
-      if (texture_keys_[i] == std::make_pair(gltf_index, srgb)) return static_cast<int>(i);
+    auto key = std::make_pair(gltf_index, srgb);
+    if (auto it = texture_of_key_.find(key); it != texture_of_key_.end()) return it->second;
     Texture t;
     t.srgb = srgb;
     const tinygltf::Image* img = nullptr;
+    int source = -1;
     if (gltf_index < static_cast<int>(m_.textures.size())) {
-      int source = m_.textures[gltf_index].source;
+      source = m_.textures[gltf_index].source;
       if (source >= 0 && source < static_cast<int>(m_.images.size())) img = &m_.images[source];
     }
-    t.name = img ? (img->uri.empty() ? img->name : img->uri) : "texture " + std::to_string(gltf_index);
-    if (img && img->width > 0 && img->height > 0 && !img->image.empty() && img->bits == 8) {
+    t.name = img ? (img->uri.empty() ? (img->name.empty() ? "image " + std::to_string(source) : img->name) : img->uri)
+                 : "texture " + std::to_string(gltf_index);
+    std::size_t texels = img && img->width > 0 && img->height > 0 ? std::size_t(img->width) * std::size_t(img->height) : 0;
+    if (img && texels > 0 && img->bits == 8 && img->component >= 1 && img->component <= 4 &&
+        img->image.size() >= texels * std::size_t(img->component)) {
       t.image.width = img->width;
       t.image.height = img->height;
-      t.image.pixels.resize(size_t(img->width) * img->height * 4);
-      for (size_t p = 0; p < size_t(img->width) * img->height; ++p)
+      t.image.pixels.resize(texels * 4);
+      for (size_t p = 0; p < texels; ++p)
         for (int c = 0; c < 4; ++c)
           t.image.pixels[p * 4 + c] = c < img->component ? img->image[p * img->component + c]
                                                         : (c == 3 ? 255 : img->image[p * img->component]);
@@ -191,17 +427,74 @@ class Loader {
       t.image = srgb ? fallback_checker({255, 0, 255, 255}, {32, 32, 32, 255})
                      : fallback_checker({128, 128, 255, 255}, {128, 128, 255, 255});
       t.fallback = true;
-      warn("material '" + material_name + "': texture '" + t.name + "' could not be loaded (" +
-           (s_.path.parent_path() / t.name).string() + "): using a fallback " + (srgb ? "checker" : "flat normal map"));
+      std::string why;
+      if (!img) why = "texture " + std::to_string(gltf_index) + " has no image";
+      else if (auto it = images_.problems.find(source); it != images_.problems.end()) why = it->second;
+      else if (!img->uri.empty()) {
+        why = (s_.path.parent_path() / img->uri).string();
+        for (const auto& p : files_.problems)
+          if (p.find(img->uri) != std::string::npos) why = p;
+      } else why = "no image data";
+      warn("material '" + material_name + "': texture '" + t.name + "' could not be loaded (" + why + "): using a fallback " +
+           (srgb ? "checker" : "flat normal map"));
     }
-    texture_keys_.push_back({gltf_index, srgb});
+    texture_of_key_[key] = static_cast<int>(s_.textures.size());
     s_.textures.push_back(std::move(t));
     return static_cast<int>(s_.textures.size() - 1);
   }
 
-  Material material(const tinygltf::Material& gm) {
+  static UvTransform uv_transform(const tinygltf::ExtensionMap& extensions, int& tex_coord) {
+    UvTransform t;
+    auto it = extensions.find("KHR_texture_transform");
+    if (it == extensions.end()) return t;
+    const auto& e = it->second;
+    auto pair = [&](const char* key, glm::vec2 fallback) {
+      if (!e.Has(key) || !e.Get(key).IsArray() || e.Get(key).ArrayLen() < 2) return fallback;
+      return glm::vec2(e.Get(key).Get(0).GetNumberAsDouble(), e.Get(key).Get(1).GetNumberAsDouble());
+    };
+    t.offset = pair("offset", glm::vec2(0));
+    t.scale = pair("scale", glm::vec2(1));
+    if (e.Has("rotation")) t.rotation = static_cast<float>(e.Get("rotation").GetNumberAsDouble());
+    if (e.Has("texCoord")) tex_coord = e.Get("texCoord").GetNumberAsInt();
+    return t;
+  }
+
+  // One transform per material (the vertices of a primitive carry one set of UVs): the base
+  // colour's, else the normal map's, else the emissive texture's. Others that differ are named.
+  UvTransform material_uv_transform(const tinygltf::Material& gm, int index) {
+    const std::string name = material_label(gm, index);
+    struct Slot { const char* what; int texture; int tex_coord; const tinygltf::ExtensionMap* ext; };
+    const Slot slots[] = {{"baseColorTexture", gm.pbrMetallicRoughness.baseColorTexture.index, gm.pbrMetallicRoughness.baseColorTexture.texCoord,
+                           &gm.pbrMetallicRoughness.baseColorTexture.extensions},
+                          {"normalTexture", gm.normalTexture.index, gm.normalTexture.texCoord, &gm.normalTexture.extensions},
+                          {"emissiveTexture", gm.emissiveTexture.index, gm.emissiveTexture.texCoord, &gm.emissiveTexture.extensions}};
+    bool chosen = false;
+    UvTransform out;
+    for (const auto& s : slots) {
+      if (s.texture < 0) continue;
+      int tex_coord = s.tex_coord;
+      UvTransform t = uv_transform(*s.ext, tex_coord);
+      if (tex_coord != 0) unsupported("texCoord " + std::to_string(tex_coord) + " (TEXCOORD_0 is used)");
+      if (!finite(t.offset) || !finite(t.scale) || !finite(t.rotation))
+        throw Error(file() + ": material '" + name + "': KHR_texture_transform of its " + s.what + " is not finite");
+      if (!chosen) {
+        out = t;
+        chosen = true;
+      } else if (!(t == out)) {
+        unsupported(std::string("a KHR_texture_transform of ") + s.what + " that differs from the material's first texture's (material '" + name + "')");
+      }
+    }
+    return out;
+  }
+
+  static std::string material_label(const tinygltf::Material& gm, int index) {
+    return gm.name.empty() ? "material" + std::to_string(index) : gm.name;
+  }
+
+  Material material(const tinygltf::Material& gm, int index) {
     Material mat;
     mat.name = gm.name;
+    const std::string label = material_label(gm, index);
     const auto& pbr = gm.pbrMetallicRoughness;
     if (pbr.baseColorFactor.size() == 4)
       mat.base_color = glm::vec4(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2], pbr.baseColorFactor[3]);
@@ -210,6 +503,7 @@ class Loader {
     mat.emissive = vec3_or(gm.emissiveFactor, glm::vec3(0));
     if (auto it = gm.extensions.find("KHR_materials_emissive_strength"); it != gm.extensions.end() && it->second.Has("emissiveStrength"))
       mat.emissive *= static_cast<float>(it->second.Get("emissiveStrength").GetNumberAsDouble());
+    mat.emissive_texture = texture(gm.emissiveTexture.index, true, gm.name);
     mat.normal_texture = texture(gm.normalTexture.index, false, gm.name);
     mat.normal_scale = static_cast<float>(gm.normalTexture.scale);
     // Without KHR_materials_specular, glTF's dielectric reflectance at normal incidence (0.04).
@@ -220,21 +514,119 @@ class Loader {
       mat.specular_factor = e.Has("specularFactor") ? static_cast<float>(e.Get("specularFactor").GetNumberAsDouble()) : 1.f;
       glm::vec3 colour = e.Has("specularColorFactor") ? number3(e.Get("specularColorFactor"), glm::vec3(1)) : glm::vec3(1);
       mat.specular_color = colour * mat.specular_factor;
+      if (e.Has("specularTexture") || e.Has("specularColorTexture")) unsupported("KHR_materials_specular textures (the factors are used)");
     }
+    for (const auto& [name, value] : gm.extensions)
+      if (!supported_extensions().count(name)) unsupported_once("extension " + name);
+    if (pbr.metallicRoughnessTexture.index >= 0) unsupported("metallicRoughnessTexture (the roughness factor is used)");
+    if (gm.occlusionTexture.index >= 0) unsupported("occlusionTexture");
+    if (gm.alphaMode != "OPAQUE" && !gm.alphaMode.empty()) unsupported("alphaMode " + gm.alphaMode + " (drawn opaque)");
+    if (gm.doubleSided) unsupported("doubleSided materials (back faces are culled)");
+    auto bad = [&](const char* what) { throw Error(file() + ": material '" + label + "': " + what + " must be finite and >= 0"); };
+    if (!finite(mat.base_color) || glm::any(glm::lessThan(mat.base_color, glm::vec4(0)))) bad("baseColorFactor");
+    if (!finite(mat.emissive) || glm::any(glm::lessThan(mat.emissive, glm::vec3(0)))) bad("emissiveFactor (times emissiveStrength)");
+    if (!finite(mat.specular_color) || glm::any(glm::lessThan(mat.specular_color, glm::vec3(0)))) bad("the specular colour");
+    if (!finite(mat.roughness) || mat.roughness < 0) bad("roughnessFactor");
+    if (!finite(mat.normal_scale)) bad("normalTexture.scale");
     return mat;
+  }
+
+  glm::mat4 local_matrix(const tinygltf::Node& n, const std::string& name) {
+    glm::mat4 m(1);
+    if (n.matrix.size() == 16) {
+      for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = static_cast<float>(n.matrix[i]);
+    } else {
+      glm::mat4 t = glm::translate(glm::mat4(1), vec3_or(n.translation, glm::vec3(0)));
+      glm::quat q(1, 0, 0, 0);
+      if (n.rotation.size() == 4) {
+        q = glm::quat(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]), float(n.rotation[2]));
+        float len = glm::length(q);
+        if (!(len > 1e-6f) || !std::isfinite(len)) throw Error(file() + ": node '" + name + "': its rotation is not a unit quaternion (length " + number_text(len) + ")");
+        if (std::abs(len - 1.f) > 1e-3f) q /= len;  // glTF requires unit quaternions; tolerate sloppy writers
+      }
+      glm::mat4 s = glm::scale(glm::mat4(1), vec3_or(n.scale, glm::vec3(1)));
+      m = t * glm::mat4_cast(q) * s;
+    }
+    if (!finite(m)) throw Error(file() + ": node '" + name + "': its transform holds a number that is not finite");
+    return m;
+  }
+
+  // What the node graph expands to, counted without expanding it (a child listed by k parents
+  // counts k times), saturating: a DAG past the limits is refused before any work is done.
+  void check_expansion(const std::vector<int>& roots) {
+    struct Expansion { std::uint64_t visits = 0, instances = 0, lights = 0, cameras = 0; };
+    constexpr std::uint64_t kCap = std::uint64_t(1) << 62;
+    auto sum = [&](Expansion& a, const Expansion& b) {
+      a.visits = std::min(kCap, a.visits + b.visits);
+      a.instances = std::min(kCap, a.instances + b.instances);
+      a.lights = std::min(kCap, a.lights + b.lights);
+      a.cameras = std::min(kCap, a.cameras + b.cameras);
+    };
+    std::vector<std::optional<Expansion>> memo(m_.nodes.size());
+    std::vector<char> on_path(m_.nodes.size(), 0);
+    std::function<Expansion(int, int)> count = [&](int n, int depth) -> Expansion {
+      if (n < 0 || n >= static_cast<int>(m_.nodes.size())) throw Error(file() + ": node " + std::to_string(n) + " does not exist");
+      if (depth > 64 || on_path[n]) throw Error(file() + ": the node hierarchy is deeper than 64 (a cycle?)");
+      if (memo[n]) return *memo[n];
+      const auto& node = m_.nodes[n];
+      auto light = node.extensions.find("KHR_lights_punctual");
+      Expansion e{1, node.mesh >= 0, light != node.extensions.end() && light->second.Has("light"), node.camera >= 0};
+      on_path[n] = 1;
+      for (int child : node.children) sum(e, count(child, depth + 1));
+      on_path[n] = 0;
+      memo[n] = e;
+      return e;
+    };
+    Expansion total;
+    for (int root : roots) sum(total, count(root, 0));
+    auto refuse = [&](std::uint64_t n, std::size_t limit, const std::string& what) {
+      if (n > limit)
+        throw Error(file() + ": more than " + std::to_string(limit) + " " + what + " (nodes shared as children of many parents?); the loader stops there");
+    };
+    refuse(total.instances, limits.max_instances, "mesh instances");
+    refuse(total.lights, limits.max_lights, "lights");
+    refuse(total.cameras, limits.max_cameras, "cameras");
+    if (total.visits > limits.max_node_visits)
+      throw Error(file() + ": the node hierarchy expands to more than " + std::to_string(limits.max_node_visits) +
+                  " nodes (children shared by many parents); the loader stops there");
   }
 
   void visit(int node_index, const glm::mat4& parent, int depth) {
     if (node_index < 0 || node_index >= static_cast<int>(m_.nodes.size()))
-      throw Error(s_.path.string() + ": node " + std::to_string(node_index) + " does not exist");
-    if (depth > 64) throw Error(s_.path.string() + ": the node hierarchy is deeper than 64 (a cycle?)");
+      throw Error(file() + ": node " + std::to_string(node_index) + " does not exist");
+    if (depth > 64) throw Error(file() + ": the node hierarchy is deeper than 64 (a cycle?)");
+    // Nodes that list the same children share them: a small file can expand to 2^64 nodes.
+    if (++visits_ > limits.max_node_visits)
+      throw Error(file() + ": the node hierarchy expands to more than " + std::to_string(limits.max_node_visits) +
+                  " nodes (children shared by many parents); the loader stops there");
     const auto& node = m_.nodes[node_index];
-    glm::mat4 world = parent * local_matrix(node);
-    std::string name = node.name.empty() ? "node" + std::to_string(node_index) : node.name;
+    auto label = [&] { return node.name.empty() ? "node" + std::to_string(node_index) : node.name; };
+    if (local_.empty()) local_.resize(m_.nodes.size());
+    if (!local_[node_index]) local_[node_index] = local_matrix(node, label());
+    glm::mat4 world = parent * *local_[node_index];
+    if (!finite(world)) throw Error(file() + ": node '" + label() + "': its world transform is not finite");
+    const bool named = node.mesh >= 0 || node.camera >= 0 || node.extras.Has("lightpass") || !node.extensions.empty();
+    if (!named) {
+      for (int child : node.children) visit(child, world, depth + 1);
+      return;
+    }
+    const std::string name = label();
+    // What each visit copies is bounded too: a long name or big extras on a shared node.
+    std::size_t copied = name.size() * (1 + (node.mesh >= 0) + (node.camera >= 0) + node.extras.Has("lightpass"));
+    if ((copied_bytes_ += copied) > limits.max_name_bytes)
+      throw Error(file() + ": the node names and extras would take more than " + std::to_string(limits.max_name_bytes >> 20) +
+                  " MiB (nodes shared by many parents?); the loader stops there");
     if (node.mesh >= 0) add_instance(node, name, world);
     if (node.camera >= 0) add_camera(node, name, world);
-    if (node.extras.Has("lightpass"))
-      s_.node_extras.push_back({.name = name, .world = world, .lightpass_json = json_text(node.extras.Get("lightpass")).dump()});
+    if (node.extras.Has("lightpass")) {
+      if (s_.node_extras.size() >= limits.max_node_extras)
+        throw Error(file() + ": more than " + std::to_string(limits.max_node_extras) + " nodes with extras.lightpass; the loader stops there");
+      if (extras_json_.empty()) extras_json_.resize(m_.nodes.size());
+      if (!extras_json_[node_index]) extras_json_[node_index] = json_text(node.extras.Get("lightpass")).dump();
+      if ((copied_bytes_ += extras_json_[node_index]->size()) > limits.max_name_bytes)
+        throw Error(file() + ": the nodes' extras would take more than " + std::to_string(limits.max_name_bytes >> 20) + " MiB; the loader stops there");
+      s_.node_extras.push_back({.name = name, .world = world, .lightpass_json = *extras_json_[node_index]});
+    }
     if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end() && it->second.Has("light"))
       add_light(it->second.Get("light").GetNumberAsInt(), name, world);
     for (int child : node.children) visit(child, world, depth + 1);
@@ -242,18 +634,25 @@ class Loader {
 
   void add_instance(const tinygltf::Node& node, const std::string& name, const glm::mat4& world) {
     if (node.mesh >= static_cast<int>(m_.meshes.size()))
-      throw Error(s_.path.string() + ": node '" + name + "' uses mesh " + std::to_string(node.mesh) + ", which does not exist");
+      throw Error(file() + ": node '" + name + "' uses mesh " + std::to_string(node.mesh) + ", which does not exist");
+    if (s_.instances.size() >= limits.max_instances)
+      throw Error(file() + ": more than " + std::to_string(limits.max_instances) +
+                  " mesh instances (nodes shared as children of many parents?); the loader stops there");
     if (mesh_of_gltf_[node.mesh] < 0) mesh_of_gltf_[node.mesh] = mesh(node.mesh);
     Instance inst{.name = name, .mesh = mesh_of_gltf_[node.mesh], .model = world};
     if (node.extras.Has("lightpass")) {
       const auto& e = node.extras.Get("lightpass");
-      std::string shape = e.Has("shape") ? e.Get("shape").Get<std::string>() : "";
+      std::string shape = e.Has("shape") && e.Get("shape").IsString() ? e.Get("shape").Get<std::string>() : "";
       if (shape == "sphere" && e.Has("radius")) {
         inst.shape.kind = Shape::Sphere;
         inst.shape.radius = static_cast<float>(e.Get("radius").GetNumberAsDouble());
-      } else if (shape == "rect" && e.Has("size") && e.Get("size").ArrayLen() == 2) {
+        if (!(inst.shape.radius > 0) || !finite(inst.shape.radius))
+          throw Error(file() + ": node '" + name + "': extras.lightpass radius must be a finite number > 0");
+      } else if (shape == "rect" && e.Has("size") && e.Get("size").IsArray() && e.Get("size").ArrayLen() == 2) {
         inst.shape.kind = Shape::Rect;
         inst.shape.size = {e.Get("size").Get(0).GetNumberAsDouble(), e.Get("size").Get(1).GetNumberAsDouble()};
+        if (!finite(inst.shape.size) || !(inst.shape.size.x > 0) || !(inst.shape.size.y > 0))
+          throw Error(file() + ": node '" + name + "': extras.lightpass size must be two finite numbers > 0");
       }
     }
     s_.instances.push_back(inst);
@@ -266,72 +665,172 @@ class Loader {
     for (size_t p = 0; p < gm.primitives.size(); ++p) {
       const auto& prim = gm.primitives[p];
       std::string where = s_.path.filename().string() + ": mesh '" + out.name + "' primitive " + std::to_string(p);
-      if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) {
-        warn(where + ": mode " + std::to_string(prim.mode) + " is not triangles; skipped");
+      int mode = prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+      if (mode < TINYGLTF_MODE_TRIANGLES) {
+        static const char* kNames[] = {"points", "lines", "line loops", "line strips"};
+        unsupported(std::string(mode >= 0 ? kNames[mode] : "primitives of an unknown mode") + " (skipped)");
+        ++skipped_primitives_;
         continue;
       }
-      out.primitives.push_back(primitive(prim, where));
+      if (mode > TINYGLTF_MODE_TRIANGLE_FAN) {
+        unsupported("primitives of an unknown mode (skipped)");
+        ++skipped_primitives_;
+        continue;
+      }
+      out.primitives.push_back(primitive(prim, mode, where));
     }
     s_.meshes.push_back(std::move(out));
     return static_cast<int>(s_.meshes.size() - 1);
   }
 
-  Primitive primitive(const tinygltf::Primitive& prim, const std::string& where) {
+  Primitive primitive(const tinygltf::Primitive& prim, int mode, const std::string& where) {
     auto attr = [&](const char* name) { auto it = prim.attributes.find(name); return it == prim.attributes.end() ? -1 : it->second; };
+    for (const auto& [name, accessor] : prim.attributes)
+      if (name != "POSITION" && name != "NORMAL" && name != "TEXCOORD_0" && name != "TANGENT")
+        unsupported("vertex attribute " + (name.rfind("_") != std::string::npos && std::isdigit(static_cast<unsigned char>(name.back()))
+                                               ? name.substr(0, name.rfind('_') + 1) + "n" : name));
+    if (!prim.targets.empty()) unsupported("morph targets (the base shape is drawn)");
+    if (prim.extensions.count("KHR_draco_mesh_compression")) unsupported_once("extension KHR_draco_mesh_compression");
     if (attr("POSITION") < 0) throw Error(where + ": no POSITION attribute");
     AccessorReader pos(m_, attr("POSITION"), where + " POSITION");
-    const size_t base = s_.vertices.size(), n = pos.count();
-    s_.vertices.resize(base + n);
-    for (size_t i = 0; i < n; ++i) s_.vertices[base + i].position = pos.vec<3>(i);
+    const size_t n = pos.count();
+    if (n > limits.max_vertices - std::min(limits.max_vertices, s_.vertices.size()))
+      throw Error(where + ": POSITION " + pos.name() + " has " + std::to_string(n) + " vertices; with the scene's " +
+                  std::to_string(s_.vertices.size()) + " that is more than the loader accepts (" + std::to_string(limits.max_vertices) + ")");
+    std::vector<Vertex> verts(n);
+    for (size_t i = 0; i < n; ++i) verts[i].position = pos.vec<3>(i);
     auto read = [&](const char* name, auto assign) {
       if (attr(name) < 0) return false;
       AccessorReader r(m_, attr(name), where + " " + name);
-      if (r.count() != n) throw Error(where + ": " + name + " has " + std::to_string(r.count()) + " elements but POSITION has " + std::to_string(n));
-      for (size_t i = 0; i < n; ++i) assign(s_.vertices[base + i], r, i);
+      if (r.count() != n) throw Error(where + ": " + name + " (" + r.name() + ") has " + std::to_string(r.count()) + " elements but POSITION has " + std::to_string(n));
+      for (size_t i = 0; i < n; ++i) assign(verts[i], r, i);
       return true;
     };
-    bool has_normal = read("NORMAL", [](Vertex& v, const AccessorReader& r, size_t i) { v.normal = glm::normalize(r.vec<3>(i)); });
+    bool has_normal = read("NORMAL", [](Vertex& v, const AccessorReader& r, size_t i) {
+      glm::vec3 normal = r.vec<3>(i);
+      v.normal = glm::dot(normal, normal) > 0 ? glm::normalize(normal) : glm::vec3(0);  // zero: the shaders use the face's
+    });
     bool has_uv = read("TEXCOORD_0", [](Vertex& v, const AccessorReader& r, size_t i) { v.uv = r.vec<2>(i); });
     bool has_tangent = read("TANGENT", [](Vertex& v, const AccessorReader& r, size_t i) { v.tangent = r.vec<4>(i); });
 
-    Primitive out;
-    out.first_index = static_cast<std::uint32_t>(s_.indices.size());
+    // Indices of this primitive's own vertices, as triangles.
+    std::vector<std::uint32_t> local;
     if (prim.indices >= 0) {
       AccessorReader idx(m_, prim.indices, where + " indices");
+      if (idx.count() > limits.max_indices)
+        throw Error(where + ": indices " + idx.name() + " has " + std::to_string(idx.count()) + " elements, more than the loader accepts (" +
+                    std::to_string(limits.max_indices) + ")");
+      local.resize(idx.count());
       for (size_t i = 0; i < idx.count(); ++i) {
         std::uint32_t k = idx.index(i);
         if (k >= n) throw Error(where + ": index " + std::to_string(k) + " (at position " + std::to_string(i) +
                                 ") is past the " + std::to_string(n) + " vertices");
-        s_.indices.push_back(static_cast<std::uint32_t>(base + k));
+        local[i] = k;
       }
     } else {
-      for (size_t i = 0; i < n; ++i) s_.indices.push_back(static_cast<std::uint32_t>(base + i));
+      if (n > std::numeric_limits<std::uint32_t>::max()) throw Error(where + ": more than 2^32 vertices");
+      local.resize(n);
+      for (size_t i = 0; i < n; ++i) local[i] = static_cast<std::uint32_t>(i);
     }
-    out.index_count = static_cast<std::uint32_t>(s_.indices.size() - out.first_index);
-    if (out.index_count % 3) throw Error(where + ": " + std::to_string(out.index_count) + " indices is not a whole number of triangles");
-    out.material = prim.material >= 0 && prim.material < default_material_ ? prim.material : default_material_;
-    if (!has_normal) generate_normals(s_.vertices, s_.indices, out.first_index, out.index_count);
+    auto too_many = [&](std::size_t vertices, std::size_t indices) {
+      // Checked before allocating: a strip triples its indices, un-indexing makes one vertex per index.
+      if (vertices > limits.max_vertices - std::min(limits.max_vertices, s_.vertices.size()) ||
+          indices > limits.max_indices - std::min(limits.max_indices, s_.indices.size()))
+        throw Error(where + ": the scene would hold more than " + std::to_string(limits.max_vertices) + " vertices or " +
+                    std::to_string(limits.max_indices) + " indices, more than the loader accepts");
+    };
+    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+      too_many(0, local.size() > 2 ? (local.size() - 2) * 3 : 0);
+      local = to_triangles(local, mode);
+    }
+    too_many(has_normal ? n : local.size(), local.size());
+    if (local.size() % 3) throw Error(where + ": " + std::to_string(local.size()) + " indices is not a whole number of triangles");
+
+    int material = prim.material >= 0 && prim.material < default_material_ ? prim.material : default_material_;
+    if (has_uv && !uv_transform_[material].identity())
+      for (auto& v : verts) v.uv = uv_transform_[material].apply(v.uv);
+    if (!has_normal) {
+      // glTF: "When normals are not specified, client implementations MUST calculate flat
+      // normals": every triangle gets its own three vertices and its face normal.
+      std::vector<Vertex> flat(local.size());
+      for (size_t i = 0; i < local.size(); ++i) flat[i] = verts[local[i]];
+      for (size_t t = 0; t + 2 < flat.size(); t += 3) {
+        glm::vec3 face = glm::cross(flat[t + 1].position - flat[t].position, flat[t + 2].position - flat[t].position);
+        float len = glm::length(face);
+        face = len > 0 && std::isfinite(len) ? face / len : glm::vec3(0, 1, 0);
+        for (int k = 0; k < 3; ++k) flat[t + k].normal = face;
+      }
+      verts = std::move(flat);
+      for (size_t i = 0; i < local.size(); ++i) local[i] = static_cast<std::uint32_t>(i);
+    }
+
+    const std::size_t base = s_.vertices.size();
+    s_.vertices.insert(s_.vertices.end(), verts.begin(), verts.end());
+    Primitive out;
+    out.first_index = static_cast<std::uint32_t>(s_.indices.size());
+    s_.indices.reserve(s_.indices.size() + local.size());
+    for (std::uint32_t k : local) s_.indices.push_back(static_cast<std::uint32_t>(base + k));
+    out.index_count = static_cast<std::uint32_t>(local.size());
+    out.material = material;
     if (!has_tangent) generate_tangents(s_.vertices, s_.indices, out.first_index, out.index_count, has_uv);
     return out;
   }
 
+  // glTF 2.0 §3.7.2.1: strip triangle i is (i, i+1+i%2, i+2-i%2), fan triangle i (i+1, i+2, 0),
+  // both keeping the winding of the first triangle.
+  static std::vector<std::uint32_t> to_triangles(const std::vector<std::uint32_t>& in, int mode) {
+    std::vector<std::uint32_t> out;
+    if (in.size() < 3) return out;
+    out.reserve((in.size() - 2) * 3);
+    for (size_t i = 0; i + 2 < in.size(); ++i) {
+      if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+        out.push_back(in[i]);
+        out.push_back(in[i + 1 + i % 2]);
+        out.push_back(in[i + 2 - i % 2]);
+      } else {
+        out.push_back(in[i + 1]);
+        out.push_back(in[i + 2]);
+        out.push_back(in[0]);
+      }
+    }
+    return out;
+  }
+
   void add_camera(const tinygltf::Node& node, const std::string& name, const glm::mat4& world) {
-    if (node.camera >= static_cast<int>(m_.cameras.size())) throw Error(s_.path.string() + ": node '" + name + "' uses a camera that does not exist");
+    if (node.camera >= static_cast<int>(m_.cameras.size())) throw Error(file() + ": node '" + name + "' uses a camera that does not exist");
     const auto& c = m_.cameras[node.camera];
+    if (s_.cameras.size() >= limits.max_cameras)
+      throw Error(file() + ": more than " + std::to_string(limits.max_cameras) + " cameras; the loader stops there");
     if (c.type != "perspective") {
-      warn("camera '" + name + "' is " + c.type + "; only perspective cameras are used");
+      unsupported(c.type + " cameras (skipped: only perspective cameras are views)");
       return;
     }
-    Camera cam{.name = name, .world = world, .yfov = float(c.perspective.yfov), .znear = float(c.perspective.znear),
-               .zfar = c.perspective.zfar > 0 ? float(c.perspective.zfar) : 1000.f};
+    const auto& p = c.perspective;
+    auto bad = [&](const std::string& what) { throw Error(file() + ": camera '" + name + "': " + what); };
+    if (!(p.yfov > 0 && p.yfov < std::numbers::pi)) bad("yfov " + number_text(p.yfov) + " is not between 0 and pi");
+    if (!(p.znear > 0) || !std::isfinite(p.znear)) bad("znear " + number_text(p.znear) + " must be > 0");
+    if (p.zfar != 0 && !(p.zfar > p.znear)) bad("zfar " + number_text(p.zfar) + " must be greater than znear " + number_text(p.znear));
+    if (node.rotation.size() == 4 && node.rotation[0] == 0 && node.rotation[1] == 0 && node.rotation[2] == 0 && node.rotation[3] == 0)
+      bad("its node's rotation is the zero quaternion");
+    Camera cam{.name = name, .world = world, .yfov = float(p.yfov), .znear = float(p.znear),
+               .zfar = p.zfar > 0 ? float(p.zfar) : std::max(1000.f, float(p.znear) * 1e4f)};
+    if (!(cam.zfar > cam.znear) || !std::isfinite(cam.zfar)) bad("znear and zfar do not give a depth range in float");
     // Remove any scale from the node so view() is a rigid transform.
-    for (int i = 0; i < 3; ++i) cam.world[i] = glm::vec4(glm::normalize(glm::vec3(cam.world[i])), 0);
+    for (int i = 0; i < 3; ++i) {
+      glm::vec3 axis(cam.world[i]);
+      float len = glm::length(axis);
+      if (!(len > 1e-12f) || !std::isfinite(len)) bad("its node's transform has a zero (or non-finite) scale");
+      cam.world[i] = glm::vec4(glm::normalize(axis), 0);  // (not axis / len: the same bits as before)
+    }
     s_.cameras.push_back(cam);
   }
 
   void add_light(int index, const std::string& name, const glm::mat4& world) {
     if (index < 0 || index >= static_cast<int>(m_.lights.size()))
-      throw Error(s_.path.string() + ": node '" + name + "' uses light " + std::to_string(index) + ", which does not exist");
+      throw Error(file() + ": node '" + name + "' uses light " + std::to_string(index) + ", which does not exist");
+    ++lights_declared_;
+    if (s_.lights.size() >= limits.max_lights)
+      throw Error(file() + ": more than " + std::to_string(limits.max_lights) + " lights; the loader stops there");
     const auto& gl = m_.lights[index];
     Light l;
     l.name = gl.name.empty() ? name : gl.name;
@@ -339,7 +838,8 @@ class Loader {
     l.intensity = static_cast<float>(gl.intensity);
     l.range = static_cast<float>(gl.range);
     l.position = glm::vec3(world[3]);
-    l.direction = glm::normalize(-glm::vec3(world[2]));
+    glm::vec3 forward = -glm::vec3(world[2]);
+    l.direction = glm::length(forward) > 0 ? glm::normalize(forward) : glm::vec3(NAN);
     if (gl.type == "directional") l.type = LightType::Directional;
     else if (gl.type == "point") l.type = LightType::Point;
     else if (gl.type == "spot") {
@@ -347,32 +847,147 @@ class Loader {
       l.inner_cone = static_cast<float>(gl.spot.innerConeAngle);
       l.outer_cone = static_cast<float>(gl.spot.outerConeAngle);
     } else {
-      warn("light '" + l.name + "' has unknown type '" + gl.type + "'; skipped");
+      drop_light(l.name, "its type '" + gl.type + "' is unknown");
       return;
     }
+    // One rule for every chapter: a light glTF does not allow is left out, by name, here.
+    if (!finite(l.color) || glm::any(glm::lessThan(l.color, glm::vec3(0)))) return drop_light(l.name, "its colour is negative or not finite");
+    if (!finite(l.intensity) || l.intensity < 0) return drop_light(l.name, "its intensity " + number_text(l.intensity) + " is negative or not finite");
+    if (!finite(l.range) || l.range < 0) return drop_light(l.name, "its range " + number_text(l.range) + " is negative or not finite");
+    if (l.type != LightType::Directional && !finite(l.position)) return drop_light(l.name, "its position is not finite");
+    if (l.type != LightType::Point && !finite(l.direction)) return drop_light(l.name, "its node's transform gives no direction (zero scale)");
+    // glTF allows outer <= pi/2; a wider spot still has a meaning (chapter 03 draws it with a
+    // sphere, and says so), angles that make no cone do not.
+    if (l.type == LightType::Spot &&
+        !(l.inner_cone >= 0 && l.inner_cone <= l.outer_cone && l.outer_cone > 0 && l.outer_cone < std::numbers::pi_v<float>))
+      return drop_light(l.name, "its cone angles (inner " + number_text(l.inner_cone) + ", outer " + number_text(l.outer_cone) +
+                                    ") are not 0 <= inner <= outer < pi");
     s_.lights.push_back(l);
   }
 
+  void drop_light(const std::string& name, const std::string& why) {
+    if (dropped_lights_.insert(name).second) warn("light '" + name + "' is left out: " + why);  // once per light, however many nodes use it
+  }
+
+  // The world-space bounds of every instance, exact (each distinct vertex transformed) while
+  // that is cheap, else the transformed corners of each mesh's own bounds (a little larger).
   void compute_bounds() {
     glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-    for (const auto& inst : s_.instances)
-      for (const auto& p : s_.meshes[inst.mesh].primitives)
-        for (std::uint32_t i = p.first_index; i < p.first_index + p.index_count; ++i) {
-          glm::vec3 w = glm::vec3(inst.model * glm::vec4(s_.vertices[s_.indices[i]].position, 1));
+    std::vector<std::vector<std::uint32_t>> used(s_.meshes.size());
+    std::vector<char> seen(s_.vertices.size(), 0);
+    std::size_t work = 0;
+    for (size_t m = 0; m < s_.meshes.size(); ++m) {
+      for (const auto& p : s_.meshes[m].primitives)
+        for (std::uint32_t i = p.first_index; i < p.first_index + p.index_count; ++i)
+          if (!seen[s_.indices[i]]) {
+            seen[s_.indices[i]] = 1;
+            used[m].push_back(s_.indices[i]);
+          }
+      std::sort(used[m].begin(), used[m].end());
+    }
+    for (const auto& inst : s_.instances) work += used[inst.mesh].size();
+    constexpr std::size_t kExactWork = 50'000'000;
+    for (const auto& inst : s_.instances) {
+      const auto& vs = used[inst.mesh];
+      if (work <= kExactWork) {
+        for (std::uint32_t v : vs) {
+          glm::vec3 w = glm::vec3(inst.model * glm::vec4(s_.vertices[v].position, 1));
           lo = glm::min(lo, w);
           hi = glm::max(hi, w);
         }
+        continue;
+      }
+      glm::vec3 mlo(std::numeric_limits<float>::max()), mhi(-std::numeric_limits<float>::max());
+      for (std::uint32_t v : vs) {
+        mlo = glm::min(mlo, s_.vertices[v].position);
+        mhi = glm::max(mhi, s_.vertices[v].position);
+      }
+      if (vs.empty()) continue;
+      for (int c = 0; c < 8; ++c) {
+        glm::vec3 corner((c & 1) ? mhi.x : mlo.x, (c & 2) ? mhi.y : mlo.y, (c & 4) ? mhi.z : mlo.z);
+        glm::vec3 w = glm::vec3(inst.model * glm::vec4(corner, 1));
+        lo = glm::min(lo, w);
+        hi = glm::max(hi, w);
+      }
+    }
+    if (!(lo.x <= hi.x)) lo = hi = glm::vec3(0);
+    if (!finite(lo) || !finite(hi)) throw Error(file() + ": the scene's bounds are not finite (vertices or transforms too large)");
     s_.bounds_min = lo;
     s_.bounds_max = hi;
+  }
+
+  // A view of the whole scene, after the file's cameras: from the front (+Z), a little above
+  // and to the right, far enough that the bounding sphere fits the vertical field of view.
+  void add_auto_view() {
+    for (const auto& c : s_.cameras)
+      if (c.name == kAutoView) return;
+    const glm::vec3 centre = 0.5f * (s_.bounds_min + s_.bounds_max);
+    float radius = 0.5f * glm::length(s_.bounds_max - s_.bounds_min);
+    if (!(radius > 0)) radius = 1;
+    Camera cam;
+    cam.name = kAutoView;
+    cam.yfov = 0.8f;
+    const float distance = radius / std::sin(0.5f * cam.yfov) * 1.05f;
+    const glm::vec3 back = glm::normalize(glm::vec3(0.45f, 0.35f, 1.f));  // camera +Z: from the centre towards the eye
+    const glm::vec3 eye = centre + back * distance;
+    cam.world = glm::inverse(glm::lookAt(eye, centre, glm::vec3(0, 1, 0)));
+    cam.znear = std::max(distance - radius, distance * 1e-3f) * 0.5f;
+    cam.zfar = (distance + radius) * 2.f;
+    bool is_default = s_.cameras.empty();
+    s_.cameras.push_back(cam);
+    if (is_default) {
+      std::ostringstream n;
+      n << s_.path.filename().string() << " has no camera: rendering view '" << kAutoView << "', framing its bounds (centre "
+        << centre.x << ", " << centre.y << ", " << centre.z << "; radius " << radius << ")";
+      s_.notes.push_back(n.str());
+    }
+  }
+
+  // A scene without lights would be black: a key and a fill light from the default view's
+  // side, plus a little ambient. A scene whose lights give no light is only warned about.
+  void add_default_lights() {
+    bool emissive = false;
+    for (const auto& m : s_.materials) emissive |= glm::any(glm::greaterThan(m.emissive, glm::vec3(0)));
+    const bool ambient = glm::any(glm::greaterThan(s_.ambient, glm::vec3(0)));
+    if (lights_declared_ == 0) {
+      const Camera& view = s_.cameras.front();
+      const glm::vec3 right(view.world[0]), up(view.world[1]), back(view.world[2]);
+      auto light = [&](const char* name, glm::vec3 towards, float lux) {
+        Light l{.name = name, .type = LightType::Directional, .intensity = lux};
+        l.direction = -glm::normalize(towards);
+        s_.lights.push_back(l);
+      };
+      light("default_key", -0.5f * right + 1.0f * up + 0.8f * back, 1.0f);
+      light("default_fill", 0.7f * right + 0.1f * up + 0.6f * back, 0.35f);
+      if (!ambient) s_.ambient = glm::vec3(0.05f);
+      s_.notes.push_back(s_.path.filename().string() + " has no lights: using a default rig (directional key and fill from view '" +
+                         view.name + "'" + (ambient ? "" : ", ambient 0.05") + ")");
+      return;
+    }
+    bool lit = false;
+    for (const auto& l : s_.lights) lit |= l.intensity > 0 && glm::any(glm::greaterThan(l.color, glm::vec3(0)));
+    if (!lit && !emissive && !ambient)
+      warn("the image will be black: of the scene's " + std::to_string(lights_declared_) +
+           " lights none gives light (left out, or zero intensity or colour), and it has no ambient or emissive light");
   }
 
   void warn(const std::string& w) { s_.warnings.push_back(w); }
 
   const tinygltf::Model& m_;
   Scene& s_;
+  const ImageContext& images_;
+  const FileContext& files_;
+  const SceneLimits limits;
   int default_material_ = 0;
   std::vector<int> mesh_of_gltf_;
-  std::vector<std::pair<int, bool>> texture_keys_;
+  std::vector<UvTransform> uv_transform_;  // per Scene::materials index
+  std::vector<std::optional<glm::mat4>> local_;  // per node, once: a shared child is met many times
+  std::vector<std::optional<std::string>> extras_json_;  // per node, once
+  std::set<std::string> dropped_lights_;
+  std::size_t copied_bytes_ = 0;
+  std::map<std::pair<int, bool>, int> texture_of_key_;
+  std::map<std::string, int> unsupported_;
+  std::size_t visits_ = 0, skipped_primitives_ = 0, lights_declared_ = 0;
 };
 
 }  // namespace
@@ -399,6 +1014,12 @@ void generate_normals(std::vector<Vertex>& v, const std::vector<std::uint32_t>& 
   }
 }
 
+// [generated-tangents]
+// Tangents where the file has none. glTF asks for MikkTSpace, which Debian does not package;
+// this is the classic per-triangle construction it refines: each triangle's tangent and
+// bitangent from its UV derivatives, summed at the vertices it shares, made perpendicular to
+// the normal (Gram-Schmidt), the handedness from the summed bitangent. It equals MikkTSpace
+// on flat, evenly mapped surfaces and differs a little across curved, unevenly mapped ones.
 void generate_tangents(std::vector<Vertex>& v, const std::vector<std::uint32_t>& idx, std::uint32_t first, std::uint32_t count, bool has_uv) {
   std::vector<glm::vec3> bitangent(v.size(), glm::vec3(0));
   for (std::uint32_t i = first; i < first + count; ++i) v[idx[i]].tangent = glm::vec4(0);
@@ -420,10 +1041,11 @@ void generate_tangents(std::vector<Vertex>& v, const std::vector<std::uint32_t>&
   for (std::uint32_t i = first; i < first + count; ++i) {
     Vertex& x = v[idx[i]];
     glm::vec3 t = glm::vec3(x.tangent) - x.normal * glm::dot(x.normal, glm::vec3(x.tangent));  // Gram-Schmidt
-    if (glm::length(t) < 1e-6f) {
+    if (!(glm::length(t) >= 1e-6f)) {
       // No usable UVs: any unit vector perpendicular to the normal will do.
       glm::vec3 axis = std::abs(x.normal.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
       t = glm::cross(axis, x.normal);
+      if (!(glm::length(t) > 0)) t = axis;  // a zero normal: any axis
     }
     t = glm::normalize(t);
     // glTF: bitangent = cross(N, T) * w points up the image, i.e. towards -v (v runs down).
@@ -431,24 +1053,56 @@ void generate_tangents(std::vector<Vertex>& v, const std::vector<std::uint32_t>&
     x.tangent = glm::vec4(t, w);
   }
 }
+// [/generated-tangents]
 
-Scene load_scene(const std::filesystem::path& path) {
-  if (!std::filesystem::exists(path)) throw Error("cannot open scene '" + path.string() + "': no such file");
-  if (std::filesystem::file_size(path) == 0) throw Error("cannot load scene '" + path.string() + "': the file is empty");
+Scene load_scene_from_memory(const std::vector<unsigned char>& bytes, const std::filesystem::path& path, const SceneLimits& limits) {
+  if (bytes.empty()) throw Error("cannot load scene '" + path.string() + "': the file is empty");
+  if (bytes.size() > limits.max_file_bytes) throw Error("cannot load scene '" + path.string() + "': the file is too large");
+  // A .glb starts with the magic "glTF", whatever the file is called.
+  const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+  const unsigned char* json = bytes.data();
+  std::size_t json_size = bytes.size();
+  if (binary && bytes.size() >= 20) {
+    std::uint32_t chunk0 = 0;
+    std::memcpy(&chunk0, bytes.data() + 12, 4);
+    json = bytes.data() + 20;
+    json_size = std::min<std::size_t>(chunk0, bytes.size() - 20);
+  }
+  if (json_too_deep(json, json_size))
+    throw Error("cannot load scene '" + path.string() + "': its JSON nests deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+
   tinygltf::TinyGLTF loader;
   tinygltf::Model model;
+  FileContext files{.max_bytes = limits.max_file_bytes};
+  ImageContext images{.model = &model, .limits = limits};
+  loader.SetFsCallbacks({.FileExists = fs_exists, .ExpandFilePath = fs_expand, .ReadWholeFile = fs_read,
+                         .WriteWholeFile = fs_write, .user_data = &files});
+  loader.SetImageLoader(load_image, &images);
   std::string err, warn;
-  bool binary = path.extension() == ".glb";
-  bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path.string())
-                   : loader.LoadASCIIFromFile(&model, &err, &warn, path.string());
+  std::string base = path.parent_path().string();
+  if (base.empty()) base = ".";
+  bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), static_cast<unsigned>(bytes.size()), base)
+                   : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                                static_cast<unsigned>(bytes.size()), base);
   if (!ok) {
     while (!err.empty() && err.back() == '\n') err.pop_back();
     throw Error("cannot load scene '" + path.string() + "': " + (err.empty() ? "not valid glTF" : err));
   }
+  for (const auto& e : model.extensionsRequired)
+    if (!supported_extensions().count(e))
+      throw Error("cannot load scene '" + path.string() + "': it requires the extension " + e + ", which lightpass does not support");
   Scene scene;
   scene.path = path;
-  Loader(model, scene).load();
+  Loader(model, scene, images, files, limits).load();
   return scene;
+}
+
+Scene load_scene(const std::filesystem::path& path, const SceneLimits& limits) {
+  std::vector<unsigned char> bytes;
+  std::string why = read_problem(path, &bytes, limits.max_file_bytes);
+  if (why == "no such file") throw Error("cannot open scene '" + path.string() + "': no such file");
+  if (!why.empty()) throw Error("cannot read scene '" + path.string() + "': " + why);
+  return load_scene_from_memory(bytes, path, limits);
 }
 
 }  // namespace lp

@@ -42,6 +42,7 @@ struct Material {
   float roughness = 1;
   int normal_texture = -1;      // index into Scene::textures (linear)
   float normal_scale = 1;
+  int emissive_texture = -1;    // index into Scene::textures (sRGB); emitted = emissive * texel
 };
 
 struct Texture {
@@ -109,17 +110,46 @@ struct Scene {
   glm::vec3 ambient{0};             // scene extras {"lightpass": {"ambient": [r,g,b]}}
   glm::vec3 bounds_min{0}, bounds_max{0};
   std::vector<std::string> warnings;
+  std::vector<std::string> notes;   // what the loader supplied: an automatic view, default lights
 
   // The named camera; throws Error listing the names when there is none of that name.
   const Camera& camera(const std::string& name) const;
 };
 
-// Throws Error with the file and what is wrong (malformed JSON, missing buffer, an index past
-// the vertices, ...). Missing textures are not errors: a checker stands in, with a warning.
-// Missing normals and tangents are generated.
-Scene load_scene(const std::filesystem::path& path);
+// What a hostile or huge file may cost before it is refused with a message that names the
+// limit (a DAG of nodes that list the same children can expand exponentially). The fuzz
+// target passes smaller ones: it explores the checks, not the scale.
+struct SceneLimits {
+  std::size_t max_file_bytes = std::size_t(1) << 30;      // the .gltf/.glb and each .bin
+  std::size_t max_instances = 1'000'000;                 // mesh nodes after expansion
+  std::size_t max_node_visits = 4'000'000;                // nodes visited, meshes or not
+  std::size_t max_lights = 100'000;                      // light nodes after expansion
+  std::size_t max_cameras = 10'000;                      // camera nodes after expansion
+  std::size_t max_node_extras = 100'000;                  // nodes with extras.lightpass
+  std::size_t max_name_bytes = std::size_t(1) << 28;      // names and extras copied (256 MiB)
+  std::size_t max_vertices = std::size_t(1) << 26;       // 64 M vertices (3 GiB)
+  std::size_t max_indices = std::size_t(1) << 28;        // 256 M indices (1 GiB)
+  int max_image_side = 32768;                             // texels, either side
+  std::size_t max_image_texels = std::size_t(1) << 26;    // 64 M texels per image
+};
 
-// Fills in normals (area-weighted) and tangents (from UVs, or any perpendicular without UVs).
+// The name of the view the loader adds after the file's own cameras (framing the bounds).
+inline constexpr const char* kAutoView = "auto";
+
+// Throws Error with the file and what is wrong (malformed JSON, missing buffer, an index past
+// the vertices, an unsupported required extension, a degenerate camera, a limit exceeded,
+// ...). Missing textures are not errors: a checker stands in, with a warning. Missing normals
+// are generated flat, missing tangents from the UVs. A scene without cameras gets a view
+// framing its bounds, one without lights a default rig (each said in Scene::notes).
+Scene load_scene(const std::filesystem::path& path, const SceneLimits& limits = {});
+// The same from bytes already in memory (a .gltf's JSON or a .glb, told apart by content);
+// `path` names the file in messages and its folder is where relative URIs are found.
+// Needs no GL context (the fuzz target calls it).
+Scene load_scene_from_memory(const std::vector<unsigned char>& bytes, const std::filesystem::path& path,
+                             const SceneLimits& limits = {});
+
+// Fills in normals (area-weighted over the triangles that share a vertex: flat for triangles
+// that share none) and tangents (from UVs, or any perpendicular without UVs).
 void generate_normals(std::vector<Vertex>& v, const std::vector<std::uint32_t>& indices, std::uint32_t first, std::uint32_t count);
 void generate_tangents(std::vector<Vertex>& v, const std::vector<std::uint32_t>& indices, std::uint32_t first, std::uint32_t count, bool has_uv);
 

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <cstddef>
+#include <cstring>
+#include <iostream>
 
 namespace lp {
 namespace {
@@ -26,6 +28,17 @@ ImageRGBA8 solid(std::uint8_t r, std::uint8_t g, std::uint8_t b) {
   return img;
 }
 
+// The magenta checker (colour) or flat normal (linear) that stands in for a texture GL cannot hold.
+ImageRGBA8 stand_in(bool srgb) {
+  ImageRGBA8 img = ImageRGBA8::blank(8, 8);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) {
+      glm::u8vec4 c = !srgb ? glm::u8vec4(128, 128, 255, 255) : ((x ^ y) & 1) ? glm::u8vec4(255, 0, 255, 255) : glm::u8vec4(32, 32, 32, 255);
+      std::memcpy(img.at(x, y), &c, 4);
+    }
+  return img;
+}
+
 }  // namespace
 
 SceneGpu::SceneGpu(const Scene& scene)
@@ -46,7 +59,19 @@ SceneGpu::SceneGpu(const Scene& scene)
   attribute(kNormal, 3, offsetof(Vertex, normal));
   attribute(kUv, 2, offsetof(Vertex, uv));
   attribute(kTangent, 4, offsetof(Vertex, tangent));
-  for (const auto& t : scene.textures) textures_.push_back(upload(t.image, t.srgb));
+  GLint max_size = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+  for (const auto& t : scene.textures) {
+    if (t.image.width > max_size || t.image.height > max_size) {
+      warnings_.push_back("texture '" + t.name + "' is " + std::to_string(t.image.width) + "x" + std::to_string(t.image.height) +
+                          ", larger than this GL allows (GL_MAX_TEXTURE_SIZE " + std::to_string(max_size) + "): using a fallback " +
+                          (t.srgb ? "checker" : "flat normal map"));
+      std::cerr << "warning: " << warnings_.back() << '\n';
+      textures_.push_back(upload(stand_in(t.srgb), t.srgb));
+      continue;
+    }
+    textures_.push_back(upload(t.image, t.srgb));
+  }
 }
 
 void SceneGpu::draw(const DrawCallback& before_each_primitive) const {

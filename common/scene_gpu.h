@@ -3,6 +3,7 @@
 // per (image, colour space). Drawing is a loop over instances; the caller sets the
 // per-draw state (matrices, material) in a callback, so each chapter decides what it needs.
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "common/gl.h"
@@ -21,6 +22,11 @@ class SceneGpu {
   // The texture for Scene::textures[index], or a white / flat-normal texture for -1.
   GLuint base_color_texture(int index) const { return index < 0 ? white_.id() : textures_[index].id(); }
   GLuint normal_texture(int index) const { return index < 0 ? flat_normal_.id() : textures_[index].id(); }
+  // White for -1, so emissive * texel is the emissive factor alone.
+  GLuint emissive_texture(int index) const { return base_color_texture(index); }
+  // Textures this GL cannot hold (larger than GL_MAX_TEXTURE_SIZE): each replaced by the
+  // fallback, with a message naming the image (also printed when the scene is uploaded).
+  const std::vector<std::string>& warnings() const { return warnings_; }
 
   using DrawCallback = std::function<void(const Instance&, const Material&)>;
   // Binds the vertex array and draws every primitive of every instance.
@@ -34,6 +40,7 @@ class SceneGpu {
   gl::Buffer vertices_, indices_;
   std::vector<gl::Texture> textures_;
   gl::Texture white_, flat_normal_;
+  std::vector<std::string> warnings_;
 };
 
 }  // namespace lp

@@ -24,7 +24,8 @@ lightpass_program_test(01_forward.bad_knob 2 "--lights must be between" ${P01} -
 lightpass_program_test(01_forward.unknown_view 1 "no camera named 'nowhere'. views: overview" ${P01} --headless --view nowhere)
 lightpass_program_test(01_forward.missing_scene 1 "cannot open scene .*nothing.gltf': no such file" ${P01} --headless --scene nothing.gltf)
 lightpass_program_test(01_forward.malformed_scene 1 "cannot load scene .*malformed.gltf" ${P01} --headless --scene tests/data/malformed.gltf)
-lightpass_program_test(01_forward.no_camera 1 "no_camera.gltf has no camera" ${P01} --headless --scene tests/data/no_camera.gltf)
+lightpass_program_test(01_forward.no_camera 0 "no_camera.gltf has no camera: rendering view 'auto'"
+  ${P01} --headless --size 64x36 --scene tests/data/no_camera.gltf --out ${CMAKE_BINARY_DIR}/out/01_no_camera.png)
 lightpass_program_test(01_forward.missing_texture_warns 0 "warning: .*could not be loaded.*fallback"
   ${P01} --headless --size 160x90 --scene tests/data/missing_texture.gltf --out ${CMAKE_BINARY_DIR}/out/01_missing_texture.png)
 # A mesh without indices or normals (flat normals are made): the cube is drawn and lit, 7.9 % of

@@ -10,6 +10,7 @@ LIGHTPASS_PACKAGES=(
   libembree-dev                             # the ray-traced ground truth (common/raytrace.h)
   libgtest-dev python3                      # tests, book excerpt check, plots
   xvfb xauth                                # the window path is tested under a virtual display
+  clang libclang-rt-14-dev                  # the scene loader's fuzz target (libFuzzer, tools/fuzz-scene)
 )
 
 lightpass_install_packages() {

@@ -44,6 +44,7 @@ void ForwardRenderer::draw_scene(const ShaderProgram& program, const FrameCamera
     program.set("u_normal_scale", m.normal_scale);
     glBindTextureUnit(0, scene_.base_color_texture(m.base_color_texture));
     glBindTextureUnit(1, scene_.normal_texture(m.normal_texture));
+    glBindTextureUnit(2, scene_.emissive_texture(m.emissive_texture));
   });
   // [/per-draw]
 }

@@ -188,6 +188,7 @@ void GeometryPass::draw(GBuffer& gbuffer, const FrameCamera& camera) {
     program.set("u_normal_scale", m.normal_scale);
     glBindTextureUnit(0, scene_.base_color_texture(m.base_color_texture));
     glBindTextureUnit(1, scene_.normal_texture(m.normal_texture));
+    glBindTextureUnit(2, scene_.emissive_texture(m.emissive_texture));
   });
   GBuffer::restore_default_depth_convention();
 }

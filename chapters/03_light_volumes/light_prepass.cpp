@@ -96,6 +96,7 @@ void LightPrePass::draw_geometry(const FrameCamera& camera, int width, int heigh
     geometry_.set("u_normal_scale", m.normal_scale);
     glBindTextureUnit(0, scene_.base_color_texture(m.base_color_texture));
     glBindTextureUnit(1, scene_.normal_texture(m.normal_texture));
+    glBindTextureUnit(2, scene_.emissive_texture(m.emissive_texture));
   });
   glColorMaski(1, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glDisable(GL_CULL_FACE);
@@ -137,6 +138,7 @@ void LightPrePass::draw_materials(const LightBuffer& light, PrePassSpecular spec
     material_.set("u_specular", m.specular_color);
     material_.set("u_emissive", m.emissive);
     glBindTextureUnit(0, scene_.base_color_texture(m.base_color_texture));
+    glBindTextureUnit(2, scene_.emissive_texture(m.emissive_texture));
   });
   glDisable(GL_POLYGON_OFFSET_FILL);
   glDepthFunc(GL_LESS);

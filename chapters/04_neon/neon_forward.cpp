@@ -84,6 +84,7 @@ void NeonForward::draw(const FrameCamera& camera, const NeonDraw& how, const ch0
     lit_.set("u_exponent", ch01::exponent_from_roughness(m.roughness));
     lit_.set("u_emissive", m.emissive);
     glBindTextureUnit(0, scene_.base_color_texture(m.base_color_texture));
+    glBindTextureUnit(2, scene_.emissive_texture(m.emissive_texture));
   });
   if (how.term != Term::All) return;  // the glass is not part of the light being measured
   draw_glass(camera, tubes);

@@ -1,5 +1,7 @@
 #include "chapters/04_neon/neon_scene.h"
 
+#include <cmath>
+
 #include <nlohmann/json.hpp>
 
 #include "common/error.h"
@@ -32,15 +34,19 @@ NeonLight parse_neon(const std::string& node, const glm::mat4& world, const std:
   l.intensity = number(j, "intensity", 1, where);
   l.radius = number(j, "radius", l.radius, where);
   l.specular = number(j, "specular", l.specular, where);
-  if (!(length >= 0)) throw Error(where + ": \"length\" must be >= 0");
-  if (!(l.intensity > 0)) throw Error(where + ": \"intensity\" must be > 0");
-  if (!(l.radius > 0)) throw Error(where + ": \"radius\" must be > 0");
-  if (!(l.specular >= 0)) throw Error(where + ": \"specular\" must be >= 0");
+  // Finite and of a size a sign can have: 1e30 m would overflow the capsule's arithmetic.
+  constexpr float kLargest = 1e4f;
+  if (!(length >= 0 && length <= kLargest)) throw Error(where + ": \"length\" must be >= 0 and at most 10000 (metres)");
+  if (!(l.intensity > 0 && std::isfinite(l.intensity))) throw Error(where + ": \"intensity\" must be > 0 and finite");
+  if (!(l.radius > 0 && l.radius <= kLargest)) throw Error(where + ": \"radius\" must be > 0 and at most 10000");
+  if (!(l.specular >= 0 && std::isfinite(l.specular))) throw Error(where + ": \"specular\" must be >= 0 and finite");
   if (j.contains("color")) {
     const json& c = j["color"];
     if (!c.is_array() || c.size() != 3 || !c[0].is_number() || !c[1].is_number() || !c[2].is_number())
       throw Error(where + ": \"color\" must be [r, g, b]");
     l.color = {c[0].get<float>(), c[1].get<float>(), c[2].get<float>()};
+    for (int i = 0; i < 3; ++i)
+      if (!(l.color[i] >= 0 && std::isfinite(l.color[i]))) throw Error(where + ": \"color\" must be three finite numbers >= 0");
   }
   if (j.contains("caps")) {
     if (!j["caps"].is_boolean()) throw Error(where + ": \"caps\" must be true or false");
@@ -52,6 +58,8 @@ NeonLight parse_neon(const std::string& node, const glm::mat4& world, const std:
     for (const auto& v : b)
       if (!v.is_number()) throw Error(where + ": \"barn_doors\" must hold numbers");
     l.barn_doors = {b[0].get<float>(), b[1].get<float>(), b[2].get<float>(), b[3].get<float>()};
+    for (float v : {l.barn_doors.distance, l.barn_doors.count, l.barn_doors.transmittance, l.barn_doors.softness})
+      if (!std::isfinite(v)) throw Error(where + ": \"barn_doors\" must hold finite numbers");
   }
   // The tube along the node's local X, centred on its origin; the first door along local +Y.
   glm::vec3 centre(world[3]), x_axis(world[0]), y_axis(world[1]);

@@ -2,6 +2,14 @@
 // missing data is generated or replaced with a warning.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
 #include "common/error.h"
 #include "common/paths.h"
 #include "common/scene.h"
@@ -9,13 +17,28 @@
 using namespace lp;
 
 namespace {
-std::string load_error(const std::string& file) {
+std::string load_error(const std::filesystem::path& file) {
   try {
-    load_scene(from_root("tests/data/" + file));
+    load_scene(file.is_absolute() ? file : from_root("tests/data" / file));
   } catch (const Error& e) {
     return e.what();
   }
   return "(no error)";
+}
+
+Scene data(const std::string& file) { return load_scene(from_root("tests/data/" + file)); }
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+std::string all_warnings(const Scene& s) {
+  std::string w;
+  for (const auto& x : s.warnings) w += x + "\n";
+  return w;
+}
+
+glm::vec3 face_normal(const Scene& s, std::uint32_t first) {
+  const Vertex &a = s.vertices[s.indices[first]], &b = s.vertices[s.indices[first + 1]], &c = s.vertices[s.indices[first + 2]];
+  return glm::normalize(glm::cross(b.position - a.position, c.position - a.position));
 }
 }  // namespace
 
@@ -114,9 +137,13 @@ TEST(Scene, NonIndexedMeshWithoutNormalsGetsThemGenerated) {
   }
 }
 
-TEST(Scene, NoCameraLoadsButHasNoViews) {
+TEST(Scene, NoCameraGetsTheAutomaticViewAndSaysSo) {
   Scene s = load_scene(from_root("tests/data/no_camera.gltf"));
-  EXPECT_TRUE(s.cameras.empty());
+  ASSERT_EQ(s.cameras.size(), 1u);
+  EXPECT_EQ(s.cameras.front().name, kAutoView);
+  ASSERT_EQ(s.notes.size(), 1u);
+  EXPECT_NE(s.notes.front().find("has no camera: rendering view 'auto'"), std::string::npos) << s.notes.front();
+  EXPECT_EQ(s.lights.size(), 1u) << "the file's own light: no default rig";
 }
 
 TEST(Scene, TangentsFromUvsFollowTheGltfConvention) {
@@ -139,4 +166,258 @@ TEST(Scene, TangentsFromUvsFollowTheGltfConvention) {
   for (auto& x : v) x.uv.y = 1.f - x.uv.y;
   generate_tangents(v, idx, 0, 6, true);
   for (const auto& x : v) EXPECT_FLOAT_EQ(x.tangent.w, -1.f);
+}
+
+// ---- Real models -------------------------------------------------------------------------
+
+TEST(Scene, MissingNormalsAreFlatEvenWhereCornersAreShared) {
+  // 8 shared corners: smooth (averaged) normals would point along the diagonals.
+  Scene s = data("indexed_nonormals.gltf");
+  ASSERT_EQ(s.indices.size(), 36u);
+  for (std::uint32_t t = 0; t < 36; t += 3) {
+    glm::vec3 face = face_normal(s, t);
+    for (int k = 0; k < 3; ++k) {
+      const Vertex& v = s.vertices[s.indices[t + k]];
+      EXPECT_NEAR(glm::dot(v.normal, face), 1.f, 1e-5f) << "triangle " << t / 3;
+      EXPECT_NEAR(glm::dot(v.normal, glm::vec3(v.tangent)), 0.f, 1e-5f);
+    }
+    EXPECT_NEAR(std::max({std::abs(face.x), std::abs(face.y), std::abs(face.z)}), 1.f, 1e-5f) << "an axis, not a diagonal";
+  }
+}
+
+TEST(Scene, StripsAndFansBecomeTrianglesWithTheirWinding) {
+  Scene s = data("strip_fan.gltf");
+  ASSERT_EQ(s.meshes.size(), 2u);
+  EXPECT_EQ(s.meshes[0].primitives.at(0).index_count, 2u * 3) << "a 4-vertex strip is 2 triangles";
+  EXPECT_EQ(s.meshes[1].primitives.at(0).index_count, 4u * 3) << "a 6-vertex fan is 4 triangles";
+  for (const auto& m : s.meshes)
+    for (std::uint32_t t = m.primitives[0].first_index; t < m.primitives[0].first_index + m.primitives[0].index_count; t += 3)
+      EXPECT_NEAR(face_normal(s, t).y, 1.f, 1e-5f) << m.name << ": every triangle keeps the counter-clockwise winding (+Y)";
+  EXPECT_TRUE(s.warnings.empty()) << all_warnings(s);
+}
+
+TEST(Scene, PointsAndLinesAreSkippedWithOneWarning) {
+  Scene s = data("lines_and_triangles.gltf");
+  ASSERT_EQ(s.warnings.size(), 1u) << all_warnings(s);
+  EXPECT_TRUE(contains(s.warnings[0], "lines (skipped)")) << s.warnings[0];
+  EXPECT_EQ(s.meshes.at(0).primitives.size(), 1u);
+  EXPECT_TRUE(contains(load_error("points_only.gltf"), "no triangles to draw (1 primitives are points or lines"))
+      << load_error("points_only.gltf");
+}
+
+TEST(Scene, ARequiredExtensionWeLackIsRefusedByName) {
+  EXPECT_TRUE(contains(load_error("requires_draco.gltf"), "requires the extension KHR_draco_mesh_compression"))
+      << load_error("requires_draco.gltf");
+  EXPECT_TRUE(contains(load_error("requires_meshopt.gltf"), "requires the extension EXT_meshopt_compression"))
+      << load_error("requires_meshopt.gltf");
+}
+
+TEST(Scene, AnExtensionOnlyUsedLoadsWithOneWarningNamingIt) {
+  Scene s = data("uses_clearcoat.gltf");
+  ASSERT_EQ(s.warnings.size(), 1u) << all_warnings(s);
+  EXPECT_TRUE(contains(s.warnings[0], "extension KHR_materials_clearcoat")) << s.warnings[0];
+  EXPECT_FALSE(contains(s.warnings[0], "(x")) << "named once, though the file names it twice: " << s.warnings[0];
+}
+
+TEST(Scene, BinaryGltfIsToldByItsContentNotItsName) {
+  Scene glb = data("glb_content.gltf"), text = data("minimal.gltf");
+  ASSERT_EQ(glb.vertices.size(), text.vertices.size());
+  for (size_t i = 0; i < glb.vertices.size(); ++i) EXPECT_EQ(glb.vertices[i].position, text.vertices[i].position);
+  EXPECT_EQ(glb.cameras.front().name, "view");
+}
+
+TEST(Scene, TextureTransformIsAppliedToTheUvs) {
+  Scene t = data("texture_transform.gltf"), plain = data("minimal.gltf");
+  ASSERT_EQ(t.vertices.size(), plain.vertices.size());
+  // KHR_texture_transform: uv' = T(0.5, 0.25) R(pi/2) S(2, 3) uv, R = [cos sin; -sin cos].
+  for (size_t i = 0; i < t.vertices.size(); ++i) {
+    glm::vec2 uv = plain.vertices[i].uv * glm::vec2(2, 3);
+    glm::vec2 expected = glm::vec2(uv.y, -uv.x) + glm::vec2(0.5f, 0.25f);
+    EXPECT_NEAR(t.vertices[i].uv.x, expected.x, 1e-5f) << i;
+    EXPECT_NEAR(t.vertices[i].uv.y, expected.y, 1e-5f) << i;
+  }
+  EXPECT_TRUE(t.warnings.empty()) << "a required KHR_texture_transform is supported: " << all_warnings(t);
+}
+
+TEST(Scene, EmissiveTextureAndStrengthAreRead) {
+  Scene s = data("emissive_texture.gltf");
+  const Material& m = s.materials.at(0);
+  EXPECT_EQ(m.emissive, glm::vec3(2.f, 1.f, 0.5f)) << "emissiveFactor x KHR_materials_emissive_strength 2";
+  ASSERT_GE(m.emissive_texture, 0);
+  EXPECT_TRUE(s.textures[m.emissive_texture].srgb);
+  EXPECT_FALSE(s.textures[m.emissive_texture].fallback);
+  EXPECT_TRUE(s.warnings.empty()) << all_warnings(s);
+}
+
+TEST(Scene, SpecularExtensionIsRead) {
+  Scene s = data("minimal.gltf");  // scenegen writes KHR_materials_specular on every material
+  EXPECT_TRUE(s.materials.at(0).has_specular_extension);
+}
+
+// The automatic view: the scene's bounding sphere inside the vertical field of view, and
+// filling most of it (the distance puts the sphere 5 % inside the frustum's top and bottom).
+TEST(Scene, AutoViewFramesTheBoundsAndTheDefaultRigLightsThem) {
+  Scene s = data("no_camera_no_lights.gltf");
+  ASSERT_EQ(s.cameras.size(), 1u);
+  const Camera& c = s.cameras[0];
+  EXPECT_EQ(c.name, kAutoView);
+  glm::vec3 centre = 0.5f * (s.bounds_min + s.bounds_max);
+  float radius = 0.5f * glm::length(s.bounds_max - s.bounds_min);
+  glm::vec3 to_centre = glm::vec3(c.view() * glm::vec4(centre, 1));
+  EXPECT_NEAR(to_centre.x, 0.f, 1e-4f);
+  EXPECT_NEAR(to_centre.y, 0.f, 1e-4f);
+  float distance = -to_centre.z;
+  float half_angle = std::asin(radius / distance);  // the sphere's angular radius
+  EXPECT_LT(half_angle, 0.5f * c.yfov);
+  EXPECT_GT(half_angle, 0.4f * c.yfov);
+  EXPECT_LT(c.znear, distance - radius);
+  EXPECT_GT(c.zfar, distance + radius);
+  ASSERT_EQ(s.lights.size(), 2u);
+  for (const Light& l : s.lights) {
+    EXPECT_EQ(l.type, LightType::Directional);
+    EXPECT_LT(glm::dot(l.direction, glm::vec3(c.world[2])), 0.f) << l.name << " shines away from the viewer, onto the visible side";
+  }
+  ASSERT_EQ(s.notes.size(), 2u);
+  EXPECT_TRUE(contains(s.notes[1], "has no lights: using a default rig")) << s.notes[1];
+}
+
+TEST(Scene, AutoViewComesAfterTheNamedCameras) {
+  Scene s = data("minimal.gltf");
+  ASSERT_EQ(s.cameras.size(), 2u);
+  EXPECT_EQ(s.cameras[0].name, "view");
+  EXPECT_EQ(s.cameras[1].name, kAutoView);
+  EXPECT_TRUE(s.notes.empty()) << "the file's camera is the default view: nothing to say";
+}
+
+// ---- Bad values: an error naming the camera, a warning naming the light -----------------
+
+TEST(Scene, DegenerateCamerasAreErrorsNamingTheCamera) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"camera_yfov_zero.gltf", "camera 'view': yfov 0 is not between 0 and pi"},
+      {"camera_yfov_pi.gltf", "camera 'view': yfov 3.14159 is not between 0 and pi"},
+      {"camera_znear_zero.gltf", "camera 'view': znear 0 must be > 0"},
+      {"camera_zfar_below_znear.gltf", "camera 'view': zfar 0.01 must be greater than znear 0.05"},
+      {"camera_zero_scale.gltf", "camera 'view': its node's transform has a zero (or non-finite) scale"},
+      {"camera_zero_quaternion.gltf", "node 'view': its rotation is not a unit quaternion (length 0)"},
+  };
+  for (const auto& [file, message] : cases) EXPECT_TRUE(contains(load_error(file), message)) << file << ": " << load_error(file);
+}
+
+TEST(Scene, InvalidLightsAreLeftOutNamingEach) {
+  Scene s = data("lights_invalid.gltf");
+  ASSERT_EQ(s.lights.size(), 1u);
+  EXPECT_EQ(s.lights[0].name, "light");
+  std::string w = all_warnings(s);
+  for (const char* part : {"light 'negative_intensity' is left out: its intensity -5", "light 'negative_colour' is left out: its colour",
+                           "light 'infinite_intensity' is left out: its intensity inf", "light 'negative_range' is left out: its range -3"})
+    EXPECT_TRUE(contains(w, part)) << part << " in\n" << w;
+}
+
+// ---- Hostile files: refused with a message, in bounded time ------------------------------
+
+TEST(Scene, AccessorBoundsArithmeticCannotWrap) {
+  EXPECT_TRUE(contains(load_error("accessor_offset_overflow.gltf"), "accessor 0 (4 elements of 12 bytes, stride 12, offset 18446744073709551600) reads past the end"))
+      << load_error("accessor_offset_overflow.gltf");
+  EXPECT_TRUE(contains(load_error("accessor_count_overflow.gltf"), "accessor 0 (4611686018427387904 elements")) << load_error("accessor_count_overflow.gltf");
+  EXPECT_TRUE(contains(load_error("huge_index_count.gltf"), "indices: accessor 4 (4000000000 elements")) << load_error("huge_index_count.gltf");
+}
+
+TEST(Scene, SharedChildrenCannotExpandWithoutBound) {
+  auto start = std::chrono::steady_clock::now();
+  EXPECT_TRUE(contains(load_error("node_dag.gltf"), "more than 1000000 mesh instances")) << load_error("node_dag.gltf");
+  EXPECT_TRUE(contains(load_error("node_dag_no_mesh.gltf"), "expands to more than 4000000 nodes")) << load_error("node_dag_no_mesh.gltf");
+  EXPECT_TRUE(contains(load_error("node_dag_light.gltf"), "more than 100000 lights")) << load_error("node_dag_light.gltf");
+  // 2^40 instances unbounded; bounded, a few million visits. 60 s is far above that even under
+  // AddressSanitizer, and far below what the unbounded walk takes.
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 60.0);
+}
+
+TEST(Scene, JsonNestedTooDeepIsRefusedBeforeParsing) {
+  auto path = std::filesystem::temp_directory_path() / "lightpass_deep.gltf";
+  std::ofstream(path) << R"({"asset": {"version": "2.0"}, "extras": )" << std::string(200000, '[') << std::string(200000, ']') << "}";
+  EXPECT_TRUE(contains(load_error(path), "its JSON nests deeper than 256 levels")) << load_error(path);
+  std::filesystem::remove(path);
+}
+
+TEST(Scene, SixteenBitPngIsReadAsEightBits) {
+  Scene s = data("texture_16bit.gltf");
+  ASSERT_EQ(s.textures.size(), 1u);
+  const Texture& t = s.textures[0];
+  ASSERT_FALSE(t.fallback) << all_warnings(s);
+  ASSERT_EQ(t.image.width, 4);
+  // The file: channel c of texel (x, y) is 0xFFFF when x + y + c is odd, else 0x2000.
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x)
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(int(t.image.at(x, y)[c]), ((x + y + c) & 1) ? 255 : 0x20) << x << "," << y << "," << c;
+  EXPECT_TRUE(contains(all_warnings(s), "16-bit images read as 8 bits per channel: 'rgb16.png'")) << all_warnings(s);
+}
+
+TEST(Scene, ImagesPastTheLoaderLimitFallBackNamingTheImage) {
+  Scene s = data("texture_40000x1.gltf");
+  ASSERT_EQ(s.textures.size(), 1u);
+  EXPECT_TRUE(s.textures[0].fallback);
+  EXPECT_TRUE(contains(all_warnings(s), "texture 'wide_40000x1.png' could not be loaded (it is 40000x1, more than the loader accepts"))
+      << all_warnings(s);
+  Scene wide = data("texture_20000x1.gltf");  // within the loader's limit; GL's is checked on upload
+  EXPECT_FALSE(wide.textures.at(0).fallback);
+  EXPECT_EQ(wide.textures.at(0).image.width, 20000);
+}
+
+TEST(Scene, UnreadableUrisSayCannotRead) {
+  Scene s = data("texture_uri_directory.gltf");
+  EXPECT_TRUE(s.textures.at(0).fallback);
+  EXPECT_TRUE(contains(all_warnings(s), "cannot read 'tests/data/.': it is a directory") ||
+              contains(all_warnings(s), "/tests/data/.': it is a directory")) << all_warnings(s);
+  EXPECT_TRUE(contains(load_error("buffer_uri_directory.gltf"), "it is a directory")) << load_error("buffer_uri_directory.gltf");
+  EXPECT_TRUE(contains(load_error("buffer_dev_null.gltf"), "dev/null': not a regular file")) << load_error("buffer_dev_null.gltf");
+}
+
+TEST(Scene, ASceneThatIsNotAFileSaysCannotRead) {
+  EXPECT_TRUE(contains(load_error(from_root("tests/data")), "cannot read scene '")) << load_error(from_root("tests/data"));
+  EXPECT_TRUE(contains(load_error(from_root("tests/data")), "': it is a directory"));
+  EXPECT_TRUE(contains(load_error("/dev/null"), "cannot read scene '/dev/null': not a regular file")) << load_error("/dev/null");
+}
+
+TEST(Scene, AFileThisUserMayNotReadSaysPermissionDenied) {
+  if (geteuid() == 0) GTEST_SKIP() << "root reads any file: permissions cannot be tested as root";
+  auto path = std::filesystem::temp_directory_path() / "lightpass_unreadable.gltf";
+  std::ofstream(path) << "{}";
+  std::filesystem::permissions(path, std::filesystem::perms::none);
+  EXPECT_TRUE(contains(load_error(path), "cannot read scene '" + path.string() + "': permission denied")) << load_error(path);
+  std::filesystem::remove(path);
+}
+
+TEST(Scene, LightsThatGiveNoLightWarnThatTheImageWillBeBlack) {
+  // minimal.gltf with its one light at zero intensity and no ambient, written beside its buffer.
+  nlohmann::json doc = nlohmann::json::parse(std::ifstream(from_root("tests/data/minimal.gltf")));
+  doc["extensions"]["KHR_lights_punctual"]["lights"][0]["intensity"] = 0;
+  doc["scenes"][0]["extras"]["lightpass"]["ambient"] = {0, 0, 0};
+  auto dir = std::filesystem::temp_directory_path() / "lightpass_black";
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy_file(from_root("tests/data/minimal.bin"), dir / "minimal.bin", std::filesystem::copy_options::overwrite_existing);
+  doc["buffers"][0]["uri"] = "minimal.bin";
+  std::ofstream(dir / "black.gltf") << doc.dump();
+  Scene s = load_scene(dir / "black.gltf");
+  EXPECT_EQ(s.lights.size(), 1u) << "a zero light is allowed, and no default rig replaces it";
+  EXPECT_TRUE(contains(all_warnings(s), "the image will be black")) << all_warnings(s);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Scene, VertexAndIndexLimitsAreCheckedBeforeAllocating) {
+  auto error = [](const char* file, SceneLimits limits) {
+    try {
+      load_scene(from_root(std::string("tests/data/") + file), limits);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  EXPECT_TRUE(contains(error("minimal.gltf", {.max_vertices = 3}), "has 4 vertices; with the scene's 0 that is more than the loader accepts (3)"))
+      << error("minimal.gltf", {.max_vertices = 3});
+  // 8 corners fit in 20, but flat shading un-indexes them into 36 vertices.
+  EXPECT_TRUE(contains(error("indexed_nonormals.gltf", {.max_vertices = 20}), "would hold more than 20 vertices"))
+      << error("indexed_nonormals.gltf", {.max_vertices = 20});
+  // A 6-vertex fan is 12 indices: past a limit of 10 before it is converted.
+  EXPECT_TRUE(contains(error("strip_fan.gltf", {.max_indices = 10}), "mesh 'fan' primitive 0: the scene would hold more than"))
+      << error("strip_fan.gltf", {.max_indices = 10});
 }

@@ -1,12 +1,18 @@
 // Small broken and edge-case glTF inputs for the loader's tests (tests/data). Each is built
 // like the real scenes and then damaged in one way; tests/data/README.md lists them.
+#include <array>
+#include <cstring>
 #include <fstream>
+#include <functional>
 #include <stdexcept>
 #include <string>
+
+#include <stb_image_write.h>
 
 #include "gltf_writer.h"
 #include "mesh.h"
 #include "scenes.h"
+#include "textures.h"
 
 namespace scenegen {
 
@@ -35,6 +41,125 @@ void plane_scene(GltfBuilder& b, const Mesh& plane, int material, bool camera) {
   b.add_rect_node("plane", b.add_mesh("plane", plane, material), glm::vec3(0.0f), glm::mat3(1.0f), 2.0f, 2.0f);
 }
 
+void write_bytes(const fs::path& path, const std::vector<uint8_t>& bytes) {
+  std::ofstream f(path, std::ios::binary | std::ios::trunc);
+  f.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+  if (!f) throw std::runtime_error("cannot write " + path.string());
+}
+
+void write_doc(const fs::path& dir, const std::string& name, const json& doc) {
+  write_text(dir / (name + ".gltf"), format_json(doc));
+}
+
+// minimal.gltf's document, its buffer still minimal.bin: a variant damaged in one place.
+json minimal_doc() {
+  GltfBuilder b("minimal");
+  plane_scene(b, make_rect(2.0f, 2.0f), b.add_material(plain("grey")), true);
+  return b.document("minimal.bin");
+}
+
+json& camera_node(json& doc) {
+  for (auto& n : doc["nodes"])
+    if (n.contains("camera")) return n;
+  throw std::runtime_error("no camera node");
+}
+
+void add_extension(json& doc, const std::string& name, bool required) {
+  doc["extensionsUsed"].push_back(name);
+  if (required) doc["extensionsRequired"].push_back(name);
+}
+
+// A .glb: 12-byte header, the JSON chunk (padded with spaces), the BIN chunk (padded with 0).
+std::vector<uint8_t> glb(json doc, std::vector<uint8_t> bin) {
+  doc["buffers"][0].erase("uri");
+  std::string text = doc.dump();
+  while (text.size() % 4) text += ' ';
+  while (bin.size() % 4) bin.push_back(0);
+  std::vector<uint8_t> out;
+  auto u32 = [&](uint32_t v) { for (int i = 0; i < 4; ++i) out.push_back(uint8_t(v >> (8 * i))); };
+  out.insert(out.end(), {'g', 'l', 'T', 'F'});
+  u32(2);
+  u32(uint32_t(12 + 8 + text.size() + 8 + bin.size()));
+  u32(uint32_t(text.size()));
+  u32(0x4E4F534Au);  // "JSON"
+  out.insert(out.end(), text.begin(), text.end());
+  u32(uint32_t(bin.size()));
+  u32(0x004E4942u);  // "BIN"
+  out.insert(out.end(), bin.begin(), bin.end());
+  return out;
+}
+
+// A 16-bit RGB PNG (stb_image_write writes only 8 bits): stored (uncompressed) deflate blocks.
+std::vector<uint8_t> png16(int w, int h) {
+  auto crc32 = [](const uint8_t* p, size_t n, uint32_t c = 0xFFFFFFFFu) {
+    for (size_t i = 0; i < n; ++i) {
+      c ^= p[i];
+      for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
+    }
+    return c;
+  };
+  std::vector<uint8_t> raw;
+  for (int y = 0; y < h; ++y) {
+    raw.push_back(0);  // filter: none
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 3; ++c) {
+        uint16_t v = uint16_t(((x + y + c) & 1) ? 0xFFFF : 0x2000);
+        raw.push_back(uint8_t(v >> 8));
+        raw.push_back(uint8_t(v & 0xFF));
+      }
+  }
+  std::vector<uint8_t> z = {0x78, 0x01};
+  uint32_t a = 1, b = 0;
+  for (uint8_t v : raw) { a = (a + v) % 65521; b = (b + a) % 65521; }
+  for (size_t off = 0; off < raw.size() || off == 0; off += 65535) {
+    size_t len = std::min<size_t>(65535, raw.size() - off);
+    z.push_back(off + len >= raw.size() ? 1 : 0);
+    z.push_back(uint8_t(len)); z.push_back(uint8_t(len >> 8));
+    z.push_back(uint8_t(~len)); z.push_back(uint8_t(~len >> 8));
+    z.insert(z.end(), raw.begin() + std::ptrdiff_t(off), raw.begin() + std::ptrdiff_t(off + len));
+    if (off + len >= raw.size()) break;
+  }
+  uint32_t adler = (b << 16) | a;
+  for (int i = 3; i >= 0; --i) z.push_back(uint8_t(adler >> (8 * i)));
+  std::vector<uint8_t> out = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  auto chunk = [&](const char* type, const std::vector<uint8_t>& data) {
+    uint32_t n = uint32_t(data.size());
+    for (int i = 3; i >= 0; --i) out.push_back(uint8_t(n >> (8 * i)));
+    std::vector<uint8_t> td(type, type + 4);
+    td.insert(td.end(), data.begin(), data.end());
+    out.insert(out.end(), td.begin(), td.end());
+    uint32_t c = ~crc32(td.data(), td.size());
+    for (int i = 3; i >= 0; --i) out.push_back(uint8_t(c >> (8 * i)));
+  };
+  std::vector<uint8_t> ihdr;
+  for (uint32_t v : {uint32_t(w), uint32_t(h)})
+    for (int i = 3; i >= 0; --i) ihdr.push_back(uint8_t(v >> (8 * i)));
+  ihdr.insert(ihdr.end(), {16, 2, 0, 0, 0});  // 16 bits, RGB
+  chunk("IHDR", ihdr);
+  chunk("IDAT", z);
+  chunk("IEND", {});
+  return out;
+}
+
+void write_png_rgb(const fs::path& path, int w, int h, const std::vector<uint8_t>& rgb) {
+  if (!stbi_write_png(path.string().c_str(), w, h, 3, rgb.data(), w * 3)) throw std::runtime_error("cannot write " + path.string());
+}
+
+// A cube of 8 shared corners and 12 triangles (counter-clockwise seen from outside), POSITION only.
+Mesh shared_corner_cube() {
+  Mesh m;
+  for (int i = 0; i < 8; ++i) m.positions.push_back({(i & 1) ? 0.5f : -0.5f, (i & 2) ? 0.5f : -0.5f, (i & 4) ? 0.5f : -0.5f});
+  const int faces[6][4] = {{1, 3, 7, 5}, {0, 4, 6, 2}, {2, 6, 7, 3}, {0, 1, 5, 4}, {4, 5, 7, 6}, {0, 2, 3, 1}};
+  const glm::vec3 normals[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (int f = 0; f < 6; ++f) {
+    uint32_t a = faces[f][0], b = faces[f][1], c = faces[f][2], d = faces[f][3];
+    glm::vec3 n = glm::cross(m.positions[b] - m.positions[a], m.positions[c] - m.positions[a]);
+    if (glm::dot(n, normals[f]) < 0) std::swap(b, d);
+    for (uint32_t i : {a, b, c, a, c, d}) m.indices.push_back(i);
+  }
+  return m;
+}
+
 const char* kReadme = R"(# tests/data: loader test inputs
 
 Generated by `tools/scenegen` (`scenegen --test-data tests/data`, run by
@@ -52,7 +177,231 @@ listed under "tinygltf".
 | `nonindexed_nonormals.gltf` (+ `.bin`) | cube as 36-vertex triangle soup: POSITION only (no indices, normals, tangents, UVs), no material; camera `view`, point light | loads, no warnings |
 | `no_camera.gltf` (+ `.bin`) | valid plane + point light, no camera | loads, no warnings |
 | `bad_index.gltf` (+ `.bin`) | plane whose index accessor refers to vertex 99 of 4 | loads, no warnings (tinygltf does not check indices) |
+
+Real-model cases and hostile inputs (not checked by `--verify-test-data`; the loader's tests
+say what each must give). Files without their own `.bin` use `minimal.bin`.
+
+| file | what it is |
+| --- | --- |
+| `no_camera_no_lights.gltf` (+ `.bin`) | a 1 m box (with normals) and nothing else: no camera, no lights |
+| `indexed_nonormals.gltf` (+ `.bin`) | cube of 8 shared corners, 36 indices, POSITION only: must be flat shaded |
+| `strip_fan.gltf` (+ `.bin`) | a quad as TRIANGLE_STRIP (4 vertices) and one as TRIANGLE_FAN (6), camera, light |
+| `points_only.gltf` (+ `.bin`) | one POINTS primitive: nothing to draw |
+| `lines_and_triangles.gltf` | minimal's plane plus a LINES primitive |
+| `requires_draco.gltf` | minimal with KHR_draco_mesh_compression in extensionsRequired |
+| `requires_meshopt.gltf` | minimal with EXT_meshopt_compression in extensionsRequired |
+| `uses_clearcoat.gltf` | minimal whose material uses KHR_materials_clearcoat (extensionsUsed only) |
+| `glb_content.gltf` | minimal as a binary glTF (.glb bytes) under a .gltf name |
+| `camera_*.gltf` | minimal's camera made degenerate: yfov 0, yfov pi, znear 0, zfar below znear, zero scale, zero quaternion |
+| `lights_invalid.gltf` | minimal plus lights with a negative intensity, a negative colour, an intensity of 1e39 (infinite as a float) and a negative range |
+| `accessor_offset_overflow.gltf` | POSITION accessor with byteOffset 2^64 - 16 (wraps a naive bounds check) |
+| `accessor_count_overflow.gltf` | POSITION accessor with count 2^62 (stride x count wraps) |
+| `huge_index_count.gltf` | index accessor with count 4 000 000 000 |
+| `node_dag.gltf` | 40 nodes, each listing the next twice as children: 2^40 instances of the plane |
+| `node_dag_no_mesh.gltf` | the same DAG without a mesh at its leaves (the plane is a separate root) |
+| `node_dag_light.gltf` | the same DAG with minimal's light at its leaves (2^40 light nodes) |
+| `texture_16bit.gltf` (+ `rgb16.png`) | base colour texture is a 16-bit RGB PNG |
+| `texture_20000x1.gltf` (+ `wide_20000x1.png`) | base colour texture 20000 x 1 (past llvmpipe's GL_MAX_TEXTURE_SIZE 16384) |
+| `texture_40000x1.gltf` (+ `wide_40000x1.png`) | base colour texture 40000 x 1 (past the loader's 32768) |
+| `texture_uri_directory.gltf` | the image uri is `.`, a directory |
+| `buffer_uri_directory.gltf` | the buffer uri is `.`, a directory |
+| `buffer_dev_null.gltf` | the buffer uri is `/dev/null` (reached through `../` from the file's folder) |
+| `texture_transform.gltf` (+ `.bin`, `stripes.png`) | plane with KHR_texture_transform (offset, rotation, scale) on its textures |
+| `emissive_texture.gltf` (+ `.bin`, `stripes.png`) | plane emitting through an emissiveTexture, with KHR_materials_emissive_strength 2 |
 )";
+
+void write_real_model_cases(const fs::path& dir) {
+  {
+    GltfBuilder b("no_camera_no_lights");
+    b.add_mesh_node("box", b.add_mesh("box", make_box(glm::vec3(1.0f)), b.add_material(plain("grey"))), glm::vec3(0.0f));
+    b.write(dir);
+  }
+  {
+    GltfBuilder b("indexed_nonormals");
+    b.add_camera("view", {2.0f, 2.0f, 3.0f}, {0.0f, 0.0f, 0.0f}, 0.8f, 0.05f, 50.0f);
+    b.add_point_light("light", {1.5f, 2.5f, 2.0f}, {1.0f, 1.0f, 1.0f}, 3.0f);
+    b.add_mesh_node("cube", b.add_mesh("cube", shared_corner_cube(), -1), glm::vec3(0.0f));
+    b.write(dir);
+  }
+  {
+    // Both quads lie in y = 0, facing +Y, counter-clockwise seen from above.
+    GltfBuilder b("strip_fan");
+    b.add_camera("view", {1.25f, 3.0f, 0.5f}, {1.25f, 0.0f, 0.5f}, 0.8f, 0.05f, 50.0f, {0.0f, 0.0f, -1.0f});
+    b.add_point_light("light", {1.25f, 2.0f, 0.5f}, {1.0f, 1.0f, 1.0f}, 4.0f);
+    Mesh strip, fan;
+    strip.positions = {{0, 0, 0}, {0, 0, 1}, {1, 0, 0}, {1, 0, 1}};
+    fan.positions = {{2, 0, 0.5f}, {1.5f, 0, 0}, {1.5f, 0, 1}, {2.5f, 0, 1}, {2.5f, 0, 0}, {1.5f, 0, 0}};
+    int m = b.add_material(plain("grey"));
+    b.add_mesh_node("strip", b.add_mesh("strip", strip, m), glm::vec3(0.0f));
+    b.add_mesh_node("fan", b.add_mesh("fan", fan, m), glm::vec3(0.0f));
+    json doc = b.document();
+    doc["meshes"][0]["primitives"][0]["mode"] = 5;
+    doc["meshes"][1]["primitives"][0]["mode"] = 6;
+    write_doc(dir, "strip_fan", doc);
+    write_bytes(dir / "strip_fan.bin", b.binary());
+  }
+  {
+    GltfBuilder b("points_only");
+    plane_scene(b, make_rect(2.0f, 2.0f), b.add_material(plain("grey")), true);
+    json doc = b.document();
+    doc["meshes"][0]["primitives"][0]["mode"] = 0;
+    doc["meshes"][0]["primitives"][0].erase("indices");
+    write_doc(dir, "points_only", doc);
+    write_bytes(dir / "points_only.bin", b.binary());
+  }
+  {
+    json doc = minimal_doc();
+    json lines = doc["meshes"][0]["primitives"][0];
+    lines["mode"] = 1;
+    doc["meshes"][0]["primitives"].push_back(lines);
+    write_doc(dir, "lines_and_triangles", doc);
+  }
+  for (const char* ext : {"KHR_draco_mesh_compression", "EXT_meshopt_compression"}) {
+    json doc = minimal_doc();
+    add_extension(doc, ext, true);
+    write_doc(dir, std::string("requires_") + (ext[0] == 'K' ? "draco" : "meshopt"), doc);
+  }
+  {
+    json doc = minimal_doc();
+    add_extension(doc, "KHR_materials_clearcoat", false);
+    doc["materials"][0]["extensions"]["KHR_materials_clearcoat"] = {{"clearcoatFactor", 1.0}};
+    write_doc(dir, "uses_clearcoat", doc);
+  }
+  {
+    GltfBuilder b("minimal");
+    plane_scene(b, make_rect(2.0f, 2.0f), b.add_material(plain("grey")), true);
+    write_bytes(dir / "glb_content.gltf", glb(b.document(), b.binary()));
+  }
+  // Textured planes: stripes.png is 8 x 8, the left half white, the right half black.
+  {
+    std::vector<uint8_t> rgb(8 * 8 * 3);
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x)
+        for (int c = 0; c < 3; ++c) rgb[size_t((y * 8 + x) * 3 + c)] = x < 4 ? 255 : 0;
+    write_png_rgb(dir / "stripes.png", 8, 8, rgb);
+  }
+  {
+    GltfBuilder b("texture_transform");
+    Material m = plain("transformed");
+    m.base_color_texture = b.add_texture("stripes.png");
+    m.normal_texture = b.add_texture("stripes.png");
+    plane_scene(b, make_rect(2.0f, 2.0f), b.add_material(m), true);
+    json doc = b.document();
+    const json transform = {{"offset", {0.5, 0.25}}, {"rotation", 1.5707963267948966}, {"scale", {2.0, 3.0}}};
+    doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"]["KHR_texture_transform"] = transform;
+    doc["materials"][0]["normalTexture"]["extensions"]["KHR_texture_transform"] = transform;
+    add_extension(doc, "KHR_texture_transform", true);
+    write_doc(dir, "texture_transform", doc);
+    write_bytes(dir / "texture_transform.bin", b.binary());
+  }
+  {
+    GltfBuilder b("emissive_texture");
+    Material m = plain("label");
+    m.base_color = {0.05f, 0.05f, 0.05f, 1.0f};
+    m.emissive = {1.0f, 0.5f, 0.25f};
+    plane_scene(b, make_rect(2.0f, 2.0f), b.add_material(m), true);
+    int texture = b.add_texture("stripes.png");
+    json doc = b.document();
+    doc["materials"][0]["emissiveTexture"] = {{"index", texture}};
+    doc["materials"][0]["extensions"]["KHR_materials_emissive_strength"] = {{"emissiveStrength", 2.0}};
+    add_extension(doc, "KHR_materials_emissive_strength", false);
+    write_doc(dir, "emissive_texture", doc);
+    write_bytes(dir / "emissive_texture.bin", b.binary());
+  }
+}
+
+void write_hostile_cases(const fs::path& dir) {
+  const std::pair<const char*, std::function<void(json&)>> cameras[] = {
+      {"camera_yfov_zero", [](json& d) { d["cameras"][0]["perspective"]["yfov"] = 0; }},
+      {"camera_yfov_pi", [](json& d) { d["cameras"][0]["perspective"]["yfov"] = 3.1415927; }},
+      {"camera_znear_zero", [](json& d) { d["cameras"][0]["perspective"]["znear"] = 0; }},
+      {"camera_zfar_below_znear", [](json& d) { d["cameras"][0]["perspective"]["zfar"] = 0.01; }},
+      {"camera_zero_scale", [](json& d) { camera_node(d)["scale"] = {0.0, 0.0, 0.0}; }},
+      {"camera_zero_quaternion", [](json& d) { camera_node(d)["rotation"] = {0.0, 0.0, 0.0, 0.0}; }},
+  };
+  for (const auto& [name, damage] : cameras) {
+    json doc = minimal_doc();
+    damage(doc);
+    write_doc(dir, name, doc);
+  }
+  {
+    // JSON has no infinity: 1e39 is a double that overflows the float the loader keeps.
+    json doc = minimal_doc();
+    auto add_light = [&](const std::string& name, const json& light, float x) {
+      json l = light;
+      l["name"] = name;
+      l["type"] = "point";
+      doc["extensions"]["KHR_lights_punctual"]["lights"].push_back(l);
+      int index = int(doc["extensions"]["KHR_lights_punctual"]["lights"].size()) - 1;
+      doc["nodes"].push_back({{"name", name}, {"translation", {x, 1.0, 0.0}}, {"extensions", {{"KHR_lights_punctual", {{"light", index}}}}}});
+      doc["scenes"][0]["nodes"].push_back(doc["nodes"].size() - 1);
+    };
+    add_light("negative_intensity", {{"intensity", -5.0}}, -1.0f);
+    add_light("negative_colour", {{"intensity", 2.0}, {"color", {1.0, -1.0, 1.0}}}, -0.5f);
+    add_light("infinite_intensity", {{"intensity", 12345.678}}, 0.5f);
+    add_light("negative_range", {{"intensity", 2.0}, {"range", -3.0}}, 1.0f);
+    std::string text = format_json(doc);
+    text.replace(text.find("12345.678"), 9, "1e39");
+    write_text(dir / "lights_invalid.gltf", text);
+  }
+  {
+    json doc = minimal_doc();
+    int pos = doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"];
+    doc["accessors"][size_t(pos)]["byteOffset"] = uint64_t(0) - 16;  // 2^64 - 16
+    write_doc(dir, "accessor_offset_overflow", doc);
+  }
+  {
+    json doc = minimal_doc();
+    int pos = doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"];
+    doc["accessors"][size_t(pos)]["count"] = uint64_t(1) << 62;
+    write_doc(dir, "accessor_count_overflow", doc);
+  }
+  {
+    json doc = minimal_doc();
+    int idx = doc["meshes"][0]["primitives"][0]["indices"];
+    doc["accessors"][size_t(idx)]["count"] = 4000000000ull;
+    write_doc(dir, "huge_index_count", doc);
+  }
+  for (const char* leaf_has : {"mesh", "nothing", "light"}) {
+    json doc = minimal_doc();
+    json plane;
+    for (auto& n : doc["nodes"])
+      if (n.contains("mesh")) plane = n;
+    const size_t first = doc["nodes"].size();
+    for (size_t i = 0; i < 40; ++i) doc["nodes"].push_back({{"name", "dag" + std::to_string(i)}, {"children", {first + i + 1, first + i + 1}}});
+    json leaf = {{"name", "leaf"}};
+    const std::string what = leaf_has;
+    if (what == "mesh") leaf["mesh"] = plane["mesh"];
+    if (what == "light") leaf["extensions"] = {{"KHR_lights_punctual", {{"light", 0}}}};
+    doc["nodes"].push_back(leaf);
+    doc["scenes"][0]["nodes"].push_back(first);
+    write_doc(dir, what == "mesh" ? "node_dag" : what == "light" ? "node_dag_light" : "node_dag_no_mesh", doc);
+  }
+  {
+    write_bytes(dir / "rgb16.png", png16(4, 4));
+    for (int width : {20000, 40000}) {
+      std::vector<uint8_t> rgb(size_t(width) * 3, 200);
+      std::string png = "wide_" + std::to_string(width) + "x1.png";
+      write_png_rgb(dir / png, width, 1, rgb);
+    }
+    for (const char* image : {"rgb16.png", "wide_20000x1.png", "wide_40000x1.png", "."}) {
+      json doc = minimal_doc();
+      doc["images"] = json::array({{{"uri", image}}});
+      doc["textures"] = json::array({{{"source", 0}}});
+      doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
+      std::string name = image == std::string("rgb16.png") ? "texture_16bit"
+                         : image == std::string(".")       ? "texture_uri_directory"
+                                                           : "texture_" + std::string(image).substr(5, std::strlen(image) - 9);
+      write_doc(dir, name, doc);
+    }
+  }
+  // tinygltf looks for a uri under the file's folder: enough "../" reach / from any depth.
+  for (const char* uri : {".", "../../../../../../../../../../../../../../../../dev/null"}) {
+    json doc = minimal_doc();
+    doc["buffers"][0]["uri"] = uri;
+    write_doc(dir, std::string(uri) == "." ? "buffer_uri_directory" : "buffer_dev_null", doc);
+  }
+}
 
 }  // namespace
 
@@ -102,6 +451,8 @@ void write_test_data(const fs::path& dir) {
     plane_scene(b, plane, b.add_material(plain("grey")), true);
     b.write(dir);
   }
+  write_real_model_cases(dir);
+  write_hostile_cases(dir);
 }
 
 }  // namespace scenegen

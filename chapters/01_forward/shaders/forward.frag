@@ -11,6 +11,7 @@ layout(std430, binding = 0) readonly buffer Lights { GpuLight lights[]; };
 
 layout(binding = 0) uniform sampler2D u_base_color_texture;
 layout(binding = 1) uniform sampler2D u_normal_texture;
+layout(binding = 2) uniform sampler2D u_emissive_texture;  // glTF: emitted = u_emissive * texel
 
 uniform vec3 u_eye;
 uniform vec4 u_base_color;
@@ -70,6 +71,6 @@ void main() {
   // [/per-pixel]
 #endif
   vec3 color = albedo * diffuse + u_specular * specular;
-  if (u_include_base) color += albedo * u_ambient + u_emissive;
+  if (u_include_base) color += albedo * u_ambient + u_emissive * texture(u_emissive_texture, v_uv).rgb;
   out_color = vec4(color, 1.0);
 }

@@ -8,6 +8,7 @@ layout(early_fragment_tests) in;  // GL_SAMPLES_PASSED = fragments written
 
 layout(binding = 0) uniform sampler2D u_base_color_texture;
 layout(binding = 1) uniform sampler2D u_normal_texture;
+layout(binding = 2) uniform sampler2D u_emissive_texture;
 
 uniform vec4 u_base_color;
 uniform vec3 u_specular;
@@ -58,11 +59,16 @@ vec3 mapped_normal() {
 void main() {
   vec3 albedo = (u_base_color * texture(u_base_color_texture, v_uv)).rgb;
   vec3 n = mapped_normal();
+  // glTF emits emissiveFactor x emissiveTexture. The G-buffer keeps one emissive colour per
+  // material (a palette code) or one strength, so a texture can only scale the strength or,
+  // for a code, gate it: texels at least half bright emit the material's colour, others none.
+  vec3 e = texture(u_emissive_texture, v_uv).rgb;
+  float emission = max(e.r, max(e.g, e.b));
   // [write-targets]
 #ifdef GBUFFER_EMISSIVE_ALBEDO_SCALE
-  out_albedo = vec4(albedo, u_emissive_strength);
+  out_albedo = vec4(albedo, u_emissive_strength * emission);
 #else
-  out_albedo = vec4(albedo, float(u_emissive_code) / 255.0);
+  out_albedo = vec4(albedo, float(emission >= 0.5 ? u_emissive_code : 0) / 255.0);
 #endif
 #ifdef GBUFFER_FLOAT_EXPONENT
   out_specular = vec4(u_specular, u_exponent);

@@ -4,6 +4,7 @@
 layout(early_fragment_tests) in;
 
 layout(binding = 0) uniform sampler2D u_base_color_texture;
+layout(binding = 2) uniform sampler2D u_emissive_texture;  // glTF: emitted = u_emissive * texel
 layout(binding = 5) uniform sampler2D u_light;  // rgb: ambient + diffuse light, a: specular light
 
 uniform vec4 u_base_color;
@@ -29,6 +30,6 @@ void main() {
     float y = dot(light.rgb, vec3(0.2126, 0.7152, 0.0722));
     specular_light = y > 0.0 ? light.rgb * (light.a / y) : vec3(0.0);
   }
-  out_color = vec4(albedo * light.rgb + u_specular * specular_light + u_emissive, 1.0);
+  out_color = vec4(albedo * light.rgb + u_specular * specular_light + u_emissive * texture(u_emissive_texture, v_uv).rgb, 1.0);
   // [/prepass-specular]
 }

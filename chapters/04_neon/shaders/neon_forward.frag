@@ -12,6 +12,7 @@ layout(std430, binding = 0) readonly buffer Lights { GpuLight lights[]; };
 layout(std430, binding = 1) readonly buffer Neons { NeonGpu neons[]; };
 
 layout(binding = 0) uniform sampler2D u_base_color_texture;
+layout(binding = 2) uniform sampler2D u_emissive_texture;  // glTF: emitted = u_emissive * texel
 
 uniform vec3 u_eye;
 uniform vec4 u_base_color;
@@ -55,6 +56,6 @@ void main() {
   vec3 color = vec3(0.0);
   if (u_term != 2) color += albedo * diffuse;
   if (u_term != 1) color += u_specular * specular;
-  if (u_term == 0) color += albedo * u_ambient + u_emissive;
+  if (u_term == 0) color += albedo * u_ambient + u_emissive * texture(u_emissive_texture, v_uv).rgb;
   out_color = vec4(color, 1.0);
 }

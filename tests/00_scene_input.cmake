@@ -1,0 +1,133 @@
+# Any glTF a reader brings (issue 10): real-model cases and hostile inputs, through the chapter
+# programs. Inputs are tests/data/ (tools/scenegen writes them; README.md there lists them).
+# Bad input must give its message and exit code within a few seconds: TIMEOUT 10 for inputs
+# refused before rendering (an EGL context is made first: ~1 s on llvmpipe), 30 where a
+# 160x90 image is rendered.
+set(PS01 $<TARGET_FILE:01_forward>)
+set(SCENE_OUT ${CMAKE_BINARY_DIR}/out/scene_input)
+file(MAKE_DIRECTORY ${SCENE_OUT})
+
+add_executable(png_coverage png_coverage.cpp)
+target_link_libraries(png_coverage PRIVATE lightpass_common)
+
+function(scene_test name code regex)
+  lightpass_program_test(scene.${name} ${code} ${regex} ${ARGN})
+  set_tests_properties(scene.${name} PROPERTIES TIMEOUT 10)
+endfunction()
+function(scene_render_test name code regex)
+  lightpass_program_test(scene.${name} ${code} ${regex} ${ARGN})
+  set_tests_properties(scene.${name} PROPERTIES TIMEOUT 30)
+endfunction()
+
+# A model with neither camera nor lights renders framed and lit: the box covers between 5 %
+# and 60 % of the image (the automatic view fits its bounding sphere to the height; a box
+# fills less than its sphere) and its pixels are far from black (mean brightest channel >= 60
+# of 255, where the default rig's key light alone gives the lit faces > 100).
+scene_render_test(auto_view_default_rig_framed_and_lit 0 "within bounds"
+  sh -c "'${PS01}' --headless --size 160x90 --scene tests/data/no_camera_no_lights.gltf --out '${SCENE_OUT}/auto.png' && '$<TARGET_FILE:png_coverage>' '${SCENE_OUT}/auto.png' --covered 0.05 0.6 --lit 60")
+scene_render_test(auto_view_says_so 0 "no camera: rendering view 'auto'"
+  ${PS01} --headless --size 64x36 --scene tests/data/no_camera_no_lights.gltf --out ${SCENE_OUT}/auto_small.png)
+scene_render_test(default_rig_says_so 0 "has no lights: using a default rig"
+  ${PS01} --headless --size 64x36 --scene tests/data/no_camera_no_lights.gltf --out ${SCENE_OUT}/auto_small2.png)
+scene_test(list_puts_auto_after_named_views 0 "views: view auto" ${PS01} --list --scene tests/data/minimal.gltf)
+# Strips and fans are drawn: two 1 m quads seen from 3 m above with yfov 0.8 at 16:9, where
+# the view spans 2.54 x 4.51 m: 2 / 11.4 = 17.5 % of the image (one quad alone: 8.8 %).
+scene_render_test(strip_and_fan_are_drawn 0 "within bounds"
+  sh -c "'${PS01}' --headless --size 160x90 --scene tests/data/strip_fan.gltf --out '${SCENE_OUT}/strip_fan.png' && '$<TARGET_FILE:png_coverage>' '${SCENE_OUT}/strip_fan.png' --covered 0.15 0.20")
+scene_test(points_only_is_an_error 1 "no triangles to draw" ${PS01} --headless --scene tests/data/points_only.gltf)
+scene_render_test(lines_are_skipped_with_a_warning 0 "warning: .*lines .skipped."
+  ${PS01} --headless --size 64x36 --scene tests/data/lines_and_triangles.gltf --out ${SCENE_OUT}/lines.png)
+scene_test(required_draco_is_refused 1 "requires the extension KHR_draco_mesh_compression" ${PS01} --headless --scene tests/data/requires_draco.gltf)
+scene_test(required_meshopt_is_refused 1 "requires the extension EXT_meshopt_compression" ${PS01} --headless --scene tests/data/requires_meshopt.gltf)
+scene_render_test(used_extension_warns 0 "warning: .*extension KHR_materials_clearcoat"
+  ${PS01} --headless --size 64x36 --scene tests/data/uses_clearcoat.gltf --out ${SCENE_OUT}/clearcoat.png)
+scene_render_test(glb_told_by_content 0 "wrote .*glb.png"
+  ${PS01} --headless --size 64x36 --scene tests/data/glb_content.gltf --out ${SCENE_OUT}/glb.png)
+
+# The emissive texture's left half is white, its right half black: half of the plane emits
+# (saturated, >= 250 in a channel: emissive (2, 1, 0.5)), half does not. Without the texture
+# all of it would. Forward (01) and the G-buffer's palette code (02) alike; the bound 0.3..0.7
+# leaves room for the plane's lit rim and the texture's filtered seam.
+foreach(p 01_forward 02_gbuffer)
+  scene_render_test(emissive_texture_emits_where_white_${p} 0 "within bounds"
+    sh -c "'$<TARGET_FILE:${p}>' --headless --size 160x90 --scene tests/data/emissive_texture.gltf --out '${SCENE_OUT}/emissive_${p}.png' && '$<TARGET_FILE:png_coverage>' '${SCENE_OUT}/emissive_${p}.png' --bright-share 0.3 0.7")
+endforeach()
+
+# Degenerate cameras: an error naming the camera.
+foreach(c "yfov_zero|yfov 0 is not between 0 and pi" "yfov_pi|yfov 3.14159 is not between 0 and pi"
+          "znear_zero|znear 0 must be > 0" "zfar_below_znear|zfar 0.01 must be greater than znear"
+          "zero_scale|camera 'view': its node's transform has a zero" "zero_quaternion|node 'view': its rotation is not a unit quaternion")
+  string(REPLACE "|" ";" parts "${c}")
+  list(GET parts 0 file)
+  list(GET parts 1 message)
+  scene_test(camera_${file} 1 "${message}" ${PS01} --headless --scene tests/data/camera_${file}.gltf)
+endforeach()
+
+# Bad lights: one rule for every chapter (the loader's): warned by name, left out, exit 0.
+foreach(p 01_forward 02_gbuffer 03_light_volumes 04_neon 05_hdr)
+  add_test(NAME scene.invalid_lights_left_out_${p}
+    COMMAND ${EXPECT} 0 "light 'negative_intensity' is left out" "light 'negative_colour' is left out"
+            "light 'infinite_intensity' is left out" "light 'negative_range' is left out" --
+            $<TARGET_FILE:${p}> --headless --size 64x36 --scene tests/data/lights_invalid.gltf --out ${SCENE_OUT}/lights_${p}.png)
+  set_tests_properties(scene.invalid_lights_left_out_${p} PROPERTIES TIMEOUT 30)
+endforeach()
+
+# Hostile files.
+scene_test(accessor_offset_overflow 1 "accessor 0 .4 elements of 12 bytes, stride 12, offset 18446744073709551600. reads past the end"
+  ${PS01} --headless --scene tests/data/accessor_offset_overflow.gltf)
+scene_test(accessor_count_overflow 1 "accessor 0 .4611686018427387904 elements of 12 bytes.* reads past the end"
+  ${PS01} --headless --scene tests/data/accessor_count_overflow.gltf)
+scene_test(huge_index_count 1 "indices: accessor 4 .4000000000 elements" ${PS01} --headless --scene tests/data/huge_index_count.gltf)
+scene_test(node_dag_is_bounded 1 "more than 1000000 mesh instances" ${PS01} --headless --scene tests/data/node_dag.gltf)
+scene_test(node_dag_without_meshes_is_bounded 1 "expands to more than 4000000 nodes" ${PS01} --headless --scene tests/data/node_dag_no_mesh.gltf)
+scene_test(node_dag_of_lights_is_bounded 1 "more than 100000 lights" ${PS01} --headless --scene tests/data/node_dag_light.gltf)
+scene_render_test(sixteen_bit_png_is_converted 0 "16-bit images read as 8 bits per channel: 'rgb16.png'"
+  ${PS01} --headless --size 64x36 --scene tests/data/texture_16bit.gltf --out ${SCENE_OUT}/rgb16.png)
+# llvmpipe's GL_MAX_TEXTURE_SIZE is 16384 (CI renders with it; a GPU allowing 32768 would take the image).
+scene_render_test(texture_past_the_gl_limit_falls_back 0 "texture 'wide_20000x1.png' is 20000x1, larger than this GL allows"
+  env LIBGL_ALWAYS_SOFTWARE=1 LIGHTPASS_SOFTWARE=1 ${PS01} --headless --size 64x36 --scene tests/data/texture_20000x1.gltf --out ${SCENE_OUT}/wide20000.png)
+scene_render_test(texture_past_the_loader_limit_falls_back 0 "texture 'wide_40000x1.png' could not be loaded .it is 40000x1, more than the loader accepts"
+  ${PS01} --headless --size 64x36 --scene tests/data/texture_40000x1.gltf --out ${SCENE_OUT}/wide40000.png)
+scene_render_test(texture_uri_directory 0 "cannot read '.*tests/data/.': it is a directory"
+  ${PS01} --headless --size 64x36 --scene tests/data/texture_uri_directory.gltf --out ${SCENE_OUT}/uri_dir.png)
+scene_test(buffer_uri_directory 1 "cannot read '.*tests/data/.': it is a directory" ${PS01} --headless --scene tests/data/buffer_uri_directory.gltf)
+scene_test(buffer_dev_null 1 "cannot read '.*dev/null': not a regular file" ${PS01} --headless --scene tests/data/buffer_dev_null.gltf)
+scene_test(scene_is_a_directory 1 "cannot read scene '.*tests/data': it is a directory" ${PS01} --headless --scene tests/data)
+scene_test(scene_is_dev_null 1 "cannot read scene '/dev/null': not a regular file" ${PS01} --headless --scene /dev/null)
+
+# Paths: a relative --scene is found from the current directory first. Here the current
+# directory holds its own tests/data/minimal.gltf, a copy of no_camera.gltf: the note about
+# the missing camera shows that this one, not the source tree's, was loaded.
+set(CWD_ROOT ${CMAKE_BINARY_DIR}/scene_cwd)
+configure_file(${CMAKE_CURRENT_SOURCE_DIR}/data/no_camera.gltf ${CWD_ROOT}/tests/data/minimal.gltf COPYONLY)
+configure_file(${CMAKE_CURRENT_SOURCE_DIR}/data/no_camera.bin ${CWD_ROOT}/tests/data/no_camera.bin COPYONLY)
+add_test(NAME scene.relative_scene_from_the_current_directory
+  COMMAND ${EXPECT} 0 "minimal.gltf has no camera" -- ${PS01} --headless --size 64x36 --scene tests/data/minimal.gltf --out ${SCENE_OUT}/cwd.png)
+set_tests_properties(scene.relative_scene_from_the_current_directory PROPERTIES TIMEOUT 30 WORKING_DIRECTORY ${CWD_ROOT})
+# ... and from the source root when the current directory has no such file.
+add_test(NAME scene.relative_scene_from_the_source_root
+  COMMAND ${EXPECT} 0 "wrote" --no-match "has no camera" -- ${PS01} --headless --size 64x36 --scene tests/data/minimal.gltf --out ${SCENE_OUT}/root.png)
+set_tests_properties(scene.relative_scene_from_the_source_root PROPERTIES TIMEOUT 30 WORKING_DIRECTORY ${CMAKE_BINARY_DIR})
+# --out: a missing folder is made, and said; only PNG is written.
+scene_render_test(out_into_a_missing_directory 0 "created the directory '.*out_new/sub' for --out"
+  sh -c "rm -rf '${SCENE_OUT}/out_new' && '${PS01}' --headless --size 64x36 --out '${SCENE_OUT}/out_new/sub/x.png' && test -f '${SCENE_OUT}/out_new/sub/x.png'")
+scene_test(out_jpg_is_refused 2 "--out x.jpg: only PNG images are written" ${PS01} --headless --out x.jpg)
+scene_test(out_upper_case_png_is_accepted_by_parse 2 "--size 0x0 has no pixels" ${PS01} --headless --out X.PNG --size 0x0)
+
+# Neon extras with numbers no tube can have (chapter 04 reads them): an error naming the node.
+file(READ ${CMAKE_CURRENT_SOURCE_DIR}/data/minimal.gltf neon_base)
+configure_file(${CMAKE_CURRENT_SOURCE_DIR}/data/minimal.bin ${CMAKE_BINARY_DIR}/neon_extras/minimal.bin COPYONLY)
+string(JSON neon_count LENGTH "${neon_base}" nodes)
+string(JSON neon_base SET "${neon_base}" scenes 0 nodes ${neon_count} "${neon_count}")
+foreach(c "huge_length|\"length\": 1e30, \"intensity\": 1|\"length\" must be" "negative_colour|\"length\": 1, \"intensity\": 1, \"color\": [1, -1, 1]|\"color\" must be"
+          "huge_intensity|\"length\": 1, \"intensity\": 1e39|\"intensity\" must be")
+  string(REPLACE "|" ";" parts "${c}")
+  list(GET parts 0 name)
+  list(GET parts 1 body)
+  list(GET parts 2 message)
+  string(JSON neon_doc SET "${neon_base}" nodes ${neon_count} "{\"name\": \"sign_${name}\", \"extras\": {\"lightpass\": {\"neon\": {${body}}}}}")
+  file(WRITE ${CMAKE_BINARY_DIR}/neon_extras/neon_${name}.gltf "${neon_doc}")
+  add_test(NAME scene.neon_${name}_names_the_node
+    COMMAND ${EXPECT} 1 "neon light 'sign_${name}': ${message}" -- $<TARGET_FILE:04_neon> --headless --size 64x36 --scene ${CMAKE_BINARY_DIR}/neon_extras/neon_${name}.gltf)
+  set_tests_properties(scene.neon_${name}_names_the_node PROPERTIES TIMEOUT 10)
+endforeach()
