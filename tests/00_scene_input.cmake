@@ -11,12 +11,12 @@ add_executable(png_coverage png_coverage.cpp)
 target_link_libraries(png_coverage PRIVATE lightpass_common)
 
 function(scene_test name code regex)
-  lightpass_program_test(scene.${name} ${code} ${regex} ${ARGN})
-  set_tests_properties(scene.${name} PROPERTIES TIMEOUT 10)
+  lightpass_program_test(common.scene.${name} ${code} ${regex} ${ARGN})
+  set_tests_properties(common.scene.${name} PROPERTIES TIMEOUT 10)
 endfunction()
 function(scene_render_test name code regex)
-  lightpass_program_test(scene.${name} ${code} ${regex} ${ARGN})
-  set_tests_properties(scene.${name} PROPERTIES TIMEOUT 30)
+  lightpass_program_test(common.scene.${name} ${code} ${regex} ${ARGN})
+  set_tests_properties(common.scene.${name} PROPERTIES TIMEOUT 30)
 endfunction()
 
 # A model with neither camera nor lights renders framed and lit: the box covers between 5 %
@@ -65,11 +65,11 @@ endforeach()
 
 # Bad lights: one rule for every chapter (the loader's): warned by name, left out, exit 0.
 foreach(p 01_forward 02_gbuffer 03_light_volumes 04_neon 05_hdr)
-  add_test(NAME scene.invalid_lights_left_out_${p}
+  add_test(NAME common.scene.invalid_lights_left_out_${p}
     COMMAND ${EXPECT} 0 "light 'negative_intensity' is left out" "light 'negative_colour' is left out"
             "light 'infinite_intensity' is left out" "light 'negative_range' is left out" --
             $<TARGET_FILE:${p}> --headless --size 64x36 --scene tests/data/lights_invalid.gltf --out ${SCENE_OUT}/lights_${p}.png)
-  set_tests_properties(scene.invalid_lights_left_out_${p} PROPERTIES TIMEOUT 30)
+  set_tests_properties(common.scene.invalid_lights_left_out_${p} PROPERTIES TIMEOUT 30)
 endforeach()
 
 # Hostile files.
@@ -101,13 +101,13 @@ scene_test(scene_is_dev_null 1 "cannot read scene '/dev/null': not a regular fil
 set(CWD_ROOT ${CMAKE_BINARY_DIR}/scene_cwd)
 configure_file(${CMAKE_CURRENT_SOURCE_DIR}/data/no_camera.gltf ${CWD_ROOT}/tests/data/minimal.gltf COPYONLY)
 configure_file(${CMAKE_CURRENT_SOURCE_DIR}/data/no_camera.bin ${CWD_ROOT}/tests/data/no_camera.bin COPYONLY)
-add_test(NAME scene.relative_scene_from_the_current_directory
+add_test(NAME common.scene.relative_scene_from_the_current_directory
   COMMAND ${EXPECT} 0 "minimal.gltf has no camera" -- ${PS01} --headless --size 64x36 --scene tests/data/minimal.gltf --out ${SCENE_OUT}/cwd.png)
-set_tests_properties(scene.relative_scene_from_the_current_directory PROPERTIES TIMEOUT 30 WORKING_DIRECTORY ${CWD_ROOT})
+set_tests_properties(common.scene.relative_scene_from_the_current_directory PROPERTIES TIMEOUT 30 WORKING_DIRECTORY ${CWD_ROOT})
 # ... and from the source root when the current directory has no such file.
-add_test(NAME scene.relative_scene_from_the_source_root
+add_test(NAME common.scene.relative_scene_from_the_source_root
   COMMAND ${EXPECT} 0 "wrote" --no-match "has no camera" -- ${PS01} --headless --size 64x36 --scene tests/data/minimal.gltf --out ${SCENE_OUT}/root.png)
-set_tests_properties(scene.relative_scene_from_the_source_root PROPERTIES TIMEOUT 30 WORKING_DIRECTORY ${CMAKE_BINARY_DIR})
+set_tests_properties(common.scene.relative_scene_from_the_source_root PROPERTIES TIMEOUT 30 WORKING_DIRECTORY ${CMAKE_BINARY_DIR})
 # --out: a missing folder is made, and said; only PNG is written.
 scene_render_test(out_into_a_missing_directory 0 "created the directory '.*out_new/sub' for --out"
   sh -c "rm -rf '${SCENE_OUT}/out_new' && '${PS01}' --headless --size 64x36 --out '${SCENE_OUT}/out_new/sub/x.png' && test -f '${SCENE_OUT}/out_new/sub/x.png'")
@@ -127,7 +127,7 @@ foreach(c "huge_length|\"length\": 1e30, \"intensity\": 1|\"length\" must be" "n
   list(GET parts 2 message)
   string(JSON neon_doc SET "${neon_base}" nodes ${neon_count} "{\"name\": \"sign_${name}\", \"extras\": {\"lightpass\": {\"neon\": {${body}}}}}")
   file(WRITE ${CMAKE_BINARY_DIR}/neon_extras/neon_${name}.gltf "${neon_doc}")
-  add_test(NAME scene.neon_${name}_names_the_node
+  add_test(NAME common.scene.neon_${name}_names_the_node
     COMMAND ${EXPECT} 1 "neon light 'sign_${name}': ${message}" -- $<TARGET_FILE:04_neon> --headless --size 64x36 --scene ${CMAKE_BINARY_DIR}/neon_extras/neon_${name}.gltf)
-  set_tests_properties(scene.neon_${name}_names_the_node PROPERTIES TIMEOUT 10)
+  set_tests_properties(common.scene.neon_${name}_names_the_node PROPERTIES TIMEOUT 10)
 endforeach()
