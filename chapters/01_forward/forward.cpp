@@ -1,4 +1,5 @@
 #include "chapters/01_forward/forward.h"
+#include "chapters/01_forward/material.h"
 
 #include "chapters/01_forward/blinn_phong.h"
 #include "common/error.h"
@@ -34,17 +35,7 @@ void ForwardRenderer::draw_scene(const ShaderProgram& program, const FrameCamera
   program.set("u_light_count", light_count);
   // [per-draw]
   scene_.draw([&](const Instance& inst, const Material& m) {
-    program.set("u_model", inst.model);
-    program.set("u_normal_matrix", glm::mat3(glm::transpose(glm::inverse(inst.model))));
-    program.set("u_base_color", m.base_color);
-    program.set("u_specular", m.specular_color);
-    program.set("u_exponent", exponent_from_roughness(m.roughness));
-    program.set("u_emissive", m.emissive);
-    program.set("u_has_normal_map", int(m.normal_texture >= 0));
-    program.set("u_normal_scale", m.normal_scale);
-    glBindTextureUnit(0, scene_.base_color_texture(m.base_color_texture));
-    glBindTextureUnit(1, scene_.normal_texture(m.normal_texture));
-    glBindTextureUnit(2, scene_.emissive_texture(m.emissive_texture));
+    set_surface(program, scene_, inst, m);  // material.h: the same in every pass
   });
   // [/per-draw]
 }

@@ -1,4 +1,5 @@
 #include "chapters/02_gbuffer/gbuffer.h"
+#include "chapters/01_forward/material.h"
 
 #include <algorithm>
 
@@ -176,19 +177,10 @@ void GeometryPass::draw(GBuffer& gbuffer, const FrameCamera& camera) {
   program.set("u_view_projection", gbuffer.camera().view_projection());
   const Material* first_material = scene_.scene().materials.data();
   scene_.draw([&](const Instance& inst, const Material& m) {
-    program.set("u_model", inst.model);
-    program.set("u_normal_matrix", glm::mat3(glm::transpose(glm::inverse(inst.model))));
-    program.set("u_base_color", m.base_color);
-    program.set("u_specular", m.specular_color);
-    program.set("u_exponent", ch01::exponent_from_roughness(m.roughness));
+    ch01::set_surface(program, scene_, inst, m);  // chapter 01's material.h
     program.set("u_emissive_code", emissive_code(static_cast<int>(&m - first_material)));
     float base = std::max({m.base_color.r, m.base_color.g, m.base_color.b, 1e-6f});
     program.set("u_emissive_strength", std::clamp(std::max({m.emissive.r, m.emissive.g, m.emissive.b}) / base, 0.f, 1.f));
-    program.set("u_has_normal_map", int(m.normal_texture >= 0));
-    program.set("u_normal_scale", m.normal_scale);
-    glBindTextureUnit(0, scene_.base_color_texture(m.base_color_texture));
-    glBindTextureUnit(1, scene_.normal_texture(m.normal_texture));
-    glBindTextureUnit(2, scene_.emissive_texture(m.emissive_texture));
   });
   GBuffer::restore_default_depth_convention();
 }

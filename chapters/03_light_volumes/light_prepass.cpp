@@ -1,4 +1,5 @@
 #include "chapters/03_light_volumes/light_prepass.h"
+#include "chapters/01_forward/material.h"
 
 #include "chapters/01_forward/blinn_phong.h"
 #include "chapters/02_gbuffer/depth.h"
@@ -87,16 +88,7 @@ void LightPrePass::draw_geometry(const FrameCamera& camera, int width, int heigh
   geometry_.use();
   geometry_.set("u_view_projection", camera.view_projection());
   scene_.draw([&](const Instance& inst, const Material& m) {
-    geometry_.set("u_model", inst.model);
-    geometry_.set("u_normal_matrix", glm::mat3(glm::transpose(glm::inverse(inst.model))));
-    geometry_.set("u_base_color", m.base_color);
-    geometry_.set("u_specular", m.specular_color);
-    geometry_.set("u_exponent", ch01::exponent_from_roughness(m.roughness));
-    geometry_.set("u_has_normal_map", int(m.normal_texture >= 0));
-    geometry_.set("u_normal_scale", m.normal_scale);
-    glBindTextureUnit(0, scene_.base_color_texture(m.base_color_texture));
-    glBindTextureUnit(1, scene_.normal_texture(m.normal_texture));
-    glBindTextureUnit(2, scene_.emissive_texture(m.emissive_texture));
+    ch01::set_surface(geometry_, scene_, inst, m);  // chapter 01's material.h
   });
   glColorMaski(1, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glDisable(GL_CULL_FACE);
@@ -132,13 +124,7 @@ void LightPrePass::draw_materials(const LightBuffer& light, PrePassSpecular spec
   material_.set("u_view_projection", camera_.view_projection());
   material_.set("u_chroma", int(specular == PrePassSpecular::Chroma));
   scene_.draw([&](const Instance& inst, const Material& m) {
-    material_.set("u_model", inst.model);
-    material_.set("u_normal_matrix", glm::mat3(glm::transpose(glm::inverse(inst.model))));
-    material_.set("u_base_color", m.base_color);
-    material_.set("u_specular", m.specular_color);
-    material_.set("u_emissive", m.emissive);
-    glBindTextureUnit(0, scene_.base_color_texture(m.base_color_texture));
-    glBindTextureUnit(2, scene_.emissive_texture(m.emissive_texture));
+    ch01::set_surface(material_, scene_, inst, m);
   });
   glDisable(GL_POLYGON_OFFSET_FILL);
   glDepthFunc(GL_LESS);

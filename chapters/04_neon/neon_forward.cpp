@@ -1,4 +1,5 @@
 #include "chapters/04_neon/neon_forward.h"
+#include "chapters/01_forward/material.h"
 
 #include <cstddef>
 
@@ -77,14 +78,7 @@ void NeonForward::draw(const FrameCamera& camera, const NeonDraw& how, const ch0
   lit_.set("u_samples", how.samples);
   lit_.set("u_term", static_cast<int>(how.term));
   scene_.draw([&](const Instance& inst, const Material& m) {
-    lit_.set("u_model", inst.model);
-    lit_.set("u_normal_matrix", glm::mat3(glm::transpose(glm::inverse(inst.model))));
-    lit_.set("u_base_color", m.base_color);
-    lit_.set("u_specular", m.specular_color);
-    lit_.set("u_exponent", ch01::exponent_from_roughness(m.roughness));
-    lit_.set("u_emissive", m.emissive);
-    glBindTextureUnit(0, scene_.base_color_texture(m.base_color_texture));
-    glBindTextureUnit(2, scene_.emissive_texture(m.emissive_texture));
+    ch01::set_surface(lit_, scene_, inst, m);  // chapter 01's material.h
   });
   if (how.term != Term::All) return;  // the glass is not part of the light being measured
   draw_glass(camera, tubes);

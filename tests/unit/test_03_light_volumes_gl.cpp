@@ -382,7 +382,7 @@ TEST_F(LightVolumesGl, DeferredLightingLosesTheColourOfHighlightsOnly) {
 
 namespace {
 
-std::string test_hook(const std::string& file) { return from_root("tests/data/hooks/" + file).string(); }
+std::string test_hook(const std::string& file) { return from_root("tests/hooks/" + file).string(); }
 
 struct HookStage : FrameStage {
   ShaderHooks hooks{"", ""};

