@@ -1,0 +1,47 @@
+#include "chapters/07_ssao/ao_stage.h"
+
+namespace lp::ch07 {
+
+AoStage::AoStage() : white_(gl::make_texture_2d(GL_R32F, 1, 1)) {
+  const float one = 1.f;
+  glTextureSubImage2D(white_.id(), 0, 0, 0, 1, 1, GL_RED, GL_FLOAT, &one);
+}
+
+void AoStage::reload_shaders() {
+  ssao_.reload_shaders();
+  show_program_.reset();
+}
+
+void AoStage::set(const AoSettings& settings, AoShow show, glm::vec3 ambient) {
+  settings_ = settings;
+  show_ = show;
+  needed_ = settings.method != AoMethod::Off && (show == AoShow::Ao || glm::dot(ambient, ambient) > 0.f);
+}
+
+// [ao-stage]
+void AoStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics) {
+  ran_ = needed_;
+  if (ran_) {
+    auto pass = ch03::timed(metrics, "ssao: " + kMethodNames[int(settings_.method)]);
+    ssao_.compute(frame.gbuffer(), frame.camera(), settings_);
+  }
+  glBindTextureUnit(ch03::DeferredFrame::kFirstStageUnit, ran_ ? ssao_.texture() : white_.id());
+}
+
+bool AoStage::composite(ch03::DeferredFrame& frame, PassMetrics* metrics) {
+  if (show_ != AoShow::Ao) return false;  // chapter 03's composite, its ambient darkened by the hook
+  auto pass = ch03::timed(metrics, "composite: the AO term");
+  if (!show_program_)
+    show_program_ = std::make_unique<ShaderProgram>(std::vector<ShaderStage>{
+        {GL_VERTEX_SHADER, "02_gbuffer/shaders/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "07_ssao/shaders/show_ao.frag"}});
+  show_program_->use();
+  show_program_->set("u_size", glm::vec2(frame.output().width, frame.output().height));
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glBindVertexArray(vao_.id());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  return true;
+}
+// [/ao-stage]
+
+}  // namespace lp::ch07
