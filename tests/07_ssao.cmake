@@ -5,7 +5,7 @@ lightpass_gtests(07_ssao unit lightpass_07_ssao unit/test_07_ao_math.cpp)
 lightpass_gtests(07_ssao gl lightpass_07_ssao unit/test_07_ssao_gl.cpp)
 
 set(P07 $<TARGET_FILE:07_ssao>)
-lightpass_program_test(07_ssao.reference.cornell 0 "7 of 7 references match" ${P07} --check --out ${CHECK_OUT}/07_ssao)
+lightpass_program_test(07_ssao.reference.cornell 0 "9 of 9 references match" ${P07} --check --out ${CHECK_OUT}/07_ssao)
 lightpass_program_test(07_ssao.reference.atrium 0 "3 of 3 references match"
   ${P07} --check --scene assets/atrium/atrium.gltf --out ${CHECK_OUT}/07_ssao_atrium)
 lightpass_program_test(07_ssao.headless_says_what_it_computed 0 "AO disk, 32 samples, radius 0.5, 160x90: frame took"

@@ -15,7 +15,21 @@ void AoStage::reload_shaders() {
 void AoStage::set(const AoSettings& settings, AoShow show, glm::vec3 ambient) {
   settings_ = settings;
   show_ = show;
-  needed_ = settings.method != AoMethod::Off && (show == AoShow::Ao || glm::dot(ambient, ambient) > 0.f);
+  needed_ = settings.method != AoMethod::Off && (show != AoShow::Image || glm::dot(ambient, ambient) > 0.f);
+}
+
+void AoStage::set_picture(const ImageF& picture, float heat_full_scale) {
+  if (picture.width != picture_w_ || picture.height != picture_h_) {
+    picture_ = gl::make_texture_2d(GL_R32F, picture.width, picture.height);
+    picture_w_ = picture.width;
+    picture_h_ = picture.height;
+  }
+  ImageF up = picture;
+  flip_vertically(up);  // OpenGL's rows start at the bottom
+  std::vector<float> grey(std::size_t(up.width) * up.height);
+  for (std::size_t i = 0; i < grey.size(); ++i) grey[i] = up.data[i * std::size_t(up.channels)];
+  glTextureSubImage2D(picture_.id(), 0, 0, 0, up.width, up.height, GL_RED, GL_FLOAT, grey.data());
+  heat_ = heat_full_scale;
 }
 
 // [ao-stage]
@@ -29,13 +43,16 @@ void AoStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics) {
 }
 
 bool AoStage::composite(ch03::DeferredFrame& frame, PassMetrics* metrics) {
-  if (show_ != AoShow::Ao) return false;  // chapter 03's composite, its ambient darkened by the hook
+  if (show_ == AoShow::Image) return false;  // chapter 03's composite, its ambient darkened by the hook
   auto pass = ch03::timed(metrics, "composite: the AO term");
   if (!show_program_)
     show_program_ = std::make_unique<ShaderProgram>(std::vector<ShaderStage>{
         {GL_VERTEX_SHADER, "02_gbuffer/shaders/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "07_ssao/shaders/show_ao.frag"}});
   show_program_->use();
   show_program_->set("u_size", glm::vec2(frame.output().width, frame.output().height));
+  show_program_->set("u_heat", show_ == AoShow::Picture ? heat_ : 0.f);
+  if (show_ == AoShow::Raw) glBindTextureUnit(ch03::DeferredFrame::kFirstStageUnit, ran_ ? ssao_.raw_texture() : white_.id());
+  if (show_ == AoShow::Picture) glBindTextureUnit(ch03::DeferredFrame::kFirstStageUnit, picture_.id());
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
   glBindVertexArray(vao_.id());

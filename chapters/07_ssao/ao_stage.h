@@ -12,7 +12,9 @@
 
 namespace lp::ch07 {
 
-enum class AoShow { Image, Ao };  // the lit image, or the AO term alone (grey)
+// The lit image; the AO term alone (grey), before the blur; or a picture the program computed
+// (the truth, the error) given with set_picture().
+enum class AoShow { Image, Ao, Raw, Picture };
 
 class AoStage : public ch03::FrameStage {
  public:
@@ -21,6 +23,9 @@ class AoStage : public ch03::FrameStage {
   // What to compute and show. `ambient` is the frame's ambient light: where it is zero (and
   // the AO is not shown) AO would change nothing, and no AO pass runs.
   void set(const AoSettings& settings, AoShow show, glm::vec3 ambient);
+  // What AoShow::Picture shows: a one-channel image (rows top to bottom), as grey, or as a heat
+  // map where `heat_full_scale` is red.
+  void set_picture(const ImageF& picture, float heat_full_scale = 0.f);
   bool ran() const { return ran_; }  // whether the last frame ran the AO pass
   const Ssao& ssao() const { return ssao_; }
   const AoSettings& settings() const { return settings_; }
@@ -34,7 +39,10 @@ class AoStage : public ch03::FrameStage {
   AoSettings settings_;
   AoShow show_ = AoShow::Image;
   bool needed_ = true, ran_ = false;
-  gl::Texture white_;  // A = 1: what the hook reads when no AO pass runs
+  gl::Texture white_;
+  gl::Texture picture_{GL_TEXTURE_2D};
+  int picture_w_ = 0, picture_h_ = 0;
+  float heat_ = 0.f;  // A = 1: what the hook reads when no AO pass runs
   std::unique_ptr<ShaderProgram> show_program_;
   gl::VertexArray vao_;
 };

@@ -12,6 +12,7 @@
 #include "chapters/03_light_volumes/deferred_frame.h"
 #include "chapters/03_light_volumes/light_radius.h"
 #include "chapters/07_ssao/ao_stage.h"
+#include "chapters/07_ssao/ao_truth.h"
 #include "common/app.h"
 #include "common/error.h"
 
@@ -20,7 +21,7 @@ namespace {
 using namespace lp;
 using namespace lp::ch07;
 
-enum Show { kImage, kAo };  // --show's order
+enum Show { kImage, kAo, kRaw, kTruth, kError };  // --show's order
 
 const CliSpec kCli{
     .program = "07_ssao",
@@ -38,8 +39,11 @@ const CliSpec kCli{
               choice_knob("term", "disk: each sample's occlusion, the disk form factor (cosine-weighted) or Bunnell's term",
                           {"form-factor", "bunnell"}),
               choice_knob("resolution", "the AO pass at full, half or quarter resolution", {"full", "half", "quarter"}),
-              choice_knob("show", "the lit image, or the AO term A itself (white: open, black: occluded)",
-                          {"image", "ao"}),
+              choice_knob("show", "the lit image; the AO term A (white: open, black: occluded); A before the blur; "
+                                  "the ray-traced truth (slow: the CPU traces --truth-samples rays per pixel, cached); "
+                                  "|A - truth| as a heat map (red: 0.5)",
+                          {"image", "ao", "raw", "truth", "error"}),
+              {"truth-samples", "--show truth/error: cosine-weighted rays per pixel", 64, 1, 4096, true},
               {"ambient", "the scene's ambient light times this (AO darkens only the ambient)", 1, 0, 1000, false}}};
 
 // [references]
@@ -50,7 +54,9 @@ std::vector<Shot> cornell_shots() {
           {"front", "disk", {{"show", kAo}}},
           {"front", "disk", {{"show", kAo}, {"samples", 64}}},
           {"front", "classic", {{"ambient", 10}}},
-          {"front", "off", {{"ambient", 10}}}};
+          {"front", "off", {{"ambient", 10}}},
+          {"front", "classic", {{"show", kRaw}}},
+          {"front", "disk", {{"show", kError}}}};
 }
 std::vector<Shot> atrium_shots() {
   return {{"overview", "classic", {{"show", kAo}}}, {"overview", "disk", {{"show", kAo}}},
@@ -96,7 +102,26 @@ int main(int argc, char** argv) {
       // [frame]
       const glm::vec3 ambient = app.scene().ambient * float(f.knob("ambient"));
       frame.set_ambient(ambient);
-      ao.set(settings_from(f), f.knob_int("show") == kAo ? AoShow::Ao : AoShow::Image, ambient);
+      const int show = f.knob_int("show");
+      ao.set(settings_from(f), show == kAo || show == kError ? AoShow::Ao : show == kRaw ? AoShow::Raw : AoShow::Image,
+             ambient);
+      if (show == kTruth || show == kError) {
+        // the truth at this size and camera (cached on disk), and for the error the AO of
+        // the frame just drawn against it
+        const ImageF truth = cached_ray_traced_ao(app.scene(), f.camera, f.width, f.height,
+                                                  {.radius = float(f.knob("radius")), .samples = f.knob_int("truth-samples")});
+        ImageF picture = truth;
+        if (show == kError) {
+          frame.render(f.camera, {f.target, f.width, f.height});
+          ImageF a = ImageF::blank(f.width, f.height, 1);
+          if (ao.ran()) a = ao.ssao().read_full(f.width, f.height);
+          else for (float& v : a.data) v = 1.f;  // no AO: A = 1
+          const std::vector<float> error = ao_error_map(a, truth);
+          for (std::size_t i = 0; i < error.size(); ++i) picture.data[i] = error[i];
+        }
+        ao.set_picture(picture, show == kError ? 0.5f : 0.f);
+        ao.set(settings_from(f), AoShow::Picture, ambient);
+      }
       frame.render(f.camera, {f.target, f.width, f.height}, &app.metrics());
       // [/frame]
       app.metrics().set_allocation("G-buffer (chapter 02) + light buffer (chapter 03)", frame.allocated_bytes());
