@@ -27,7 +27,7 @@ const CliSpec kCli{
     .program = "07_ssao",
     .summary = "Screen-space ambient occlusion on the deferred frame: the classic algorithm (hemisphere kernel, "
                "noise, energy-minimised kernel, bilateral blur, low resolution) and the source's 2D-disk method "
-               "with Bunnell's disk-to-disk term, against ray-traced AO.",
+               "with Bunnell's disk-to-disk term, and horizon-based AO (GTAO), against ray-traced AO.",
     .default_scene = "assets/cornell/cornell.gltf",
     .modes = kMethodNames,  // classic, disk, off
     .knobs = {{"samples", "kernel points (classic) or disk samples (disk)", 16, 1, kMaxSamples, true},
@@ -55,11 +55,13 @@ std::vector<Shot> cornell_shots() {
           {"front", "disk", {{"show", kAo}, {"samples", 64}}},
           {"front", "classic", {{"ambient", 10}}},
           {"front", "off", {{"ambient", 10}}},
+          {"front", "gtao", {{"show", kAo}}},
           {"front", "classic", {{"show", kRaw}}},
           {"front", "disk", {{"show", kError}}}};
 }
 std::vector<Shot> atrium_shots() {
   return {{"overview", "classic", {{"show", kAo}}}, {"overview", "disk", {{"show", kAo}}},
+          {"overview", "gtao", {{"show", kAo}}},
           {"corner", "disk", {{"ambient", 10}}}};
 }
 // [/references]
@@ -70,7 +72,10 @@ const Chapter kChapter{.cli = kCli,
 
 AoSettings settings_from(const Frame& f) {
   AoSettings s;
-  s.method = f.mode == "disk" ? AoMethod::Disk : f.mode == "off" ? AoMethod::Off : AoMethod::Classic;
+  s.method = f.mode == "disk"   ? AoMethod::Disk
+           : f.mode == "off"    ? AoMethod::Off
+           : f.mode == "gtao"   ? AoMethod::Gtao
+                                : AoMethod::Classic;
   s.samples = f.knob_int("samples");
   s.radius = float(f.knob("radius"));
   s.noise = f.knob_int("noise") != 0;
@@ -131,7 +136,7 @@ int main(int argc, char** argv) {
         const AoSettings& s = ao.settings();
         if (ao.ran())
           out << "AO " << f.mode << ", " << s.samples << " samples, radius " << s.radius << ", " << ao.ssao().width()
-              << "x" << ao.ssao().height() << (s.method == AoMethod::Classic && s.blur ? ", blurred" : "");
+              << "x" << ao.ssao().height() << (s.method != AoMethod::Disk && s.blur ? ", blurred" : "");
         else
           out << "no AO pass (" << (s.method == AoMethod::Off ? "mode off" : "the scene's ambient light is 0") << ")";
         out << ": frame took " << ms << " ms (wall clock, " << app.context().renderer() << ")\n";

@@ -51,11 +51,11 @@ void Ssao::compute(const ch02::GBuffer& gbuffer, const FrameCamera& camera, cons
     width_ = w;
     height_ = h;
   }
-  const bool disk = s.method == AoMethod::Disk;
-  const ShaderProgram& p = program(disk ? "disk" : "classic", "07_ssao/shaders/ssao.comp", gbuffer,
-                                   {disk ? "AO_DISK 1" : "AO_CLASSIC 1", s.tutorial_bug ? "AO_TUTORIAL_BUG 1" : "AO_NO_BUG 1",
+  const bool disk = s.method == AoMethod::Disk, gtao = s.method == AoMethod::Gtao;
+  const ShaderProgram& p = program(kMethodNames[int(s.method)], "07_ssao/shaders/ssao.comp", gbuffer,
+                                   {disk ? "AO_DISK 1" : gtao ? "AO_GTAO 1" : "AO_CLASSIC 1", s.tutorial_bug ? "AO_TUTORIAL_BUG 1" : "AO_NO_BUG 1",
                                     disk && s.bunnell_term ? "AO_BUNNELL 1" : "AO_FORM_FACTOR 1"});
-  if (!disk) upload_kernel(p, s);
+  if (!disk) upload_kernel(p, s);  // the kernel (classic) and the noise tile (classic, GTAO)
   p.set("u_view", camera.view);
   p.set("u_projection", camera.projection);
   p.set("u_samples", s.samples);

@@ -22,8 +22,8 @@
 
 namespace lp::ch07 {
 
-enum class AoMethod { Classic, Disk, Off };
-inline const std::vector<std::string> kMethodNames = {"classic", "disk", "off"};
+enum class AoMethod { Classic, Disk, Off, Gtao };
+inline const std::vector<std::string> kMethodNames = {"classic", "disk", "off", "gtao"};
 
 // [settings]
 struct AoSettings {
@@ -33,7 +33,7 @@ struct AoSettings {
   // classic
   bool noise = true;             // reflect the kernel about the 4x4 tile's vectors, per pixel
   bool energy_minimised = true;  // the spring-relaxed kernel instead of the random one
-  bool blur = true;              // the bilateral 4x4 blur (classic only: the disk has no noise)
+  bool blur = true;              // the bilateral 4x4 blur (classic and GTAO: the disk has no noise)
   float blur_depth = 0.05f;      // a neighbour counts within 5 % of the centre's view depth ...
   float blur_normal = 0.8f;      // ... and within acos(0.8) = 37 degrees of its normal
   int scale = 1;                 // 1 full, 2 half, 4 quarter resolution

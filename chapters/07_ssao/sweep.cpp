@@ -53,6 +53,8 @@ std::vector<Variant> variants(float radius) {
     v.push_back({"classic-quarter", {.method = AoMethod::Classic, .samples = n, .radius = radius, .scale = 4}});
   }
   for (int n : {8, 16, 32, 64, 128}) {
+    v.push_back({"gtao", {.method = AoMethod::Gtao, .samples = n, .radius = radius}});
+    v.push_back({"gtao-no-blur", {.method = AoMethod::Gtao, .samples = n, .radius = radius, .blur = false}});
     v.push_back({"disk", {.method = AoMethod::Disk, .samples = n, .radius = radius}});
     v.push_back({"disk-bunnell", {.method = AoMethod::Disk, .samples = n, .radius = radius, .bunnell_term = true}});
   }
@@ -94,7 +96,7 @@ void sweep_scene(const Settings& s, std::ofstream& csv, const std::string& file,
               << ", mean sq " << e.mean_sq << ", signed " << e.mean_signed << std::endl;
     // the book's pictures: the default classic and disk settings
     if ((v.name == "classic" || v.name == "classic-no-noise" || v.name == "classic-no-blur") && v.ao.samples == 16 ||
-        (v.name == "disk" && v.ao.samples == 32)) {
+        (v.name == "disk" && v.ao.samples == 32) || (v.name == "gtao" && v.ao.samples == 32)) {
       const std::string name = s.out + "/07_" + stem + "_" + v.name + "_" + std::to_string(v.ao.samples);
       save_png(name + ".png", grey(ao));
       save_png(name + "_error.png", error_heatmap(ao_error_map(ao, truth), s.width, s.height, 0.5f));
