@@ -1,0 +1,150 @@
+// Chapter 07: screen-space ambient occlusion. Chapter 03's deferred frame with an AO stage:
+// after the G-buffer, a compute pass turns the surfaces into the visibility A of each pixel
+// (the classic algorithm, or the source's 2D-disk method with Bunnell's term), and the
+// frame's ambient hook multiplies the ambient light by it; the direct lights are untouched.
+// `--show ao` shows A itself. The scenes' ambient is small (0.03): `--ambient 10` raises it
+// so that the AO shows in the lit image.
+#include <chrono>
+#include <iostream>
+
+#include <imgui.h>
+
+#include "chapters/03_light_volumes/deferred_frame.h"
+#include "chapters/03_light_volumes/light_radius.h"
+#include "chapters/07_ssao/ao_stage.h"
+#include "chapters/07_ssao/ao_truth.h"
+#include "common/app.h"
+#include "common/error.h"
+
+namespace {
+
+using namespace lp;
+using namespace lp::ch07;
+
+enum Show { kImage, kAo, kRaw, kTruth, kError };  // --show's order
+
+const CliSpec kCli{
+    .program = "07_ssao",
+    .summary = "Screen-space ambient occlusion on the deferred frame: the classic algorithm (hemisphere kernel, "
+               "noise, energy-minimised kernel, bilateral blur, low resolution) and the source's 2D-disk method "
+               "with Bunnell's disk-to-disk term, and horizon-based AO (GTAO), against ray-traced AO.",
+    .default_scene = "assets/cornell/cornell.gltf",
+    .modes = kMethodNames,  // classic, disk, off
+    .knobs = {{"samples", "kernel points (classic) or disk samples (disk)", 16, 1, kMaxSamples, true},
+              {"radius", "R, world units: how far occluders count (the AO rays' length)", 0.5, 0.01, 100, false},
+              {"noise", "classic: rotate the kernel per pixel by the 4x4 noise tile (1) or not (0)", 1, 0, 1, true},
+              choice_knob("kernel", "classic: the spring-relaxed (energy-minimised) kernel or the random one",
+                          {"energy", "random"}),
+              {"blur", "classic: the bilateral 4x4 blur (1) or the raw AO (0)", 1, 0, 1, true},
+              choice_knob("term", "disk: each sample's occlusion, the disk form factor (cosine-weighted) or Bunnell's term",
+                          {"form-factor", "bunnell"}),
+              choice_knob("resolution", "the AO pass at full, half or quarter resolution", {"full", "half", "quarter"}),
+              choice_knob("show", "the lit image; the AO term A (white: open, black: occluded); A before the blur; "
+                                  "the ray-traced truth (slow: the CPU traces --truth-samples rays per pixel, cached); "
+                                  "|A - truth| as a heat map (red: 0.5)",
+                          {"image", "ao", "raw", "truth", "error"}),
+              {"truth-samples", "--show truth/error: cosine-weighted rays per pixel", 64, 1, 4096, true},
+              {"ambient", "the scene's ambient light times this (AO darkens only the ambient)", 1, 0, 1000, false}}};
+
+// [references]
+std::vector<Shot> cornell_shots() {
+  return {{"front", "classic", {{"show", kAo}}},
+          {"front", "classic", {{"show", kAo}, {"noise", 0}, {"blur", 0}}},
+          {"front", "classic", {{"show", kAo}, {"resolution", 1}}},
+          {"front", "disk", {{"show", kAo}}},
+          {"front", "disk", {{"show", kAo}, {"samples", 64}}},
+          {"front", "classic", {{"ambient", 10}}},
+          {"front", "off", {{"ambient", 10}}},
+          {"front", "gtao", {{"show", kAo}}},
+          {"front", "classic", {{"show", kRaw}}},
+          {"front", "disk", {{"show", kError}}}};
+}
+std::vector<Shot> atrium_shots() {
+  return {{"overview", "classic", {{"show", kAo}}}, {"overview", "disk", {{"show", kAo}}},
+          {"overview", "gtao", {{"show", kAo}}},
+          {"corner", "disk", {{"ambient", 10}}}};
+}
+// [/references]
+
+const Chapter kChapter{.cli = kCli,
+                       .references = cornell_shots(),
+                       .scene_references = {{"assets/atrium/atrium.gltf", atrium_shots()}}};
+
+AoSettings settings_from(const Frame& f) {
+  AoSettings s;
+  s.method = f.mode == "disk"   ? AoMethod::Disk
+           : f.mode == "off"    ? AoMethod::Off
+           : f.mode == "gtao"   ? AoMethod::Gtao
+                                : AoMethod::Classic;
+  s.samples = f.knob_int("samples");
+  s.radius = float(f.knob("radius"));
+  s.noise = f.knob_int("noise") != 0;
+  s.energy_minimised = f.choice("kernel") == "energy";
+  s.blur = f.knob_int("blur") != 0;
+  s.scale = 1 << f.knob_int("resolution");
+  s.bunnell_term = f.choice("term") == "bunnell";
+  return s;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return run_chapter(argc, argv, kChapter, [](App& app) {
+    ch03::DeferredFrame frame(app.scene_gpu());
+    frame.volumes().set_lights(ch03::build_light_set(
+        app.scene().lights, ch03::cut_threshold(1.f, ch03::peak_reflectance(app.scene())), frame.volumes().shapes()));
+    for (const auto& w : frame.volumes().lights().warnings) std::cerr << "warning: " << w << '\n';
+    AoStage ao;
+    frame.add_stage(ao);
+
+    while (app.next_frame()) {
+      const Frame& f = app.frame();
+      const auto start = std::chrono::steady_clock::now();
+      if (f.reload_shaders) {
+        frame.reload_shaders();
+        ao.reload_shaders();
+      }
+      // [frame]
+      const glm::vec3 ambient = app.scene().ambient * float(f.knob("ambient"));
+      frame.set_ambient(ambient);
+      const int show = f.knob_int("show");
+      ao.set(settings_from(f), show == kAo || show == kError ? AoShow::Ao : show == kRaw ? AoShow::Raw : AoShow::Image,
+             ambient);
+      if (show == kTruth || show == kError) {
+        // the truth at this size and camera (cached on disk), and for the error the AO of
+        // the frame just drawn against it
+        const ImageF truth = cached_ray_traced_ao(app.scene(), f.camera, f.width, f.height,
+                                                  {.radius = float(f.knob("radius")), .samples = f.knob_int("truth-samples")});
+        ImageF picture = truth;
+        if (show == kError) {
+          frame.render(f.camera, {f.target, f.width, f.height});
+          ImageF a = ImageF::blank(f.width, f.height, 1);
+          if (ao.ran()) a = ao.ssao().read_full(f.width, f.height);
+          else for (float& v : a.data) v = 1.f;  // no AO: A = 1
+          const std::vector<float> error = ao_error_map(a, truth);
+          for (std::size_t i = 0; i < error.size(); ++i) picture.data[i] = error[i];
+        }
+        ao.set_picture(picture, show == kError ? 0.5f : 0.f);
+        ao.set(settings_from(f), AoShow::Picture, ambient);
+      }
+      frame.render(f.camera, {f.target, f.width, f.height}, &app.metrics());
+      // [/frame]
+      app.metrics().set_allocation("G-buffer (chapter 02) + light buffer (chapter 03)", frame.allocated_bytes());
+      if (std::ostream& out = app.report()) {
+        glFinish();
+        double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        const AoSettings& s = ao.settings();
+        if (ao.ran())
+          out << "AO " << f.mode << ", " << s.samples << " samples, radius " << s.radius << ", " << ao.ssao().width()
+              << "x" << ao.ssao().height() << (s.method != AoMethod::Disk && s.blur ? ", blurred" : "");
+        else
+          out << "no AO pass (" << (s.method == AoMethod::Off ? "mode off" : "the scene's ambient light is 0") << ")";
+        out << ": frame took " << ms << " ms (wall clock, " << app.context().renderer() << ")\n";
+      }
+      app.panel([&] {
+        ImGui::Text("AO %s at %dx%d", ao.ran() ? "computed" : "not computed", ao.ssao().width(), ao.ssao().height());
+        ImGui::Text("AO darkens the ambient light only (%.3f %.3f %.3f)", ambient.r, ambient.g, ambient.b);
+      });
+    }
+  });
+}

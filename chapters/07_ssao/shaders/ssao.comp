@@ -1,0 +1,208 @@
+#version 450
+// Chapter 07's ambient occlusion from the G-buffer, one invocation per AO texel: the classic
+// algorithm (AO_CLASSIC) or the source's 2D-disk method with Bunnell's term (AO_DISK). The C++
+// twin of every formula here is ao_math.h. Writes A in [0, 1], 1 where nothing occludes (and
+// for the sky).
+layout(local_size_x = 8, local_size_y = 8) in;
+#include "02_gbuffer/shaders/gbuffer.glsl"
+
+layout(r32f, binding = 0) uniform writeonly image2D u_out;
+
+uniform mat4 u_view, u_projection;
+uniform int u_samples;
+uniform float u_radius;             // R, world units
+uniform int u_scale;                // 1, 2 or 4: AO texel (x, y) stands for G-buffer pixel scale * (x, y) + scale / 2
+uniform int u_noise_on;
+uniform float u_bias;               // x R
+uniform float u_max_screen_radius;  // disk: at most this fraction of the image height
+uniform vec4 u_kernel[128];
+uniform vec4 u_noise[16];
+
+const float PI = 3.14159265358979;
+
+// A right-handed orthonormal basis around unit n (Duff et al. 2017): ao_math's twin.
+void basis(vec3 n, out vec3 t, out vec3 b) {
+  float sign_z = n.z >= 0.0 ? 1.0 : -1.0;
+  float a = -1.0 / (sign_z + n.z);
+  float c = n.x * n.y * a;
+  t = vec3(1.0 + sign_z * n.x * n.x * a, sign_z * c, -sign_z * n.x);
+  b = vec3(c, sign_z + n.y * n.y * a, -n.y);
+}
+
+bool sky_depth(float depth) { return depth == gb_depth_info.z; }
+vec3 world_at(ivec2 pixel, float depth) { return reconstruct_position(vec2(pixel) + 0.5, depth); }
+float view_depth(vec3 world) { return -(u_view * vec4(world, 1.0)).z; }
+
+#ifdef AO_CLASSIC
+// [classic]
+float classic_ao(ivec2 pixel, Surface s) {
+  vec3 p = (u_view * vec4(s.position, 1.0)).xyz;  // view space: the camera looks down -z
+  vec3 t, b;
+  basis(s.normal, t, b);                           // the tangent frame, in world space
+  vec3 r = u_noise[(pixel.x & 3) + 4 * (pixel.y & 3)].xyz;
+  float hidden = 0.0;
+  for (int i = 0; i < u_samples; ++i) {
+    vec3 k = u_kernel[i].xyz;
+    if (u_noise_on != 0) k = k - 2.0 * dot(k, r) * r;  // reflect: the height above the surface stays
+    vec3 offset = k.x * t + k.y * b + k.z * s.normal;  // world space
+#ifdef AO_TUTORIAL_BUG
+    vec3 q = p + u_radius * offset;                    // the bug: a world offset on a view-space point
+#else
+    vec3 q = p + u_radius * (mat3(u_view) * offset);   // both in view space
+#endif
+    vec4 clip = u_projection * vec4(q, 1.0);
+    if (clip.w <= 0.0) continue;
+    vec2 ndc = clip.xy / clip.w;
+    if (any(greaterThan(abs(ndc), vec2(1.0)))) continue;  // off the screen: nothing known, counts as open
+    ivec2 sp = clamp(ivec2((ndc * 0.5 + 0.5) * gb_size.xy), ivec2(0), ivec2(gb_size.xy) - 1);
+    float depth = texelFetch(gb_depth, sp, 0).r;
+    if (sky_depth(depth)) continue;
+    float scene = view_depth(world_at(sp, depth));  // what the depth buffer holds there
+    float sample_depth = -q.z;
+    // hidden when the stored surface is in front of the point; the range check fades
+    // occluders far in front of the pixel (a column before a distant wall)
+    float range = smoothstep(0.0, 1.0, u_radius / max(abs(-p.z - scene), 1e-6));
+    hidden += (scene <= sample_depth - u_bias * u_radius ? 1.0 : 0.0) * range;
+  }
+  return 1.0 - hidden / float(u_samples);
+}
+// [/classic]
+#endif
+
+#ifdef AO_DISK
+// [disk]
+float disk_ao(ivec2 pixel, Surface s) {
+  float zr = view_depth(s.position);
+  // R projected at the receiver's depth, in pixels, clamped near the camera
+  float scale_px = u_projection[1][1] * 0.5 * gb_size.y / zr;  // pixels per world unit at depth zr
+  float radius_px = min(u_radius * scale_px, u_max_screen_radius * gb_size.y);
+  float world_radius = radius_px / scale_px;
+  // each sample stands for an equal share of the disk: area pi R^2 / N at the receiver's depth
+  float share = PI * world_radius * world_radius / float(u_samples);
+  float occlusion = 0.0;
+  for (int i = 0; i < u_samples; ++i) {
+    float rr = sqrt((float(i) + 0.5) / float(u_samples));
+    float a = 2.39996323 * float(i);
+    ivec2 sp = pixel + ivec2(round(rr * radius_px * vec2(cos(a), sin(a))));
+    if (sp == pixel || any(lessThan(sp, ivec2(0))) || any(greaterThanEqual(sp, ivec2(gb_size.xy)))) continue;
+    float depth = texelFetch(gb_depth, sp, 0).r;
+    if (sky_depth(depth)) continue;
+    vec3 e = world_at(sp, depth);
+    vec3 v = e - s.position;
+    float d2 = dot(v, v);
+    if (d2 > u_radius * u_radius || d2 <= 0.0) continue;  // beyond the rays' length R
+    vec3 ne = decode_normal(texelFetch(gb_normal, sp, 0));
+    float ze = view_depth(e);
+    // the share at the emitter's depth, spread over the surface the pixel sees at a slant
+    vec3 to_eye = normalize(gb_eye.xyz - e);
+    float area = share * (ze / zr) * (ze / zr) / max(abs(dot(ne, to_eye)), 0.2);
+    v *= inversesqrt(d2);
+#ifdef AO_BUNNELL
+    occlusion += (1.0 - inversesqrt(1.0 + area / (PI * d2))) * abs(dot(ne, v)) * clamp(4.0 * dot(s.normal, v), 0.0, 1.0);
+#else
+    occlusion += area * abs(dot(ne, v)) * max(dot(s.normal, v), 0.0) / (PI * d2 + area);
+#endif
+  }
+  return 1.0 - clamp(occlusion, 0.0, 1.0);
+}
+// [/disk]
+#endif
+
+
+#ifdef AO_GTAO
+// [gtao]
+// Horizon-based AO with cosine weighting (GTAO, Jimenez et al. 2016; the shape of XeGTAO's
+// reference code): in each of a few slices through the view vector, march the depth buffer
+// both ways to find the highest horizon within R, then integrate the cosine-weighted
+// visibility between the two horizons analytically. `u_samples` depth reads: 8 steps a side,
+// u_samples / 16 slices (at least 1), the slices' angle and the steps' offset jittered by the
+// 4x4 noise tile (the blur removes the pattern). Unlike XeGTAO, whose falloff starts at 0.385 R
+// (it made the Cornell box's error 0.14), occluders count fully to 0.95 R and not at all beyond
+// R: the truth's rays end at R.
+float acos_clamped(float x) { return acos(clamp(x, -1.0, 1.0)); }
+float gtao_ao(ivec2 pixel, Surface s) {
+  const int steps = 8;
+  int slices = max(1, u_samples / (2 * steps));
+  vec3 p = (u_view * vec4(s.position, 1.0)).xyz;
+  vec3 view_vec = normalize(-p);
+  vec3 normal = normalize(mat3(u_view) * s.normal);
+  float z = -p.z;
+  float scale_px = u_projection[1][1] * 0.5 * gb_size.y / z;  // pixels per world unit at this depth
+  float radius_px = min(u_radius * scale_px, u_max_screen_radius * gb_size.y);
+  if (radius_px < 1.0) return 1.0;
+  // the falloff: full weight to 0.95 R, none at R
+  float falloff_range = 0.05 * u_radius, falloff_from = u_radius - falloff_range;
+  float falloff_mul = -1.0 / falloff_range, falloff_add = falloff_from / falloff_range + 1.0;
+  vec3 noise = u_noise[(pixel.x & 3) + 4 * (pixel.y & 3)].xyz;  // a unit vector: its angle jitters
+  float jitter_angle = u_noise_on != 0 ? (atan(noise.y, noise.x) / (2.0 * PI) + 0.5) : 0.5;
+  float jitter_step = u_noise_on != 0 ? fract(jitter_angle * 7.0) : 0.5;
+  float visibility = 0.0, open = 0.0;
+  for (int i = 0; i < slices; ++i) {
+    float phi = (float(i) + jitter_angle) / float(slices) * PI;
+    vec2 omega = vec2(cos(phi), sin(phi));            // screen direction (OpenGL: y up, as view space)
+    vec3 dir = vec3(omega, 0.0);
+    vec3 ortho = dir - dot(dir, view_vec) * view_vec;
+    vec3 axis = normalize(cross(ortho, view_vec));
+    vec3 projected = normal - axis * dot(normal, axis);
+    float projected_len = length(projected);
+    if (projected_len < 1e-6) continue;
+    float sign_n = dot(ortho, projected) >= 0.0 ? 1.0 : -1.0;
+    float cos_n = clamp(dot(projected, view_vec) / projected_len, 0.0, 1.0);
+    float n = sign_n * acos_clamped(cos_n);
+    float low0 = cos(n + 0.5 * PI), low1 = cos(n - 0.5 * PI);
+    float horizon0 = low0, horizon1 = low1;
+    for (int j = 0; j < steps; ++j) {
+      float t = (float(j) + jitter_step) / float(steps);
+      t = t * t;                                        // more samples near the pixel
+      vec2 offset = max(t * radius_px, float(j + 1)) * omega;
+      for (int side = 0; side < 2; ++side) {
+        ivec2 sp = ivec2(round(vec2(pixel) + 0.5 + (side == 0 ? offset : -offset) - 0.5));
+        if (any(lessThan(sp, ivec2(0))) || any(greaterThanEqual(sp, ivec2(gb_size.xy)))) continue;
+        float depth = texelFetch(gb_depth, sp, 0).r;
+        if (sky_depth(depth)) continue;
+        vec3 q = (u_view * vec4(world_at(sp, depth), 1.0)).xyz;
+        vec3 delta = q - p;
+        float dist = length(delta);
+        if (dist <= 0.0) continue;
+        float weight = clamp(dist * falloff_mul + falloff_add, 0.0, 1.0);
+        // as the classic bias: a point less than bias x R above the tangent plane is the surface
+        // itself, its depth rounded (D24 far from the camera), not an occluder
+        if (dot(delta, normal) < u_bias * u_radius) weight = 0.0;
+        float c = dot(delta / dist, view_vec);
+        if (side == 0) horizon0 = max(horizon0, mix(low0, c, weight));
+        else horizon1 = max(horizon1, mix(low1, c, weight));
+      }
+    }
+    float h0 = -acos_clamped(horizon1), h1 = acos_clamped(horizon0);  // the - side, the + side
+    h0 = n + clamp(h0 - n, -0.5 * PI, 0.5 * PI);
+    h1 = n + clamp(h1 - n, -0.5 * PI, 0.5 * PI);
+    float arc0 = (cos_n + 2.0 * h0 * sin(n) - cos(2.0 * h0 - n)) / 4.0;
+    float arc1 = (cos_n + 2.0 * h1 * sin(n) - cos(2.0 * h1 - n)) / 4.0;
+    visibility += projected_len * (arc0 + arc1);
+    // the same slice with nothing above the tangent plane: cos n + n sin n. Its mean over all
+    // slice angles is exactly 1, over a few it is not (0.94 on a floor seen at 27 degrees with
+    // 2 slices); dividing by it makes an open surface exactly 1 at any slice count.
+    open += projected_len * (cos_n + n * sin(n));
+  }
+  return open > 0.0 ? clamp(visibility / open, 0.0, 1.0) : 1.0;
+}
+// [/gtao]
+#endif
+
+void main() {
+  ivec2 q = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(q, imageSize(u_out)))) return;
+  ivec2 pixel = min(q * u_scale + u_scale / 2, ivec2(gb_size.xy) - 1);
+  Surface s = decode_gbuffer(pixel);
+  float ao = 1.0;
+  if (!s.is_sky) {
+#if defined(AO_CLASSIC)
+    ao = classic_ao(pixel, s);
+#elif defined(AO_GTAO)
+    ao = gtao_ao(pixel, s);
+#else
+    ao = disk_ao(pixel, s);
+#endif
+  }
+  imageStore(u_out, q, vec4(ao));
+}

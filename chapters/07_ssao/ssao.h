@@ -1,0 +1,84 @@
+#pragma once
+// Chapter 07's ambient occlusion from the G-buffer, in compute shaders: the classic
+// algorithm (a kernel of points in the hemisphere about the normal, each projected and
+// tested against the depth buffer) and the source's 2D-disk method (samples in a fixed
+// screen-space disk, each a disk of surface with Bunnell's occlusion term), then the
+// bilateral blur. The AO texture holds the visibility A in [0, 1] (1: nothing occludes),
+// at full, half or quarter resolution.
+//
+//   Ssao ao;
+//   ao.compute(frame.gbuffer(), frame.camera(), {.method = AoMethod::Classic, .samples = 16});
+//   glBindTextureUnit(8, ao.texture());
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "chapters/02_gbuffer/gbuffer.h"
+#include "common/camera.h"
+#include "common/gl.h"
+#include "common/image.h"
+#include "common/shader.h"
+
+namespace lp::ch07 {
+
+enum class AoMethod { Classic, Disk, Off, Gtao };
+inline const std::vector<std::string> kMethodNames = {"classic", "disk", "off", "gtao"};
+
+// [settings]
+struct AoSettings {
+  AoMethod method = AoMethod::Classic;
+  int samples = 16;        // kernel points (classic) or disk samples (disk); 1..kMaxSamples
+  float radius = 0.5f;     // R, world units: the ray length of the AO integral
+  // classic
+  bool noise = true;             // reflect the kernel about the 4x4 tile's vectors, per pixel
+  bool energy_minimised = true;  // the spring-relaxed kernel instead of the random one
+  bool blur = true;              // the bilateral 4x4 blur (classic and GTAO: the disk has no noise)
+  float blur_depth = 0.05f;      // a neighbour counts within 5 % of the centre's view depth ...
+  float blur_normal = 0.8f;      // ... and within acos(0.8) = 37 degrees of its normal
+  int scale = 1;                 // 1 full, 2 half, 4 quarter resolution
+  float bias = 0.02f;            // classic: a point counts as hidden only this far (x R) behind
+  // disk: the disk's radius on the screen is R projected at the pixel, at most this fraction of
+  // the image height (the screen-radius clamp for surfaces near the camera)
+  float max_screen_radius = 0.25f;
+  // disk: each sample's occlusion, the disk form factor (cosine-weighted, as the AO integral
+  // is) or Bunnell's term as his code has it (a share of solid angle); ao_math.h
+  bool bunnell_term = false;
+  // The tutorial bug, for the test that catches it: the kernel turned into world space and
+  // added to the view-space position.
+  bool tutorial_bug = false;
+};
+inline constexpr int kMaxSamples = 128;
+// [/settings]
+
+class Ssao {
+ public:
+  Ssao();
+  void reload_shaders() { programs_.clear(); }
+  // Reads the G-buffer (its textures bound on units 0..4, as the deferred frame leaves them).
+  void compute(const ch02::GBuffer& gbuffer, const FrameCamera& camera, const AoSettings& settings);
+  GLuint texture() const { return blurred_used_ ? blurred_.id() : raw_.id(); }  // what the ambient hook reads
+  GLuint raw_texture() const { return raw_.id(); }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  // The AO texture read back, rows top to bottom (ImageF's convention), one channel.
+  ImageF read() const;
+  // The same at the G-buffer's size (nearest texel, as the ambient hook reads it).
+  ImageF read_full(int width, int height) const;
+
+ private:
+  const ShaderProgram& program(const std::string& key, const std::string& file, const ch02::GBuffer& gbuffer,
+                               std::vector<std::string> defines);
+  void upload_kernel(const ShaderProgram& p, const AoSettings& s);
+
+  std::map<std::string, std::unique_ptr<ShaderProgram>> programs_;
+  gl::Texture raw_{GL_TEXTURE_2D}, blurred_{GL_TEXTURE_2D};
+  int width_ = 0, height_ = 0;
+  bool blurred_used_ = false;
+  std::vector<glm::vec3> kernel_;
+  int kernel_samples_ = -1;
+  bool kernel_energy_ = false;
+  std::vector<glm::vec3> noise_;
+};
+
+}  // namespace lp::ch07

@@ -1,0 +1,18 @@
+# Chapter 07: screen-space ambient occlusion. Unit tests of the maths (no OpenGL), GPU tests
+# (each method against the ray-traced truth, the hard cases), and the program: references per
+# method and the AO view, bad input.
+lightpass_gtests(07_ssao unit lightpass_07_ssao unit/test_07_ao_math.cpp)
+lightpass_gtests(07_ssao gl lightpass_07_ssao unit/test_07_ssao_gl.cpp)
+
+set(P07 $<TARGET_FILE:07_ssao>)
+lightpass_program_test(07_ssao.reference.cornell 0 "10 of 10 references match" ${P07} --check --out ${CHECK_OUT}/07_ssao)
+lightpass_program_test(07_ssao.reference.atrium 0 "4 of 4 references match"
+  ${P07} --check --scene assets/atrium/atrium.gltf --out ${CHECK_OUT}/07_ssao_atrium)
+lightpass_program_test(07_ssao.headless_says_what_it_computed 0 "AO disk, 32 samples, radius 0.5, 160x90: frame took"
+  ${P07} --headless --size 160x90 --mode disk --samples 32 --out ${CMAKE_BINARY_DIR}/out/07_headless.png)
+lightpass_program_test(07_ssao.off_runs_no_ao_pass 0 "no AO pass \\(mode off\\)"
+  ${P07} --headless --size 160x90 --mode off --out ${CMAKE_BINARY_DIR}/out/07_off.png)
+lightpass_program_test(07_ssao.bad_samples 2 "--samples must be between 1 and 128, got 0" ${P07} --samples 0)
+lightpass_program_test(07_ssao.bad_radius 2 "--radius must be between 0.01 and 100, got -1" ${P07} --radius -1)
+lightpass_program_test(07_ssao.bad_mode 2 "unknown mode 'hbao'" ${P07} --mode hbao)
+add_test(NAME 07_ssao.sweep_unknown_option COMMAND ${EXPECT} 2 "unknown option '--fast'" -- $<TARGET_FILE:07_ssao_sweep> --fast)
