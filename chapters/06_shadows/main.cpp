@@ -1,0 +1,113 @@
+// Chapter 06: shadows. Chapter 03's deferred frame with a stage that draws the sun's depth
+// map from an orthographic frustum fitted to what the view needs, and the frame's light
+// shaders look each pixel up in it by the method the mode names: one comparison (hard),
+// k x k comparisons (pcf), the hardware's comparison sampler (pcf-hardware), Chebyshev's bound
+// on filtered moments (vsm), or filtered exp(c z) in log space (esm). Only the sun casts; the
+// local lights keep chapter 03's path (visibility 1). The ray-traced truth that the tests
+// and the sweep measure against is shadow_truth.h.
+#include <chrono>
+#include <iostream>
+
+#include <imgui.h>
+
+#include "chapters/03_light_volumes/light_radius.h"
+#include "chapters/06_shadows/shadow_stage.h"
+#include "common/app.h"
+#include "common/error.h"
+
+namespace {
+
+using namespace lp;
+using namespace lp::ch06;
+
+enum Show { kResult, kVisibility, kMap };  // --show's order
+
+const CliSpec kCli{
+    .program = "06_shadows",
+    .summary = "Shadows from the sun in the deferred frame: a depth map from a fitted orthographic frustum, looked up "
+               "with one comparison, PCF, the hardware comparison sampler, VSM or ESM.",
+    .default_scene = "assets/atrium/atrium.gltf",
+    .modes = kMethodNames,
+    .knobs = {{"map", "shadow map width and height in texels", 1024, 16, 16384, true},
+              {"kernel", "pcf: the k x k grid; vsm, esm: the box filter's width (odd)", 3, 1, 31, true},
+              {"bias", "constant depth bias, in texels of the map", 0.5, 0, 100, false},
+              {"slope", "slope-scaled bias, in texels per unit tan(theta)", 1, 0, 100, false},
+              {"normal", "normal offset, in texels", 1, 0, 100, false},
+              {"pmin", "vsm: light-bleeding reduction (p_max below it is shadow)", 0.2, 0, 0.99, false},
+              {"c", "esm: the exponent of exp(c z) (z: window depth in [0, 1]); any c works in log space", 80, 1, 10000,
+               false},
+              {"fit", "1: the map's box fitted to the view; 0: to the whole scene", 1, 0, 1, true},
+              choice_knob("show", "the image; the sun's visibility alone (blue: sky or facing away); ",
+                          {"result", "visibility"})}};
+
+// [references]
+// The atrium in sunlight: every method from above, the hard and filtered methods in the
+// aisle among the columns, and the visibility term alone.
+std::vector<Shot> atrium_shots() {
+  std::vector<Shot> shots;
+  for (const std::string& m : kMethodNames) shots.push_back({"overview", m});
+  shots.push_back({"aisle", "hard"});
+  shots.push_back({"aisle", "vsm"});
+  shots.push_back({"corner", "pcf", {{"show", kVisibility}}});
+  return shots;
+}
+// [/references]
+
+const Chapter kChapter{.cli = kCli, .references = atrium_shots()};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return run_chapter(argc, argv, kChapter, [](App& app) {
+    const Light& sun = find_sun(app.scene());
+    ch03::DeferredFrame frame(app.scene_gpu());
+    frame.volumes().set_lights(ch03::build_light_set(
+        app.scene().lights, ch03::cut_threshold(1.f, ch03::peak_reflectance(app.scene())), frame.volumes().shapes()));
+    for (const auto& w : frame.volumes().lights().warnings) std::cerr << "warning: " << w << '\n';
+    ShadowStage shadows(app.scene_gpu(), sun);
+    frame.add_stage(shadows);
+    GLint max_size = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+
+    while (app.next_frame()) {
+      const Frame& f = app.frame();
+      const auto start = std::chrono::steady_clock::now();
+      if (f.reload_shaders) {
+        frame.reload_shaders();
+        shadows.reload_shaders();
+      }
+      if (f.knob_int("map") > max_size)
+        throw UsageError("--map " + std::to_string(f.knob_int("map")) + " is larger than this OpenGL's "
+                         "GL_MAX_TEXTURE_SIZE, " + std::to_string(max_size));
+      if (f.knob_int("kernel") % 2 == 0)
+        throw UsageError("--kernel must be odd (a grid centred on the lookup), not " + std::to_string(f.knob_int("kernel")));
+      // [settings]
+      const ShadowSettings settings{.method = method_from_name(f.mode),
+                                    .map_size = f.knob_int("map"),
+                                    .kernel = f.knob_int("kernel"),
+                                    .constant_bias = float(f.knob("bias")),
+                                    .slope_bias = float(f.knob("slope")),
+                                    .normal_offset = float(f.knob("normal")),
+                                    .p_min = float(f.knob("pmin")),
+                                    .c = float(f.knob("c")),
+                                    .fit_to_view = f.knob_int("fit") != 0};
+      shadows.set(settings, f.knob_int("show") == kVisibility ? ShadowPicture::Visibility : ShadowPicture::None);
+      frame.render(f.camera, {f.target, f.width, f.height}, &app.metrics());
+      // [/settings]
+      app.metrics().set_allocation("shadow map (chapter 06)", shadows.allocated_bytes());
+      app.metrics().set_allocation("G-buffer (chapter 02) + light buffer (chapter 03)", frame.allocated_bytes());
+      if (std::ostream& out = app.report()) {
+        glFinish();
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        out << "sun shadows, " << f.mode << ": map " << settings.map_size << "x" << settings.map_size << " ("
+            << shadows.allocated_bytes() / 1024 << " KiB), " << shadows.frustum().texel_world(settings.map_size) * 100.f
+            << " cm per texel; frame took " << ms << " ms (wall clock, " << app.context().renderer() << ")\n";
+      }
+      app.panel([&] {
+        ImGui::Text("sun map %dx%d, %.1f cm per texel", settings.map_size, settings.map_size,
+                    shadows.frustum().texel_world(settings.map_size) * 100.f);
+        ImGui::Text("%zu KiB for the sun's maps", shadows.allocated_bytes() / 1024);
+      });
+    }
+  });
+}
