@@ -27,7 +27,7 @@ const CliSpec kCli{
     .summary = "Shadows from the sun in the deferred frame: a depth map from a fitted orthographic frustum, looked up "
                "with one comparison, PCF, the hardware comparison sampler, VSM or ESM.",
     .default_scene = "assets/atrium/atrium.gltf",
-    .modes = kMethodNames,
+    .modes = {"pcf", "hard", "pcf-hardware", "vsm", "esm"},  // the chapter's recommendation first
     .knobs = {{"map", "shadow map width and height in texels", 1024, 16, 16384, true},
               {"kernel", "pcf: the k x k grid; vsm, esm: the box filter's width (odd)", 3, 1, 31, true},
               {"bias", "constant depth bias, in texels of the map", 0.5, 0, 100, false},
@@ -37,7 +37,7 @@ const CliSpec kCli{
               {"c", "esm: the exponent of exp(c z) (z: window depth in [0, 1]); any c works in log space", 80, 1, 10000,
                false},
               {"fit", "1: the map's box fitted to the view; 0: to the whole scene", 1, 0, 1, true},
-              choice_knob("show", "the image; the sun's visibility alone (blue: sky or facing away); ",
+              choice_knob("show", "the image, or the sun's visibility alone (blue: sky or facing away)",
                           {"result", "visibility"})}};
 
 // [references]
