@@ -18,3 +18,4 @@ lightpass_program_test(06_shadows.bad_map_too_large 2 "--map must be between" ${
 lightpass_program_test(06_shadows.bad_pmin 2 "--pmin must be between" ${P06} --pmin 1)
 lightpass_program_test(06_shadows.bad_mode 2 "unknown mode 'volumes'" ${P06} --mode volumes)
 lightpass_program_test(06_shadows.scene_without_sun 1 "no directional light" ${P06} --headless --size 16x16 --scene tests/data/minimal.gltf)
+add_test(NAME 06_shadows.sweep_unknown_option COMMAND ${EXPECT} 2 "unknown option '--fast'" -- $<TARGET_FILE:06_shadows_sweep> --fast)

@@ -64,6 +64,12 @@ LightFrustum fit_light_frustum(glm::vec3 direction, glm::vec3 scene_min, glm::ve
   return f;
 }
 
+glm::vec2 receiver_plane_gradient(const LightFrustum& f, glm::vec3 world_normal) {
+  const glm::vec3 n = glm::mat3(f.view) * world_normal;
+  const float nz = std::max(n.z, 0.05f);
+  return glm::vec2(n.x, n.y) / nz * glm::vec2(f.box_max - f.box_min) / f.depth_range();
+}
+
 float chebyshev_upper_bound(glm::vec2 moments, float depth, float min_variance) {
   if (depth <= moments.x) return 1.f;
   const float variance = std::max(moments.y - moments.x * moments.x, min_variance);

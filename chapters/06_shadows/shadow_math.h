@@ -42,6 +42,14 @@ LightFrustum fit_light_frustum(glm::vec3 direction, glm::vec3 scene_min, glm::ve
                                const glm::mat4* inverse_camera_view_projection = nullptr);
 // [/light-frustum]
 
+// [receiver-plane]
+// Receiver-plane depth bias for PCF: the receiver's window depth as a plane over the map's
+// (u, v), its gradient from the normal in light view space (n_x, n_y, n_z), n_z > 0 facing the
+// light: d depth / d u = (n_x / n_z) width / depth_range, likewise v with the height; n_z is
+// kept >= 0.05 (slopes of at most 20:1). A tap o away compares the map with depth + g . o.
+glm::vec2 receiver_plane_gradient(const LightFrustum& frustum, glm::vec3 world_normal);
+// [/receiver-plane]
+
 // [chebyshev]
 // Variance shadow maps store the moments M1 = E[z], M2 = E[z^2] of the depths z under the
 // filter. For a receiver at depth d > M1, Chebyshev's one-sided inequality bounds the

@@ -12,6 +12,8 @@ namespace {
 struct ShadowBlock {
   glm::mat4 matrix;
   glm::vec4 map, bias, filter;
+  glm::mat4 view;
+  glm::vec4 extent;
 };
 constexpr GLuint kBlockBinding = 8;
 constexpr GLuint kDepthUnit = ch03::DeferredFrame::kFirstStageUnit;  // 8: sampler2D, nearest
@@ -153,7 +155,9 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
                           glm::vec4(frustum_.texel_world(n), frustum_.depth_range(), float(n), float(settings_.kernel / 2)),
                           glm::vec4(settings_.constant_bias, settings_.slope_bias, settings_.normal_offset,
                                     settings_.min_variance),
-                          glm::vec4(settings_.c, settings_.p_min, 0, 0)};
+                          glm::vec4(settings_.c, settings_.p_min, 0, 0),
+                          frustum_.view,
+                          glm::vec4(frustum_.box_max - frustum_.box_min, 0)};
   glNamedBufferSubData(block_.id(), 0, sizeof(block), &block);
   glBindBufferBase(GL_UNIFORM_BUFFER, kBlockBinding, block_.id());
   glBindTextureUnit(kDepthUnit, depth_.id());

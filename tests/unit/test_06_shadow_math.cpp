@@ -192,3 +192,21 @@ TEST(ShadowMath, ConeSamplesStayWithinTheSunsDisk) {
     }
   EXPECT_NEAR(glm::dot(sample_cone(axis, 0.05f, 1.f, 0.f), axis), std::cos(0.05f), 1e-5f);  // u = 1: the rim
 }
+
+// The gradient predicts a tilted plane's window depth one step away in the map: project two
+// points of the plane through the light's matrix and compare.
+TEST(ShadowMath, ReceiverPlaneGradientPredictsThePlanesDepth) {
+  const glm::vec3 sun = glm::normalize(glm::vec3(-0.36f, -0.89f, -0.27f));
+  const LightFrustum f = fit_light_frustum(sun, glm::vec3(-8, 0, -12), glm::vec3(8, 7, 12));
+  const glm::mat4 m = f.view_projection();
+  auto window = [&](glm::vec3 p) { glm::vec4 c = m * glm::vec4(p, 1.f); return glm::vec3(c) / c.w * 0.5f + 0.5f; };
+  for (glm::vec3 normal : {glm::vec3(0, 1, 0), glm::vec3(1, 0, 0), glm::normalize(glm::vec3(0.3f, 0.5f, 0.8f))}) {
+    ASSERT_GT(glm::dot(normal, -sun), 0.1f);
+    const glm::vec3 p0(1, 2, 3);
+    const glm::vec3 t = glm::normalize(glm::cross(normal, glm::vec3(0.2f, 0.3f, 0.9f)));
+    const glm::vec3 p1 = p0 + 0.5f * t;  // another point of the plane
+    const glm::vec3 w0 = window(p0), w1 = window(p1);
+    const glm::vec2 g = receiver_plane_gradient(f, normal);
+    EXPECT_NEAR(w0.z + glm::dot(g, glm::vec2(w1) - glm::vec2(w0)), w1.z, 1e-5f);
+  }
+}

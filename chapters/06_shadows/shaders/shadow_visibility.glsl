@@ -14,6 +14,8 @@ layout(std140, binding = 8) uniform ShadowBlock {
   vec4 sh_map;      // x: metres per texel, y: depth range in metres, z: map size, w: PCF radius (texels)
   vec4 sh_bias;     // x: constant (texels), y: slope-scaled (texels), z: normal offset (texels), w: VSM min variance
   vec4 sh_filter;   // x: ESM's c, y: VSM's p_min
+  mat4 sh_view;     // world to the light's view space (looking down -z)
+  vec4 sh_extent;   // x, y: the box's width and height in metres
 };
 layout(binding = 8) uniform sampler2D sh_depth;
 layout(binding = 9) uniform sampler2DShadow sh_depth_compare;
@@ -34,6 +36,18 @@ vec3 shadow_lookup(Surface s, vec3 to_light) {
 }
 // [/bias-glsl]
 
+// [receiver-plane-glsl]
+// shadow_math.h's receiver_plane_gradient: how the receiver's window depth changes per unit
+// of the map's (u, v), from its normal in the light's view space. A PCF tap `o` away from the
+// lookup compares the map with the receiver's plane there, q.z + dot(gradient, o), not with
+// q.z: a tilted receiver no longer shadows itself in the kernel's outer taps.
+vec2 receiver_plane_gradient(Surface s) {
+  vec3 n = mat3(sh_view) * s.normal;
+  float nz = max(n.z, 0.05);  // faces the light (n.z > 0); at most 20:1 slopes
+  return vec2(n.x, n.y) / nz * sh_extent.xy / sh_map.y;
+}
+// [/receiver-plane-glsl]
+
 float directional_visibility(int index, GpuLight light, Surface s) {
   if (index != 0) return 1.0;
   vec3 to_light = -light.direction_range.xyz;
@@ -50,8 +64,12 @@ float directional_visibility(int index, GpuLight light, Surface s) {
   // k x k comparisons on the texel grid around the lookup, averaged.
   int r = int(sh_map.w);
   float texel = 1.0 / sh_map.z, lit = 0.0;
+  vec2 g = receiver_plane_gradient(s);
   for (int y = -r; y <= r; ++y)
-    for (int x = -r; x <= r; ++x) lit += q.z <= texture(sh_depth, q.xy + vec2(x, y) * texel).r ? 1.0 : 0.0;
+    for (int x = -r; x <= r; ++x) {
+      vec2 o = vec2(x, y) * texel;
+      lit += q.z + dot(g, o) <= texture(sh_depth, q.xy + o).r ? 1.0 : 0.0;
+    }
   return lit / float((2 * r + 1) * (2 * r + 1));
   // [/pcf-glsl]
 #elif SHADOW_METHOD == SHADOW_PCF_HARDWARE
@@ -59,8 +77,12 @@ float directional_visibility(int index, GpuLight light, Surface s) {
   // The comparison sampler: four comparisons weighted bilinearly in one tap, on the same grid.
   int r = int(sh_map.w);
   float texel = 1.0 / sh_map.z, lit = 0.0;
+  vec2 g = receiver_plane_gradient(s);
   for (int y = -r; y <= r; ++y)
-    for (int x = -r; x <= r; ++x) lit += texture(sh_depth_compare, vec3(q.xy + vec2(x, y) * texel, q.z));
+    for (int x = -r; x <= r; ++x) {
+      vec2 o = vec2(x, y) * texel;
+      lit += texture(sh_depth_compare, vec3(q.xy + o, q.z + dot(g, o)));
+    }
   return lit / float((2 * r + 1) * (2 * r + 1));
   // [/pcf-hardware-glsl]
 #elif SHADOW_METHOD == SHADOW_VSM
