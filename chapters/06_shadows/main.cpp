@@ -28,7 +28,7 @@ const CliSpec kCli{
                "with one comparison, PCF, the hardware comparison sampler, VSM or ESM.",
     .default_scene = "assets/atrium/atrium.gltf",
     .modes = {"pcf", "hard", "pcf-hardware", "vsm", "esm"},  // the chapter's recommendation first
-    .knobs = {{"map", "shadow map width and height in texels", 1024, 16, 16384, true},
+    .knobs = {{"map", "shadow map width and height in texels (8192: 1.3 GiB with vsm or esm)", 1024, 16, 8192, true},
               {"kernel", "pcf: the k x k grid; vsm, esm: the box filter's width (odd)", 3, 1, 31, true},
               {"bias", "constant depth bias, in texels of the map", 0.5, 0, 100, false},
               {"slope", "slope-scaled bias, in texels per unit tan(theta)", 1, 0, 100, false},
@@ -37,8 +37,9 @@ const CliSpec kCli{
               {"c", "esm: the exponent of exp(c z) (z: window depth in [0, 1]); any c works in log space", 80, 1, 10000,
                false},
               {"fit", "1: the map's box fitted to the view; 0: to the whole scene", 1, 0, 1, true},
-              choice_knob("show", "the image, or the sun's visibility alone (blue: sky or facing away)",
-                          {"result", "visibility"})}};
+              choice_knob("show", "the image; the sun's visibility alone (blue: sky or facing away); the depth map "
+                                  "itself (near black, far white)",
+                          {"result", "visibility", "map"})}};
 
 // [references]
 // The atrium in sunlight: every method from above, the hard and filtered methods in the
@@ -49,6 +50,7 @@ std::vector<Shot> atrium_shots() {
   shots.push_back({"aisle", "hard"});
   shots.push_back({"aisle", "vsm"});
   shots.push_back({"corner", "pcf", {{"show", kVisibility}}});
+  shots.push_back({"overview", "hard", {{"show", kMap}}});
   return shots;
 }
 // [/references]
@@ -69,6 +71,7 @@ int main(int argc, char** argv) {
     GLint max_size = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
 
+    bool first_frame = true;
     while (app.next_frame()) {
       const Frame& f = app.frame();
       const auto start = std::chrono::steady_clock::now();
@@ -79,19 +82,26 @@ int main(int argc, char** argv) {
       if (f.knob_int("map") > max_size)
         throw UsageError("--map " + std::to_string(f.knob_int("map")) + " is larger than this OpenGL's "
                          "GL_MAX_TEXTURE_SIZE, " + std::to_string(max_size));
-      if (f.knob_int("kernel") % 2 == 0)
+      // An even kernel on the command line is bad usage; the window's slider passing one on
+      // the way is taken as the next odd one.
+      if (first_frame && f.knob_int("kernel") % 2 == 0)
         throw UsageError("--kernel must be odd (a grid centred on the lookup), not " + std::to_string(f.knob_int("kernel")));
+      const int kernel = f.knob_int("kernel") | 1;
+      first_frame = false;
       // [settings]
       const ShadowSettings settings{.method = method_from_name(f.mode),
                                     .map_size = f.knob_int("map"),
-                                    .kernel = f.knob_int("kernel"),
+                                    .kernel = kernel,
                                     .constant_bias = float(f.knob("bias")),
                                     .slope_bias = float(f.knob("slope")),
                                     .normal_offset = float(f.knob("normal")),
                                     .p_min = float(f.knob("pmin")),
                                     .c = float(f.knob("c")),
                                     .fit_to_view = f.knob_int("fit") != 0};
-      shadows.set(settings, f.knob_int("show") == kVisibility ? ShadowPicture::Visibility : ShadowPicture::None);
+      const int show = f.knob_int("show");
+      shadows.set(settings, show == kVisibility ? ShadowPicture::Visibility
+                            : show == kMap      ? ShadowPicture::Map
+                                                : ShadowPicture::None);
       frame.render(f.camera, {f.target, f.width, f.height}, &app.metrics());
       // [/settings]
       app.metrics().set_allocation("shadow map (chapter 06)", shadows.allocated_bytes());

@@ -171,7 +171,8 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
 
 bool ShadowStage::composite(ch03::DeferredFrame& frame, PassMetrics* metrics) {
   if (picture_ == ShadowPicture::None) return false;
-  auto pass = ch03::timed(metrics, "composite: the sun's visibility alone");
+  auto pass = ch03::timed(metrics, picture_ == ShadowPicture::Map ? "composite: the sun's depth map"
+                                                                  : "composite: the sun's visibility alone");
   std::vector<std::string> defines = frame.view().defines;
   for (const auto& d : frame.view().hooks.defines()) defines.push_back(d);
   if (picture_ == ShadowPicture::Map) defines.push_back("SHOW_MAP 1");
@@ -179,6 +180,7 @@ bool ShadowStage::composite(ch03::DeferredFrame& frame, PassMetrics* metrics) {
   glDisable(GL_DEPTH_TEST), glDisable(GL_BLEND), glDisable(GL_CULL_FACE), glDisable(GL_STENCIL_TEST);
   p.use();
   p.set("u_sun_direction", glm::normalize(sun_.direction));
+  p.set("u_output_size", glm::vec2(frame.output().width, frame.output().height));
   full_screen_.draw();
   glEnable(GL_DEPTH_TEST);
   return true;
