@@ -19,3 +19,8 @@ lightpass_program_test(06_shadows.bad_pmin 2 "--pmin must be between" ${P06} --p
 lightpass_program_test(06_shadows.bad_mode 2 "unknown mode 'volumes'" ${P06} --mode volumes)
 lightpass_program_test(06_shadows.scene_without_sun 1 "no directional light" ${P06} --headless --size 16x16 --scene tests/data/minimal.gltf)
 add_test(NAME 06_shadows.sweep_unknown_option COMMAND ${EXPECT} 2 "unknown option '--fast'" -- $<TARGET_FILE:06_shadows_sweep> --fast)
+# The error view: PCF's visibility against the soft truth on the overview, printed; its mean
+# error is below 0.05 (the GL test's penumbra budget there is 0.0325, so this holds with room).
+lightpass_program_test(06_shadows.error_view_reports_pcf_near_the_soft_truth 0
+  "against the soft truth: mean \\|error\\| 0\\.0[0-4][0-9]*, p99"
+  ${P06} --headless --size 320x180 --mode pcf --show error --out ${CMAKE_BINARY_DIR}/out/06_error.png)

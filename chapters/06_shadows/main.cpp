@@ -5,13 +5,18 @@
 // on filtered moments (vsm), or filtered exp(c z) in log space (esm). Only the sun casts; the
 // local lights keep chapter 03's path (visibility 1). The ray-traced truth that the tests
 // and the sweep measure against is shadow_truth.h.
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <memory>
 #include <iostream>
 
 #include <imgui.h>
 
 #include "chapters/03_light_volumes/light_radius.h"
 #include "chapters/06_shadows/shadow_stage.h"
+#include "chapters/06_shadows/shadow_truth.h"
+#include "common/target.h"
 #include "common/app.h"
 #include "common/error.h"
 
@@ -20,7 +25,33 @@ namespace {
 using namespace lp;
 using namespace lp::ch06;
 
-enum Show { kResult, kVisibility, kMap };  // --show's order
+enum Show { kResult, kVisibility, kMap, kTruth, kSoftTruth, kError };  // --show's order
+
+// A picture (top row first, sRGB bytes) into the output framebuffer, through a blit.
+void show_picture(const ImageRGBA8& picture, GLuint target) {
+  ImageRGBA8 flipped = picture;
+  flip_vertically(flipped);  // OpenGL's rows start at the bottom
+  gl::Texture texture = gl::make_texture_2d(GL_SRGB8_ALPHA8, picture.width, picture.height);
+  glTextureSubImage2D(texture.id(), 0, 0, 0, picture.width, picture.height, GL_RGBA, GL_UNSIGNED_BYTE,
+                      flipped.pixels.data());
+  gl::Framebuffer source;
+  glNamedFramebufferTexture(source.id(), GL_COLOR_ATTACHMENT0, texture.id(), 0);
+  glBlitNamedFramebuffer(source.id(), target, 0, 0, picture.width, picture.height, 0, 0, picture.width, picture.height,
+                         GL_COLOR_BUFFER_BIT, GL_NEAREST);
+}
+
+// The truth's channel as grey, blue where the sun does not reach (as show_visibility.frag).
+ImageRGBA8 truth_picture(const ImageF& truth, int channel) {
+  ImageRGBA8 out = ImageRGBA8::blank(truth.width, truth.height);
+  for (int y = 0; y < truth.height; ++y)
+    for (int x = 0; x < truth.width; ++x) {
+      std::uint8_t* p = out.at(x, y);
+      const bool outside = truth.at(x, y, 2) < 0.5f;
+      const auto g = std::uint8_t(std::clamp(truth.at(x, y, channel), 0.f, 1.f) * 255.f + 0.5f);
+      p[0] = outside ? 89 : g, p[1] = outside ? 108 : g, p[2] = outside ? 170 : g, p[3] = 255;  // linear 0.1, 0.15, 0.4
+    }
+  return out;
+}
 
 const CliSpec kCli{
     .program = "06_shadows",
@@ -38,8 +69,10 @@ const CliSpec kCli{
                false},
               {"fit", "1: the map's box fitted to the view; 0: to the whole scene", 1, 0, 1, true},
               choice_knob("show", "the image; the sun's visibility alone (blue: sky or facing away); the depth map "
-                                  "itself (near black, far white)",
-                          {"result", "visibility", "map"})}};
+                                  "itself (near black, far white); the ray-traced hard or soft truth (ray traced on the CPU: "
+                                  "seconds per view); |visibility - truth| as a heat map (hard truth for hard, "
+                                  "soft for the others; red = 1)",
+                          {"result", "visibility", "map", "truth", "soft-truth", "error"})}};
 
 // [references]
 // The atrium in sunlight: every method from above, the hard and filtered methods in the
@@ -72,6 +105,9 @@ int main(int argc, char** argv) {
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
 
     bool first_frame = true;
+    std::unique_ptr<RayScene> rays;  // the truth's, made when a truth is first shown
+    ImageF truth;
+    glm::mat4 truth_camera{0};
     while (app.next_frame()) {
       const Frame& f = app.frame();
       const auto start = std::chrono::steady_clock::now();
@@ -104,6 +140,38 @@ int main(int argc, char** argv) {
                                                 : ShadowPicture::None);
       frame.render(f.camera, {f.target, f.width, f.height}, &app.metrics());
       // [/settings]
+      // [truth-view]
+      if (show >= kTruth) {
+        // The truth for this camera and size: traced once per view (cached on disk headless).
+        if (!rays) rays = std::make_unique<RayScene>(app.scene());
+        const glm::mat4 key = f.camera.projection * f.camera.view;
+        if (truth.width != f.width || truth.height != f.height || key != truth_camera) {
+          truth = app.options().headless
+                      ? cached_shadow_truth(app.scene(), *rays, f.camera, f.width, f.height, sun.direction)
+                      : shadow_truth(app.scene(), *rays, f.camera, f.width, f.height, sun.direction);
+          truth_camera = key;
+        }
+        if (show == kError) {
+          ColourTarget visibility(f.width, f.height, GL_RGBA32F);
+          shadows.set(settings, ShadowPicture::Visibility);
+          frame.render(f.camera, {visibility.framebuffer(), f.width, f.height});
+          const ImageF v = visibility.read();
+          const int channel = settings.method == ShadowMethod::Hard ? 0 : 1;
+          std::vector<float> error(std::size_t(f.width) * std::size_t(f.height), 0.f);
+          for (int y = 0; y < f.height; ++y)
+            for (int x = 0; x < f.width; ++x)
+              if (truth.at(x, y, 2) > 0.5f)
+                error[std::size_t(y) * f.width + x] = std::abs(v.at(x, y, 0) - truth.at(x, y, channel));
+          const VisibilityError e = visibility_error(v, truth, channel);
+          if (std::ostream& out = app.report())
+            out << "against the " << (channel == 0 ? "hard" : "soft") << " truth: mean |error| " << e.mean_abs
+                << ", p99 " << e.p99 << ", " << 100 * e.wrong << "% of " << e.pixels << " pixels wrong by > 0.5\n";
+          show_picture(error_heatmap(error, f.width, f.height, 1.f), f.target);
+        } else {
+          show_picture(truth_picture(truth, show == kTruth ? 0 : 1), f.target);
+        }
+      }
+      // [/truth-view]
       app.metrics().set_allocation("shadow map (chapter 06)", shadows.allocated_bytes());
       app.metrics().set_allocation("G-buffer (chapter 02) + light buffer (chapter 03)", frame.allocated_bytes());
       if (std::ostream& out = app.report()) {

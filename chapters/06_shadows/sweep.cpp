@@ -62,9 +62,9 @@ ImageRGBA8 visibility_picture(const ImageF& v, int channel, const ImageF& truth)
       std::uint8_t* p = out.at(x, y);
       const float g = std::clamp(v.at(x, y, channel), 0.f, 1.f);
       const bool outside = truth.at(x, y, 2) < 0.5f;
-      p[0] = outside ? 26 : std::uint8_t(g * 255.f + 0.5f);
-      p[1] = outside ? 38 : p[0];
-      p[2] = outside ? 102 : p[0];
+      p[0] = outside ? 89 : std::uint8_t(g * 255.f + 0.5f);  // show_visibility.frag's blue in sRGB
+      p[1] = outside ? 108 : p[0];
+      p[2] = outside ? 170 : p[0];
       p[3] = 255;
     }
   return out;
