@@ -476,6 +476,11 @@ int run_chapter(int argc, const char* const* argv, const Chapter& chapter, const
     App app(chapter, options);
     body(app);
     return app.finish();
+  } catch (const UsageError& e) {
+    // A chapter's own checks of its options (those only it can make: against the GL's
+    // limits, or between knobs) are bad usage too: the message, the usage, exit code 2.
+    std::cerr << chapter.cli.program << ": " << e.what() << "\n\n" << usage(chapter.cli);
+    return 2;
   } catch (const std::exception& e) {
     std::cerr << chapter.cli.program << ": error: " << e.what() << '\n';
     return 1;

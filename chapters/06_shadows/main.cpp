@@ -1,0 +1,191 @@
+// Chapter 06: shadows. Chapter 03's deferred frame with a stage that draws the sun's depth
+// map from an orthographic frustum fitted to what the view needs, and the frame's light
+// shaders look each pixel up in it by the method the mode names: one comparison (hard),
+// k x k comparisons (pcf), the hardware's comparison sampler (pcf-hardware), Chebyshev's bound
+// on filtered moments (vsm), or filtered exp(c z) in log space (esm). Only the sun casts; the
+// local lights keep chapter 03's path (visibility 1). The ray-traced truth that the tests
+// and the sweep measure against is shadow_truth.h.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <iostream>
+
+#include <imgui.h>
+
+#include "chapters/03_light_volumes/light_radius.h"
+#include "chapters/06_shadows/shadow_stage.h"
+#include "chapters/06_shadows/shadow_truth.h"
+#include "common/target.h"
+#include "common/app.h"
+#include "common/error.h"
+
+namespace {
+
+using namespace lp;
+using namespace lp::ch06;
+
+enum Show { kResult, kVisibility, kMap, kTruth, kSoftTruth, kError };  // --show's order
+
+// A picture (top row first, sRGB bytes) into the output framebuffer, through a blit.
+void show_picture(const ImageRGBA8& picture, GLuint target) {
+  ImageRGBA8 flipped = picture;
+  flip_vertically(flipped);  // OpenGL's rows start at the bottom
+  gl::Texture texture = gl::make_texture_2d(GL_SRGB8_ALPHA8, picture.width, picture.height);
+  glTextureSubImage2D(texture.id(), 0, 0, 0, picture.width, picture.height, GL_RGBA, GL_UNSIGNED_BYTE,
+                      flipped.pixels.data());
+  gl::Framebuffer source;
+  glNamedFramebufferTexture(source.id(), GL_COLOR_ATTACHMENT0, texture.id(), 0);
+  glBlitNamedFramebuffer(source.id(), target, 0, 0, picture.width, picture.height, 0, 0, picture.width, picture.height,
+                         GL_COLOR_BUFFER_BIT, GL_NEAREST);
+}
+
+// The truth's channel as grey, blue where the sun does not reach (as show_visibility.frag).
+ImageRGBA8 truth_picture(const ImageF& truth, int channel) {
+  ImageRGBA8 out = ImageRGBA8::blank(truth.width, truth.height);
+  for (int y = 0; y < truth.height; ++y)
+    for (int x = 0; x < truth.width; ++x) {
+      std::uint8_t* p = out.at(x, y);
+      const bool outside = truth.at(x, y, 2) < 0.5f;
+      const auto g = std::uint8_t(std::clamp(truth.at(x, y, channel), 0.f, 1.f) * 255.f + 0.5f);
+      p[0] = outside ? 89 : g, p[1] = outside ? 108 : g, p[2] = outside ? 170 : g, p[3] = 255;  // linear 0.1, 0.15, 0.4
+    }
+  return out;
+}
+
+const CliSpec kCli{
+    .program = "06_shadows",
+    .summary = "Shadows from the sun in the deferred frame: a depth map from a fitted orthographic frustum, looked up "
+               "with one comparison, PCF, the hardware comparison sampler, VSM or ESM.",
+    .default_scene = "assets/atrium/atrium.gltf",
+    .modes = {"pcf", "hard", "pcf-hardware", "vsm", "esm"},  // the chapter's recommendation first
+    .knobs = {{"map", "shadow map width and height in texels (8192: 1.3 GiB with vsm or esm)", 1024, 16, 8192, true},
+              {"kernel", "pcf: the k x k grid; vsm, esm: the box filter's width (odd)", 3, 1, 31, true},
+              {"bias", "constant depth bias, in texels of the map", 0.5, 0, 100, false},
+              {"slope", "slope-scaled bias, in texels per unit tan(theta)", 1, 0, 100, false},
+              {"normal", "normal offset, in texels", 1, 0, 100, false},
+              {"pmin", "vsm: light-bleeding reduction (p_max below it is shadow)", 0.2, 0, 0.99, false},
+              {"c", "esm: the exponent of exp(c z) (z: window depth in [0, 1]); any c works in log space", 80, 1, 10000,
+               false},
+              {"fit", "1: the map's box fitted to the view; 0: to the whole scene", 1, 0, 1, true},
+              choice_knob("show", "the image; the sun's visibility alone (blue: sky or facing away); the depth map "
+                                  "itself (near black, far white); the ray-traced hard or soft truth (ray traced on the CPU: "
+                                  "seconds per view); |visibility - truth| as a heat map (hard truth for hard, "
+                                  "soft for the others; red = 1)",
+                          {"result", "visibility", "map", "truth", "soft-truth", "error"})}};
+
+// [references]
+// The atrium in sunlight: every method from above, the hard and filtered methods in the
+// aisle among the columns, and the visibility term alone.
+std::vector<Shot> atrium_shots() {
+  std::vector<Shot> shots;
+  for (const std::string& m : kMethodNames) shots.push_back({"overview", m});
+  shots.push_back({"aisle", "hard"});
+  shots.push_back({"aisle", "vsm"});
+  shots.push_back({"corner", "pcf", {{"show", kVisibility}}});
+  shots.push_back({"overview", "hard", {{"show", kMap}}});
+  return shots;
+}
+// [/references]
+
+const Chapter kChapter{.cli = kCli, .references = atrium_shots()};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return run_chapter(argc, argv, kChapter, [](App& app) {
+    const Light& sun = find_sun(app.scene());
+    ch03::DeferredFrame frame(app.scene_gpu());
+    frame.volumes().set_lights(ch03::build_light_set(
+        app.scene().lights, ch03::cut_threshold(1.f, ch03::peak_reflectance(app.scene())), frame.volumes().shapes()));
+    for (const auto& w : frame.volumes().lights().warnings) std::cerr << "warning: " << w << '\n';
+    ShadowStage shadows(app.scene_gpu(), sun);
+    frame.add_stage(shadows);
+    GLint max_size = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+
+    bool first_frame = true;
+    std::unique_ptr<RayScene> rays;  // the truth's, made when a truth is first shown
+    ImageF truth;
+    glm::mat4 truth_camera{0};
+    while (app.next_frame()) {
+      const Frame& f = app.frame();
+      const auto start = std::chrono::steady_clock::now();
+      if (f.reload_shaders) {
+        frame.reload_shaders();
+        shadows.reload_shaders();
+      }
+      if (f.knob_int("map") > max_size)
+        throw UsageError("--map " + std::to_string(f.knob_int("map")) + " is larger than this OpenGL's "
+                         "GL_MAX_TEXTURE_SIZE, " + std::to_string(max_size));
+      // An even kernel on the command line is bad usage; the window's slider passing one on
+      // the way is taken as the next odd one.
+      if (first_frame && f.knob_int("kernel") % 2 == 0)
+        throw UsageError("--kernel must be odd (a grid centred on the lookup), not " + std::to_string(f.knob_int("kernel")));
+      const int kernel = f.knob_int("kernel") | 1;
+      first_frame = false;
+      // [settings]
+      const ShadowSettings settings{.method = method_from_name(f.mode),
+                                    .map_size = f.knob_int("map"),
+                                    .kernel = kernel,
+                                    .constant_bias = float(f.knob("bias")),
+                                    .slope_bias = float(f.knob("slope")),
+                                    .normal_offset = float(f.knob("normal")),
+                                    .p_min = float(f.knob("pmin")),
+                                    .c = float(f.knob("c")),
+                                    .fit_to_view = f.knob_int("fit") != 0};
+      const int show = f.knob_int("show");
+      shadows.set(settings, show == kVisibility ? ShadowPicture::Visibility
+                            : show == kMap      ? ShadowPicture::Map
+                                                : ShadowPicture::None);
+      frame.render(f.camera, {f.target, f.width, f.height}, &app.metrics());
+      // [/settings]
+      // [truth-view]
+      if (show >= kTruth) {
+        // The truth for this camera and size: traced once per view (cached on disk headless).
+        if (!rays) rays = std::make_unique<RayScene>(app.scene());
+        const glm::mat4 key = f.camera.projection * f.camera.view;
+        if (truth.width != f.width || truth.height != f.height || key != truth_camera) {
+          truth = app.options().headless
+                      ? cached_shadow_truth(app.scene(), *rays, f.camera, f.width, f.height, sun.direction)
+                      : shadow_truth(app.scene(), *rays, f.camera, f.width, f.height, sun.direction);
+          truth_camera = key;
+        }
+        if (show == kError) {
+          ColourTarget visibility(f.width, f.height, GL_RGBA32F);
+          shadows.set(settings, ShadowPicture::Visibility);
+          frame.render(f.camera, {visibility.framebuffer(), f.width, f.height});
+          const ImageF v = visibility.read();
+          const int channel = settings.method == ShadowMethod::Hard ? 0 : 1;
+          std::vector<float> error(std::size_t(f.width) * std::size_t(f.height), 0.f);
+          for (int y = 0; y < f.height; ++y)
+            for (int x = 0; x < f.width; ++x)
+              if (truth.at(x, y, 2) > 0.5f)
+                error[std::size_t(y) * f.width + x] = std::abs(v.at(x, y, 0) - truth.at(x, y, channel));
+          const VisibilityError e = visibility_error(v, truth, channel);
+          if (std::ostream& out = app.report())
+            out << "against the " << (channel == 0 ? "hard" : "soft") << " truth: mean |error| " << e.mean_abs
+                << ", p99 " << e.p99 << ", " << 100 * e.wrong << "% of " << e.pixels << " pixels wrong by > 0.5\n";
+          show_picture(error_heatmap(error, f.width, f.height, 1.f), f.target);
+        } else {
+          show_picture(truth_picture(truth, show == kTruth ? 0 : 1), f.target);
+        }
+      }
+      // [/truth-view]
+      app.metrics().set_allocation("shadow map (chapter 06)", shadows.allocated_bytes());
+      app.metrics().set_allocation("G-buffer (chapter 02) + light buffer (chapter 03)", frame.allocated_bytes());
+      if (std::ostream& out = app.report()) {
+        glFinish();
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        out << "sun shadows, " << f.mode << ": map " << settings.map_size << "x" << settings.map_size << " ("
+            << shadows.allocated_bytes() / 1024 << " KiB), " << shadows.frustum().texel_world(settings.map_size) * 100.f
+            << " cm per texel; frame took " << ms << " ms (wall clock, " << app.context().renderer() << ")\n";
+      }
+      app.panel([&] {
+        ImGui::Text("sun map %dx%d, %.1f cm per texel", settings.map_size, settings.map_size,
+                    shadows.frustum().texel_world(settings.map_size) * 100.f);
+        ImGui::Text("%zu KiB for the sun's maps", shadows.allocated_bytes() / 1024);
+      });
+    }
+  });
+}

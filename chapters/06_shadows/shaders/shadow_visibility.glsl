@@ -1,0 +1,107 @@
+// Chapter 06's visibility hook (chapter 03's FRAME_VISIBILITY, deferred_frame.h): the sun
+// looked up in its shadow map by the method the define SHADOW_METHOD names (the small files
+// visibility_*.glsl define it and include this one). The C++ twins are in shadow_math.h.
+// Only the first directional light has a map; the other directional lights and every local
+// light keep visibility 1 (point and spot shadows are exercises of the chapter).
+#define SHADOW_HARD 0
+#define SHADOW_PCF 1
+#define SHADOW_PCF_HARDWARE 2
+#define SHADOW_VSM 3
+#define SHADOW_ESM 4
+
+layout(std140, binding = 8) uniform ShadowBlock {
+  mat4 sh_matrix;   // world to the light's clip space (orthographic)
+  vec4 sh_map;      // x: metres per texel, y: depth range in metres, z: map size, w: PCF radius (texels)
+  vec4 sh_bias;     // x: constant (texels), y: slope-scaled (texels), z: normal offset (texels), w: VSM min variance
+  vec4 sh_filter;   // x: ESM's c, y: VSM's p_min
+  mat4 sh_view;     // world to the light's view space (looking down -z)
+  vec4 sh_extent;   // x, y: the box's width and height in metres
+};
+layout(binding = 8) uniform sampler2D sh_depth;
+layout(binding = 9) uniform sampler2DShadow sh_depth_compare;
+layout(binding = 10) uniform sampler2D sh_moments;
+
+// [bias-glsl]
+// shadow_math.h's slope_scaled_bias and normal_offset; the bias in window-depth units
+// (the light's projection is orthographic: depth is linear in metres).
+vec3 shadow_lookup(Surface s, vec3 to_light) {
+  float cos_theta = clamp(dot(s.normal, to_light), 1e-4, 1.0);
+  float sin_theta = sqrt(1.0 - cos_theta * cos_theta);
+  float tan_theta = min(sin_theta / cos_theta, 10.0);
+  vec3 p = s.position + s.normal * (sh_bias.z * sh_map.x * sin_theta);
+  vec4 clip = sh_matrix * vec4(p, 1.0);
+  vec3 window = clip.xyz / clip.w * 0.5 + 0.5;
+  float bias = sh_map.x * (sh_bias.x + sh_bias.y * tan_theta) / sh_map.y;
+  return vec3(window.xy, window.z - bias);
+}
+// [/bias-glsl]
+
+// [receiver-plane-glsl]
+// shadow_math.h's receiver_plane_gradient: how the receiver's window depth changes per unit
+// of the map's (u, v), from its normal in the light's view space. A PCF tap `o` away from the
+// lookup compares the map with the receiver's plane there, q.z + dot(gradient, o), not with
+// q.z: a tilted receiver no longer shadows itself in the kernel's outer taps.
+vec2 receiver_plane_gradient(Surface s) {
+  vec3 n = mat3(sh_view) * s.normal;
+  float nz = max(n.z, 0.05);  // faces the light (n.z > 0); at most 20:1 slopes
+  return vec2(n.x, n.y) / nz * sh_extent.xy / sh_map.y;
+}
+// [/receiver-plane-glsl]
+
+float directional_visibility(int index, GpuLight light, Surface s) {
+  if (index != 0) return 1.0;
+  vec3 to_light = -light.direction_range.xyz;
+  if (dot(s.normal, to_light) <= 0.0) return 1.0;  // faces away: the light adds nothing anyway
+  vec3 q = shadow_lookup(s, to_light);
+  // Outside the map's box (sideways or beyond its far plane): nothing casts there, lit.
+  if (any(lessThan(q.xy, vec2(0.0))) || any(greaterThan(q.xy, vec2(1.0))) || q.z > 1.0) return 1.0;
+#if SHADOW_METHOD == SHADOW_HARD
+  // [hard-glsl]
+  return q.z <= texture(sh_depth, q.xy).r ? 1.0 : 0.0;
+  // [/hard-glsl]
+#elif SHADOW_METHOD == SHADOW_PCF
+  // [pcf-glsl]
+  // k x k comparisons on the texel grid around the lookup, averaged.
+  int r = int(sh_map.w);
+  float texel = 1.0 / sh_map.z, lit = 0.0;
+  vec2 g = receiver_plane_gradient(s);
+  for (int y = -r; y <= r; ++y)
+    for (int x = -r; x <= r; ++x) {
+      vec2 o = vec2(x, y) * texel;
+      lit += q.z + dot(g, o) <= texture(sh_depth, q.xy + o).r ? 1.0 : 0.0;
+    }
+  return lit / float((2 * r + 1) * (2 * r + 1));
+  // [/pcf-glsl]
+#elif SHADOW_METHOD == SHADOW_PCF_HARDWARE
+  // [pcf-hardware-glsl]
+  // The comparison sampler: four comparisons weighted bilinearly in one tap, on the same grid.
+  int r = int(sh_map.w);
+  float texel = 1.0 / sh_map.z, lit = 0.0;
+  vec2 g = receiver_plane_gradient(s);
+  for (int y = -r; y <= r; ++y)
+    for (int x = -r; x <= r; ++x) {
+      vec2 o = vec2(x, y) * texel;
+      lit += texture(sh_depth_compare, vec3(q.xy + o, q.z + dot(g, o)));
+    }
+  return lit / float((2 * r + 1) * (2 * r + 1));
+  // [/pcf-hardware-glsl]
+#elif SHADOW_METHOD == SHADOW_VSM
+  // [vsm-glsl]
+  vec2 m = texture(sh_moments, q.xy).xy;
+  if (q.z <= m.x) return 1.0;
+  float variance = max(m.y - m.x * m.x, sh_bias.w);
+  float d = q.z - m.x;
+  float p_max = variance / (variance + d * d);
+  return clamp((p_max - sh_filter.y) / (1.0 - sh_filter.y), 0.0, 1.0);
+  // [/vsm-glsl]
+#elif SHADOW_METHOD == SHADOW_ESM
+  // [esm-glsl]
+  float l = texture(sh_moments, q.xy).x;  // log of the filtered exp(c z)
+  return clamp(exp(min(l - sh_filter.x * q.z, 0.0)), 0.0, 1.0);
+  // [/esm-glsl]
+#else
+#error SHADOW_METHOD names no method
+#endif
+}
+
+float local_visibility(int index, GpuLight light, Surface s) { return 1.0; }

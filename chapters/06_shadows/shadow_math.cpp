@@ -1,0 +1,106 @@
+#include "chapters/06_shadows/shadow_math.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace lp::ch06 {
+
+float slope_scaled_bias(float constant_texels, float slope_texels, float cos_theta, float texel_world) {
+  const float c = std::clamp(cos_theta, 1e-4f, 1.f);
+  const float tan_theta = std::min(std::sqrt(1.f - c * c) / c, kMaxSlope);
+  return texel_world * (constant_texels + slope_texels * tan_theta);
+}
+
+glm::vec3 normal_offset(glm::vec3 position, glm::vec3 normal, float cos_theta, float texels, float texel_world) {
+  const float c = std::clamp(cos_theta, 0.f, 1.f);
+  return position + normal * (texels * texel_world * std::sqrt(1.f - c * c));
+}
+
+float LightFrustum::texel_world(int map_size) const {
+  return std::max(box_max.x - box_min.x, box_max.y - box_min.y) / float(map_size);
+}
+
+LightFrustum fit_light_frustum(glm::vec3 direction, glm::vec3 scene_min, glm::vec3 scene_max,
+                               const glm::mat4* inverse_camera_view_projection) {
+  direction = glm::normalize(direction);
+  const glm::vec3 up = std::abs(direction.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+  const glm::vec3 centre = 0.5f * (scene_min + scene_max);
+  LightFrustum f;
+  f.view = glm::lookAt(centre - direction, centre, up);
+  auto box_of = [&](const glm::vec3* points, int n) {
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (int i = 0; i < n; ++i) {
+      glm::vec3 p = glm::vec3(f.view * glm::vec4(points[i], 1.f));
+      lo = glm::min(lo, p), hi = glm::max(hi, p);
+    }
+    return std::pair{lo, hi};
+  };
+  glm::vec3 corners[8];
+  for (int i = 0; i < 8; ++i)
+    corners[i] = glm::vec3(i & 1 ? scene_max.x : scene_min.x, i & 2 ? scene_max.y : scene_min.y,
+                           i & 4 ? scene_max.z : scene_min.z);
+  auto [lo, hi] = box_of(corners, 8);
+  if (inverse_camera_view_projection) {
+    glm::vec3 view_corners[8];
+    for (int i = 0; i < 8; ++i) {
+      glm::vec4 p = *inverse_camera_view_projection *
+                    glm::vec4(i & 1 ? 1.f : -1.f, i & 2 ? 1.f : -1.f, i & 4 ? 1.f : -1.f, 1.f);
+      view_corners[i] = glm::vec3(p) / p.w;
+    }
+    auto [vlo, vhi] = box_of(view_corners, 8);
+    // Only x and y: along the light (z) every caster of the scene stays in.
+    glm::vec2 xlo = glm::max(glm::vec2(lo), glm::vec2(vlo)), xhi = glm::min(glm::vec2(hi), glm::vec2(vhi));
+    if (xlo.x < xhi.x && xlo.y < xhi.y) lo.x = xlo.x, lo.y = xlo.y, hi.x = xhi.x, hi.y = xhi.y;
+  }
+  // A little margin so geometry on the box's faces is not clipped.
+  const glm::vec3 margin = 0.01f * (hi - lo) + glm::vec3(1e-3f);
+  lo -= margin, hi += margin;
+  f.box_min = lo, f.box_max = hi;
+  // Light view space looks down -z: near = -hi.z, far = -lo.z.
+  f.projection = glm::ortho(lo.x, hi.x, lo.y, hi.y, -hi.z, -lo.z);
+  return f;
+}
+
+glm::vec2 receiver_plane_gradient(const LightFrustum& f, glm::vec3 world_normal) {
+  const glm::vec3 n = glm::mat3(f.view) * world_normal;
+  const float nz = std::max(n.z, 0.05f);
+  return glm::vec2(n.x, n.y) / nz * glm::vec2(f.box_max - f.box_min) / f.depth_range();
+}
+
+float chebyshev_upper_bound(glm::vec2 moments, float depth, float min_variance) {
+  if (depth <= moments.x) return 1.f;
+  const float variance = std::max(moments.y - moments.x * moments.x, min_variance);
+  const float d = depth - moments.x;
+  return variance / (variance + d * d);
+}
+
+float reduce_light_bleeding(float p_max, float p_min) {
+  return std::clamp((p_max - p_min) / (1.f - p_min), 0.f, 1.f);
+}
+
+float esm_filter_direct(const std::vector<float>& depths, const std::vector<float>& weights, float c) {
+  float sum = 0;
+  for (std::size_t i = 0; i < depths.size(); ++i) sum += weights[i] * std::exp(c * depths[i]);
+  return sum;
+}
+
+float esm_filter_log(const std::vector<float>& log_values, const std::vector<float>& weights) {
+  float l_max = -std::numeric_limits<float>::infinity();
+  for (float l : log_values) l_max = std::max(l_max, l);
+  float sum = 0;
+  for (std::size_t i = 0; i < log_values.size(); ++i) sum += weights[i] * std::exp(log_values[i] - l_max);
+  return l_max + std::log(sum);
+}
+
+float esm_visibility_direct(float filtered, float c, float depth) {
+  return std::clamp(filtered * std::exp(-c * depth), 0.f, 1.f);
+}
+
+float esm_visibility_log(float log_filtered, float c, float depth) {
+  return std::clamp(std::exp(std::min(log_filtered - c * depth, 0.f)), 0.f, 1.f);
+}
+
+}  // namespace lp::ch06

@@ -1,0 +1,83 @@
+#pragma once
+// Chapter 06's maths in C++, the twins of shaders/shadow_visibility.glsl and
+// shaders/shadow_filter.frag (the unit tests hold these, the image tests the GLSL): the
+// bias, the light's orthographic frustum, Chebyshev's bound for variance shadow maps with
+// the P_min light-bleeding reduction, and exponential shadow maps filtered in log space.
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace lp::ch06 {
+
+// [bias]
+// A receiver compared with its own depth in the map self-shadows ("acne"): the map holds one
+// depth per texel, a tilted receiver's depth varies across the texel. The world-space
+// distance the comparison allows, in units of the map's texel size w (world metres per
+// texel): a constant part, and a slope-scaled part that grows with tan(theta) (theta between
+// the normal and the light direction; half a texel across a plane at theta changes its depth
+// by w/2 tan(theta)). tan is capped at kMaxSlope (grazing receivers would push it to infinity).
+inline constexpr float kMaxSlope = 10.f;
+float slope_scaled_bias(float constant_texels, float slope_texels, float cos_theta, float texel_world);
+// Normal offset: the lookup moves off the surface along its normal by `texels` texel sizes,
+// scaled by sin(theta): nothing for a receiver facing the light, most at grazing angles,
+// where a depth bias alone would need to be largest.
+glm::vec3 normal_offset(glm::vec3 position, glm::vec3 normal, float cos_theta, float texels, float texel_world);
+// [/bias]
+
+// [light-frustum]
+// The sun's orthographic frustum: a view looking along `direction` (unit, the way the light
+// shines) and a box in its space. Receivers: the scene's bounds, cut to the light-space
+// bounds of the view frustum's corners when the camera is given (inverse view-projection),
+// so the map's texels go to what the view can see. Casters: along the light, the whole
+// scene's depth range, so a caster outside the view frustum (behind the camera, above it)
+// still lands in the map in front of the receivers it shadows.
+struct LightFrustum {
+  glm::mat4 view{1}, projection{1};
+  glm::vec3 box_min{0}, box_max{0};  // in light view space
+  glm::mat4 view_projection() const { return projection * view; }
+  float texel_world(int map_size) const;  // metres per texel (the larger of x, y)
+  float depth_range() const { return box_max.z - box_min.z; }
+};
+LightFrustum fit_light_frustum(glm::vec3 direction, glm::vec3 scene_min, glm::vec3 scene_max,
+                               const glm::mat4* inverse_camera_view_projection = nullptr);
+// [/light-frustum]
+
+// [receiver-plane]
+// Receiver-plane depth bias for PCF: the receiver's window depth as a plane over the map's
+// (u, v), its gradient from the normal in light view space (n_x, n_y, n_z), n_z > 0 facing the
+// light: d depth / d u = (n_x / n_z) width / depth_range, likewise v with the height; n_z is
+// kept >= 0.05 (slopes of at most 20:1). A tap o away compares the map with depth + g . o.
+glm::vec2 receiver_plane_gradient(const LightFrustum& frustum, glm::vec3 world_normal);
+// [/receiver-plane]
+
+// [chebyshev]
+// Variance shadow maps store the moments M1 = E[z], M2 = E[z^2] of the depths z under the
+// filter. For a receiver at depth d > M1, Chebyshev's one-sided inequality bounds the
+// fraction of the filtered depths that lie at or beyond d (the lit fraction):
+//   P(z >= d) <= p_max = s^2 / (s^2 + (d - M1)^2),   s^2 = M2 - M1^2,
+// and d <= M1 is fully lit. The bound is exact for one occluder over one receiver (two
+// depths); for overlapping occluders it is too high: light bleeding.
+float chebyshev_upper_bound(glm::vec2 moments, float depth, float min_variance);
+// [/chebyshev]
+
+// [pmin]
+// Light-bleeding reduction: every p_max below p_min is shadow, the rest stretched to [0, 1]:
+// p' = clamp((p_max - p_min) / (1 - p_min), 0, 1). It cuts the bleeding's faint light and
+// as much of the true penumbra.
+float reduce_light_bleeding(float p_max, float p_min);
+// [/pmin]
+
+// [esm]
+// Exponential shadow maps store exp(c z); filtered, E = sum w_i exp(c z_i), and the lit
+// fraction is V = clamp(E exp(-c d), 0, 1), exact where every z_i >= d... or every
+// z_i < d far enough. In fp32 exp(c z) overflows once c z > 88.7: with z in [0, 1], c > 88.
+// Log space keeps L = log E instead and filters with log-sum-exp about the largest term:
+//   L = l_max + log(sum w_i exp(l_i - l_max)),   l_i = c z_i,
+// every exponent <= 0, so nothing overflows for any c; then V = clamp(exp(L - c d), 0, 1).
+float esm_filter_direct(const std::vector<float>& depths, const std::vector<float>& weights, float c);  // E
+float esm_filter_log(const std::vector<float>& log_values, const std::vector<float>& weights);          // L from l_i
+float esm_visibility_direct(float filtered, float c, float depth);
+float esm_visibility_log(float log_filtered, float c, float depth);
+// [/esm]
+
+}  // namespace lp::ch06

@@ -1,0 +1,189 @@
+#include "chapters/06_shadows/shadow_stage.h"
+
+#include <algorithm>
+
+#include "common/error.h"
+#include "common/scene_gpu.h"
+
+namespace lp::ch06 {
+
+namespace {
+// Mirrors `uniform ShadowBlock` in shaders/shadow_visibility.glsl (std140).
+struct ShadowBlock {
+  glm::mat4 matrix;
+  glm::vec4 map, bias, filter;
+  glm::mat4 view;
+  glm::vec4 extent;
+};
+constexpr GLuint kBlockBinding = 8;
+constexpr GLuint kDepthUnit = ch03::DeferredFrame::kFirstStageUnit;  // 8: sampler2D, nearest
+constexpr GLuint kCompareUnit = kDepthUnit + 1;                      // 9: sampler2DShadow
+constexpr GLuint kMomentsUnit = kDepthUnit + 2;                      // 10: VSM / ESM, linear
+constexpr GLuint kFilterInputUnit = kDepthUnit + 3;                  // 11: the pre-filter's input
+}  // namespace
+
+ShadowMethod method_from_name(const std::string& name) {
+  auto it = std::find(kMethodNames.begin(), kMethodNames.end(), name);
+  if (it == kMethodNames.end()) throw Error("unknown shadow method '" + name + "'");
+  return ShadowMethod(it - kMethodNames.begin());
+}
+
+const Light& find_sun(const Scene& scene) {
+  for (const Light& l : scene.lights)
+    if (l.type == LightType::Directional) return l;
+  throw Error("the scene has no directional light (the sun) to cast shadows");
+}
+
+ShadowStage::ShadowStage(const SceneGpu& scene, const Light& sun) : scene_(scene), sun_(sun) {
+  glSamplerParameteri(nearest_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glSamplerParameteri(nearest_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glSamplerParameteri(compare_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glSamplerParameteri(compare_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glSamplerParameteri(compare_.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+  glSamplerParameteri(compare_.id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  glSamplerParameteri(linear_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glSamplerParameteri(linear_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  for (GLuint s : {nearest_.id(), compare_.id(), linear_.id()}) {
+    glSamplerParameteri(s, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(s, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  }
+  block_ = gl::make_buffer(nullptr, sizeof(ShadowBlock), GL_DYNAMIC_STORAGE_BIT);
+}
+
+void ShadowStage::reload_shaders() {
+  for (auto& [key, p] : programs_) p.reload();
+}
+
+void ShadowStage::set(const ShadowSettings& settings, ShadowPicture picture) {
+  settings_ = settings;
+  picture_ = picture;
+}
+
+ch03::ShaderHooks ShadowStage::shader_hooks() const {
+  std::string name = kMethodNames[int(settings_.method)];
+  std::replace(name.begin(), name.end(), '-', '_');
+  return {"06_shadows/shaders/visibility_" + name + ".glsl", ""};
+}
+
+const ShaderProgram& ShadowStage::program(const std::string& vertex, const std::string& fragment,
+                                          std::vector<std::string> defines) {
+  std::string key = vertex + "|" + fragment;
+  for (const auto& d : defines) key += "|" + d;
+  auto it = programs_.find(key);
+  if (it == programs_.end())
+    it = programs_.emplace(key, ShaderProgram({{GL_VERTEX_SHADER, vertex}, {GL_FRAGMENT_SHADER, fragment}}, defines))
+             .first;
+  return it->second;
+}
+
+void ShadowStage::allocate() {
+  const int n = settings_.map_size;
+  const bool filtered = settings_.method == ShadowMethod::Vsm || settings_.method == ShadowMethod::Esm;
+  if (n == allocated_size_ && filtered == allocated_filtered_) return;
+  depth_ = gl::make_texture_2d(GL_DEPTH_COMPONENT32F, n, n);
+  depth_fbo_ = gl::Framebuffer();
+  glNamedFramebufferTexture(depth_fbo_.id(), GL_DEPTH_ATTACHMENT, depth_.id(), 0);
+  glNamedFramebufferDrawBuffer(depth_fbo_.id(), GL_NONE);
+  moments_.reset(), scratch_.reset();
+  if (filtered) {
+    // RG32F for both (ESM uses the red channel): one format, so the sizes compare.
+    moments_ = gl::make_texture_2d(GL_RG32F, n, n);
+    scratch_ = gl::make_texture_2d(GL_RG32F, n, n);
+    moments_fbo_ = gl::Framebuffer();
+    scratch_fbo_ = gl::Framebuffer();
+    glNamedFramebufferTexture(moments_fbo_.id(), GL_COLOR_ATTACHMENT0, moments_.id(), 0);
+    glNamedFramebufferTexture(scratch_fbo_.id(), GL_COLOR_ATTACHMENT0, scratch_.id(), 0);
+  }
+  allocated_size_ = n;
+  allocated_filtered_ = filtered;
+}
+
+std::size_t ShadowStage::allocated_bytes() const {
+  const std::size_t texels = std::size_t(allocated_size_) * std::size_t(allocated_size_);
+  return texels * (4 + (allocated_filtered_ ? 2 * 8 : 0));
+}
+
+// [shadow-stage]
+void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics) {
+  allocate();
+  const int n = settings_.map_size;
+  const glm::mat4 inverse_view_projection = glm::inverse(frame.camera().projection * frame.camera().view);
+  const Scene& scene = scene_.scene();
+  frustum_ = fit_light_frustum(sun_.direction, scene.bounds_min, scene.bounds_max,
+                               settings_.fit_to_view ? &inverse_view_projection : nullptr);
+  {
+    // 1. Depth from the light: every triangle, both sides (no culling), depth only.
+    auto pass = ch03::timed(metrics, "shadow map: depth from the sun");
+    const ShaderProgram& p = program("06_shadows/shaders/shadow_depth.vert", "06_shadows/shaders/shadow_depth.frag", {});
+    glBindFramebuffer(GL_FRAMEBUFFER, depth_fbo_.id());
+    glViewport(0, 0, n, n);
+    glDisable(GL_BLEND), glDisable(GL_STENCIL_TEST), glDisable(GL_SCISSOR_TEST), glDisable(GL_CULL_FACE);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glClearDepth(1.0);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    p.use();
+    p.set("u_light_view_projection", frustum_.view_projection());
+    scene_.draw([&](const Instance& inst, const Material&) { p.set("u_model", inst.model); });
+  }
+  if (allocated_filtered_) {
+    // 2. VSM / ESM: what the method filters, pre-filtered by a separable box.
+    auto pass = ch03::timed(metrics, "shadow map: pre-filter");
+    const ShaderProgram& p = program("02_gbuffer/shaders/fullscreen.vert", "06_shadows/shaders/shadow_filter.frag",
+                                     {settings_.method == ShadowMethod::Vsm ? "SHADOW_VSM 1" : "SHADOW_ESM 1"});
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    p.use();
+    p.set("u_radius", settings_.kernel / 2);
+    p.set("u_c", settings_.c);
+    glUniform1i(p.location("u_input"), int(kFilterInputUnit));
+    glBindSampler(kFilterInputUnit, 0);
+    for (int step = 0; step < 2; ++step) {
+      glBindFramebuffer(GL_FRAMEBUFFER, step == 0 ? scratch_fbo_.id() : moments_fbo_.id());
+      glViewport(0, 0, n, n);
+      glBindTextureUnit(kFilterInputUnit, step == 0 ? depth_.id() : scratch_.id());
+      p.set("u_from_depth", step == 0 ? 1 : 0);
+      glProgramUniform2i(p.id(), p.location("u_step"), step == 0 ? 1 : 0, step == 0 ? 0 : 1);
+      full_screen_.draw();
+    }
+  }
+  glEnable(GL_DEPTH_TEST);
+  glDepthMask(GL_TRUE);
+  // 3. What the visibility hook reads.
+  const ShadowBlock block{frustum_.view_projection(),
+                          glm::vec4(frustum_.texel_world(n), frustum_.depth_range(), float(n), float(settings_.kernel / 2)),
+                          glm::vec4(settings_.constant_bias, settings_.slope_bias, settings_.normal_offset,
+                                    settings_.min_variance),
+                          glm::vec4(settings_.c, settings_.p_min, 0, 0),
+                          frustum_.view,
+                          glm::vec4(frustum_.box_max - frustum_.box_min, 0)};
+  glNamedBufferSubData(block_.id(), 0, sizeof(block), &block);
+  glBindBufferBase(GL_UNIFORM_BUFFER, kBlockBinding, block_.id());
+  glBindTextureUnit(kDepthUnit, depth_.id());
+  glBindSampler(kDepthUnit, nearest_.id());
+  glBindTextureUnit(kCompareUnit, depth_.id());
+  glBindSampler(kCompareUnit, compare_.id());
+  glBindTextureUnit(kMomentsUnit, allocated_filtered_ ? moments_.id() : depth_.id());
+  glBindSampler(kMomentsUnit, linear_.id());
+}
+// [/shadow-stage]
+
+bool ShadowStage::composite(ch03::DeferredFrame& frame, PassMetrics* metrics) {
+  if (picture_ == ShadowPicture::None) return false;
+  auto pass = ch03::timed(metrics, picture_ == ShadowPicture::Map ? "composite: the sun's depth map"
+                                                                  : "composite: the sun's visibility alone");
+  std::vector<std::string> defines = frame.view().defines;
+  for (const auto& d : frame.view().hooks.defines()) defines.push_back(d);
+  if (picture_ == ShadowPicture::Map) defines.push_back("SHOW_MAP 1");
+  const ShaderProgram& p = program("02_gbuffer/shaders/fullscreen.vert", "06_shadows/shaders/show_visibility.frag", defines);
+  glDisable(GL_DEPTH_TEST), glDisable(GL_BLEND), glDisable(GL_CULL_FACE), glDisable(GL_STENCIL_TEST);
+  p.use();
+  p.set("u_sun_direction", glm::normalize(sun_.direction));
+  p.set("u_output_size", glm::vec2(frame.output().width, frame.output().height));
+  full_screen_.draw();
+  glEnable(GL_DEPTH_TEST);
+  return true;
+}
+
+}  // namespace lp::ch06

@@ -1,0 +1,78 @@
+#pragma once
+// Chapter 06's shadows as a stage of chapter 03's deferred frame (deferred_frame.h): before
+// the lights, the sun's depth map is drawn from its fitted orthographic frustum (and, for VSM
+// and ESM, pre-filtered), bound on units kFirstStageUnit.., and the frame's light shaders
+// include the visibility hook of the chosen method (shaders/visibility_<method>.glsl).
+//
+//   ch03::DeferredFrame frame(scene_gpu);   ShadowStage shadows(scene_gpu, sun);
+//   frame.add_stage(shadows);
+//   shadows.set({.method = ShadowMethod::Pcf, .kernel = 3});
+//   frame.render(camera, output, &metrics);
+#include <map>
+#include <string>
+
+#include "chapters/02_gbuffer/deferred.h"
+#include "chapters/03_light_volumes/deferred_frame.h"
+#include "chapters/06_shadows/shadow_math.h"
+#include "common/scene.h"
+#include "common/shader.h"
+
+namespace lp::ch06 {
+
+enum class ShadowMethod { Hard, Pcf, PcfHardware, Vsm, Esm };
+inline const std::vector<std::string> kMethodNames = {"hard", "pcf", "pcf-hardware", "vsm", "esm"};
+ShadowMethod method_from_name(const std::string& name);  // throws Error for an unknown one
+
+struct ShadowSettings {
+  ShadowMethod method = ShadowMethod::Pcf;
+  int map_size = 1024;
+  int kernel = 3;               // PCF's k x k grid; VSM's and ESM's box filter width (odd)
+  float constant_bias = 0.5f;   // texels (shadow_math.h [bias])
+  float slope_bias = 1.f;       // texels per unit tan(theta)
+  float normal_offset = 1.f;    // texels
+  float min_variance = 1e-6f;   // VSM, in window depth squared
+  float p_min = 0.2f;           // VSM's light-bleeding reduction
+  float c = 80.f;               // ESM's exponent (window depth in [0, 1])
+  bool fit_to_view = true;      // the map's box cut to what the camera sees (else the whole scene)
+};
+
+// What composite() draws instead of the image.
+enum class ShadowPicture { None, Visibility, Map };
+
+class ShadowStage : public ch03::FrameStage {
+ public:
+  // `sun`: the directional light that casts; the scene's bounds give the casters.
+  ShadowStage(const SceneGpu& scene, const Light& sun);
+  void reload_shaders();
+  void set(const ShadowSettings& settings, ShadowPicture picture = ShadowPicture::None);
+  const ShadowSettings& settings() const { return settings_; }
+  const LightFrustum& frustum() const { return frustum_; }
+  // Bytes the method keeps per frame: the depth map, and the moments with their filter target.
+  std::size_t allocated_bytes() const;
+
+  ch03::ShaderHooks shader_hooks() const override;
+  void before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics) override;
+  bool composite(ch03::DeferredFrame& frame, PassMetrics* metrics) override;
+
+ private:
+  void allocate();
+  const ShaderProgram& program(const std::string& vertex, const std::string& fragment, std::vector<std::string> defines);
+  const SceneGpu& scene_;
+  Light sun_;
+  ShadowSettings settings_;
+  ShadowPicture picture_ = ShadowPicture::None;
+  LightFrustum frustum_;
+  int allocated_size_ = 0;
+  bool allocated_filtered_ = false;
+  gl::Texture depth_{GL_TEXTURE_2D}, moments_{GL_TEXTURE_2D}, scratch_{GL_TEXTURE_2D};
+  gl::Framebuffer depth_fbo_, moments_fbo_, scratch_fbo_;
+  gl::Sampler nearest_, compare_, linear_;
+  gl::Buffer block_;
+  std::map<std::string, ShaderProgram> programs_;
+  ch02::FullScreenPass full_screen_;
+};
+
+// The first directional light of the scene (the sun), or an Error naming the scene's lights.
+const Light& find_sun(const Scene& scene);
+
+}  // namespace lp::ch06

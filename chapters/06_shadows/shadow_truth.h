@@ -1,0 +1,53 @@
+#pragma once
+// Chapter 06's ground truth: the sun's visibility per pixel, ray traced with Embree over
+// every triangle (common/raytrace.h), with none of the shadow map's shortcuts: no light
+// frustum, no depth map, no bias beyond the ray tracer's own spawn offset.
+//   hard: one occlusion ray per pixel from the surface point the pixel sees, toward the sun.
+//   soft: the sun as a disk of directions of angular radius `angular_radius` (the real sun
+//         is 0.27 degrees), `samples` stratified directions per pixel, the fraction that
+//         reaches the sky: what the filtered methods approximate.
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#include "common/camera.h"
+#include "common/image.h"
+#include "common/raytrace.h"
+#include "common/scene.h"
+
+namespace lp::ch06 {
+
+struct TruthSettings {
+  float angular_radius = 0.02f;  // radians, the soft truth's sun disk
+  int samples = 64;              // the soft truth's rays per pixel (a square number is stratified exactly)
+  std::uint64_t seed = 6;
+};
+
+// Channels: 0 hard visibility (0 or 1), 1 soft visibility, 2 the mask (1 where the sun
+// reaches: a surface, not the sky, facing the sun). Top row first, like ImageF.
+ImageF shadow_truth(const Scene& scene, const RayScene& rays, const FrameCamera& camera, int width, int height,
+                    glm::vec3 sun_direction, const TruthSettings& settings = {});
+// The same, through the on-disk cache (common/raytrace.h's cached_image).
+ImageF cached_shadow_truth(const Scene& scene, const RayScene& rays, const FrameCamera& camera, int width, int height,
+                           glm::vec3 sun_direction, const TruthSettings& settings = {});
+
+// [shadow-error]
+// A method's visibility (one channel, top row first) against a truth channel over the mask.
+struct VisibilityError {
+  double mean_abs = 0;    // mean |v - truth|
+  double p99 = 0;         // 99th percentile of |v - truth|
+  double wrong = 0;       // fraction of pixels with |v - truth| > 0.5 (hard shadows: on the wrong side)
+  std::size_t pixels = 0; // pixels in the mask
+};
+VisibilityError visibility_error(const ImageF& visibility, const ImageF& truth, int truth_channel,
+                                 const std::vector<bool>* exclude = nullptr);
+// Pixels whose 3x3 neighbourhood in the hard truth holds both lit and shadowed pixels, or
+// that border the mask: the shadow edges, where a map of finite resolution may differ.
+std::vector<bool> hard_edge_pixels(const ImageF& truth, int radius = 1);
+// [/shadow-error]
+
+// A direction within `angular_radius` of `axis`, uniform over the cone's solid angle, from
+// (u, v) in [0, 1)^2.
+glm::vec3 sample_cone(glm::vec3 axis, float angular_radius, float u, float v);
+
+}  // namespace lp::ch06

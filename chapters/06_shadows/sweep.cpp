@@ -1,0 +1,155 @@
+// Chapter 06's measurements: every shadow method x setting on the atrium's views, its cost
+// (the depth pass, the pre-filter, and the global pass that does the lookups; common/measure.h:
+// warm-up until the times settle, then --frames frames) and its error against the ray-traced
+// hard and soft truths (shadow_truth.h). Writes book/figures/06_shadows.csv on a GPU,
+// 06_shadows_llvmpipe.csv on llvmpipe (CPU times); every row names the renderer, the size
+// and the frames measured.
+//
+//   06_shadows_sweep [--out DIR] [--size WxH] [--frames N] [--truth-samples N]
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <string>
+
+#include "chapters/03_light_volumes/light_radius.h"
+#include "chapters/06_shadows/shadow_stage.h"
+#include "chapters/06_shadows/shadow_truth.h"
+#include "common/context.h"
+#include "common/measure.h"
+#include "common/paths.h"
+#include "common/sweep.h"
+#include "common/target.h"
+
+namespace {
+
+using namespace lp;
+using namespace lp::ch06;
+
+struct Settings {
+  std::string out = (source_root() / "book" / "figures").string();
+  int width = 640, height = 360;
+  int frames = 10;
+  int truth_samples = 64;
+};
+
+struct Variant {
+  std::string setting;  // what the row varies, as the book names it
+  ShadowSettings shadow;
+};
+
+std::vector<Variant> variants() {
+  std::vector<Variant> v;
+  for (int n : {256, 512, 1024, 2048}) v.push_back({"map " + std::to_string(n), {.method = ShadowMethod::Hard, .map_size = n}});
+  for (int k : {3, 5, 7}) v.push_back({"kernel " + std::to_string(k), {.method = ShadowMethod::Pcf, .kernel = k}});
+  v.push_back({"map 2048 kernel 5", {.method = ShadowMethod::Pcf, .map_size = 2048, .kernel = 5}});
+  for (int k : {1, 3, 5}) v.push_back({"kernel " + std::to_string(k), {.method = ShadowMethod::PcfHardware, .kernel = k}});
+  for (int k : {3, 5, 7}) v.push_back({"kernel " + std::to_string(k), {.method = ShadowMethod::Vsm, .kernel = k}});
+  for (float p : {0.f, 0.4f, 0.6f}) v.push_back({"pmin " + std::to_string(p).substr(0, 3), {.method = ShadowMethod::Vsm, .p_min = p}});
+  v.push_back({"map 2048 kernel 5", {.method = ShadowMethod::Vsm, .map_size = 2048, .kernel = 5}});
+  for (int k : {3, 5, 7}) v.push_back({"kernel " + std::to_string(k), {.method = ShadowMethod::Esm, .kernel = k}});
+  for (float c : {40.f, 300.f, 1000.f}) v.push_back({"c " + std::to_string(int(c)), {.method = ShadowMethod::Esm, .c = c}});
+  v.push_back({"map 2048 kernel 5", {.method = ShadowMethod::Esm, .map_size = 2048, .kernel = 5}});
+  return v;
+}
+
+// A visibility channel as a picture: grey (white lit), blue where the sun does not reach.
+ImageRGBA8 visibility_picture(const ImageF& v, int channel, const ImageF& truth) {
+  ImageRGBA8 out = ImageRGBA8::blank(v.width, v.height);
+  for (int y = 0; y < v.height; ++y)
+    for (int x = 0; x < v.width; ++x) {
+      std::uint8_t* p = out.at(x, y);
+      const float g = std::clamp(v.at(x, y, channel), 0.f, 1.f);
+      const bool outside = truth.at(x, y, 2) < 0.5f;
+      p[0] = outside ? 89 : std::uint8_t(g * 255.f + 0.5f);  // show_visibility.frag's blue in sRGB
+      p[1] = outside ? 108 : p[0];
+      p[2] = outside ? 170 : p[0];
+      p[3] = 255;
+    }
+  return out;
+}
+// |v - truth| over the mask, 1 = full scale.
+ImageRGBA8 error_picture(const ImageF& v, const ImageF& truth, int channel) {
+  std::vector<float> e(std::size_t(v.width) * std::size_t(v.height), 0.f);
+  for (int y = 0; y < v.height; ++y)
+    for (int x = 0; x < v.width; ++x)
+      if (truth.at(x, y, 2) > 0.5f) e[std::size_t(y) * v.width + x] = std::abs(v.at(x, y, 0) - truth.at(x, y, channel));
+  return error_heatmap(e, v.width, v.height, 1.f);
+}
+
+double pass_ms(const Measurement& m, const std::string& name) {
+  const PassMeasurement* p = m.find(name);
+  return p ? p->mean_ms : 0.0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Settings s;
+  return run_sweep(argc, argv, "06_shadows_sweep", [&](SweepArgs& args) {
+    args.text("--out", s.out).size("--size", s.width, s.height).integer("--frames", s.frames)
+        .integer("--truth-samples", s.truth_samples);
+  }, [&] {
+    std::filesystem::create_directories(s.out);
+    auto context = Context::create({.headless = true, .width = s.width, .height = s.height});
+    const std::string renderer = context->renderer();
+    Scene scene = load_scene(from_root("assets/atrium/atrium.gltf"));
+    SceneGpu gpu(scene);
+    RayScene rays(scene);
+    const Light& sun = find_sun(scene);
+    ch03::DeferredFrame frame(gpu);
+    frame.volumes().set_lights(ch03::build_light_set(
+        scene.lights, ch03::cut_threshold(1.f, ch03::peak_reflectance(scene)), frame.volumes().shapes()));
+    ShadowStage stage(gpu, sun);
+    frame.add_stage(stage);
+    OutputTarget image(s.width, s.height);
+    ColourTarget visibility(s.width, s.height, GL_RGBA32F);
+    const bool software = context->is_software();
+    const std::string file = s.out + (software ? "/06_shadows_llvmpipe.csv" : "/06_shadows.csv");
+    std::ofstream csv(file);
+    csv << "# " << (software ? "llvmpipe CPU time: " : "GPU time: ") << renderer << ", " << s.width << "x" << s.height
+        << ", atrium; soft truth: sun disk " << TruthSettings{}.angular_radius << " rad, " << s.truth_samples
+        << " rays per pixel\n"
+        << "# ms: mean over the measured frames; error over the pixels the sun reaches (shadow_truth.h)\n"
+        << "view,method,setting,map,kernel,pmin,c,bytes,depth_ms,filter_ms,global_ms,frame_ms,hard_mean,hard_wrong_pct,"
+           "soft_mean,soft_p99,"
+        << csv_measure_columns() << "\n";
+    for (const std::string view : {"overview", "corner"}) {
+      const FrameCamera camera = frame_camera(scene.camera(view), float(s.width) / s.height);
+      const ImageF truth = cached_shadow_truth(scene, rays, camera, s.width, s.height, sun.direction,
+                                               {.samples = s.truth_samples});
+      if (view == "overview") {
+        save_png(s.out + "/06_overview_truth_hard.png", visibility_picture(truth, 0, truth));
+        save_png(s.out + "/06_overview_truth_soft.png", visibility_picture(truth, 1, truth));
+      }
+      for (const Variant& v : variants()) {
+        stage.set(v.shadow, ShadowPicture::Visibility);
+        frame.render(camera, {visibility.framebuffer(), s.width, s.height});
+        const ImageF vis = visibility.read();
+        const VisibilityError hard = visibility_error(vis, truth, 0), soft = visibility_error(vis, truth, 1);
+        // The book's pictures: each method at its defaults, on the overview.
+        const std::string name = kMethodNames[int(v.shadow.method)];
+        if (view == "overview" && (v.setting == "kernel 3" || v.setting == "map 1024")) {
+          save_png(s.out + "/06_overview_" + name + "_visibility.png", visibility_picture(vis, 0, truth));
+          const int against = v.shadow.method == ShadowMethod::Hard ? 0 : 1;
+          save_png(s.out + "/06_overview_" + name + "_error.png", error_picture(vis, truth, against));
+        }
+        stage.set(v.shadow);
+        PassMetrics metrics;
+        const Measurement m = measure(metrics, [&] { frame.render(camera, {image.framebuffer(), s.width, s.height}, &metrics); },
+                                      {.frames = s.frames});
+        const ShadowSettings& x = v.shadow;
+        csv << view << ',' << kMethodNames[int(x.method)] << ',' << v.setting << ',' << x.map_size << ',' << x.kernel << ','
+            << x.p_min << ',' << x.c << ',' << stage.allocated_bytes() << ','
+            << pass_ms(m, "shadow map: depth from the sun") << ',' << pass_ms(m, "shadow map: pre-filter") << ','
+            << pass_ms(m, "global: ambient + directional (chapter 03)") << ',' << m.total_ms() << ',' << hard.mean_abs << ','
+            << 100 * hard.wrong << ',' << soft.mean_abs << ',' << soft.p99 << ','
+            << csv_measure_values(renderer, s.width, s.height, m.frames) << "\n";
+        std::cout << view << ' ' << kMethodNames[int(x.method)] << ' ' << v.setting << ": frame " << m.total_ms()
+                  << " ms, hard wrong " << 100 * hard.wrong << "%, soft mean " << soft.mean_abs << std::endl;
+      }
+    }
+    std::cout << "wrote " << file << '\n';
+  });
+}

@@ -1,0 +1,26 @@
+# Chapter 06: shadows. Unit tests of the maths (no OpenGL), GPU tests (the methods against
+# the ray-traced truth, the hard cases), and the program: references per method, bad input.
+lightpass_gtests(06_shadows unit lightpass_06_shadows unit/test_06_shadow_math.cpp)
+lightpass_gtests(06_shadows gl lightpass_06_shadows unit/test_06_shadows_gl.cpp)
+
+# The program: reference images per method (tests/reference/06_shadows/, made on llvmpipe
+# with --check --update-references), what a headless run reports, and bad input.
+set(P06 $<TARGET_FILE:06_shadows>)
+foreach(mode hard pcf pcf-hardware vsm esm)
+  lightpass_program_test(06_shadows.reference.${mode} 0 "references match" ${P06} --check --mode ${mode} --out ${CHECK_OUT}/06_shadows)
+endforeach()
+lightpass_program_test(06_shadows.headless_reports_the_map 0 "sun shadows, pcf: map 512x512 \\(1024 KiB\\), [0-9.]+ cm per texel"
+  ${P06} --headless --size 160x90 --map 512 --out ${CMAKE_BINARY_DIR}/out/06_headless.png)
+lightpass_program_test(06_shadows.bad_kernel_zero 2 "--kernel must be between" ${P06} --kernel 0)
+lightpass_program_test(06_shadows.bad_kernel_even 2 "--kernel must be odd" ${P06} --headless --size 16x16 --kernel 4)
+lightpass_program_test(06_shadows.bad_map_zero 2 "--map must be between" ${P06} --map 0)
+lightpass_program_test(06_shadows.bad_map_too_large 2 "--map must be between" ${P06} --map 100000)
+lightpass_program_test(06_shadows.bad_pmin 2 "--pmin must be between" ${P06} --pmin 1)
+lightpass_program_test(06_shadows.bad_mode 2 "unknown mode 'volumes'" ${P06} --mode volumes)
+lightpass_program_test(06_shadows.scene_without_sun 1 "no directional light" ${P06} --headless --size 16x16 --scene tests/data/minimal.gltf)
+add_test(NAME 06_shadows.sweep_unknown_option COMMAND ${EXPECT} 2 "unknown option '--fast'" -- $<TARGET_FILE:06_shadows_sweep> --fast)
+# The error view: PCF's visibility against the soft truth on the overview, printed; its mean
+# error is below 0.05 (the GL test's penumbra budget there is 0.0325, so this holds with room).
+lightpass_program_test(06_shadows.error_view_reports_pcf_near_the_soft_truth 0
+  "against the soft truth: mean \\|error\\| 0\\.0[0-4][0-9]*, p99"
+  ${P06} --headless --size 320x180 --mode pcf --show error --out ${CMAKE_BINARY_DIR}/out/06_error.png)

@@ -1,0 +1,212 @@
+// Chapter 06's maths without OpenGL (shadow_math.h, the C++ twins of the visibility hook):
+// Chebyshev's bound against the brute-force lit fraction of synthetic depth distributions,
+// the P_min mapping, log-space ESM against the direct form, the bias formulas against the
+// depth a texel spans, and the fitted light frustum against the casters that can shadow a
+// visible receiver.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "chapters/06_shadows/shadow_math.h"
+#include "chapters/06_shadows/shadow_truth.h"
+
+using namespace lp;
+using namespace lp::ch06;
+
+namespace {
+
+// The moments of a weighted set of depths, and the fraction of the weight at or beyond d.
+glm::vec2 moments_of(const std::vector<float>& z, const std::vector<float>& w) {
+  double m1 = 0, m2 = 0;
+  for (std::size_t i = 0; i < z.size(); ++i) m1 += w[i] * z[i], m2 += w[i] * z[i] * z[i];
+  return {float(m1), float(m2)};
+}
+float lit_fraction(const std::vector<float>& z, const std::vector<float>& w, float d) {
+  float lit = 0;
+  for (std::size_t i = 0; i < z.size(); ++i) lit += z[i] >= d ? w[i] : 0.f;
+  return lit;
+}
+
+}  // namespace
+
+// One-sided Chebyshev (Cantelli) holds for every distribution: random ones, 8 depths each.
+TEST(ShadowMath, ChebyshevBoundsTheLitFractionOfAnyDistribution) {
+  std::mt19937 rng(6);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  for (int trial = 0; trial < 2000; ++trial) {
+    std::vector<float> z(8), w(8);
+    float total = 0;
+    for (int i = 0; i < 8; ++i) z[i] = u(rng), w[i] = u(rng) + 1e-3f, total += w[i];
+    for (float& x : w) x /= total;
+    const float d = u(rng);
+    const float bound = chebyshev_upper_bound(moments_of(z, w), d, 0.f);
+    // 1e-4: float rounding of the moments (M2 - M1^2 loses about 2^-24 / variance of it).
+    EXPECT_GE(bound + 1e-4f, lit_fraction(z, w, d)) << "trial " << trial << ", d " << d;
+  }
+}
+
+// One occluder over one receiver (two depths): the bound is the lit fraction exactly.
+TEST(ShadowMath, ChebyshevIsExactForOneOccluderOverOneReceiver) {
+  for (float p : {0.1f, 0.25f, 0.5f, 0.9f}) {
+    const std::vector<float> z = {0.3f, 0.7f}, w = {1.f - p, p};  // occluder at 0.3 covers 1 - p of the filter
+    EXPECT_NEAR(chebyshev_upper_bound(moments_of(z, w), 0.7f, 0.f), p, 1e-5f) << "p " << p;
+  }
+  EXPECT_EQ(chebyshev_upper_bound({0.5f, 0.25f}, 0.4f, 0.f), 1.f);  // in front of the mean: lit
+}
+
+// Two overlapping occluders over a receiver fully in shadow: the bound lets light through
+// (bleeding); P_min at or above the bleeding value removes it, and costs true penumbra.
+TEST(ShadowMath, OverlappingOccludersBleedAndPminRemovesIt) {
+  const std::vector<float> z = {0.2f, 0.5f}, w = {0.5f, 0.5f};
+  const float d = 0.8f;  // the receiver, behind both: truly in shadow
+  ASSERT_EQ(lit_fraction(z, w, d), 0.f);
+  const float bleed = chebyshev_upper_bound(moments_of(z, w), d, 0.f);
+  // mean 0.35, variance 0.0225, (d - mean)^2 = 0.2025: 0.0225 / 0.225 = 0.1
+  EXPECT_NEAR(bleed, 0.1f, 1e-5f);
+  EXPECT_EQ(reduce_light_bleeding(bleed, 0.1f), 0.f);
+  EXPECT_GT(reduce_light_bleeding(bleed, 0.05f), 0.f);
+  // The cost: a true penumbra of 30 % lit (one occluder over the receiver) reads 0.3 -> 0.222.
+  EXPECT_NEAR(reduce_light_bleeding(0.3f, 0.1f), 0.2f / 0.9f, 1e-6f);
+}
+
+TEST(ShadowMath, PminMapsItselfToZeroOneToOneAndIsMonotone) {
+  for (float pmin : {0.f, 0.2f, 0.5f, 0.9f}) {
+    EXPECT_EQ(reduce_light_bleeding(pmin, pmin), 0.f);
+    EXPECT_FLOAT_EQ(reduce_light_bleeding(1.f, pmin), 1.f);
+    float previous = -1;
+    for (float p = 0; p <= 1.f; p += 0.01f) {
+      const float r = reduce_light_bleeding(p, pmin);
+      EXPECT_GE(r, previous);
+      if (p < pmin) EXPECT_EQ(r, 0.f);
+      if (pmin == 0.f) EXPECT_FLOAT_EQ(r, p);
+      previous = r;
+    }
+  }
+}
+
+// Where exp(c z) fits in a float (c z < 88), the log-space filter is the log of the direct one.
+TEST(ShadowMath, EsmLogSpaceEqualsTheDirectFormWhereItDoesNotOverflow) {
+  std::mt19937 rng(60);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  for (float c : {5.f, 20.f, 40.f, 80.f}) {
+    for (int trial = 0; trial < 200; ++trial) {
+      std::vector<float> z(9), l(9), w(9, 1.f / 9.f);
+      for (int i = 0; i < 9; ++i) z[i] = u(rng), l[i] = c * z[i];
+      const float direct = esm_filter_direct(z, w, c);
+      ASSERT_TRUE(std::isfinite(direct));
+      const float log_space = esm_filter_log(l, w);
+      // Both round each term to float: a few ulps of exp's result, relative 1e-6 of E.
+      EXPECT_NEAR(log_space, std::log(direct), 1e-5f * std::max(1.f, std::abs(log_space)));
+      const float d = u(rng);
+      EXPECT_NEAR(esm_visibility_log(log_space, c, d), esm_visibility_direct(direct, c, d), 1e-4f);
+    }
+  }
+}
+
+// Past c = 88 the direct form is infinite; log space stays finite and right (long double reference).
+TEST(ShadowMath, EsmLogSpaceStaysFiniteWhereTheDirectFormOverflows) {
+  const float c = 300.f;
+  const std::vector<float> z = {0.40f, 0.41f, 0.95f}, w = {0.25f, 0.25f, 0.5f};
+  EXPECT_TRUE(std::isinf(esm_filter_direct(z, w, c)));
+  std::vector<float> l;
+  for (float x : z) l.push_back(c * x);
+  const float log_space = esm_filter_log(l, w);
+  ASSERT_TRUE(std::isfinite(log_space));
+  long double sum = 0;
+  for (std::size_t i = 0; i < z.size(); ++i) sum += (long double)w[i] * std::exp((long double)c * z[i]);
+  EXPECT_NEAR(log_space, float(std::log(sum)), 1e-4f * log_space);
+  const float v = esm_visibility_log(log_space, c, 0.96f);  // behind every depth: half the filter at 0.95
+  EXPECT_TRUE(std::isfinite(v));
+  EXPECT_NEAR(v, float(sum * std::exp(-(long double)c * 0.96f)), 1e-5f);
+  EXPECT_EQ(esm_visibility_log(log_space, c, 0.2f), 1.f);  // in front of every depth: lit, not above 1
+}
+
+TEST(ShadowMath, BiasFormulas) {
+  const float w = 0.02f;  // 2 cm texels
+  EXPECT_FLOAT_EQ(slope_scaled_bias(0.5f, 1.f, 1.f, w), 0.5f * w);          // facing the light: constant only
+  EXPECT_NEAR(slope_scaled_bias(0.5f, 1.f, std::sqrt(0.5f), w), 1.5f * w, 1e-6f);  // 45 degrees: tan = 1
+  EXPECT_NEAR(slope_scaled_bias(0.f, 1.f, 0.f, w), kMaxSlope * w, 1e-6f);   // grazing: capped
+  const glm::vec3 p(1, 2, 3), n(0, 1, 0);
+  EXPECT_EQ(normal_offset(p, n, 1.f, 1.f, w), p);
+  EXPECT_NEAR(normal_offset(p, n, 0.f, 2.f, w).y, 2.f + 2.f * w, 1e-6f);
+}
+
+// The slope term with 0.5 texels covers the depth a texel spans: a plane tilted by theta,
+// looked up at any point, against the depth the map stores at its texel's centre (nearest).
+TEST(ShadowMath, HalfATexelOfSlopeBiasCoversTheDepthATexelSpans) {
+  const float w = 0.03f;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  for (float degrees : {10.f, 45.f, 70.f, 84.f}) {
+    const float theta = glm::radians(degrees), tan_theta = std::tan(theta);
+    for (int i = 0; i < 1000; ++i) {
+      const float x = u(rng) * 100.f * w;                      // along the tilt, in the map
+      const float centre = (std::floor(x / w) + 0.5f) * w;     // the texel's centre
+      const float receiver = x * tan_theta, stored = centre * tan_theta;  // depth along the light
+      EXPECT_LE(receiver - stored, slope_scaled_bias(0.f, 0.5f, std::cos(theta), w) * 1.0001f + 1e-6f);
+    }
+  }
+}
+
+// Every caster that can shadow a receiver in view lies inside the fitted box: receivers are
+// random points of the scene in the camera's frustum, casters anywhere in the scene toward the sun.
+TEST(ShadowMath, FittedLightFrustumHoldsEveryCasterOfAVisibleReceiver) {
+  const glm::vec3 lo(-8, 0, -12), hi(8, 7, 12), sun = glm::normalize(glm::vec3(-0.4f, -0.8f, -0.3f));
+  const glm::mat4 view = glm::lookAt(glm::vec3(0, 1.7f, 11.5f), glm::vec3(0, 1.5f, 0), glm::vec3(0, 1, 0));
+  const glm::mat4 projection = glm::perspective(0.8f, 16.f / 9.f, 0.1f, 1000.f);
+  const glm::mat4 inverse = glm::inverse(projection * view);
+  const LightFrustum f = fit_light_frustum(sun, lo, hi, &inverse);
+  const LightFrustum whole = fit_light_frustum(sun, lo, hi);
+  // The fit is smaller than the whole scene's box (or the test shows nothing).
+  EXPECT_LT((f.box_max.x - f.box_min.x) * (f.box_max.y - f.box_min.y),
+            0.9f * (whole.box_max.x - whole.box_min.x) * (whole.box_max.y - whole.box_min.y));
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  int receivers = 0;
+  for (int i = 0; i < 20000 && receivers < 2000; ++i) {
+    const glm::vec3 r = lo + (hi - lo) * glm::vec3(u(rng), u(rng), u(rng));
+    const glm::vec4 clip = projection * view * glm::vec4(r, 1.f);
+    if (glm::any(glm::greaterThan(glm::abs(glm::vec3(clip) / clip.w), glm::vec3(1.f))) || clip.w <= 0) continue;
+    ++receivers;
+    for (float t = 0; t < 40.f; t += 0.5f) {
+      const glm::vec3 caster = r - sun * t;
+      if (glm::any(glm::lessThan(caster, lo)) || glm::any(glm::greaterThan(caster, hi))) break;
+      const glm::vec3 q = glm::vec3(f.view * glm::vec4(caster, 1.f));
+      EXPECT_TRUE(glm::all(glm::greaterThanEqual(q, f.box_min)) && glm::all(glm::lessThanEqual(q, f.box_max)))
+          << "caster " << caster.x << " " << caster.y << " " << caster.z;
+    }
+  }
+  EXPECT_GT(receivers, 500);
+}
+
+TEST(ShadowMath, ConeSamplesStayWithinTheSunsDisk) {
+  const glm::vec3 axis = glm::normalize(glm::vec3(0.3f, 0.9f, -0.2f));
+  for (float u = 0; u < 1.f; u += 0.1f)
+    for (float v = 0; v < 1.f; v += 0.1f) {
+      const glm::vec3 d = sample_cone(axis, 0.05f, u, v);
+      EXPECT_NEAR(glm::length(d), 1.f, 1e-5f);
+      EXPECT_GE(glm::dot(d, axis), std::cos(0.05f) - 1e-6f);
+    }
+  EXPECT_NEAR(glm::dot(sample_cone(axis, 0.05f, 1.f, 0.f), axis), std::cos(0.05f), 1e-5f);  // u = 1: the rim
+}
+
+// The gradient predicts a tilted plane's window depth one step away in the map: project two
+// points of the plane through the light's matrix and compare.
+TEST(ShadowMath, ReceiverPlaneGradientPredictsThePlanesDepth) {
+  const glm::vec3 sun = glm::normalize(glm::vec3(-0.36f, -0.89f, -0.27f));
+  const LightFrustum f = fit_light_frustum(sun, glm::vec3(-8, 0, -12), glm::vec3(8, 7, 12));
+  const glm::mat4 m = f.view_projection();
+  auto window = [&](glm::vec3 p) { glm::vec4 c = m * glm::vec4(p, 1.f); return glm::vec3(c) / c.w * 0.5f + 0.5f; };
+  for (glm::vec3 normal : {glm::vec3(0, 1, 0), glm::vec3(1, 0, 0), glm::normalize(glm::vec3(0.3f, 0.5f, 0.8f))}) {
+    ASSERT_GT(glm::dot(normal, -sun), 0.1f);
+    const glm::vec3 p0(1, 2, 3);
+    const glm::vec3 t = glm::normalize(glm::cross(normal, glm::vec3(0.2f, 0.3f, 0.9f)));
+    const glm::vec3 p1 = p0 + 0.5f * t;  // another point of the plane
+    const glm::vec3 w0 = window(p0), w1 = window(p1);
+    const glm::vec2 g = receiver_plane_gradient(f, normal);
+    EXPECT_NEAR(w0.z + glm::dot(g, glm::vec2(w1) - glm::vec2(w0)), w1.z, 1e-5f);
+  }
+}
