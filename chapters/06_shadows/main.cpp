@@ -77,11 +77,18 @@ const CliSpec kCli{
 // [references]
 // The atrium in sunlight: every method from above, the hard and filtered methods in the
 // aisle among the columns, and the visibility term alone.
+// The lit views see the atrium's tiled floor minified into the distance, where OpenGL leaves
+// the mip level to the implementation: on an NVIDIA H200 0.7 to 1.1 % of these views' pixels
+// differ from the llvmpipe references by more than 3 steps, all on the floor's grout lines
+// (chapters 02 and 05 measured the same). Another renderer gets their allowance, 2 %; the
+// renderer that made the references keeps 0.1 %.
+const CompareOptions kTexturedFloor{.threshold = 3, .max_failing_fraction = 0.02};
+
 std::vector<Shot> atrium_shots() {
   std::vector<Shot> shots;
-  for (const std::string& m : kMethodNames) shots.push_back({"overview", m});
-  shots.push_back({"aisle", "hard"});
-  shots.push_back({"aisle", "vsm"});
+  for (const std::string& m : kMethodNames) shots.push_back({"overview", m, {}, {}, kTexturedFloor});
+  shots.push_back({"aisle", "hard", {}, {}, kTexturedFloor});
+  shots.push_back({"aisle", "vsm", {}, {}, kTexturedFloor});
   shots.push_back({"corner", "pcf", {{"show", kVisibility}}});
   shots.push_back({"overview", "hard", {{"show", kMap}}});
   return shots;

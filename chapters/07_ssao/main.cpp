@@ -47,9 +47,20 @@ const CliSpec kCli{
               {"ambient", "the scene's ambient light times this (AO darkens only the ambient)", 1, 0, 1000, false}}};
 
 // [references]
+// On a renderer other than the references' (a reader's GPU), two kinds of pixel may differ by
+// more than 3 steps, and each view below that has them gets an allowance there (the renderer
+// that made the references keeps 0.1 %): the atrium's normal-mapped floor, whose mip level far
+// away OpenGL leaves to the implementation (the AO reads the mapped normals; 0.2 to 0.7 % of
+// the pixels on an NVIDIA H200, as chapters 02 and 05 measured for the lit floor), and, with
+// neither noise nor blur, or in the error view against the CPU-traced truth, a one-pixel
+// column along a box edge where the range check compares depths that differ between renderers
+// in their last bits (0.15 % there).
+const CompareOptions kOtherRenderer{.threshold = 3, .max_failing_fraction = 0.02};
+const CompareOptions kDepthEdge{.threshold = 3, .max_failing_fraction = 0.005};
+
 std::vector<Shot> cornell_shots() {
   return {{"front", "classic", {{"show", kAo}}},
-          {"front", "classic", {{"show", kAo}, {"noise", 0}, {"blur", 0}}},
+          {"front", "classic", {{"show", kAo}, {"noise", 0}, {"blur", 0}}, {}, kDepthEdge},
           {"front", "classic", {{"show", kAo}, {"resolution", 1}}},
           {"front", "disk", {{"show", kAo}}},
           {"front", "disk", {{"show", kAo}, {"samples", 64}}},
@@ -57,12 +68,13 @@ std::vector<Shot> cornell_shots() {
           {"front", "off", {{"ambient", 10}}},
           {"front", "gtao", {{"show", kAo}}},
           {"front", "classic", {{"show", kRaw}}},
-          {"front", "disk", {{"show", kError}}}};
+          {"front", "disk", {{"show", kError}}, {}, kDepthEdge}};
 }
 std::vector<Shot> atrium_shots() {
-  return {{"overview", "classic", {{"show", kAo}}}, {"overview", "disk", {{"show", kAo}}},
-          {"overview", "gtao", {{"show", kAo}}},
-          {"corner", "disk", {{"ambient", 10}}}};
+  return {{"overview", "classic", {{"show", kAo}}, {}, kOtherRenderer},
+          {"overview", "disk", {{"show", kAo}}, {}, kOtherRenderer},
+          {"overview", "gtao", {{"show", kAo}}, {}, kOtherRenderer},
+          {"corner", "disk", {{"ambient", 10}}, {}, kOtherRenderer}};
 }
 // [/references]
 
