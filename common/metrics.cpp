@@ -165,4 +165,9 @@ std::size_t PassMetrics::allocated_bytes() const {
   return n;
 }
 
+std::optional<PassMetrics::Scope> timed(PassMetrics* metrics, const std::string& name) {
+  if (!metrics) return std::nullopt;
+  return metrics->pass(name);
+}
+
 }  // namespace lp

@@ -12,6 +12,7 @@
 // measure()) turns it into an Error outside any destructor.
 #include <chrono>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -113,5 +114,9 @@ class PassMetrics {
   std::string error_;
   std::string inject_error_in_;  // tests: LIGHTPASS_TEST_GL_ERROR_IN_PASS, see metrics.cpp
 };
+
+// A pass timed in `metrics` while the returned scope lives; nothing without metrics (the
+// stages that run with or without measurement).
+std::optional<PassMetrics::Scope> timed(PassMetrics* metrics, const std::string& name);
 
 }  // namespace lp

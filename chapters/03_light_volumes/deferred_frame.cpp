@@ -5,11 +5,6 @@
 
 namespace lp::ch03 {
 
-std::optional<PassMetrics::Scope> timed(PassMetrics* metrics, const std::string& name) {
-  if (!metrics) return std::nullopt;
-  return metrics->pass(name);
-}
-
 void FrameOutput::bind() const {
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
   glViewport(0, 0, width, height);

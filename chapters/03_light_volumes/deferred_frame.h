@@ -166,7 +166,4 @@ class DeferredFrame {
   glm::vec3 ambient_{0}, background_;
 };
 
-// A pass timed in `metrics` while the returned scope lives; nothing without metrics.
-std::optional<PassMetrics::Scope> timed(PassMetrics* metrics, const std::string& name);
-
 }  // namespace lp::ch03

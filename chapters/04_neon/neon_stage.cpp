@@ -16,13 +16,13 @@ void NeonStage::set(const NeonDraw& how, NeonPicture picture) {
 
 // [neon-stage]
 void NeonStage::add_light(ch03::DeferredFrame& frame, PassMetrics* metrics) {
-  auto pass = ch03::timed(metrics, "neon: capsule volumes, stencil");
+  auto pass = timed(metrics, "neon: capsule volumes, stencil");
   volumes_.draw(tubes_, frame.light(), frame.view(), how_, picture_ == NeonPicture::Waste);
 }
 
 bool NeonStage::composite(ch03::DeferredFrame& frame, PassMetrics* metrics) {
   if (wants_scene_lights()) return false;  // chapter 03's composite, with the tubes' light in it
-  auto pass = ch03::timed(metrics, "composite: the tubes' light alone");
+  auto pass = timed(metrics, "composite: the tubes' light alone");
   if (picture_ == NeonPicture::Waste) frame.volumes().draw_light_target(frame.light().diffuse(), 1.f);
   else volumes_.draw_term(frame.light(), frame.view(), how_.term, frame.background());
   return true;
@@ -34,7 +34,7 @@ void NeonStage::after_composite(ch03::DeferredFrame& frame, PassMetrics* metrics
   frame.copy_depth_to_output();  // the glass and the pictures are depth-tested against the scene
   if (pictures) volumes_.draw_pictures(tubes_, frame.view(), picture_ == NeonPicture::Masks);
   if (wants_scene_lights()) {
-    auto pass = ch03::timed(metrics, "glass: the tubes themselves");
+    auto pass = timed(metrics, "glass: the tubes themselves");
     glass_.draw_glass(frame.camera(), tubes_);
   }
 }

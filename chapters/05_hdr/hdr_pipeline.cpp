@@ -13,25 +13,22 @@ void HdrPipeline::reload_shaders() {
 
 void HdrPipeline::process(GLuint radiance, int w, int h, const HdrSettings& s, GLuint output_framebuffer,
                           PassMetrics* metrics) {
-  auto timed = [&](const char* name) {
-    return metrics ? std::optional<PassMetrics::Scope>(metrics->pass(name)) : std::nullopt;
-  };
   // [process]
   {
-    auto t = timed("hdr: log-average luminance");
+    auto t = timed(metrics, "hdr: log-average luminance");
     log_average_.compute(radiance, w, h, s.average, s.delta);
   }
   {
-    auto t = timed("hdr: eye adaptation");
+    auto t = timed(metrics, "hdr: eye adaptation");
     adaptation_.update(log_average_.result_buffer(), s.adaptation);
   }
   bool bloom = s.bloom != BloomMode::Off || s.view != HdrSettings::View::Final;
   if (bloom) {
     {
-      auto t = timed("hdr: bloom bright pass + reductions");
+      auto t = timed(metrics, "hdr: bloom bright pass + reductions");
       bloom_.bright_pass(radiance, w, h, adaptation_.state_buffer(), s.bloom_chain);
     }
-    auto t = timed("hdr: bloom blur");
+    auto t = timed(metrics, "hdr: bloom blur");
     bloom_.blur(s.bloom_chain);
   }
   BloomInput b;
@@ -44,7 +41,7 @@ void HdrPipeline::process(GLuint radiance, int w, int h, const HdrSettings& s, G
          .limit = s.bloom_chain.limit,
          .show_alone = s.view != HdrSettings::View::Final};
   }
-  auto t = timed("hdr: tonemap");
+  auto t = timed(metrics, "hdr: tonemap");
   tonemapper_.draw(radiance, w, h, adaptation_.state_buffer(), s.tonemap, b, output_framebuffer);
   // [/process]
 }

@@ -113,7 +113,7 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
                                settings_.fit_to_view ? &inverse_view_projection : nullptr);
   {
     // 1. Depth from the light: every triangle, both sides (no culling), depth only.
-    auto pass = ch03::timed(metrics, "shadow map: depth from the sun");
+    auto pass = timed(metrics, "shadow map: depth from the sun");
     const ShaderProgram& p = program("06_shadows/shaders/shadow_depth.vert", "06_shadows/shaders/shadow_depth.frag", {});
     glBindFramebuffer(GL_FRAMEBUFFER, depth_fbo_.id());
     glViewport(0, 0, n, n);
@@ -129,7 +129,7 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
   }
   if (allocated_filtered_) {
     // 2. VSM / ESM: what the method filters, pre-filtered by a separable box.
-    auto pass = ch03::timed(metrics, "shadow map: pre-filter");
+    auto pass = timed(metrics, "shadow map: pre-filter");
     const ShaderProgram& p = program("02_gbuffer/shaders/fullscreen.vert", "06_shadows/shaders/shadow_filter.frag",
                                      {settings_.method == ShadowMethod::Vsm ? "SHADOW_VSM 1" : "SHADOW_ESM 1"});
     glDisable(GL_DEPTH_TEST);
@@ -171,7 +171,7 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
 
 bool ShadowStage::composite(ch03::DeferredFrame& frame, PassMetrics* metrics) {
   if (picture_ == ShadowPicture::None) return false;
-  auto pass = ch03::timed(metrics, picture_ == ShadowPicture::Map ? "composite: the sun's depth map"
+  auto pass = timed(metrics, picture_ == ShadowPicture::Map ? "composite: the sun's depth map"
                                                                   : "composite: the sun's visibility alone");
   std::vector<std::string> defines = frame.view().defines;
   for (const auto& d : frame.view().hooks.defines()) defines.push_back(d);

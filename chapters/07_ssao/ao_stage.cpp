@@ -36,7 +36,7 @@ void AoStage::set_picture(const ImageF& picture, float heat_full_scale) {
 void AoStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics) {
   ran_ = needed_;
   if (ran_) {
-    auto pass = ch03::timed(metrics, "ssao: " + kMethodNames[int(settings_.method)]);
+    auto pass = timed(metrics, "ssao: " + kMethodNames[int(settings_.method)]);
     ssao_.compute(frame.gbuffer(), frame.camera(), settings_);
   }
   glBindTextureUnit(ch03::DeferredFrame::kFirstStageUnit, ran_ ? ssao_.texture() : white_.id());
@@ -44,7 +44,7 @@ void AoStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics) {
 
 bool AoStage::composite(ch03::DeferredFrame& frame, PassMetrics* metrics) {
   if (show_ == AoShow::Image) return false;  // chapter 03's composite, its ambient darkened by the hook
-  auto pass = ch03::timed(metrics, "composite: the AO term");
+  auto pass = timed(metrics, "composite: the AO term");
   if (!show_program_)
     show_program_ = std::make_unique<ShaderProgram>(std::vector<ShaderStage>{
         {GL_VERTEX_SHADER, "02_gbuffer/shaders/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "07_ssao/shaders/show_ao.frag"}});
