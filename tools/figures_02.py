@@ -3,9 +3,9 @@
 
     python3 tools/figures_02.py [FIGURES_DIR]      (default book/figures)
 
-The layouts have no GPU time yet (02_layouts.csv holds errors, measured on llvmpipe, and the
-same on any renderer): their trade-off is drawn against bytes per pixel, what a layout costs
-in bandwidth.
+The layouts' errors (02_layouts.csv, measured on llvmpipe, the same on any renderer) are drawn
+against bytes per pixel, what a layout costs in bandwidth, and against the GPU time of its two
+passes (02_layout_times_h200.csv, an NVIDIA H200; that plot is made when the file exists).
 """
 import sys
 from pathlib import Path
@@ -58,6 +58,19 @@ def main(d: Path):
     plot(d / "02_layouts_bytes.svg", "G-buffer layouts: error, in order of bytes per pixel",
          "8-bit sRGB steps against chapter 1's forward image; errors, the same on any renderer (measured on llvmpipe)", series,
          "layout and bytes per pixel", "error in 8-bit steps (log)", ylog=True, xticks=ticks, xlim=(-0.5, len(layouts) - 0.5))
+
+    times = d / "02_layout_times_h200.csv"
+    if times.exists():
+        tnotes, trows = read_csv(times)
+        ms = {r["layout"]: float(r["total_ms"]) for r in trows}
+        series = []
+        for view, col, label in (("forward/close_128", "image_max", "close-up, worst pixel"),
+                                 ("street/street_level", "image_mean", "street, mean")):
+            series.append(Series(label, [(ms[r["layout"]], max(float(r[col]), 0.01), r["layout"]) for r in rows
+                                         if r["view"] == view and r["layout"] in ms and r["layout"] != "float"], line=False))
+        plot(d / "02_layouts_time_error.svg", "G-buffer layouts: error against the GPU time of both passes",
+             (tnotes[0] if tnotes else "") + "; errors against chapter 1's forward image", series,
+             "geometry + lighting pass, ms (NVIDIA H200)", "error in 8-bit steps (log)", ylog=True)
 
 
 if __name__ == "__main__":

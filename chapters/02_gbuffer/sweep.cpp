@@ -8,10 +8,12 @@
 //   each depth format (cameras from 3 m to 500 m, near 0.1 m, far 1000 m);
 // - 02_lights.csv: forward against deferred time as lights grow (GPU time on a GPU, CPU time
 //   on llvmpipe: the CSV's first line says which; common/measure.h measures).
+// - 02_layout_times.csv: each layout's geometry and lighting passes timed (the atrium overview
+//   at --light-size with 64 lights), for the layouts' time-against-error plot.
 // Every row of the rendered tables names the renderer, the size and the frames measured.
 //
 //   02_gbuffer_sweep [--out DIR] [--size WxH] [--light-size WxH] [--frames N] [--max-lights N]
-//                    [--only encodings|layouts|position|lights]
+//                    [--only encodings|layouts|position|lights|layout-times]
 //
 // The book's plots from these files (book/figures/02_lights_llvmpipe.* is the llvmpipe run):
 //   tools/plot.py --csv 02_lights.csv --x lights --y total_ms --group method --xlog --ylog
@@ -343,6 +345,39 @@ void light_sweep(const Settings& s, const std::string& timer, const std::string&
   }
 }
 
+// Every layout's two passes, timed: what its bytes cost. 64 lights, the middle of 02_lights.csv,
+// where the lighting pass reads the G-buffer once per pixel and shades 64 lights.
+void layout_time_sweep(const Settings& s, const std::string& timer, const std::string& renderer) {
+  Scene scene = load_scene(from_root("assets/atrium/atrium.gltf"));
+  SceneGpu gpu(scene);
+  Renderer r(scene, gpu);
+  OutputTarget target(s.light_width, s.light_height);
+  FrameCamera camera = frame_camera(scene.camera("overview"), float(s.light_width) / s.light_height);
+  constexpr int kLights = 64;
+  r.lights.upload(ch01::lights_for_count(scene, kLights));
+  std::ofstream csv(s.out + "/02_layout_times.csv");
+  csv << "# " << timer << ", " << s.light_width << "x" << s.light_height << ", atrium overview, " << kLights << " lights\n"
+      << "layout,bytes_per_pixel,geometry_ms,lighting_ms,total_ms," << csv_measure_columns() << "\n";
+  PassMetrics metrics;
+  for (const auto& layout : layouts()) {
+    GBuffer gbuffer(s.light_width, s.light_height, layout);
+    const Measurement m = measure(metrics, [&] {
+      {
+        auto p = metrics.pass("geometry");
+        r.geometry.draw(gbuffer, camera);
+      }
+      target.bind();
+      auto p = metrics.pass("lighting");
+      r.lighting.draw(gbuffer, r.lights, scene.ambient, ch01::kBackground);
+    }, {.frames = s.frames});
+    const double g = m.pass("geometry").mean_ms, l = m.pass("lighting").mean_ms;
+    csv << layout.name << ',' << gbuffer.bytes_per_pixel() << ',' << g << ',' << l << ',' << g + l << ','
+        << csv_measure_values(renderer, s.light_width, s.light_height, m.frames) << '\n';
+    std::cout << layout.name << " (" << gbuffer.bytes_per_pixel() << " B): geometry " << g << " ms, lighting " << l << " ms"
+              << std::endl;
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -369,6 +404,7 @@ int main(int argc, char** argv) {
     }
     if (s.only.empty() || s.only == "position") position_sweep(s, context->renderer());
     if (s.only.empty() || s.only == "lights") light_sweep(s, timer, context->renderer(), context->is_software());
+    if (s.only.empty() || s.only == "layout-times") layout_time_sweep(s, timer, context->renderer());
     std::cout << "wrote the CSV files in " << s.out << '\n';
   });
 }

@@ -22,10 +22,12 @@
 #include "common/metrics.h"
 #include "common/paths.h"
 #include "common/target.h"
+#include "tests/unit/book_data.h"
 #include "tests/unit/gl_environment.h"
 
 using namespace lp;
 using namespace lp::ch02;
+using lp::test::book_row;
 
 namespace {
 
@@ -342,6 +344,8 @@ TEST_F(GBufferGl, OurLayoutMatchesForwardWithinWhatItsFormatsLose) {
     Excess e = over_allowance(c.world->deferred_image(c.camera, our_layout()), c.world->forward_image(c.camera), allowed);
     EXPECT_EQ(e.pixels, 0u) << c.name << ": first " << e.first << " (largest difference " << e.worst << ")";
     EXPECT_LE(e.worst_allowed, 4) << c.name << ": the formats should keep every pixel within a few steps";
+    book_row("02_allowance", {{"view", c.name}},
+             {{"largest_difference", double(e.worst)}, {"largest_allowance", double(e.worst_allowed)}, {"pixels_over", double(e.pixels)}});
   }
 }
 
@@ -390,6 +394,7 @@ TEST_F(GBufferGl, TheBoundSeparatesGoodFormatsFromBadOnes) {
   std::vector<int> ours = allowed_difference(*spheres_, exact, our_layout(), camera, spheres_->surfaces(camera, our_layout()));
   Excess e = over_allowance(spheres_->deferred_image(camera, layout_named("oct8")), spheres_->forward_image(camera), ours);
   EXPECT_GT(e.pixels, 100u);
+  book_row("02_allowance_oct8", {{"view", "glossy sphere"}}, {{"pixels_over_ours", double(e.pixels)}, {"largest_difference", double(e.worst)}});
   // ... and its own allowance explains it.
   std::vector<int> own = allowed_difference(*spheres_, exact, layout_named("oct8"), camera, spheres_->surfaces(camera, layout_named("oct8")));
   EXPECT_EQ(over_allowance(spheres_->deferred_image(camera, layout_named("oct8")), spheres_->forward_image(camera), own).pixels, 0u);

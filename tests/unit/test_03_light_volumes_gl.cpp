@@ -20,10 +20,12 @@
 #include "common/metrics.h"
 #include "common/paths.h"
 #include "common/target.h"
+#include "tests/unit/book_data.h"
 #include "tests/unit/gl_environment.h"
 
 using namespace lp;
 using namespace lp::ch03;
+using lp::test::book_row;
 
 namespace {
 
@@ -179,6 +181,9 @@ TEST_F(LightVolumesGl, TheHardCasesAreReallyThere) {
   volumes_->set_lights(light_set(scene_->lights));
   Render front = render(camera("inside_light"), Strategy::FrontFaces);
   EXPECT_GE(front.stats.lights_camera_inside, 1);
+  for (const std::string view : {"inside_light", "street_level"})
+    book_row("03_eye_inside", {{"view", view}},
+             {{"volumes_around_eye", double(render(camera(view), Strategy::FrontFaces).stats.lights_camera_inside)}});
   Render scissor = render(camera("inside_light"), Strategy::Scissor);
   EXPECT_GT(scissor.stats.lights_skipped, 50) << "the street behind the eye";
   // Without depth clamp the far plane would clip the back faces: the back-face strategy
@@ -191,6 +196,7 @@ TEST_F(LightVolumesGl, TheHardCasesAreReallyThere) {
     crossing += std::abs(depth - 30.f) < p.position_radius.w;
   }
   EXPECT_GT(crossing, 10);
+  book_row("03_far_plane", {{"view", "street_level"}, {"far", "30"}}, {{"volumes_crossing", double(crossing)}});
 }
 
 TEST_F(LightVolumesGl, StencilShadesAtMostTwentyPercentMoreThanItLights) {
@@ -202,6 +208,9 @@ TEST_F(LightVolumesGl, StencilShadesAtMostTwentyPercentMoreThanItLights) {
       Render r = render(camera(view), strategy);
       ASSERT_GT(r.counts.lit, 0u) << view;
       EXPECT_LE(double(r.counts.shaded), 1.2 * double(r.counts.lit)) << view << ": overshading " << r.counts.overshading();
+      if (strategy == Strategy::Stencil)
+        book_row("03_stencil_counts", {{"view", view}},
+                 {{"shaded", double(r.counts.shaded)}, {"lit", double(r.counts.lit)}, {"pixels", double(kW * kH)}});
     }
 }
 

@@ -28,10 +28,12 @@
 #include "chapters/04_neon/neon_volumes.h"
 #include "common/paths.h"
 #include "common/target.h"
+#include "tests/unit/book_data.h"
 #include "tests/unit/gl_environment.h"
 
 using namespace lp;
 using namespace lp::ch04;
+using lp::test::book_row;
 
 namespace {
 
@@ -324,6 +326,9 @@ class NeonVolumesGl : public ::testing::Test {
     std::printf("  %-38s %-20s differ > 1 step: %4zu pixels (%.2f %%); largest difference %d, largest allowance %d\n",
                 label.c_str(), kMethodNames[int(how.method)].c_str(), e.beyond_one, 100.0 * double(e.beyond_one) / (kW * kH),
                 e.worst, e.worst_allowed);
+    book_row("04_crosscheck", {{"view", label}, {"method", kMethodNames[int(how.method)]}},
+             {{"pixels_over_one_step", double(e.beyond_one)}, {"largest_difference", double(e.worst)},
+              {"largest_allowance", double(e.worst_allowed)}, {"pixels", double(kW * kH)}});
     EXPECT_EQ(e.over, 0u) << label << ", " << kMethodNames[int(how.method)] << ": first " << e.first;
     EXPECT_EQ(w.stencil_marks, 0u) << label << ": every capsule leaves the stencil clean";
     return e;
@@ -451,6 +456,8 @@ TEST_F(NeonVolumesGl, CapsulesShadeAtMostTwentyPercentMoreThanTheTubesLight) {
     std::printf("  %-12s shaded %7llu, lit %7llu, with the doors open %7llu: overshading %.3f (%.3f without the doors)\n",
                 c.view.c_str(), (unsigned long long)all.shaded, (unsigned long long)all.lit,
                 (unsigned long long)all.lit_open, all.overshading(), double(all.shaded) / double(all.lit_open));
+    book_row("04_fragment_counts", {{"scene", c.world == room_ ? "room" : "street"}, {"view", c.view}},
+             {{"shaded", double(all.shaded)}, {"lit", double(all.lit)}, {"lit_open", double(all.lit_open)}});
     ASSERT_GT(all.lit, 20000u) << c.view;
     EXPECT_LE(double(all.shaded), 1.2 * double(all.lit_open)) << c.view;
     for (std::size_t i = 0; i < c.world->tube_lights.size(); ++i) {
@@ -567,6 +574,9 @@ TEST_F(NeonVolumesGl, TheCutLosesAtMostOneStepTimesWhatTheSurfaceReflects) {
       const char* name = term == Term::Diffuse ? "diffuse" : "specular";
       std::printf("  %-12s %-8s the cut loses: mean %.3f p99 %d max %d steps (the source's 1/256: mean %.3f p99 %d max %d)\n",
                   view.c_str(), name, ours.mean, ours.p99, ours.max, source.mean, source.p99, source.max);
+      for (const auto& [cut, l] : {std::pair{"ours", ours}, std::pair{"source", source}})
+        book_row("04_cut_loss", {{"view", view}, {"term", name}, {"cut", cut}},
+                 {{"mean_steps", l.mean}, {"p99_steps", double(l.p99)}, {"max_steps", double(l.max)}});
       EXPECT_EQ(ours.over, 0u) << view << ", " << name;
       EXPECT_EQ(source.over, 0u) << view << ", " << name;
       EXPECT_LT(ours.mean, 0.05) << view << ", " << name;

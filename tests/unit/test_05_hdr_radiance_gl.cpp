@@ -20,10 +20,12 @@
 #include "chapters/05_hdr/radiance_source.h"
 #include "common/paths.h"
 #include "common/target.h"
+#include "tests/unit/book_data.h"
 #include "tests/unit/gl_environment.h"
 
 using namespace lp;
 using namespace lp::ch05;
+using lp::test::book_row;
 
 namespace {
 
@@ -323,6 +325,11 @@ TEST_F(HdrRadianceGl, DeferredRadianceEqualsForwardWithinTheGBufferBound) {
     std::cout << v.name << ": exposure " << check.exposure << ", largest |deferred - forward| / allowance " << worst
               << "; the allowance after Reinhard, in output steps: median " << allowance_steps[allowance_steps.size() / 2]
               << ", p99 " << allowance_steps[allowance_steps.size() * 99 / 100] << ", max " << allowance_steps.back() << '\n';
+    book_row("05_crosscheck", {{"view", v.name}},
+             {{"exposure", check.exposure}, {"worst_over_allowance", worst},
+              {"allowance_median_steps", allowance_steps[allowance_steps.size() / 2]},
+              {"allowance_p99_steps", allowance_steps[allowance_steps.size() * 99 / 100]},
+              {"allowance_max_steps", allowance_steps.back()}});
   }
 }
 
@@ -339,6 +346,7 @@ TEST_F(HdrRadianceGl, TheCrossCheckCatchesACoarserNormalAndACutTooShort) {
     const std::size_t over = check.pixels_over(target.read());
     EXPECT_GT(over, broken == 0 ? 100u : 1000u) << (broken == 0 ? "oct8 normals" : "a cut 1000 times too short");
     std::cout << (broken == 0 ? "oct8 normals: " : "a cut 1000 times too short: ") << over << " pixels over the allowance\n";
+    book_row("05_crosscheck_broken", {{"broken", broken == 0 ? "oct8" : "cut-1000x-short"}}, {{"pixels_over", double(over)}});
   }
 }
 
@@ -427,6 +435,9 @@ TEST_F(HdrRadianceGl, TheCutForTheExposureStaysWithinAStepPerCutLight) {
         EXPECT_EQ(over, 0u) << what;
         std::cout << what << ": cut for " << cut.cut_exposure() << ", " << pixels_cut << " pixels with a light cut, largest difference "
                   << largest << " steps (largest allowed " << largest_allowed << ")\n";
+        book_row("05_cut", {{"view", v.name}, {"operator", kOperatorNames[int(op)]}, {"exposure_scale", scale == 1.f ? "1" : "1/16"}},
+                 {{"exposure", exposure}, {"pixels_cut", double(pixels_cut)}, {"largest_steps", double(largest)},
+                  {"largest_allowed_steps", double(largest_allowed)}});
       }
   }
 }
@@ -494,6 +505,14 @@ TEST_F(HdrRadianceGl, AHigherExposureGivesLongerVolumes) {
       }
     }
     EXPECT_GE(high_counts.shaded, low_counts.shaded) << v.name;
+    double range_sum = 0;
+    std::size_t ranged = 0;
+    for (const auto& p : low.points)
+      if (p.radiance_range.w > 0) range_sum += p.radiance_range.w, ++ranged;
+    book_row("05_cut_radius", {{"view", v.name}},
+             {{"exposure_low", 0.25}, {"mean_radius_low", mean_radius(low)}, {"shaded_low", double(low_counts.shaded)},
+              {"exposure_high", 4.0}, {"mean_radius_high", mean_radius(high)}, {"shaded_high", double(high_counts.shaded)},
+              {"mean_range", ranged ? range_sum / double(ranged) : 0.0}, {"lights_with_range", double(ranged)}});
     std::cout << v.name << ": mean radius " << mean_radius(low) << " m at exposure 0.25, " << mean_radius(high)
               << " m at 4; fragments shaded " << low_counts.shaded << " and " << high_counts.shaded << '\n';
   }
@@ -524,6 +543,8 @@ TEST_F(HdrRadianceGl, TheSunShortensTheLampsThroughTheEye) {
   EXPECT_LT(radius[0] / radius[1], expected * std::exp2(0.125) * 1.05);
   std::cout << "atrium lamps: exposure " << exposure[0] << " (sun 1) and " << exposure[1] << " (sun 25); mean radius "
             << radius[0] << " m and " << radius[1] << " m\n";
+  for (int i = 0; i < 2; ++i)
+    book_row("05_sun_cut", {{"sun", i == 0 ? "1" : "25"}}, {{"exposure", exposure[i]}, {"mean_radius", radius[i]}});
 }
 
 // --- The exposure, read back late -------------------------------------------------------------
