@@ -72,6 +72,19 @@ def main(d: Path):
              (tnotes[0] if tnotes else "") + "; errors against chapter 1's forward image", series,
              "geometry + lighting pass, ms (NVIDIA H200)", "error in 8-bit steps (log)", ylog=True)
 
+    times = d / "02_layout_times_h200.csv"
+    if times.exists():
+        tnotes, trows = read_csv(times)
+        ms = {r["layout"]: float(r["geometry_ms"]) for r in trows}
+        # One series, the sphere close-up's worst pixel: the layouts of 16 bytes cost the same
+        # (their labels overlap there); what a layout's bytes cost shows against float's 68.
+        series = [Series("close-up, worst", [(ms[r["layout"]], max(float(r["image_max"]), 0.5), r["layout"])
+                                                          for r in rows if r["view"] == "forward/close_128" and r["layout"] in ms],
+                         line=False)]
+        plot(d / "02_layouts_time_error.svg", "G-buffer layouts: error against the geometry pass's GPU time",
+             (tnotes[0] if tnotes else "") + "; error: the sphere close-up's worst pixel", series,
+             "geometry pass, ms (NVIDIA H200, 1920×1080)", "worst pixel, 8-bit steps (log)", ylog=True)
+
 
 if __name__ == "__main__":
     main(Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parent.parent / "book" / "figures")
