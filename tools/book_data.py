@@ -19,7 +19,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 FIGURES = ROOT / "book" / "figures"
-HEADER = ("# The GL tests' own measurements (tests/unit/book_data.h), collected by tools/book_data.py "
+HEADER = ("# The tests' own measurements (tests/unit/book_data.h), collected by tools/book_data.py "
           "--update from a ctest run; each test compares its row with this file on the renderer named here.\n")
 
 

@@ -64,9 +64,29 @@ std::string file_name_for(const std::vector<BookKey>& keys) {
 
 }  // namespace
 
+namespace {
+void row_for(const std::string& renderer, const std::string& table, const std::vector<BookKey>& keys,
+             const std::vector<BookValue>& values);
+}  // namespace
+
 void book_row(const std::string& table, const std::vector<BookKey>& keys, const std::vector<BookValue>& values) {
   const char* gl_renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-  const std::string renderer = gl_renderer ? gl_renderer : "unknown";
+  row_for(gl_renderer ? gl_renderer : "unknown", table, keys, values);
+}
+
+void book_row_cpu(const std::string& table, const std::vector<BookKey>& keys, const std::vector<BookValue>& values) {
+#if defined(__clang__)
+  row_for(std::string("CPU, clang ") + __clang_version__, table, keys, values);
+#elif defined(__GNUC__)
+  row_for(std::string("CPU, g++ ") + __VERSION__, table, keys, values);
+#else
+  row_for("CPU", table, keys, values);
+#endif
+}
+
+namespace {
+void row_for(const std::string& renderer, const std::string& table, const std::vector<BookKey>& keys,
+             const std::vector<BookValue>& values) {
 
   std::vector<std::string> header, row;
   for (const BookKey& k : keys) header.push_back(k.column), row.push_back(k.value);
@@ -125,5 +145,6 @@ void book_row(const std::string& table, const std::vector<BookKey>& keys, const 
   }
   ADD_FAILURE() << csv.string() << " has no row " << what << " for the book to quote" << fix;
 }
+}  // namespace
 
 }  // namespace lp::test

@@ -28,5 +28,8 @@ struct BookValue {
 // cells. Integers are compared exactly; other values to a relative 1e-6 (what "%.9g" keeps,
 // far below any digit the book prints), since the same renderer computes the same floats.
 void book_row(const std::string& table, const std::vector<BookKey>& keys, const std::vector<BookValue>& values);
+// The same for a CPU test (no GL context): the "renderer" is the C++ compiler that built it,
+// since the floats of a CPU computation are the same wherever that compiler's code runs.
+void book_row_cpu(const std::string& table, const std::vector<BookKey>& keys, const std::vector<BookValue>& values);
 
 }  // namespace lp::test
