@@ -20,7 +20,8 @@ stay outside the marker. The part after `num` is
   `max(...)`, `min(...)`, `mean(...)`, `sum(...)`, `count(...)` over the selected rows.
 * Expressions combine references, numbers and names with `+ - * / **`, parentheses, `abs()`,
   `round(x, digits)` (digits may be negative: `round(x, -2)` to hundreds),
-  and `min(a, b, ...)`/`max(a, b, ...)` of several values. Names are defined after the
+  and `min(a, b, ...)`/`max(a, b, ...)` of several values, and `png_mean("file.png")`: the mean of
+  an 8-bit PNG's R, G, B over every pixel, in steps (a figure's or a reference image's brightness). Names are defined after the
   format: `<!-- num a / b %.1f; a = X.csv[k=1].ms; b = X.csv[k=2].ms -->1.3<!-- /num -->×`.
 * FORMAT is a Python format spec (default `.3g`); `,` groups thousands with a space, the
   book's style ("1 265"); `.1^e` writes 3.9·10^-3 and `.1⁻e` writes 3.9·10⁻³. A `%` inside a filter value is fine: the format is the last
@@ -37,6 +38,7 @@ import csv
 import math
 import re
 import sys
+import zlib
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -198,6 +200,9 @@ def evaluate(expr: str, defs: dict, base: Path, _depth: int = 0):
             f = node.func.id
             if f == "abs" and len(node.args) == 1:
                 return abs(one(node.args[0]))
+            if f == "png_mean" and len(node.args) == 1 and isinstance(node.args[0], ast.Constant) \
+                    and isinstance(node.args[0].value, str):
+                return png_mean(node.args[0].value, base)
             if f == "round" and len(node.args) == 2:
                 return float(round(one(node.args[0]), int(one(node.args[1]))))
             if f in AGGREGATES and node.args:
@@ -210,9 +215,59 @@ def evaluate(expr: str, defs: dict, base: Path, _depth: int = 0):
                     return sum(values) / len(values)
                 return max(values) if f == "max" else min(values)
         raise NumberError(f"'{expr}': only numbers, cell references, names, + - * / **, abs, round, "
-                          "min, max, mean, sum and count are allowed")
+                          "min, max, mean, sum, count and png_mean(\"file.png\") are allowed")
 
     return one(tree.body)
+
+
+def png_mean(name: str, base: Path) -> float:
+    """The mean of an 8-bit PNG's R, G and B over every pixel, in 8-bit steps: what a reader
+    sees of a figure or a reference image (FILE as for a CSV: relative to book/figures/, or to
+    the repository root when it starts with book/ or tests/)."""
+    path = ROOT / name if name.startswith(("book/", "tests/")) else base / name
+    if not path.exists():
+        raise NumberError(f"png_mean: {path} does not exist")
+    data = path.read_bytes()
+    if data[:8] != b"\x89PNG\r\n\x1a\n":
+        raise NumberError(f"png_mean: {name} is not a PNG")
+    pos, idat, header = 8, b"", None
+    while pos + 8 <= len(data):
+        length, kind = int.from_bytes(data[pos:pos + 4], "big"), data[pos + 4:pos + 8]
+        body = data[pos + 8:pos + 8 + length]
+        if kind == b"IHDR":
+            header = body
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + length
+    if header is None:
+        raise NumberError(f"png_mean: {name} has no IHDR")
+    width, height = int.from_bytes(header[0:4], "big"), int.from_bytes(header[4:8], "big")
+    depth, colour, interlace = header[8], header[9], header[12]
+    channels = {2: 3, 6: 4}.get(colour)
+    if depth != 8 or channels is None or interlace != 0:
+        raise NumberError(f"png_mean: {name}: only 8-bit RGB or RGBA, not interlaced (depth {depth}, colour type {colour})")
+    raw = zlib.decompress(idat)
+    stride = width * channels
+    previous, total = bytearray(stride), 0
+    for y in range(height):
+        f, row = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):
+            a = row[i - channels] if i >= channels else 0
+            b = previous[i]
+            c = previous[i - channels] if i >= channels else 0
+            if f == 1:
+                row[i] = (row[i] + a) & 255
+            elif f == 2:
+                row[i] = (row[i] + b) & 255
+            elif f == 3:
+                row[i] = (row[i] + (a + b) // 2) & 255
+            elif f == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                row[i] = (row[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        total += sum(row[k] for k in range(stride) if k % channels < 3)
+        previous = row
+    return total / (width * height * 3)
 
 
 SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")

@@ -153,6 +153,30 @@ class TestExpressions(Fixture):
         self.assertEqual(book_numbers.format_value(-0.0001, ".2f"), "0.00")
 
 
+class TestPng(unittest.TestCase):
+    """png_mean() decodes the PNG itself (zlib and the five row filters): a 2x2 RGB image with
+    known values, its second row stored with the Up filter, must give their mean."""
+
+    def test_png_mean_undoes_the_row_filters(self):
+        import struct
+        import zlib
+
+        def chunk(kind, body):
+            return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body))
+        rows = [[10, 20, 30, 40, 50, 60], [70, 80, 90, 100, 110, 120]]
+        # Row 0 unfiltered; row 1 with filter 2 (Up): each byte minus the one above.
+        raw = bytes([0] + rows[0]) + bytes([2] + [(rows[1][i] - rows[0][i]) & 255 for i in range(6)])
+        png = (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 2, 2, 8, 2, 0, 0, 0))
+               + chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+        with tempfile.TemporaryDirectory() as t:
+            (Path(t) / "x.png").write_bytes(png)
+            self.assertAlmostEqual(book_numbers.png_mean("x.png", Path(t)), sum(rows[0] + rows[1]) / 12)
+            self.assertAlmostEqual(book_numbers.evaluate('png_mean("x.png") * 2', {}, Path(t)), sum(rows[0] + rows[1]) / 6)
+            (Path(t) / "y.png").write_bytes(b"not a png")
+            with self.assertRaises(book_numbers.NumberError):
+                book_numbers.png_mean("y.png", Path(t))
+
+
 class TestExcerptTags(unittest.TestCase):
     def setUp(self):
         self.tmp = tempfile.TemporaryDirectory()
