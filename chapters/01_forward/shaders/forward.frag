@@ -2,6 +2,7 @@
 // Forward shading, fragment stage: every light in the storage buffer, for every fragment
 // (per pixel), or the interpolated per-vertex result (PER_VERTEX).
 #include "01_forward/shaders/lighting.glsl"
+#include "01_forward/shaders/surface_normal.glsl"
 
 // Depth and stencil tests before the shader runs, so GL_SAMPLES_PASSED counts exactly the
 // fragments this shader shaded.
@@ -37,21 +38,6 @@ in vec3 v_specular_light;
 
 out vec4 out_color;
 
-// [surface-normal]
-vec3 surface_normal() {
-  // Interpolation shortens unit vectors (the chord between two points of a sphere lies
-  // inside it), so the interpolated normal must be normalised again.
-  vec3 n = u_renormalize ? normalize(v_normal) : v_normal;
-  if (u_has_normal_map) {
-    vec3 t = normalize(v_tangent.xyz - n * dot(n, v_tangent.xyz));
-    vec3 b = cross(n, t) * v_tangent.w;
-    vec3 m = texture(u_normal_texture, v_uv).xyz * 2.0 - 1.0;
-    m.xy *= u_normal_scale;
-    n = normalize(mat3(t, b, n) * m);
-  }
-  return n;
-}
-// [/surface-normal]
 
 void main() {
   vec4 base = u_base_color * texture(u_base_color_texture, v_uv);
@@ -60,7 +46,8 @@ void main() {
   vec3 diffuse = v_diffuse_light, specular = v_specular_light;
 #else
   // [per-pixel]
-  vec3 n = surface_normal();
+  vec3 n = surface_normal(v_normal, v_tangent, v_position, v_uv, u_renormalize, u_has_normal_map, u_normal_texture,
+                          u_normal_scale);
   vec3 to_eye = normalize(u_eye - v_position);
   vec3 diffuse = vec3(0.0), specular = vec3(0.0);
   for (int i = u_first_light; i < u_first_light + u_light_count; ++i) {

@@ -2,6 +2,7 @@
 // The geometry pass: one fragment writes every target of the G-buffer at once (multiple
 // render targets). Nothing is lit here; the surface is only described. The vertex stage is
 // chapter 01's forward.vert, so both chapters cover exactly the same pixels.
+#include "01_forward/shaders/surface_normal.glsl"
 #include "02_gbuffer/shaders/encoding.glsl"
 
 layout(early_fragment_tests) in;  // GL_SAMPLES_PASSED = fragments written
@@ -34,31 +35,10 @@ layout(location = 3) out vec4 out_position;  // the float reference: world posit
 #endif
 // [/targets]
 
-// [mapped-normal]
-// The shading normal: the interpolated normal, renormalised, bent by the normal map in the
-// tangent frame (tangent T, bitangent B = sign * N x T, normal N). A mesh may bring no usable
-// tangent (none in the file and no UVs to derive one, or a tangent along the normal): then
-// Gram-Schmidt leaves nothing and the normal map cannot be applied; the interpolated normal
-// is kept rather than a NaN written. A zero normal falls back to the triangle's own.
-vec3 mapped_normal() {
-  vec3 n = v_normal;
-  if (!(dot(n, n) > 1e-20)) n = cross(dFdx(v_position), dFdy(v_position));
-  n = normalize(n);
-  if (!u_has_normal_map) return n;
-  vec3 t = v_tangent.xyz - n * dot(n, v_tangent.xyz);
-  if (!(dot(t, t) > 1e-12)) return n;
-  t = normalize(t);
-  vec3 b = cross(n, t) * (v_tangent.w < 0.0 ? -1.0 : 1.0);
-  vec3 m = texture(u_normal_texture, v_uv).xyz * 2.0 - 1.0;
-  m.xy *= u_normal_scale;
-  vec3 bent = mat3(t, b, n) * m;
-  return dot(bent, bent) > 1e-20 ? normalize(bent) : n;
-}
-// [/mapped-normal]
 
 void main() {
   vec3 albedo = (u_base_color * texture(u_base_color_texture, v_uv)).rgb;
-  vec3 n = mapped_normal();
+  vec3 n = surface_normal(v_normal, v_tangent, v_position, v_uv, true, u_has_normal_map, u_normal_texture, u_normal_scale);
   // glTF emits emissiveFactor x emissiveTexture. The G-buffer keeps one emissive colour per
   // material (a palette code) or one strength, so a texture can only scale the strength or,
   // for a code, gate it: texels at least half bright emit the material's colour, others none.
