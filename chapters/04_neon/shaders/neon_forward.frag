@@ -5,6 +5,7 @@
 // yardstick the tests hold it to (--forward 1).
 #include "01_forward/shaders/lighting.glsl"
 #include "04_neon/shaders/neon.glsl"
+#include "01_forward/shaders/surface_normal.glsl"
 
 layout(early_fragment_tests) in;
 
@@ -12,6 +13,7 @@ layout(std430, binding = 0) readonly buffer Lights { GpuLight lights[]; };
 layout(std430, binding = 1) readonly buffer Neons { NeonGpu neons[]; };
 
 layout(binding = 0) uniform sampler2D u_base_color_texture;
+layout(binding = 1) uniform sampler2D u_normal_texture;
 layout(binding = 2) uniform sampler2D u_emissive_texture;  // glTF: emitted = u_emissive * texel
 
 uniform vec3 u_eye;
@@ -20,6 +22,8 @@ uniform vec3 u_specular;
 uniform float u_exponent;
 uniform vec3 u_emissive;
 uniform vec3 u_ambient;
+uniform bool u_has_normal_map;
+uniform float u_normal_scale;
 uniform int u_light_count;
 uniform int u_neon_count;
 uniform int u_method;   // NEON_* in neon.glsl
@@ -35,7 +39,9 @@ out vec4 out_color;
 
 void main() {
   vec3 albedo = (u_base_color * texture(u_base_color_texture, v_uv)).rgb;
-  vec3 n = normalize(v_normal);
+  // The normal every pass uses (chapter 01), normal map included, so this yardstick bends the
+  // same normals as the G-buffer it is held against.
+  vec3 n = surface_normal(v_normal, v_tangent, v_position, v_uv, true, u_has_normal_map, u_normal_texture, u_normal_scale);
   vec3 to_eye = normalize(u_eye - v_position);
   vec3 diffuse = vec3(0.0), specular = vec3(0.0);
   if (u_term == 0) {
