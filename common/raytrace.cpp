@@ -131,6 +131,7 @@ struct RayScene::Impl {
   RTCScene scene = nullptr;
   std::string embree_message;                // the last error Embree reported
   std::vector<InstanceGeometry> instances;   // by instance index; the BVH shares their buffers
+  std::vector<bool> double_sided;            // by material index (glTF doubleSided)
   std::size_t triangles = 0;
 
   Impl() = default;
@@ -180,6 +181,7 @@ RayScene::RayScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
     m.triangles += m.instances.back().triangle_count();
   }
   if (m.triangles == 0) throw Error("ray tracer: " + scene.path.string() + ": the scene has no triangles to trace");
+  for (const Material& material : scene.materials) m.double_sided.push_back(material.double_sided);
   for (std::size_t i = 0; i < m.instances.size(); ++i)
     if (m.instances[i].triangle_count() > 0) m.attach(m.instances[i], static_cast<unsigned>(i));
   rtcCommitScene(m.scene);
@@ -191,6 +193,10 @@ RayScene::RayScene(RayScene&&) noexcept = default;
 RayScene& RayScene::operator=(RayScene&&) noexcept = default;
 
 std::size_t RayScene::triangle_count() const { return impl_->triangles; }
+
+bool RayScene::double_sided(int material) const {
+  return material >= 0 && std::size_t(material) < impl_->double_sided.size() && impl_->double_sided[std::size_t(material)];
+}
 
 namespace {
 
@@ -348,12 +354,28 @@ ImageF trace_image(int width, int height, int channels, std::uint64_t seed, cons
   return image;
 }
 
+// [visible-hit]
+// What the rasteriser shows along a primary ray: it culls the back faces of single-sided
+// materials (SceneGpu::draw), so a ray that meets one goes on past it. Each step starts
+// beyond the hit by more than its rounding (spawn_origin's bound along the ray); a ray that
+// passes more back faces than kMaxBackFaces (a pathological stack of them) sees nothing.
+std::optional<Hit> visible_hit(const RayScene& scene, Ray ray) {
+  constexpr int kMaxBackFaces = 64;
+  for (int i = 0; i <= kMaxBackFaces; ++i) {
+    std::optional<Hit> h = scene.intersect(ray);
+    if (!h || h->front_face || scene.double_sided(h->material)) return h;
+    ray.tmin = h->t + std::max(4.f * h->error, h->t * 0x1p-20f);
+  }
+  return std::nullopt;
+}
+// [/visible-hit]
+
 std::vector<std::optional<Hit>> primary_hits(const RayScene& scene, const FrameCamera& camera, int width, int height,
                                              int threads) {
   PrimaryRays rays(camera, width, height);
   std::vector<std::optional<Hit>> hits(std::size_t(width) * height);
   parallel_rows(height, threads, [&](int y) {
-    for (int x = 0; x < width; ++x) hits[std::size_t(y) * width + x] = scene.intersect(rays(x, y));
+    for (int x = 0; x < width; ++x) hits[std::size_t(y) * width + x] = visible_hit(scene, rays(x, y));
   });
   return hits;
 }

@@ -66,6 +66,8 @@ class RayScene {
   }
 
   std::size_t triangle_count() const;
+  // Whether scene material `material` is glTF doubleSided (false for an index out of range).
+  bool double_sided(int material) const;
 
  private:
   struct Impl;
@@ -127,7 +129,10 @@ void parallel_rows(int height, int threads, const std::function<void(int y)>& ro
 using PixelFunction = std::function<void(int x, int y, Pcg32& rng, float* out)>;
 ImageF trace_image(int width, int height, int channels, std::uint64_t seed, const PixelFunction& pixel, int threads = 0);
 
-// Every pixel's closest hit, top row first; nullopt where the ray leaves the scene.
+// The closest surface the rasteriser would show along a camera ray: back faces of
+// single-sided materials are passed (the rasteriser culls them), doubleSided ones are hit.
+std::optional<Hit> visible_hit(const RayScene& scene, Ray ray);
+// Every pixel's visible_hit, top row first; nullopt where the ray leaves the scene.
 std::vector<std::optional<Hit>> primary_hits(const RayScene& scene, const FrameCamera& camera, int width, int height,
                                              int threads = 0);
 // The points the primary hits see, normals turned toward the camera; nullopt for the sky.
@@ -147,7 +152,7 @@ std::vector<std::optional<SurfacePoint>> surface_points(const ImageF& position, 
 // geometry, materials and lights actually loaded (hashed), the camera's matrices, the size
 // and the estimator's own settings (method, samples, radius, seed: the caller's string).
 // kTruthCacheVersion is in the key too: bump it when this file changes what a ray returns.
-inline constexpr int kTruthCacheVersion = 1;
+inline constexpr int kTruthCacheVersion = 2;  // 2: primary hits pass single-sided back faces
 
 struct TruthKey {
   std::string text;  // every line of the key; the file name is its hash, the text is checked

@@ -521,7 +521,7 @@ class Loader {
     if (pbr.metallicRoughnessTexture.index >= 0) unsupported("metallicRoughnessTexture (the roughness factor is used)");
     if (gm.occlusionTexture.index >= 0) unsupported("occlusionTexture");
     if (gm.alphaMode != "OPAQUE" && !gm.alphaMode.empty()) unsupported("alphaMode " + gm.alphaMode + " (drawn opaque)");
-    if (gm.doubleSided) unsupported("doubleSided materials (back faces are culled)");
+    mat.double_sided = gm.doubleSided;
     auto bad = [&](const char* what) { throw Error(file() + ": material '" + label + "': " + what + " must be finite and >= 0"); };
     if (!finite(mat.base_color) || glm::any(glm::lessThan(mat.base_color, glm::vec4(0)))) bad("baseColorFactor");
     if (!finite(mat.emissive) || glm::any(glm::lessThan(mat.emissive, glm::vec3(0)))) bad("emissiveFactor (times emissiveStrength)");

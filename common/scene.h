@@ -43,6 +43,7 @@ struct Material {
   int normal_texture = -1;      // index into Scene::textures (linear)
   float normal_scale = 1;
   int emissive_texture = -1;    // index into Scene::textures (sRGB); emitted = emissive * texel
+  bool double_sided = false;    // glTF doubleSided: no back-face culling, the normal flips behind
 };
 
 struct Texture {

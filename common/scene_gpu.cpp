@@ -5,6 +5,8 @@
 #include <cstring>
 #include <iostream>
 
+#include <glm/glm.hpp>
+
 namespace lp {
 namespace {
 
@@ -74,16 +76,32 @@ SceneGpu::SceneGpu(const Scene& scene)
   }
 }
 
+// [winding]
+// Two things of glTF that a pass's culling state must follow per draw, so every pass that
+// draws the scene gets them without knowing: an instance whose transform mirrors (negative
+// determinant) turns its triangles' winding around, so its front faces are the other
+// winding; and a doubleSided material is drawn with culling off (its shaders flip the normal
+// of back faces: chapter 01's surface_normal()). The pass's own state is restored after.
 void SceneGpu::draw(const DrawCallback& before_each_primitive) const {
   glBindVertexArray(vao_.id());
+  const bool culling = glIsEnabled(GL_CULL_FACE);
+  GLint front = GL_CCW;
+  glGetIntegerv(GL_FRONT_FACE, &front);
+  const GLenum other = front == GL_CCW ? GL_CW : GL_CCW;
   for (const auto& inst : scene_.instances) {
+    glFrontFace(glm::determinant(glm::mat3(inst.model)) < 0 ? other : GLenum(front));
     for (const auto& p : scene_.meshes[inst.mesh].primitives) {
-      before_each_primitive(inst, scene_.materials[p.material]);
+      const Material& material = scene_.materials[p.material];
+      if (culling) material.double_sided ? glDisable(GL_CULL_FACE) : glEnable(GL_CULL_FACE);
+      before_each_primitive(inst, material);
       glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(p.index_count), GL_UNSIGNED_INT,
                      reinterpret_cast<const void*>(std::uintptr_t(p.first_index) * sizeof(std::uint32_t)));
     }
   }
+  glFrontFace(GLenum(front));
+  if (culling) glEnable(GL_CULL_FACE);
 }
+// [/winding]
 
 std::size_t SceneGpu::triangle_count() const {
   std::size_t n = 0;

@@ -249,6 +249,24 @@ TEST(Scene, EmissiveTextureAndStrengthAreRead) {
   EXPECT_TRUE(s.warnings.empty()) << all_warnings(s);
 }
 
+TEST(Scene, DoubleSidedIsReadAndNotWarnedAbout) {
+  // minimal.gltf with its material made doubleSided, written beside its buffer in a temp
+  // folder: the flag reaches the material (SceneGpu::draw then draws it without culling, and
+  // the ray tracer's primary hits keep its back faces), and the loader no longer warns.
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("lightpass_double_sided_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  nlohmann::json doc = nlohmann::json::parse(std::ifstream(from_root("tests/data/minimal.gltf")));
+  doc["materials"][0]["doubleSided"] = true;
+  std::ofstream(dir / "minimal.gltf") << doc.dump();
+  std::filesystem::copy_file(from_root("tests/data/minimal.bin"), dir / "minimal.bin",
+                             std::filesystem::copy_options::overwrite_existing);
+  Scene s = load_scene(dir / "minimal.gltf");
+  std::filesystem::remove_all(dir);
+  EXPECT_TRUE(s.materials.at(0).double_sided);
+  EXPECT_FALSE(data("minimal.gltf").materials.at(0).double_sided);
+  EXPECT_FALSE(contains(all_warnings(s), "doubleSided")) << all_warnings(s);
+}
+
 TEST(Scene, SpecularExtensionIsRead) {
   Scene s = data("minimal.gltf");  // scenegen writes KHR_materials_specular on every material
   EXPECT_TRUE(s.materials.at(0).has_specular_extension);

@@ -7,11 +7,14 @@
 // A reader's mesh may bring what cannot be used: a zero normal falls back to the triangle's
 // own (from the position's derivatives); a tangent along the normal (or none: the loader
 // leaves it zero) leaves Gram-Schmidt nothing, so the map is skipped rather than a NaN made.
-// `renormalize` is false only to show what goes wrong without it (chapter 01's mode).
+// A back face reaches this only for a doubleSided material (SceneGpu::draw culls the others):
+// glTF lights it with the normal reversed. `renormalize` is false only to show what goes
+// wrong without it (chapter 01's mode).
 vec3 surface_normal(vec3 normal, vec4 tangent, vec3 position, vec2 uv, bool renormalize, bool has_normal_map,
                     sampler2D normal_map, float normal_scale) {
   vec3 n = normal;
   if (!(dot(n, n) > 1e-20)) n = cross(dFdx(position), dFdy(position));
+  else if (!gl_FrontFacing) n = -n;  // a doubleSided material seen from behind (others are culled)
   if (renormalize) n = normalize(n);
   if (!has_normal_map) return n;
   vec3 t = tangent.xyz - n * dot(n, tangent.xyz);
