@@ -27,14 +27,16 @@ constexpr int kW = 320, kH = 180;
 
 // The atrium with its sun, or with the sun turned to `sun_direction`.
 struct World {
-  explicit World(std::optional<glm::vec3> sun_direction = std::nullopt)
-      : scene(load(sun_direction)), gpu(scene), rays(scene), frame(gpu), stage(gpu, find_sun(scene)) {
+  // `edit`, when given, changes the loaded scene before anything is built from it.
+  explicit World(std::optional<glm::vec3> sun_direction = std::nullopt, void (*edit)(Scene&) = nullptr)
+      : scene(load(sun_direction, edit)), gpu(scene), rays(scene), frame(gpu), stage(gpu, find_sun(scene)) {
     frame.volumes().set_lights(ch03::build_light_set(
         scene.lights, ch03::cut_threshold(1.f, ch03::peak_reflectance(scene)), frame.volumes().shapes()));
     frame.add_stage(stage);
   }
-  static Scene load(std::optional<glm::vec3> sun_direction) {
+  static Scene load(std::optional<glm::vec3> sun_direction, void (*edit)(Scene&)) {
     Scene s = load_scene(from_root("assets/atrium/atrium.gltf"));
+    if (edit) edit(s);
     if (sun_direction)
       for (Light& l : s.lights)
         if (l.type == LightType::Directional) l.direction = glm::normalize(*sun_direction);
@@ -321,3 +323,75 @@ TEST_F(ShadowsGl, TooMuchBiasDetachesShadowsFromTheirCasters) {
   EXPECT_LT(with_fair.leaking, with_fair.shadowed / 20);
   EXPECT_GT(with_huge.leaking, 4 * with_fair.leaking);
 }
+
+// [sun-behind-camera]
+// The sun behind the camera: a camera in the middle of the aisle (z = 3, 1.7 m up, looking down
+// the aisle), the sun shining the way it looks (its heading, 25 degrees down), so every shadow
+// falls away from the viewer, and the columns and arches behind the camera (z = 6 and 9, up to
+// 5.7 m high), outside the view and nearer the sun than the camera, cast shadows into it. The
+// case that breaks maps fitted in the camera's perspective space (the light behind the camera
+// inverts them) is an ordinary one for this orthographic box, whose depth range along the light
+// is the whole scene's (shadow_math.h [light-frustum]): the hard map agrees with one ray per
+// pixel outside the edge band, as in the views above. Allowed: none.
+TEST(ShadowsGlSunBehindCamera, HardShadowsMatchTheTruthOutsideTheEdgeBand) {
+  Camera c;
+  c.world = glm::inverse(glm::lookAt(glm::vec3(0, 1.7f, 3.f), glm::vec3(0, 2.2f, -12.f), glm::vec3(0, 1, 0)));
+  c.yfov = 0.9f, c.znear = 0.05f, c.zfar = 100.f;
+  const FrameCamera view = frame_camera(c, float(kW) / kH);
+  const glm::vec3 forward = -glm::vec3(glm::inverse(view.view)[2]);
+  const glm::vec3 heading = glm::normalize(glm::vec3(forward.x, 0.f, forward.z));
+  const float down = glm::radians(25.f);
+  World behind(std::cos(down) * heading + glm::vec3(0, -std::sin(down), 0));
+  const FrameCamera cam = view;
+  ASSERT_GT(glm::dot(behind.sun(), forward), 0.5f);  // the light comes from behind the viewer
+  const ImageF truth = behind.truth(cam);
+  const double shadowed = shadowed_fraction(truth);
+  std::printf("sun behind the camera: %.3f of the lit receivers in shadow\n", shadowed);
+  ASSERT_GT(shadowed, 0.05);  // shadows to get right
+  const ShadowSettings s{.method = ShadowMethod::Hard, .map_size = 1024};
+  const ImageF v = behind.visibility(cam, s);
+  auto edges = hard_edge_pixels(truth, edge_band_pixels(behind, cam, s));
+  exclude_raster_mask(v, edges);
+  const VisibilityError e = visibility_error(v, truth, 0, &edges);
+  print("sun behind the camera, outside the band", e);
+  ASSERT_GT(e.pixels, std::size_t(kW * kH / 8));  // the band leaves enough of the view to compare
+  EXPECT_EQ(e.wrong, 0.0);
+}
+// [/sun-behind-camera]
+
+// [receiver-outside]
+// A receiver outside the map's box: the fitted box holds every receiver the view sees (it is
+// the view frustum cut by the scene's bounds), so to get one the scene's bounds are cut to the
+// atrium's -x half, as a cascade's far end would cut a view. What the stage does there
+// (shadow_visibility.glsl): LIT. The map holds no caster for that receiver, so no comparison
+// means anything; clamping the lookup to the map's edge (the sampler's CLAMP_TO_EDGE) would
+// compare the receiver with whatever the edge texels hold, streaks of false shadow. Every
+// pixel whose lookup lies more than 2 texels outside the box (the normal offset moves the
+// lookup by at most 1 texel, the nearest texel by half of one) must have visibility exactly 1,
+// although the truth has some of them in shadow (the choice is lit, not right).
+TEST(ShadowsGlReceiverOutside, ReceiversOutsideTheMapAreLit) {
+  World cut(std::nullopt, [](Scene& s) { s.bounds_max.x = 0.5f * (s.bounds_min.x + s.bounds_max.x); });
+  const FrameCamera cam = cut.camera("overview");
+  const ShadowSettings s{.method = ShadowMethod::Hard};
+  const ImageF v = cut.visibility(cam, s), truth = cut.truth(cam);
+  const glm::mat4 light = cut.stage.frustum().view_projection();
+  const float margin = 2.f * 2.f / float(s.map_size);  // 2 texels, in the light's clip units [-1, 1]
+  const auto hits = primary_hits(cut.rays, cam, kW, kH);
+  std::size_t outside = 0, dark = 0, truly_shadowed = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const auto& h = hits[std::size_t(y) * kW + x];
+      if (!h || truth.at(x, y, 2) < 0.5f || (v.at(x, y, 2) > 0.3f && v.at(x, y, 0) < 0.2f)) continue;
+      const glm::vec4 c = light * glm::vec4(h->position, 1.f);
+      if (std::abs(c.x) < 1.f + margin && std::abs(c.y) < 1.f + margin) continue;
+      ++outside;
+      dark += v.at(x, y, 0) != 1.f;
+      truly_shadowed += truth.at(x, y, 0) < 0.5f;
+    }
+  std::printf("receivers outside the map: %zu pixels, %zu not lit, %zu of them shadowed in the truth\n", outside, dark,
+              truly_shadowed);
+  ASSERT_GT(outside, std::size_t(kW * kH / 20));  // at least 5 % of the view is outside
+  EXPECT_GT(truly_shadowed, std::size_t(100));    // where lit is a choice, not the truth
+  EXPECT_EQ(dark, 0u);
+}
+// [/receiver-outside]
