@@ -53,6 +53,19 @@ ImageRGBA8 truth_picture(const ImageF& truth, int channel) {
   return out;
 }
 
+// The sun's default scale: the atrium's sun (0.4 lux) is weak beside its eight point lights, so at
+// 1 the lit overview shows the arches' and columns' shadows only faintly; at 4 they read plainly
+// on the floor (looked at), and the sunlit tiles are not yet washed out.
+constexpr double kSunScale = 4;
+
+// The scene's lights with every directional light's intensity times `sun` (chapter 05's --sun).
+std::vector<Light> scaled_lights(const std::vector<Light>& lights, float sun) {
+  std::vector<Light> out = lights;
+  for (Light& l : out)
+    if (l.type == LightType::Directional) l.intensity *= sun;
+  return out;
+}
+
 const CliSpec kCli{
     .program = "06_shadows",
     .summary = "Shadows from the sun in the deferred frame: a depth map from a fitted orthographic frustum, looked up "
@@ -68,6 +81,8 @@ const CliSpec kCli{
               {"c", "esm: the exponent of exp(c z) (z: window depth in [0, 1]); any c works in log space", 80, 1, 10000,
                false},
               {"fit", "1: the map's box fitted to the view; 0: to the whole scene", 1, 0, 1, true},
+              {"sun", "multiplies directional lights (the atrium's sun: its 0.4 lux beside eight point lights shows "
+                      "the shadows only faintly at 1)", kSunScale, 0, 1000, false},
               choice_knob("show", "the image; the sun's visibility alone (blue: sky or facing away); the depth map "
                                   "itself (near black, far white); the ray-traced hard or soft truth (ray traced on the CPU: "
                                   "seconds per view); |visibility - truth| as a heat map (hard truth for hard, "
@@ -103,9 +118,7 @@ int main(int argc, char** argv) {
   return run_chapter(argc, argv, kChapter, [](App& app) {
     const Light& sun = find_sun(app.scene());
     ch03::DeferredFrame frame(app.scene_gpu());
-    frame.volumes().set_lights(ch03::build_light_set(
-        app.scene().lights, ch03::cut_threshold(1.f, ch03::peak_reflectance(app.scene())), frame.volumes().shapes()));
-    for (const auto& w : frame.volumes().lights().warnings) std::cerr << "warning: " << w << '\n';
+    float sun_scale = -1.f;  // the lights are built on the first frame, and again when --sun changes
     ShadowStage shadows(app.scene_gpu(), sun);
     frame.add_stage(shadows);
     GLint max_size = 0;
@@ -130,6 +143,15 @@ int main(int argc, char** argv) {
       if (first_frame && f.knob_int("kernel") % 2 == 0)
         throw UsageError("--kernel must be odd (a grid centred on the lookup), not " + std::to_string(f.knob_int("kernel")));
       const int kernel = f.knob_int("kernel") | 1;
+      if (float(f.knob("sun")) != sun_scale) {
+        const bool first = sun_scale < 0.f;
+        sun_scale = float(f.knob("sun"));
+        frame.volumes().set_lights(ch03::build_light_set(scaled_lights(app.scene().lights, sun_scale),
+                                                         ch03::cut_threshold(1.f, ch03::peak_reflectance(app.scene())),
+                                                         frame.volumes().shapes()));
+        if (first)
+          for (const auto& w : frame.volumes().lights().warnings) std::cerr << "warning: " << w << '\n';
+      }
       first_frame = false;
       // [settings]
       const ShadowSettings settings{.method = method_from_name(f.mode),
