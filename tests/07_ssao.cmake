@@ -15,4 +15,5 @@ lightpass_program_test(07_ssao.off_runs_no_ao_pass 0 "no AO pass \\(mode off\\)"
 lightpass_program_test(07_ssao.bad_samples 2 "--samples must be between 1 and 128, got 0" ${P07} --samples 0)
 lightpass_program_test(07_ssao.bad_radius 2 "--radius must be between 0.01 and 100, got -1" ${P07} --radius -1)
 lightpass_program_test(07_ssao.bad_mode 2 "unknown mode 'hbao'" ${P07} --mode hbao)
+lightpass_program_test(07_ssao.bad_radii 2 "--radii must be between 1 and 2, got 3" ${P07} --radii 3)
 add_test(NAME 07_ssao.sweep_unknown_option COMMAND ${EXPECT} 2 "unknown option '--fast'" -- $<TARGET_FILE:07_ssao_sweep> --fast)
