@@ -10,6 +10,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "chapters/07_ssao/ao_corner.h"
 #include "chapters/07_ssao/ao_frame.h"
 #include "chapters/07_ssao/ao_truth.h"
 #include "common/paths.h"
@@ -48,62 +49,18 @@ FrameCamera look(glm::vec3 eye, glm::vec3 target, float yfov = 0.6864f) {
 
 }  // namespace
 
-// [corner-closed-form]
-// The AO of a point at distance x from the other face of an inner 90-degree corner (two
-// half-planes, each extending beyond R), rays of length R: a cosine-weighted direction is a
-// uniform point of the unit disk lifted onto the hemisphere (Malley), and the ray hits the
-// other face within R exactly when its component toward that face exceeds h = x / R. Those
-// directions are the disk's circular segment beyond the chord at h, of area
-// acos(h) - h sqrt(1 - h^2), out of the disk's pi:
-//   A(h) = 1 - (acos(h) - h sqrt(1 - h^2)) / pi,  h = x / R <= 1;  A = 1 beyond R.
-// At the crease A = 1/2 (the face hides half the cosine lobe: the unlimited-radius value for
-// every x); at h = 1 it is 1.
 namespace {
-double corner_ao(double h) {
-  if (h >= 1.0) return 1.0;
-  h = std::max(h, 0.0);
-  return 1.0 - (std::acos(h) - h * std::sqrt(1.0 - h * h)) / kPi;
-}
-}  // namespace
-// [/corner-closed-form]
-
-namespace {
-// The corner view: the crease of the floor (y = 0) and the back wall (z = -1) between the tall
-// box and the right wall, seen from in front and above. With R = 0.25 only the crease's other
-// face lies within R of the pixels used: x in [0.25, 0.7] keeps them more than R from the tall
-// box (its largest x is -0.045) and from the right wall (x = 1); the short box ends at z =
-// -0.055, more than R in front of the floor's z <= -0.72 that this view shows.
-constexpr float kCornerR = 0.25f;
-// From 1.8 m, R projects to at most 40 pixels at the pixels used, under the disk's and GTAO's
-// screen-radius clamp (0.25 H = 45 pixels): they reach all of R (the test asserts it).
-const glm::vec3 kCornerEye{0.48f, 1.2f, 0.4f};
-FrameCamera corner_camera() { return look(kCornerEye, {0.48f, 0.0f, -1.0f}); }
-
-struct CornerPixel {
-  int x, y;
-  double h;          // distance to the other face, over R
-  double radius_px;  // R projected at the pixel's view depth
-};
+// The closed form of the corner's AO, dihedral_ao (ao_corner.h [dihedral]), and the corner's
+// view and pixels (ao_corner.h). The truth is held to the closed form below, so the formula is
+// checked by the rays, not only used.
+double corner_ao(double h) { return dihedral_ao(h); }
+constexpr float kCornerR = kCornerRadius;
+FrameCamera corner_camera() { return ch07::corner_camera(float(kW) / kH); }
 std::vector<CornerPixel> corner_pixels() {
   Box& b = cornell();
-  const FrameCamera cam = corner_camera();
-  const auto hits = primary_hits(b.rays, cam, kW, kH);
-  std::vector<CornerPixel> out;
-  for (int y = 0; y < kH; ++y)
-    for (int x = 0; x < kW; ++x) {
-      const auto& h = hits[std::size_t(y) * kW + x];
-      if (!h || h->position.x < 0.25f || h->position.x > 0.7f) continue;
-      const std::string& name = b.scene.instances[std::size_t(h->instance)].name;
-      const double z = -(cam.view * glm::vec4(h->position, 1.f)).z;
-      const double radius_px = kCornerR * cam.projection[1][1] * 0.5 * kH / z;
-      if (name == "floor") out.push_back({x, y, (h->position.z + 1.0) / kCornerR, radius_px});
-      else if (name == "back_wall") out.push_back({x, y, h->position.y / kCornerR, radius_px});
-    }
-  return out;
+  return ch07::corner_pixels(b.scene, b.rays, corner_camera(), kW, kH);
 }
-}  // namespace
 
-namespace {
 struct CornerError {
   double truth_signed[4] = {}, method_abs = 0, max_radius_px = 0;  // the truth's mean signed error per quarter of h; the method's mean |error|
   long pixels = 0;
