@@ -81,6 +81,8 @@ const CliSpec kCli{
               {"c", "esm: the exponent of exp(c z) (z: window depth in [0, 1]); any c works in log space", 80, 1, 10000,
                false},
               {"fit", "1: the map's box fitted to the view; 0: to the whole scene", 1, 0, 1, true},
+              {"moments", "vsm, esm: bits per value of the filtered map, 32 (RG32F) or 16 (RG16F, half the bytes)", 32,
+               16, 32, true},
               {"sun", "multiplies directional lights (the atrium's sun: its 0.4 lux beside eight point lights shows "
                       "the shadows only faintly at 1)", kSunScale, 0, 1000, false},
               choice_knob("show", "the image; the sun's visibility alone (blue: sky or facing away); the depth map "
@@ -143,6 +145,9 @@ int main(int argc, char** argv) {
       if (first_frame && f.knob_int("kernel") % 2 == 0)
         throw UsageError("--kernel must be odd (a grid centred on the lookup), not " + std::to_string(f.knob_int("kernel")));
       const int kernel = f.knob_int("kernel") | 1;
+      if (first_frame && f.knob_int("moments") != 16 && f.knob_int("moments") != 32)
+        throw UsageError("--moments must be 16 or 32, not " + std::to_string(f.knob_int("moments")));
+      const int moment_bits = f.knob_int("moments") < 24 ? 16 : 32;  // the window's slider: the nearer one
       if (float(f.knob("sun")) != sun_scale) {
         const bool first = sun_scale < 0.f;
         sun_scale = float(f.knob("sun"));
@@ -162,7 +167,8 @@ int main(int argc, char** argv) {
                                     .normal_offset = float(f.knob("normal")),
                                     .p_min = float(f.knob("pmin")),
                                     .c = float(f.knob("c")),
-                                    .fit_to_view = f.knob_int("fit") != 0};
+                                    .fit_to_view = f.knob_int("fit") != 0,
+                                    .moment_bits = moment_bits};
       const int show = f.knob_int("show");
       shadows.set(settings, show == kVisibility ? ShadowPicture::Visibility
                             : show == kMap      ? ShadowPicture::Map

@@ -79,16 +79,21 @@ const ShaderProgram& ShadowStage::program(const std::string& vertex, const std::
 void ShadowStage::allocate() {
   const int n = settings_.map_size;
   const bool filtered = settings_.method == ShadowMethod::Vsm || settings_.method == ShadowMethod::Esm;
-  if (n == allocated_size_ && filtered == allocated_filtered_) return;
+  if (settings_.moment_bits != 16 && settings_.moment_bits != 32)
+    throw Error("shadow stage: moment_bits must be 16 or 32 (got " + std::to_string(settings_.moment_bits) + ")");
+  const int bits = filtered ? settings_.moment_bits : 32;
+  if (n == allocated_size_ && filtered == allocated_filtered_ && bits == allocated_bits_) return;
   depth_ = gl::make_texture_2d(GL_DEPTH_COMPONENT32F, n, n);
   depth_fbo_ = gl::Framebuffer();
   glNamedFramebufferTexture(depth_fbo_.id(), GL_DEPTH_ATTACHMENT, depth_.id(), 0);
   glNamedFramebufferDrawBuffer(depth_fbo_.id(), GL_NONE);
   moments_.reset(), scratch_.reset();
   if (filtered) {
-    // RG32F for both (ESM uses the red channel): one format, so the sizes compare.
-    moments_ = gl::make_texture_2d(GL_RG32F, n, n);
-    scratch_ = gl::make_texture_2d(GL_RG32F, n, n);
+    // RG32F for both (ESM uses the red channel): one format, so the sizes compare; or RG16F,
+    // half the bytes, whose 11-bit mantissa rounds M2 - M1^2 (shadow_math.h [fp16-moments]).
+    const GLenum format = bits == 16 ? GL_RG16F : GL_RG32F;
+    moments_ = gl::make_texture_2d(format, n, n);
+    scratch_ = gl::make_texture_2d(format, n, n);
     moments_fbo_ = gl::Framebuffer();
     scratch_fbo_ = gl::Framebuffer();
     glNamedFramebufferTexture(moments_fbo_.id(), GL_COLOR_ATTACHMENT0, moments_.id(), 0);
@@ -96,11 +101,12 @@ void ShadowStage::allocate() {
   }
   allocated_size_ = n;
   allocated_filtered_ = filtered;
+  allocated_bits_ = bits;
 }
 
 std::size_t ShadowStage::allocated_bytes() const {
   const std::size_t texels = std::size_t(allocated_size_) * std::size_t(allocated_size_);
-  return texels * (4 + (allocated_filtered_ ? 2 * 8 : 0));
+  return texels * (4 + (allocated_filtered_ ? 2 * 2 * std::size_t(allocated_bits_ / 8) : 0));
 }
 
 // [shadow-stage]

@@ -34,6 +34,7 @@ struct ShadowSettings {
   float p_min = 0.2f;           // VSM's light-bleeding reduction
   float c = 80.f;               // ESM's exponent (window depth in [0, 1])
   bool fit_to_view = true;      // the map's box cut to what the camera sees (else the whole scene)
+  int moment_bits = 32;         // VSM, ESM: the filtered map in RG32F (32) or RG16F (16), half the bytes
 };
 
 // What composite() draws instead of the image.
@@ -64,6 +65,7 @@ class ShadowStage : public ch03::FrameStage {
   LightFrustum frustum_;
   int allocated_size_ = 0;
   bool allocated_filtered_ = false;
+  int allocated_bits_ = 32;
   gl::Texture depth_{GL_TEXTURE_2D}, moments_{GL_TEXTURE_2D}, scratch_{GL_TEXTURE_2D};
   gl::Framebuffer depth_fbo_, moments_fbo_, scratch_fbo_;
   gl::Sampler nearest_, compare_, linear_;

@@ -5,7 +5,9 @@
 // 06_shadows_llvmpipe.csv on llvmpipe (CPU times); every row names the renderer, the size
 // and the frames measured.
 //
-//   06_shadows_sweep [--out DIR] [--size WxH] [--frames N] [--truth-samples N]
+//   06_shadows_sweep [--out DIR] [--size WxH] [--frames N] [--truth-samples N] [--only main|moments]
+//   -> DIR/06_shadows.csv, and 06_shadows_moments.csv: VSM and ESM with the filtered map in
+//      RG32F and in RG16F (..._llvmpipe.csv on llvmpipe)
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -17,6 +19,7 @@
 #include "chapters/06_shadows/shadow_stage.h"
 #include "chapters/06_shadows/shadow_truth.h"
 #include "common/context.h"
+#include "common/error.h"
 #include "common/measure.h"
 #include "common/paths.h"
 #include "common/sweep.h"
@@ -32,6 +35,7 @@ struct Settings {
   int width = 640, height = 360;
   int frames = 10;
   int truth_samples = 64;
+  std::string only;  // main | moments: one of the two CSVs
 };
 
 struct Variant {
@@ -89,8 +93,10 @@ int main(int argc, char** argv) {
   Settings s;
   return run_sweep(argc, argv, "06_shadows_sweep", [&](SweepArgs& args) {
     args.text("--out", s.out).size("--size", s.width, s.height).integer("--frames", s.frames)
-        .integer("--truth-samples", s.truth_samples);
+        .integer("--truth-samples", s.truth_samples).text("--only", s.only);
   }, [&] {
+    if (!s.only.empty() && s.only != "main" && s.only != "moments")
+      throw UsageError("--only must be main or moments, not '" + s.only + "'");
     std::filesystem::create_directories(s.out);
     auto context = Context::create({.headless = true, .width = s.width, .height = s.height});
     const std::string renderer = context->renderer();
@@ -106,6 +112,7 @@ int main(int argc, char** argv) {
     OutputTarget image(s.width, s.height);
     ColourTarget visibility(s.width, s.height, GL_RGBA32F);
     const bool software = context->is_software();
+    if (s.only.empty() || s.only == "main") {
     const std::string file = s.out + (software ? "/06_shadows_llvmpipe.csv" : "/06_shadows.csv");
     std::ofstream csv(file);
     csv << "# " << (software ? "llvmpipe CPU time: " : "GPU time: ") << renderer << ", " << s.width << "x" << s.height
@@ -151,5 +158,42 @@ int main(int argc, char** argv) {
       }
     }
     std::cout << "wrote " << file << '\n';
+    }
+    // [moments-rows]
+    // VSM and ESM with the filtered map in RG32F and RG16F: bytes, cost and error against the
+    // soft truth, at the default map and kernel and at 2048 with a 5-texel filter.
+    if (s.only.empty() || s.only == "moments") {
+      const std::string file = s.out + (software ? "/06_shadows_moments_llvmpipe.csv" : "/06_shadows_moments.csv");
+      std::ofstream csv(file);
+      csv << "# " << (software ? "llvmpipe CPU time: " : "GPU time: ") << renderer << ", " << s.width << "x" << s.height
+          << ", atrium overview; soft truth: sun disk " << TruthSettings{}.angular_radius << " rad, " << s.truth_samples
+          << " rays per pixel; bits: of each value of the filtered map (RG32F or RG16F)\n"
+          << "view,method,bits,map,kernel,bytes,depth_ms,filter_ms,global_ms,frame_ms,soft_mean,soft_p99,"
+          << csv_measure_columns() << "\n";
+      const FrameCamera camera = frame_camera(scene.camera("overview"), float(s.width) / s.height);
+      const ImageF truth = cached_shadow_truth(scene, rays, camera, s.width, s.height, sun.direction,
+                                               {.samples = s.truth_samples});
+      for (ShadowMethod method : {ShadowMethod::Vsm, ShadowMethod::Esm})
+        for (int bits : {32, 16})
+          for (auto [map, kernel] : {std::pair{1024, 3}, std::pair{2048, 5}}) {
+            const ShadowSettings x{.method = method, .map_size = map, .kernel = kernel, .moment_bits = bits};
+            stage.set(x, ShadowPicture::Visibility);
+            frame.render(camera, {visibility.framebuffer(), s.width, s.height});
+            const VisibilityError soft = visibility_error(visibility.read(), truth, 1);
+            stage.set(x);
+            PassMetrics metrics;
+            const Measurement m = measure(
+                metrics, [&] { frame.render(camera, {image.framebuffer(), s.width, s.height}, &metrics); }, {.frames = s.frames});
+            csv << "overview," << kMethodNames[int(method)] << ',' << bits << ',' << map << ',' << kernel << ','
+                << stage.allocated_bytes() << ',' << pass_ms(m, "shadow map: depth from the sun") << ','
+                << pass_ms(m, "shadow map: pre-filter") << ',' << pass_ms(m, "global: ambient + directional (chapter 03)")
+                << ',' << m.total_ms() << ',' << soft.mean_abs << ',' << soft.p99 << ','
+                << csv_measure_values(renderer, s.width, s.height, m.frames) << "\n";
+            std::cout << "overview " << kMethodNames[int(method)] << " " << bits << "-bit map " << map << " kernel " << kernel
+                      << ": frame " << m.total_ms() << " ms, soft mean " << soft.mean_abs << std::endl;
+          }
+      std::cout << "wrote " << file << '\n';
+    }
+    // [/moments-rows]
   });
 }

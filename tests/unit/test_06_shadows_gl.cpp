@@ -398,3 +398,70 @@ TEST(ShadowsGlReceiverOutside, ReceiversOutsideTheMapAreLit) {
   EXPECT_EQ(dark, 0u);
 }
 // [/receiver-outside]
+
+// [fp16-moments]
+// VSM and ESM with the filtered map in RG16F instead of RG32F: half the map's bytes (12 instead
+// of 20 per texel with the depth map). fp16 keeps 11 bits of mantissa, so M1 = E[z] (window
+// depth in [0, 1]) is rounded by up to 2^-12 z = 2.4e-4, and a lit receiver's d - M1 may be
+// that much; Chebyshev's bound then gives var / (var + 5.8e-8), which the default variance
+// floor (1e-6) keeps above 0.94, and the default constant bias (0.5 texels: 0.028 m x 0.5 over
+// the box's 23 m of depth, 6e-4) puts d below M1 anyway. ESM stores log E = c z <= c = 80,
+// where fp16's step is 0.04 (visibility off by 4 % at most), never exp(c z) itself, which would
+// overflow fp16 past c z = 11.1. Claims, on the overview: the bytes; each method within the
+// penumbra budget of the soft truth at either width; on the pixels the soft truth has fully lit
+// (>= 0.999) outside the hard edge band, 16 bits darken (below 0.9) at most 0.1 % of them more
+// than 32 bits do (acne would darken whole surfaces, thousands of pixels; a few edge pixels
+// tip across 0.9 either way). And the precision is real: with no bias and a variance floor of
+// 1e-8, fp16's rounding alone makes VSM shadow lit surfaces (more than 5 % of those pixels,
+// var / (var + 5.8e-8) = 0.15 at worst), which 32 bits barely do (at most 1 %: without any
+// bias the linear filtering's own rounding, 2^-24, darkens a few; llvmpipe: 70 of 17 888
+// against fp16's 2 989).
+TEST_F(ShadowsGl, SixteenBitMomentsHalveTheMapAndStayWithinTheBudget) {
+  const FrameCamera cam = world->camera("overview");
+  const ImageF truth = world->truth(cam);
+  double penumbra = 0, masked = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x)
+      if (truth.at(x, y, 2) > 0.5f) masked += 1, penumbra += truth.at(x, y, 1) > 0.02f && truth.at(x, y, 1) < 0.98f;
+  world->visibility(cam, {.method = ShadowMethod::Hard});  // fits the frustum for the band
+  const auto edges = hard_edge_pixels(truth, edge_band_pixels(*world, cam, {.method = ShadowMethod::Hard}));
+  std::size_t lit = 0;
+  auto darkened = [&](const ImageF& v) {
+    std::size_t n = 0;
+    lit = 0;
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        if (truth.at(x, y, 2) < 0.5f || truth.at(x, y, 1) < 0.999f || edges[std::size_t(y) * kW + x]) continue;
+        ++lit;
+        n += v.at(x, y, 0) < 0.9f;
+      }
+    return n;
+  };
+  for (ShadowMethod m : {ShadowMethod::Vsm, ShadowMethod::Esm}) {
+    std::size_t dark[2] = {};
+    for (int bits : {32, 16}) {
+      const ShadowSettings s{.method = m, .moment_bits = bits};
+      const ImageF v = world->visibility(cam, s);
+      const std::size_t n = std::size_t(s.map_size) * s.map_size;
+      EXPECT_EQ(world->stage.allocated_bytes(), n * (4 + 2 * 2 * std::size_t(bits / 8)));
+      const VisibilityError e = visibility_error(v, truth, 1);
+      dark[bits == 16] = darkened(v);
+      std::printf("%s, %d-bit: mean |error| %.4f against the soft truth (budget %.4f); %zu of %zu lit pixels below 0.9\n",
+                  kMethodNames[int(m)].c_str(), bits, e.mean_abs, penumbra / masked, dark[bits == 16], lit);
+      EXPECT_LT(e.mean_abs, penumbra / masked) << kMethodNames[int(m)] << " " << bits;
+    }
+    ASSERT_GT(lit, std::size_t(kW * kH / 10));
+    EXPECT_LE(dark[1], dark[0] + lit / 1000) << kMethodNames[int(m)];
+  }
+  std::size_t stripped[2] = {};
+  for (int bits : {32, 16}) {
+    const ShadowSettings s{.method = ShadowMethod::Vsm, .constant_bias = 0, .slope_bias = 0, .normal_offset = 0,
+                           .min_variance = 1e-8f, .moment_bits = bits};
+    stripped[bits == 16] = darkened(world->visibility(cam, s));
+    std::printf("vsm, %d-bit, no bias, variance floor 1e-8: %zu of %zu lit pixels below 0.9\n", bits,
+                stripped[bits == 16], lit);
+  }
+  EXPECT_LE(stripped[0], lit / 100);
+  EXPECT_GT(stripped[1], lit / 20);
+}
+// [/fp16-moments]
