@@ -74,6 +74,8 @@ const CliSpec kCli{
     .modes = {"pcf", "hard", "pcf-hardware", "vsm", "esm"},  // the chapter's recommendation first
     .knobs = {{"map", "shadow map width and height in texels (8192: 1.3 GiB with vsm or esm)", 1024, 16, 8192, true},
               {"kernel", "pcf: the k x k grid; vsm, esm: the box filter's width (odd)", 3, 1, 31, true},
+              {"taps", "pcf: 0 for the k x k grid, or this many taps of a Poisson disk k texels across, rotated per "
+                       "pixel", 0, 0, 64, true},
               {"bias", "constant depth bias, in texels of the map", 0.5, 0, 100, false},
               {"slope", "slope-scaled bias, in texels per unit tan(theta)", 1, 0, 100, false},
               {"normal", "normal offset, in texels", 1, 0, 100, false},
@@ -162,6 +164,7 @@ int main(int argc, char** argv) {
       const ShadowSettings settings{.method = method_from_name(f.mode),
                                     .map_size = f.knob_int("map"),
                                     .kernel = kernel,
+                                    .poisson_taps = f.knob_int("taps"),
                                     .constant_bias = float(f.knob("bias")),
                                     .slope_bias = float(f.knob("slope")),
                                     .normal_offset = float(f.knob("normal")),

@@ -14,6 +14,7 @@ struct ShadowBlock {
   glm::vec4 map, bias, filter;
   glm::mat4 view;
   glm::vec4 extent;
+  glm::vec4 poisson[kMaxPoissonTaps / 2];  // two taps a vec4 (x, y, z, w: tap 2i, tap 2i + 1)
 };
 constexpr GLuint kBlockBinding = 8;
 constexpr GLuint kDepthUnit = ch03::DeferredFrame::kFirstStageUnit;  // 8: sampler2D, nearest
@@ -157,13 +158,25 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
   glEnable(GL_DEPTH_TEST);
   glDepthMask(GL_TRUE);
   // 3. What the visibility hook reads.
-  const ShadowBlock block{frustum_.view_projection(),
+  if (settings_.poisson_taps < 0 || settings_.poisson_taps > kMaxPoissonTaps)
+    throw Error("shadow stage: poisson_taps must be between 0 and " + std::to_string(kMaxPoissonTaps));
+  if (settings_.poisson_taps != poisson_taps_) {
+    poisson_ = settings_.poisson_taps > 0 ? poisson_disk(settings_.poisson_taps, 0x504fu) : std::vector<glm::vec2>{};
+    poisson_taps_ = settings_.poisson_taps;
+  }
+  ShadowBlock block{frustum_.view_projection(),
                           glm::vec4(frustum_.texel_world(n), frustum_.depth_range(), float(n), float(settings_.kernel / 2)),
                           glm::vec4(settings_.constant_bias, settings_.slope_bias, settings_.normal_offset,
                                     settings_.min_variance),
-                          glm::vec4(settings_.c, settings_.p_min, 0, 0),
+                          glm::vec4(settings_.c, settings_.p_min, float(poisson_taps_), 0),
                           frustum_.view,
-                          glm::vec4(frustum_.box_max - frustum_.box_min, 0)};
+                          glm::vec4(frustum_.box_max - frustum_.box_min, 0),
+                          {}};
+  for (std::size_t i = 0; i < poisson_.size(); ++i) {
+    glm::vec4& slot = block.poisson[i / 2];
+    slot[int(i % 2) * 2] = poisson_[i].x;
+    slot[int(i % 2) * 2 + 1] = poisson_[i].y;
+  }
   glNamedBufferSubData(block_.id(), 0, sizeof(block), &block);
   glBindBufferBase(GL_UNIFORM_BUFFER, kBlockBinding, block_.id());
   glBindTextureUnit(kDepthUnit, depth_.id());
