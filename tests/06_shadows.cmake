@@ -17,6 +17,7 @@ lightpass_program_test(06_shadows.bad_map_zero 2 "--map must be between" ${P06} 
 lightpass_program_test(06_shadows.bad_map_too_large 2 "--map must be between" ${P06} --map 100000)
 lightpass_program_test(06_shadows.bad_pmin 2 "--pmin must be between" ${P06} --pmin 1)
 lightpass_program_test(06_shadows.bad_moments 2 "--moments must be 16 or 32, not 20" ${P06} --headless --size 16x16 --moments 20)
+lightpass_program_test(06_shadows.bad_taps 2 "--taps must be between 0 and 64, got 65" ${P06} --taps 65)
 lightpass_program_test(06_shadows.bad_sun 2 "--sun must be between 0 and 1000, got -1" ${P06} --sun -1)
 lightpass_program_test(06_shadows.bad_mode 2 "unknown mode 'volumes'" ${P06} --mode volumes)
 lightpass_program_test(06_shadows.scene_without_sun 1 "no directional light" ${P06} --headless --size 16x16 --scene tests/data/minimal.gltf)
