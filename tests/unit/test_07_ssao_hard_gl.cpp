@@ -92,7 +92,7 @@ CornerError corner_error(const ImageF& ao, const ImageF& truth) {
 // (SsaoTruth): the llvmpipe measurement plus a quarter for another renderer's rounding.
 // Measured: classic 0.018, disk 0.058 (most of it at the crease, where the wall is seen edge-on:
 // the book's inner-corner failure), GTAO 0.023. Broken, each fails: the classic kernel a sphere
-// instead of a hemisphere (0.29), R projected with the horizontal focal length (disk 0.107,
+// instead of a hemisphere (0.40), R projected with the horizontal focal length (disk 0.107,
 // GTAO 0.096), GTAO's slices weighted uniformly instead of by the cosine (0.050). The view
 // keeps R under the screen-radius clamp: nearer than 1.4 m (R = 0.25) the clamp shortens the
 // disk's and GTAO's reach, and the same corner from 0.6 m gave them 0.115 and 0.098.
