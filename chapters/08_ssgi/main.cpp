@@ -30,18 +30,18 @@ const CliSpec kCli{
                "AO of chapter 07 in one pass, on the deferred frame, against ray-traced one-bounce indirect light.",
     .default_scene = "assets/cornell/cornell.gltf",
     .modes = kModeNames,  // ssgi, ssao, off
-    .knobs = {{"samples", "samples of the pattern per pixel (each read in the AO disk and in the wide disk)", 16, 1,
+    .knobs = {{"samples", "samples of the pattern per pixel (each read in the AO disk and in the wide disk)", 32, 1,
                kMaxSamples, true},
               {"radius", "R_ao, world units: how far occluders count", 0.5, 0.01, 100, false},
               {"ratio", "R_gi / R_ao: the wide disk of the indirect light (the source: 5)", 5, 1, 20, false},
               choice_knob("pattern", "where the samples fall: the regular polar grid (bands), chapter 07's spiral, "
                                      "or the spiral randomised per pixel (then blurred)",
-                          {"regular", "spiral", "randomised"}, 1),
+                          {"regular", "spiral", "randomised"}, 2),
               {"blur", "randomised pattern: the bilateral 5x5 blur (1) or the raw noise (0)", 1, 0, 1, true},
               {"bounces", "1, or 2: a second pass bounces direct + first bounce once more", 1, 1, 2, true},
               choice_knob("show", "the lit image; the indirect light alone (albedo x L1_ind, x --exposure); the AO "
                                   "term; the ray-traced truth (the CPU traces --truth-samples rays per pixel, cached); "
-                                  "|SSGI - truth| as a heat map (red: 0.05)",
+                                  "|SSGI - truth| as a heat map (red: 0.2)",
                           {"image", "indirect", "ao", "truth", "error"}),
               {"exposure", "--show indirect/truth: the indirect light times this", 4, 0.1, 100, false},
               {"truth-samples", "--show truth/error: cosine-weighted rays per pixel", 256, 1, 4096, true},
@@ -53,9 +53,10 @@ std::vector<Shot> cornell_shots() {
           {"front", "ssao", {}},
           {"front", "off", {}},
           {"front", "ssgi", {{"show", kIndirect}}},
-          {"front", "ssgi", {{"show", kIndirect}, {"pattern", 0}}},
-          {"front", "ssgi", {{"show", kIndirect}, {"pattern", 2}}},
-          {"front", "ssgi", {{"show", kIndirect}, {"pattern", 2}, {"blur", 0}}},
+          {"front", "ssgi", {{"show", kIndirect}, {"pattern", 0}, {"samples", 16}}},
+          {"front", "ssgi", {{"show", kIndirect}, {"pattern", 1}, {"samples", 16}}},
+          {"front", "ssgi", {{"show", kIndirect}, {"samples", 16}}},
+          {"front", "ssgi", {{"show", kIndirect}, {"samples", 16}, {"blur", 0}}},
           {"front", "ssgi", {{"show", kIndirect}, {"bounces", 2}}},
           {"front", "ssgi", {{"show", kAo}}},
           {"front", "ssgi", {{"show", kTruth}, {"truth-samples", 64}}},
@@ -126,7 +127,7 @@ int main(int argc, char** argv) {
           frame.render(f.camera, {f.target, f.width, f.height});
           ImageF estimate = ImageF::blank(f.width, f.height, 4);
           if (gi.ran() && gi.settings().indirect) estimate = gi.ssgi().read();
-          gi.set_picture(gi_error_map(estimate, truth), 0.05f);
+          gi.set_picture(gi_error_map(estimate, truth), 0.2f);
           gi.set(mode_from(f), settings, GiShow::Heat, ambient, exposure);
         }
       }

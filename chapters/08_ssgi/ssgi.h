@@ -26,8 +26,8 @@ namespace lp::ch08 {
 struct GiSettings {
   bool indirect = true;          // the wide disk: one-bounce indirect light (off: AO alone)
   bool ao = true;                // the narrow disk: chapter 07's disk AO on the ambient light
-  int samples = 16;              // samples of the pattern, 1..kMaxSamples (each read in both disks)
-  Pattern pattern = Pattern::Spiral;
+  int samples = 32;              // samples of the pattern, 1..kMaxSamples (each read in both disks)
+  Pattern pattern = Pattern::Randomised;
   float ao_radius = 0.5f;        // R_ao, world units
   float gi_radius = 2.5f;        // R_gi, world units: 5 R_ao, the source's 1:5
   float max_screen_radius = 1.f;   // the wide disk: at most this fraction of the image height (its height)
