@@ -23,10 +23,10 @@ ImageF GiFrame::indirect(const FrameCamera& camera, GiMode mode, const GiSetting
 }
 
 ImageRGBA8 GiFrame::image(const FrameCamera& camera, GiMode mode, const GiSettings& settings, GiShow show,
-                          float ambient_scale) {
+                          float ambient_scale, float exposure) {
   const glm::vec3 ambient = scene_.scene().ambient * ambient_scale;
   frame_.set_ambient(ambient);
-  stage_.set(mode, settings, show, ambient);
+  stage_.set(mode, settings, show, ambient, exposure);
   frame_.render(camera, {target_.framebuffer(), width_, height_});
   return target_.read();
 }

@@ -15,7 +15,7 @@ class GiFrame {
   // One frame in `mode`; returns rgb L1_ind and a = A (rows top to bottom; 0 and 1 when off).
   ImageF indirect(const FrameCamera& camera, GiMode mode, const GiSettings& settings);
   ImageRGBA8 image(const FrameCamera& camera, GiMode mode, const GiSettings& settings, GiShow show = GiShow::Image,
-                   float ambient_scale = 1.f);
+                   float ambient_scale = 1.f, float exposure = 1.f);
   // The SSGI pass measured (common/measure.h): its mean and fastest over `frames` frames.
   PassMeasurement time(const FrameCamera& camera, GiMode mode, const GiSettings& settings, int frames);
   ch03::DeferredFrame& frame() { return frame_; }
