@@ -15,3 +15,5 @@ lightpass_program_test(08_ssgi.bad_samples 2 "--samples must be between 1 and 12
 lightpass_program_test(08_ssgi.bad_bounces 2 "--bounces must be between 1 and 2, got 3" ${P08} --bounces 3)
 lightpass_program_test(08_ssgi.bad_mode 2 "unknown mode 'rtgi'" ${P08} --mode rtgi)
 lightpass_program_test(08_ssgi.bad_pattern 2 "--pattern must be one of: regular spiral randomised. got .hexagonal." ${P08} --pattern hexagonal)
+add_test(NAME 08_ssgi.sweep_unknown_option COMMAND ${EXPECT} 2 "unknown option '--fast'" -- $<TARGET_FILE:08_ssgi_sweep> --fast)
+add_test(NAME 08_ssgi.sweep_bad_only COMMAND ${EXPECT} 2 "--only must be cornell, atrium or pan .got 'street'." -- $<TARGET_FILE:08_ssgi_sweep> --only street)

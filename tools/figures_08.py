@@ -20,7 +20,8 @@ def pareto(d: Path, csv_name: str, where: str, scene: str):
     rows = [r for r in rows if r["scene"] == scene and float(r["samples"]) > 0]
     if not rows:
         return
-    series = [Series(v, [(float(r["gi_ms"]), float(r["relative"]), r["samples"]) for r in rows if r["variant"] == v],
+    label = lambda v: v + (" (against the 2-bounce truth)" if v.endswith("2-bounces") else "")
+    series = [Series(label(v), [(float(r["gi_ms"]), float(r["relative"]), r["samples"]) for r in rows if r["variant"] == v],
                      dashed=v in ("randomised-no-blur", "randomised-2-bounces"), in_order=True) for v in VARIANTS]
     series = [s for s in series if s.points]
     plot(d / f"08_pareto_{scene}{'_h200' if 'H200' in where else ''}.svg",
@@ -38,8 +39,8 @@ def main(d: Path):
     series = [Series(label, [(float(r["offset"]), float(r[col])) for r in rows], dashed=col == "red_screen")
               for label, col in (("truth", "red_truth"), ("screen-limited truth", "red_screen"), ("SSGI pass", "red_pass"))]
     plot(d / "08_pan.svg", "The red wall leaves the screen: red light on the floor beside it",
-         "the Cornell camera moved right; L1_ind red - green / 0.93 over the floor between x = -0.6 and -0.1 (errors: any renderer)",
-         series, "camera moved right (m)", "red excess of the floor's indirect light")
+         "a camera above the Cornell floor looking down, moved right; L1_ind red - green / 0.93 over the floor between x = -0.6 and -0.1 (errors: any renderer)",
+         series, "camera position x (m); the red wall is off the image from about 0.2", "red excess of the floor's indirect light")
 
 
 if __name__ == "__main__":

@@ -115,12 +115,13 @@ void sweep_scene(const Settings& s, std::ofstream& csv, const std::string& file,
 }
 
 // [pan]
-// The off-screen limit: the Cornell box's camera moves to the right (+x, looking the same way),
-// 0 to 1.4 m, until the red wall leaves the screen (at about 0.8 m) while the floor's left half
-// stays in view. At each offset, the red light the floor's pixels between x = -0.6 and -0.1
-// receive (red - green / 0.93 of L1_ind) in the truth, in the screen-limited truth and in the
-// pass; the red wall's pixels; and the frame's energy captured. (Turning the camera instead moves
-// the floor off the screen with the wall.) And the cheaper of the source's fixes measured: a
+// The off-screen limit: a camera 1.9 m above the Cornell box's floor looks straight down and
+// moves to the right (+x), from x = -0.6 to 0.5: the red wall (x = -1, seen from above at a
+// slant) leaves the image at about x = 0.2, while the floor between x = -0.6 and -0.1 stays in
+// it. At each offset, the red light those floor pixels receive (red - green / 0.93 of L1_ind) in
+// the truth, in the screen-limited truth and in the pass; the red wall's pixels; and the frame's
+// energy captured. (A camera that turns away from the wall, or moves at eye height, takes the
+// floor beside the wall off the screen with it.) And the cheaper of the source's fixes measured: a
 // guard band, the whole frame rendered 10 % of the height wider on every side with the same
 // focal length (so its inner pixels are the screen's pixels exactly), the pass run on it, the
 // screen's part kept: what it recovers, and its time.
@@ -132,7 +133,7 @@ void pan(const Settings& s, const std::string& timer) {
   const FrameCamera start = frame_camera(scene.camera("front"), float(s.width) / s.height);
   std::ofstream csv(csv_name(s, "08_ssgi_pan"));
   csv << "# " << timer << ", " << s.width << "x" << s.height << ", truth " << s.truth_samples
-      << " rays per pixel; the camera moves right by `offset` m; red_*: red - green / 0.93 of L1_ind over the floor "
+      << " rays per pixel; the camera 1.9 m above the floor looking down at x = `offset`; red_*: red - green / 0.93 of L1_ind over the floor "
       << "between x = -0.6 and -0.1; captured: the pass's energy over the truth's\n"
       << "offset,red_wall_pixels,floor_pixels,red_truth,red_screen,red_pass,red_guard,captured,captured_screen,"
       << "captured_guard,gi_ms,guard_gi_ms,"
@@ -142,10 +143,10 @@ void pan(const Settings& s, const std::string& timer) {
   GiFrame guard(gpu, gw, gh);
   GiSettings guard_settings = gi_settings;
   guard_settings.max_screen_radius = gi_settings.max_screen_radius * float(s.height) / float(gh);  // the same disk in pixels
-  for (float offset : {0.f, 0.2f, 0.4f, 0.6f, 0.8f, 1.0f, 1.2f, 1.4f}) {
+  for (float offset : {-0.6f, -0.4f, -0.2f, 0.f, 0.1f, 0.2f, 0.3f, 0.4f, 0.5f}) {
     FrameCamera cam = start;
-    cam.position = start.position + glm::vec3(offset, 0, 0);
-    cam.view = start.view * glm::translate(glm::mat4(1), glm::vec3(-offset, 0, 0));
+    cam.position = glm::vec3(offset, 1.9f, 0.2f);
+    cam.view = glm::lookAt(cam.position, glm::vec3(offset, 0.f, 0.2f), glm::vec3(0, 0, -1));
     const auto hits = primary_hits(rays, cam, s.width, s.height);
     const ImageF truth = cached_ray_traced_indirect(scene, frame.lights(), cam, s.width, s.height, {.samples = s.truth_samples});
     const ImageF screen = cached_ray_traced_indirect(scene, frame.lights(), cam, s.width, s.height,

@@ -374,8 +374,6 @@ TEST(SsgiHardCases, CameraAgainstAWallFindsNothingAndBreaksNothing) {
   for (std::size_t i = 3; i < gi.data.size(); i += 4) lowest_ao = std::min(lowest_ao, gi.data[i]);
   EXPECT_GE(lowest_ao, 0.99f);
 }
-// [/hard-cases]
-
 // A thin object: a panel 1 cm thick (two back-to-back copies of the floor's 2x2 quad, 0.4 tall
 // and 0.6 deep) standing on the floor of the Cornell box at x = -0.3, edge-on to the camera
 // but for a sliver. In the truth it changes the floor beside it (measured: darker by 0.035: it
@@ -430,6 +428,8 @@ TEST(SsgiHardCases, ThinObjectIsMostlyMissed) {
   EXPECT_GT(std::abs(d_truth), 0.01);
   EXPECT_LT(std::abs(d_pass), 0.5 * std::abs(d_truth));
 }
+
+// [/hard-cases]
 
 TEST(SsgiSettings, BadSettingsSayWhat) {
   World& w = cornell();
