@@ -6,6 +6,8 @@ lightpass_gtests(08_ssgi gl lightpass_08_ssgi unit/test_08_ssgi_gl.cpp)
 
 set(P08 $<TARGET_FILE:08_ssgi>)
 lightpass_program_test(08_ssgi.reference.cornell 0 "12 of 12 references match" ${P08} --check --out ${CHECK_OUT}/08_ssgi)
+lightpass_program_test(08_ssgi.reference.atrium 0 "2 of 2 references match"
+  ${P08} --check --scene assets/atrium/atrium.gltf --out ${CHECK_OUT}/08_ssgi_atrium)
 lightpass_program_test(08_ssgi.headless_says_what_it_computed 0
   "SSGI ssgi, 16 samples, regular, radii 0.5 / 2.5, 1 bounce: frame took"
   ${P08} --headless --size 160x90 --samples 17 --pattern regular --out ${CMAKE_BINARY_DIR}/out/08_headless.png)

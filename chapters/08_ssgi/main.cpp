@@ -48,6 +48,12 @@ const CliSpec kCli{
               {"ambient", "the scene's ambient light times this (the AO darkens only the ambient)", 1, 0, 1000, false}}};
 
 // [references]
+// On a renderer other than the references' (a reader's GPU), the atrium's normal-mapped floor
+// reads a mip level far away that OpenGL leaves to the implementation (chapters 02, 05 and 07
+// measured 0.2 to 0.7 % of its pixels off by more than 3 steps on an NVIDIA H200): the atrium's
+// views get chapter 07's allowance there; the renderer that made the references keeps 0.1 %.
+const CompareOptions kOtherRenderer{.threshold = 3, .max_failing_fraction = 0.02};
+
 std::vector<Shot> cornell_shots() {
   return {{"front", "ssgi", {}},
           {"front", "ssao", {}},
@@ -62,9 +68,14 @@ std::vector<Shot> cornell_shots() {
           {"front", "ssgi", {{"show", kTruth}, {"truth-samples", 64}}},
           {"front", "ssgi", {{"show", kError}, {"truth-samples", 64}}}};
 }
+std::vector<Shot> atrium_shots() {
+  return {{"overview", "ssgi", {}, {}, kOtherRenderer}, {"overview", "ssgi", {{"show", kIndirect}}, {}, kOtherRenderer}};
+}
 // [/references]
 
-const Chapter kChapter{.cli = kCli, .references = cornell_shots()};
+const Chapter kChapter{.cli = kCli,
+                       .references = cornell_shots(),
+                       .scene_references = {{"assets/atrium/atrium.gltf", atrium_shots()}}};
 
 GiSettings settings_from(const Frame& f) {
   GiSettings s;
