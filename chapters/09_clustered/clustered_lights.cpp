@@ -105,6 +105,10 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
   grid_ = clustered ? grid_of_counts(w, h, settings_.clusters.x, settings_.clusters.y, settings_.clusters.z,
                                      camera.znear, camera.zfar)
                     : grid_of_tiles(w, h, settings_.tile_px, 1, camera.znear, camera.zfar);
+  // Bounded work and memory for any knob values: at most 2^22 cells (32 MiB of cell records).
+  if (std::uint64_t(grid_.tiles_x) * std::uint64_t(grid_.tiles_y) * std::uint64_t(grid_.slices) > (1u << 22))
+    throw Error("clustered lights: a grid of " + std::to_string(grid_.tiles_x) + " x " + std::to_string(grid_.tiles_y) +
+                " x " + std::to_string(grid_.slices) + " cells is more than 4 194 304; use larger tiles or fewer slices");
   upload_lights();
   stats_ = {};
   stats_.cells = grid_.cells();
