@@ -18,7 +18,7 @@ lightpass_program_test(09_clustered.stencil_lights_the_same_pairs 0 "312 local l
 lightpass_program_test(09_clustered.bad_mode 2 "unknown mode 'forward'" ${P09} --mode forward)
 # --bench times the three passes apart, under the names the sweep reads.
 lightpass_program_test(09_clustered.bench_times_the_three_passes 0
-  "\"name\":\"local lights: clustered: depth bounds\".*\"name\":\"local lights: clustered: assign\".*\"name\":\"local lights: clustered: shade\""
+  "\"name\":\"local lights: clustered: depth bounds\".*\"name\":\"local lights: clustered: assign\".*\"name\":\"local lights: clustered: shade\",[^}]*\"counts\":\\{\"evaluated\":[1-9][0-9]*,\"lit\":[1-9][0-9]*\\}"
   ${P09} --bench --frames 2 --size 160x90)
 # A grid too large for its bounds is refused with a message, not allocated.
 lightpass_program_test(09_clustered.huge_grid_is_refused 1 "a grid of 1024 x 1024 x 256 cells is more than 4 194 304"

@@ -131,6 +131,11 @@ int main(int argc, char** argv) {
           lit = c.lit;
         }
       }
+      if (f.knob_int("count") && ours) {  // --bench reports them with the shading pass
+        const std::string shade = ClusteredLights::pass_names(f.mode)[2];
+        app.metrics().count(shade, "evaluated", evaluated);
+        app.metrics().count(shade, "lit", lit);
+      }
       const ClusterStats& st = clustered.stats();
       if (ours) {
         app.metrics().set_allocation("light lists (index list, cells, bounds, lights)", st.bytes);
