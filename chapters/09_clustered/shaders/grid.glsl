@@ -10,7 +10,6 @@ const float kDepthPad = 1e-4;
 
 float view_depth(vec3 world) { return -(u_view * vec4(world, 1.0)).z; }
 
-// [slices-glsl]
 float slice_start(int k) {
   if (k <= 0) return u_depth_range.x;
   if (k >= u_tiles.z) return u_depth_range.y;
@@ -21,7 +20,6 @@ int slice_of(float d) {
   float t = log(max(d, u_depth_range.x) / u_depth_range.x) / log(u_depth_range.y / u_depth_range.x);
   return clamp(int(floor(t * float(u_tiles.z))), 0, u_tiles.z - 1);
 }
-// [/slices-glsl]
 
 struct Box {
   vec3 lo, hi;
@@ -42,13 +40,11 @@ Box cell_box(ivec2 p0, ivec2 p1, float d0, float d1) {
   return b;
 }
 
-// [sphere-box-glsl]
 bool sphere_meets_box(vec3 centre, float radius, Box box) {
   vec3 d = centre - clamp(centre, box.lo, box.hi);
   float r = radius * (1.0 + 1e-5) + 1e-6;
   return dot(d, d) <= r * r;
 }
-// [/sphere-box-glsl]
 
 ivec2 tile_of(ivec2 pixel) { return pixel / u_grid.zw; }
 // Cells in the order the assignment dispatches them: x fastest, then y, then the slice.
