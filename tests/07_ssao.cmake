@@ -2,7 +2,7 @@
 # (each method against the ray-traced truth, the hard cases), and the program: references per
 # method and the AO view, bad input.
 lightpass_gtests(07_ssao unit lightpass_07_ssao unit/test_07_ao_math.cpp)
-lightpass_gtests(07_ssao gl lightpass_07_ssao unit/test_07_ssao_gl.cpp)
+lightpass_gtests(07_ssao gl lightpass_07_ssao unit/test_07_ssao_gl.cpp unit/test_07_ssao_hard_gl.cpp)
 
 set(P07 $<TARGET_FILE:07_ssao>)
 lightpass_program_test(07_ssao.reference.cornell 0 "10 of 10 references match" ${P07} --check --out ${CHECK_OUT}/07_ssao)
@@ -15,4 +15,5 @@ lightpass_program_test(07_ssao.off_runs_no_ao_pass 0 "no AO pass \\(mode off\\)"
 lightpass_program_test(07_ssao.bad_samples 2 "--samples must be between 1 and 128, got 0" ${P07} --samples 0)
 lightpass_program_test(07_ssao.bad_radius 2 "--radius must be between 0.01 and 100, got -1" ${P07} --radius -1)
 lightpass_program_test(07_ssao.bad_mode 2 "unknown mode 'hbao'" ${P07} --mode hbao)
+lightpass_program_test(07_ssao.bad_radii 2 "--radii must be between 1 and 2, got 3" ${P07} --radii 3)
 add_test(NAME 07_ssao.sweep_unknown_option COMMAND ${EXPECT} 2 "unknown option '--fast'" -- $<TARGET_FILE:07_ssao_sweep> --fast)

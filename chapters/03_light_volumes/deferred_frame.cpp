@@ -100,11 +100,16 @@ void DeferredFrame::render(const FrameCamera& camera, const FrameOutput& output,
     volumes_.draw_global(*light_, view_, ambient_);
   }
   if (settings.scene_lights) {
-    auto pass = timed(metrics, "local lights: " + local_->name());
-    local_->draw(*light_, view_,
-                 settings.show == FrameShow::HeatShaded ? LightVolumes::Output::HeatShaded
-                 : settings.show == FrameShow::HeatLit  ? LightVolumes::Output::HeatLit
-                                                        : LightVolumes::Output::Light);
+    const LightVolumes::Output out = settings.show == FrameShow::HeatShaded ? LightVolumes::Output::HeatShaded
+                                     : settings.show == FrameShow::HeatLit  ? LightVolumes::Output::HeatLit
+                                                                            : LightVolumes::Output::Light;
+    if (local_->times_own_passes()) {  // chapter 09: its depth bounds, assignment and shading apart
+      local_->set_metrics(metrics);
+      local_->draw(*light_, view_, out);
+    } else {
+      auto pass = timed(metrics, "local lights: " + local_->name());
+      local_->draw(*light_, view_, out);
+    }
   }
 
   // 4. Light the later chapters add (chapter 04's tubes).

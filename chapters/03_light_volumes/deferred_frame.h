@@ -77,6 +77,10 @@ class LocalLightPass {
   // Adds every local light into `light` (its depth-stencil holds the G-buffer's depth and a
   // zero stencil, which it must leave at zero), reading the surface through `view`.
   virtual void draw(const LightBuffer& light, const SurfaceView& view, LightVolumes::Output output) = 0;
+  // A pass made of several GPU passes may time each of them itself: then render() hands it
+  // the frame's metrics before draw() instead of timing draw() as one pass (scopes do not nest).
+  virtual bool times_own_passes() const { return false; }
+  virtual void set_metrics(PassMetrics*) {}
 };
 // [/local-light-pass]
 

@@ -53,6 +53,19 @@ ImageRGBA8 truth_picture(const ImageF& truth, int channel) {
   return out;
 }
 
+// The sun's default scale: the atrium's sun (0.4 lux) is weak beside its eight point lights, so at
+// 1 the lit overview shows the arches' and columns' shadows only faintly; at 4 they read plainly
+// on the floor (looked at), and the sunlit tiles are not yet washed out.
+constexpr double kSunScale = 4;
+
+// The scene's lights with every directional light's intensity times `sun` (chapter 05's --sun).
+std::vector<Light> scaled_lights(const std::vector<Light>& lights, float sun) {
+  std::vector<Light> out = lights;
+  for (Light& l : out)
+    if (l.type == LightType::Directional) l.intensity *= sun;
+  return out;
+}
+
 const CliSpec kCli{
     .program = "06_shadows",
     .summary = "Shadows from the sun in the deferred frame: a depth map from a fitted orthographic frustum, looked up "
@@ -61,6 +74,8 @@ const CliSpec kCli{
     .modes = {"pcf", "hard", "pcf-hardware", "vsm", "esm"},  // the chapter's recommendation first
     .knobs = {{"map", "shadow map width and height in texels (8192: 1.3 GiB with vsm or esm)", 1024, 16, 8192, true},
               {"kernel", "pcf: the k x k grid; vsm, esm: the box filter's width (odd)", 3, 1, 31, true},
+              {"taps", "pcf: 0 for the k x k grid, or this many taps of a Poisson disk k texels across, rotated per "
+                       "pixel", 0, 0, 64, true},
               {"bias", "constant depth bias, in texels of the map", 0.5, 0, 100, false},
               {"slope", "slope-scaled bias, in texels per unit tan(theta)", 1, 0, 100, false},
               {"normal", "normal offset, in texels", 1, 0, 100, false},
@@ -68,6 +83,10 @@ const CliSpec kCli{
               {"c", "esm: the exponent of exp(c z) (z: window depth in [0, 1]); any c works in log space", 80, 1, 10000,
                false},
               {"fit", "1: the map's box fitted to the view; 0: to the whole scene", 1, 0, 1, true},
+              {"moments", "vsm, esm: bits per value of the filtered map, 32 (RG32F) or 16 (RG16F, half the bytes)", 32,
+               16, 32, true},
+              {"sun", "multiplies directional lights (the atrium's sun: its 0.4 lux beside eight point lights shows "
+                      "the shadows only faintly at 1)", kSunScale, 0, 1000, false},
               choice_knob("show", "the image; the sun's visibility alone (blue: sky or facing away); the depth map "
                                   "itself (near black, far white); the ray-traced hard or soft truth (ray traced on the CPU: "
                                   "seconds per view); |visibility - truth| as a heat map (hard truth for hard, "
@@ -103,9 +122,7 @@ int main(int argc, char** argv) {
   return run_chapter(argc, argv, kChapter, [](App& app) {
     const Light& sun = find_sun(app.scene());
     ch03::DeferredFrame frame(app.scene_gpu());
-    frame.volumes().set_lights(ch03::build_light_set(
-        app.scene().lights, ch03::cut_threshold(1.f, ch03::peak_reflectance(app.scene())), frame.volumes().shapes()));
-    for (const auto& w : frame.volumes().lights().warnings) std::cerr << "warning: " << w << '\n';
+    float sun_scale = -1.f;  // the lights are built on the first frame, and again when --sun changes
     ShadowStage shadows(app.scene_gpu(), sun);
     frame.add_stage(shadows);
     GLint max_size = 0;
@@ -130,17 +147,31 @@ int main(int argc, char** argv) {
       if (first_frame && f.knob_int("kernel") % 2 == 0)
         throw UsageError("--kernel must be odd (a grid centred on the lookup), not " + std::to_string(f.knob_int("kernel")));
       const int kernel = f.knob_int("kernel") | 1;
+      if (first_frame && f.knob_int("moments") != 16 && f.knob_int("moments") != 32)
+        throw UsageError("--moments must be 16 or 32, not " + std::to_string(f.knob_int("moments")));
+      const int moment_bits = f.knob_int("moments") < 24 ? 16 : 32;  // the window's slider: the nearer one
+      if (float(f.knob("sun")) != sun_scale) {
+        const bool first = sun_scale < 0.f;
+        sun_scale = float(f.knob("sun"));
+        frame.volumes().set_lights(ch03::build_light_set(scaled_lights(app.scene().lights, sun_scale),
+                                                         ch03::cut_threshold(1.f, ch03::peak_reflectance(app.scene())),
+                                                         frame.volumes().shapes()));
+        if (first)
+          for (const auto& w : frame.volumes().lights().warnings) std::cerr << "warning: " << w << '\n';
+      }
       first_frame = false;
       // [settings]
       const ShadowSettings settings{.method = method_from_name(f.mode),
                                     .map_size = f.knob_int("map"),
                                     .kernel = kernel,
+                                    .poisson_taps = f.knob_int("taps"),
                                     .constant_bias = float(f.knob("bias")),
                                     .slope_bias = float(f.knob("slope")),
                                     .normal_offset = float(f.knob("normal")),
                                     .p_min = float(f.knob("pmin")),
                                     .c = float(f.knob("c")),
-                                    .fit_to_view = f.knob_int("fit") != 0};
+                                    .fit_to_view = f.knob_int("fit") != 0,
+                                    .moment_bits = moment_bits};
       const int show = f.knob_int("show");
       shadows.set(settings, show == kVisibility ? ShadowPicture::Visibility
                             : show == kMap      ? ShadowPicture::Map

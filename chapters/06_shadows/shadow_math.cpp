@@ -6,6 +6,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "common/error.h"
+#include "common/rng.h"
+
 namespace lp::ch06 {
 
 float slope_scaled_bias(float constant_texels, float slope_texels, float cos_theta, float texel_world) {
@@ -68,6 +71,31 @@ glm::vec2 receiver_plane_gradient(const LightFrustum& f, glm::vec3 world_normal)
   const glm::vec3 n = glm::mat3(f.view) * world_normal;
   const float nz = std::max(n.z, 0.05f);
   return glm::vec2(n.x, n.y) / nz * glm::vec2(f.box_max - f.box_min) / f.depth_range();
+}
+
+std::vector<glm::vec2> poisson_disk(int n, unsigned long long seed, float* spacing) {
+  if (n < 1 || n > kMaxPoissonTaps)
+    throw Error("poisson_disk: between 1 and " + std::to_string(kMaxPoissonTaps) + " points (got " + std::to_string(n) + ")");
+  Pcg32 rng(seed, 11);
+  float r = 0.75f * std::sqrt(3.14159265f / float(n));
+  std::vector<glm::vec2> points;
+  int misses = 0;
+  while (int(points.size()) < n) {
+    // a uniform point of the unit disk
+    const float radius = std::sqrt(rng.uniform()), angle = 6.2831853f * rng.uniform();
+    const glm::vec2 p = radius * glm::vec2(std::cos(angle), std::sin(angle));
+    bool free = true;
+    for (const glm::vec2& q : points) free = free && glm::distance(p, q) >= r;
+    if (free) {
+      points.push_back(p);
+      misses = 0;
+    } else if (++misses >= 100 * n) {
+      r *= 0.95f;
+      misses = 0;
+    }
+  }
+  if (spacing) *spacing = r;
+  return points;
 }
 
 float chebyshev_upper_bound(glm::vec2 moments, float depth, float min_variance) {

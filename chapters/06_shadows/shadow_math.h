@@ -50,6 +50,17 @@ LightFrustum fit_light_frustum(glm::vec3 direction, glm::vec3 scene_min, glm::ve
 glm::vec2 receiver_plane_gradient(const LightFrustum& frustum, glm::vec3 world_normal);
 // [/receiver-plane]
 
+// [poisson]
+// PCF on a rotated Poisson disk: `n` points of the unit disk no two closer than a spacing that
+// starts at 0.75 sqrt(pi / n) (three quarters of the spacing of n points packed evenly) and
+// shrinks by 5 % whenever 100 n darts in a row find no room, so it always ends (bounded work:
+// at most 100 n darts per shrink, and the spacing reaches 0 after finitely many). The hook turns
+// the disk per pixel by an angle from the pixel's position (interleaved gradient noise), so the
+// pattern's regularity becomes noise instead of bands, and scales it to k texels across.
+inline constexpr int kMaxPoissonTaps = 64;
+std::vector<glm::vec2> poisson_disk(int n, unsigned long long seed, float* spacing = nullptr);
+// [/poisson]
+
 // [chebyshev]
 // Variance shadow maps store the moments M1 = E[z], M2 = E[z^2] of the depths z under the
 // filter. For a receiver at depth d > M1, Chebyshev's one-sided inequality bounds the

@@ -14,6 +14,7 @@ struct ShadowBlock {
   glm::vec4 map, bias, filter;
   glm::mat4 view;
   glm::vec4 extent;
+  glm::vec4 poisson[kMaxPoissonTaps / 2];  // two taps a vec4 (x, y, z, w: tap 2i, tap 2i + 1)
 };
 constexpr GLuint kBlockBinding = 8;
 constexpr GLuint kDepthUnit = ch03::DeferredFrame::kFirstStageUnit;  // 8: sampler2D, nearest
@@ -79,16 +80,21 @@ const ShaderProgram& ShadowStage::program(const std::string& vertex, const std::
 void ShadowStage::allocate() {
   const int n = settings_.map_size;
   const bool filtered = settings_.method == ShadowMethod::Vsm || settings_.method == ShadowMethod::Esm;
-  if (n == allocated_size_ && filtered == allocated_filtered_) return;
+  if (settings_.moment_bits != 16 && settings_.moment_bits != 32)
+    throw Error("shadow stage: moment_bits must be 16 or 32 (got " + std::to_string(settings_.moment_bits) + ")");
+  const int bits = filtered ? settings_.moment_bits : 32;
+  if (n == allocated_size_ && filtered == allocated_filtered_ && bits == allocated_bits_) return;
   depth_ = gl::make_texture_2d(GL_DEPTH_COMPONENT32F, n, n);
   depth_fbo_ = gl::Framebuffer();
   glNamedFramebufferTexture(depth_fbo_.id(), GL_DEPTH_ATTACHMENT, depth_.id(), 0);
   glNamedFramebufferDrawBuffer(depth_fbo_.id(), GL_NONE);
   moments_.reset(), scratch_.reset();
   if (filtered) {
-    // RG32F for both (ESM uses the red channel): one format, so the sizes compare.
-    moments_ = gl::make_texture_2d(GL_RG32F, n, n);
-    scratch_ = gl::make_texture_2d(GL_RG32F, n, n);
+    // RG32F for both (ESM uses the red channel): one format, so the sizes compare; or RG16F,
+    // half the bytes, whose 11-bit mantissa rounds M2 - M1^2 (shadow_math.h [fp16-moments]).
+    const GLenum format = bits == 16 ? GL_RG16F : GL_RG32F;
+    moments_ = gl::make_texture_2d(format, n, n);
+    scratch_ = gl::make_texture_2d(format, n, n);
     moments_fbo_ = gl::Framebuffer();
     scratch_fbo_ = gl::Framebuffer();
     glNamedFramebufferTexture(moments_fbo_.id(), GL_COLOR_ATTACHMENT0, moments_.id(), 0);
@@ -96,11 +102,12 @@ void ShadowStage::allocate() {
   }
   allocated_size_ = n;
   allocated_filtered_ = filtered;
+  allocated_bits_ = bits;
 }
 
 std::size_t ShadowStage::allocated_bytes() const {
   const std::size_t texels = std::size_t(allocated_size_) * std::size_t(allocated_size_);
-  return texels * (4 + (allocated_filtered_ ? 2 * 8 : 0));
+  return texels * (4 + (allocated_filtered_ ? 2 * 2 * std::size_t(allocated_bits_ / 8) : 0));
 }
 
 // [shadow-stage]
@@ -151,13 +158,25 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
   glEnable(GL_DEPTH_TEST);
   glDepthMask(GL_TRUE);
   // 3. What the visibility hook reads.
-  const ShadowBlock block{frustum_.view_projection(),
+  if (settings_.poisson_taps < 0 || settings_.poisson_taps > kMaxPoissonTaps)
+    throw Error("shadow stage: poisson_taps must be between 0 and " + std::to_string(kMaxPoissonTaps));
+  if (settings_.poisson_taps != poisson_taps_) {
+    poisson_ = settings_.poisson_taps > 0 ? poisson_disk(settings_.poisson_taps, 0x504fu) : std::vector<glm::vec2>{};
+    poisson_taps_ = settings_.poisson_taps;
+  }
+  ShadowBlock block{frustum_.view_projection(),
                           glm::vec4(frustum_.texel_world(n), frustum_.depth_range(), float(n), float(settings_.kernel / 2)),
                           glm::vec4(settings_.constant_bias, settings_.slope_bias, settings_.normal_offset,
                                     settings_.min_variance),
-                          glm::vec4(settings_.c, settings_.p_min, 0, 0),
+                          glm::vec4(settings_.c, settings_.p_min, float(poisson_taps_), 0),
                           frustum_.view,
-                          glm::vec4(frustum_.box_max - frustum_.box_min, 0)};
+                          glm::vec4(frustum_.box_max - frustum_.box_min, 0),
+                          {}};
+  for (std::size_t i = 0; i < poisson_.size(); ++i) {
+    glm::vec4& slot = block.poisson[i / 2];
+    slot[int(i % 2) * 2] = poisson_[i].x;
+    slot[int(i % 2) * 2 + 1] = poisson_[i].y;
+  }
   glNamedBufferSubData(block_.id(), 0, sizeof(block), &block);
   glBindBufferBase(GL_UNIFORM_BUFFER, kBlockBinding, block_.id());
   glBindTextureUnit(kDepthUnit, depth_.id());

@@ -27,6 +27,8 @@ struct ShadowSettings {
   ShadowMethod method = ShadowMethod::Pcf;
   int map_size = 1024;
   int kernel = 3;               // PCF's k x k grid; VSM's and ESM's box filter width (odd)
+  int poisson_taps = 0;         // PCF: 0 for the k x k grid, or this many taps of a Poisson disk k texels
+                                // across, rotated per pixel (shadow_math.h [poisson]); <= kMaxPoissonTaps
   float constant_bias = 0.5f;   // texels (shadow_math.h [bias])
   float slope_bias = 1.f;       // texels per unit tan(theta)
   float normal_offset = 1.f;    // texels
@@ -34,6 +36,7 @@ struct ShadowSettings {
   float p_min = 0.2f;           // VSM's light-bleeding reduction
   float c = 80.f;               // ESM's exponent (window depth in [0, 1])
   bool fit_to_view = true;      // the map's box cut to what the camera sees (else the whole scene)
+  int moment_bits = 32;         // VSM, ESM: the filtered map in RG32F (32) or RG16F (16), half the bytes
 };
 
 // What composite() draws instead of the image.
@@ -64,6 +67,9 @@ class ShadowStage : public ch03::FrameStage {
   LightFrustum frustum_;
   int allocated_size_ = 0;
   bool allocated_filtered_ = false;
+  int allocated_bits_ = 32;
+  int poisson_taps_ = 0;
+  std::vector<glm::vec2> poisson_;
   gl::Texture depth_{GL_TEXTURE_2D}, moments_{GL_TEXTURE_2D}, scratch_{GL_TEXTURE_2D};
   gl::Framebuffer depth_fbo_, moments_fbo_, scratch_fbo_;
   gl::Sampler nearest_, compare_, linear_;

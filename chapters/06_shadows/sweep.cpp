@@ -5,7 +5,10 @@
 // 06_shadows_llvmpipe.csv on llvmpipe (CPU times); every row names the renderer, the size
 // and the frames measured.
 //
-//   06_shadows_sweep [--out DIR] [--size WxH] [--frames N] [--truth-samples N]
+//   06_shadows_sweep [--out DIR] [--size WxH] [--frames N] [--truth-samples N] [--only main|pcf|moments]
+//   -> DIR/06_shadows.csv, and 06_shadows_moments.csv: VSM and ESM with the filtered map in
+//      RG32F and in RG16F (..._llvmpipe.csv on llvmpipe); --only pcf: the main CSV's PCF rows
+//      alone (the grid and the Poisson disk) into 06_shadows_pcf.csv
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -17,6 +20,7 @@
 #include "chapters/06_shadows/shadow_stage.h"
 #include "chapters/06_shadows/shadow_truth.h"
 #include "common/context.h"
+#include "common/error.h"
 #include "common/measure.h"
 #include "common/paths.h"
 #include "common/sweep.h"
@@ -32,6 +36,7 @@ struct Settings {
   int width = 640, height = 360;
   int frames = 10;
   int truth_samples = 64;
+  std::string only;  // main | pcf | moments: one CSV (pcf: the main one's PCF rows, in a file of their own)
 };
 
 struct Variant {
@@ -44,6 +49,10 @@ std::vector<Variant> variants() {
   for (int n : {256, 512, 1024, 2048}) v.push_back({"map " + std::to_string(n), {.method = ShadowMethod::Hard, .map_size = n}});
   for (int k : {3, 5, 7}) v.push_back({"kernel " + std::to_string(k), {.method = ShadowMethod::Pcf, .kernel = k}});
   v.push_back({"map 2048 kernel 5", {.method = ShadowMethod::Pcf, .map_size = 2048, .kernel = 5}});
+  // the rotated Poisson disk over the same footprints, with fewer taps than the grid's k^2
+  for (auto [taps, k] : {std::pair{8, 3}, std::pair{16, 5}, std::pair{32, 7}})
+    v.push_back({"poisson " + std::to_string(taps) + " kernel " + std::to_string(k),
+                 {.method = ShadowMethod::Pcf, .kernel = k, .poisson_taps = taps}});
   for (int k : {1, 3, 5}) v.push_back({"kernel " + std::to_string(k), {.method = ShadowMethod::PcfHardware, .kernel = k}});
   for (int k : {3, 5, 7}) v.push_back({"kernel " + std::to_string(k), {.method = ShadowMethod::Vsm, .kernel = k}});
   for (float p : {0.f, 0.4f, 0.6f}) v.push_back({"pmin " + std::to_string(p).substr(0, 3), {.method = ShadowMethod::Vsm, .p_min = p}});
@@ -89,8 +98,10 @@ int main(int argc, char** argv) {
   Settings s;
   return run_sweep(argc, argv, "06_shadows_sweep", [&](SweepArgs& args) {
     args.text("--out", s.out).size("--size", s.width, s.height).integer("--frames", s.frames)
-        .integer("--truth-samples", s.truth_samples);
+        .integer("--truth-samples", s.truth_samples).text("--only", s.only);
   }, [&] {
+    if (!s.only.empty() && s.only != "main" && s.only != "pcf" && s.only != "moments")
+      throw UsageError("--only must be main, pcf or moments, not '" + s.only + "'");
     std::filesystem::create_directories(s.out);
     auto context = Context::create({.headless = true, .width = s.width, .height = s.height});
     const std::string renderer = context->renderer();
@@ -106,7 +117,10 @@ int main(int argc, char** argv) {
     OutputTarget image(s.width, s.height);
     ColourTarget visibility(s.width, s.height, GL_RGBA32F);
     const bool software = context->is_software();
-    const std::string file = s.out + (software ? "/06_shadows_llvmpipe.csv" : "/06_shadows.csv");
+    if (s.only.empty() || s.only == "main" || s.only == "pcf") {
+    const bool pcf_only = s.only == "pcf";
+    const std::string stem = pcf_only ? "/06_shadows_pcf" : "/06_shadows";
+    const std::string file = s.out + stem + (software ? "_llvmpipe.csv" : ".csv");
     std::ofstream csv(file);
     csv << "# " << (software ? "llvmpipe CPU time: " : "GPU time: ") << renderer << ", " << s.width << "x" << s.height
         << ", atrium; soft truth: sun disk " << TruthSettings{}.angular_radius << " rad, " << s.truth_samples
@@ -119,18 +133,19 @@ int main(int argc, char** argv) {
       const FrameCamera camera = frame_camera(scene.camera(view), float(s.width) / s.height);
       const ImageF truth = cached_shadow_truth(scene, rays, camera, s.width, s.height, sun.direction,
                                                {.samples = s.truth_samples});
-      if (view == "overview") {
+      if (!pcf_only && view == "overview") {
         save_png(s.out + "/06_overview_truth_hard.png", visibility_picture(truth, 0, truth));
         save_png(s.out + "/06_overview_truth_soft.png", visibility_picture(truth, 1, truth));
       }
       for (const Variant& v : variants()) {
+        if (pcf_only && v.shadow.method != ShadowMethod::Pcf) continue;
         stage.set(v.shadow, ShadowPicture::Visibility);
         frame.render(camera, {visibility.framebuffer(), s.width, s.height});
         const ImageF vis = visibility.read();
         const VisibilityError hard = visibility_error(vis, truth, 0), soft = visibility_error(vis, truth, 1);
         // The book's pictures: each method at its defaults, on the overview.
         const std::string name = kMethodNames[int(v.shadow.method)];
-        if (view == "overview" && (v.setting == "kernel 3" || v.setting == "map 1024")) {
+        if (!pcf_only && view == "overview" && (v.setting == "kernel 3" || v.setting == "map 1024")) {
           save_png(s.out + "/06_overview_" + name + "_visibility.png", visibility_picture(vis, 0, truth));
           const int against = v.shadow.method == ShadowMethod::Hard ? 0 : 1;
           save_png(s.out + "/06_overview_" + name + "_error.png", error_picture(vis, truth, against));
@@ -151,5 +166,42 @@ int main(int argc, char** argv) {
       }
     }
     std::cout << "wrote " << file << '\n';
+    }
+    // [moments-rows]
+    // VSM and ESM with the filtered map in RG32F and RG16F: bytes, cost and error against the
+    // soft truth, at the default map and kernel and at 2048 with a 5-texel filter.
+    if (s.only.empty() || s.only == "moments") {
+      const std::string file = s.out + (software ? "/06_shadows_moments_llvmpipe.csv" : "/06_shadows_moments.csv");
+      std::ofstream csv(file);
+      csv << "# " << (software ? "llvmpipe CPU time: " : "GPU time: ") << renderer << ", " << s.width << "x" << s.height
+          << ", atrium overview; soft truth: sun disk " << TruthSettings{}.angular_radius << " rad, " << s.truth_samples
+          << " rays per pixel; bits: of each value of the filtered map (RG32F or RG16F)\n"
+          << "view,method,bits,map,kernel,bytes,depth_ms,filter_ms,global_ms,frame_ms,soft_mean,soft_p99,"
+          << csv_measure_columns() << "\n";
+      const FrameCamera camera = frame_camera(scene.camera("overview"), float(s.width) / s.height);
+      const ImageF truth = cached_shadow_truth(scene, rays, camera, s.width, s.height, sun.direction,
+                                               {.samples = s.truth_samples});
+      for (ShadowMethod method : {ShadowMethod::Vsm, ShadowMethod::Esm})
+        for (int bits : {32, 16})
+          for (auto [map, kernel] : {std::pair{1024, 3}, std::pair{2048, 5}}) {
+            const ShadowSettings x{.method = method, .map_size = map, .kernel = kernel, .moment_bits = bits};
+            stage.set(x, ShadowPicture::Visibility);
+            frame.render(camera, {visibility.framebuffer(), s.width, s.height});
+            const VisibilityError soft = visibility_error(visibility.read(), truth, 1);
+            stage.set(x);
+            PassMetrics metrics;
+            const Measurement m = measure(
+                metrics, [&] { frame.render(camera, {image.framebuffer(), s.width, s.height}, &metrics); }, {.frames = s.frames});
+            csv << "overview," << kMethodNames[int(method)] << ',' << bits << ',' << map << ',' << kernel << ','
+                << stage.allocated_bytes() << ',' << pass_ms(m, "shadow map: depth from the sun") << ','
+                << pass_ms(m, "shadow map: pre-filter") << ',' << pass_ms(m, "global: ambient + directional (chapter 03)")
+                << ',' << m.total_ms() << ',' << soft.mean_abs << ',' << soft.p99 << ','
+                << csv_measure_values(renderer, s.width, s.height, m.frames) << "\n";
+            std::cout << "overview " << kMethodNames[int(method)] << " " << bits << "-bit map " << map << " kernel " << kernel
+                      << ": frame " << m.total_ms() << " ms, soft mean " << soft.mean_abs << std::endl;
+          }
+      std::cout << "wrote " << file << '\n';
+    }
+    // [/moments-rows]
   });
 }

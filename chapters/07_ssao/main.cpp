@@ -36,6 +36,8 @@ const CliSpec kCli{
               choice_knob("kernel", "classic: the spring-relaxed (energy-minimised) kernel or the random one",
                           {"energy", "random"}),
               {"blur", "classic: the bilateral 4x4 blur (1) or the raw AO (0)", 1, 0, 1, true},
+              {"radii", "classic: 1 radius, or 2 (the source's second kernel at R / 5, A the product: darker in "
+                        "contact, twice the depth reads)", 1, 1, 2, true},
               choice_knob("term", "disk: each sample's occlusion, the disk form factor (cosine-weighted) or Bunnell's term",
                           {"form-factor", "bunnell"}),
               choice_knob("resolution", "the AO pass at full, half or quarter resolution", {"full", "half", "quarter"}),
@@ -95,6 +97,7 @@ AoSettings settings_from(const Frame& f) {
   s.blur = f.knob_int("blur") != 0;
   s.scale = 1 << f.knob_int("resolution");
   s.bunnell_term = f.choice("term") == "bunnell";
+  s.two_radii = f.knob_int("radii") == 2;
   return s;
 }
 

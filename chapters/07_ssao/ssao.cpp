@@ -63,6 +63,7 @@ void Ssao::compute(const ch02::GBuffer& gbuffer, const FrameCamera& camera, cons
   p.set("u_scale", s.scale);
   p.set("u_noise_on", s.noise ? 1 : 0);
   p.set("u_bias", s.bias);
+  p.set("u_two_radii", s.two_radii ? 1 : 0);
   p.set("u_max_screen_radius", s.max_screen_radius);
   p.use();
   glBindImageTexture(0, raw_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);

@@ -38,6 +38,10 @@ struct AoSettings {
   float blur_normal = 0.8f;      // ... and within acos(0.8) = 37 degrees of its normal
   int scale = 1;                 // 1 full, 2 half, 4 quarter resolution
   float bias = 0.02f;            // classic: a point counts as hidden only this far (x R) behind
+  // classic: the source's two radii at 1:5, the kernel again at R / 5 (twice the depth reads),
+  // A the product of the two sets' visibilities: darker within R / 5 of contact, the wide
+  // radius's A beyond it. Not the truth's integral for any one R (ssao.comp [classic]).
+  bool two_radii = false;
   // disk: the disk's radius on the screen is R projected at the pixel, at most this fraction of
   // the image height (the screen-radius clamp for surfaces near the camera)
   float max_screen_radius = 0.25f;

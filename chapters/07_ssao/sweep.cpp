@@ -5,14 +5,17 @@
 // names the renderer, the size and the frames measured. Also writes the pictures the book
 // shows (each method, the truth, and the error heat maps).
 //
-//   07_ssao_sweep [--out DIR] [--size WxH] [--frames N] [--truth-samples N] [--only cornell|atrium|wall] [--method NAME]
-//   -> DIR/07_ssao.csv and 07_ssao_wall.csv (..._llvmpipe.csv on llvmpipe), DIR/07_<scene>_*.png
+//   07_ssao_sweep [--out DIR] [--size WxH] [--frames N] [--truth-samples N] [--only cornell|atrium|wall|corner]
+//                 [--method NAME]
+//   -> DIR/07_ssao.csv, 07_ssao_wall.csv and 07_ssao_corner.csv (..._llvmpipe.csv on llvmpipe),
+//      DIR/07_<scene>_*.png
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <string>
 #include <vector>
 
+#include "chapters/07_ssao/ao_corner.h"
 #include "chapters/07_ssao/ao_frame.h"
 #include "chapters/07_ssao/ao_truth.h"
 #include "common/context.h"
@@ -34,7 +37,7 @@ struct Settings {
   int width = 320, height = 180;
   int frames = 10;
   int truth_samples = 512;
-  std::string only;  // --only cornell|atrium: one scene
+  std::string only;  // --only cornell|atrium|wall|corner: one part
   std::string method;  // --method NAME: the variants of that name only
   std::string renderer;
 };
@@ -148,6 +151,54 @@ void wall_approach(const Settings& s, const std::string& timer) {
 }
 // [/wall-approach]
 
+// [corner-rows]
+// The inner corner (ao_corner.h): each method's mean |A - closed form| over the pixels within R
+// of the crease, its mean signed error within R / 5 of it (where the disk fails), and its AO
+// pass's time; the classic algorithm with one radius and with the source's two (1:5), whose
+// closed form is dihedral_ao(h) dihedral_ao(5 h) and whose second kernel doubles the reads.
+void corner_rows(const Settings& s, const std::string& timer) {
+  Scene scene = load_scene(from_root("assets/cornell/cornell.gltf"));
+  SceneGpu gpu(scene);
+  AoFrame frame(gpu, s.width, s.height);
+  RayScene rays(scene);
+  const FrameCamera cam = corner_camera(float(s.width) / s.height);
+  const auto pixels = corner_pixels(scene, rays, cam, s.width, s.height);
+  const std::string path = s.out + (s.renderer.find("llvmpipe") != std::string::npos ? "/07_ssao_corner_llvmpipe.csv"
+                                                                                         : "/07_ssao_corner.csv");
+  std::ofstream csv(path);
+  csv << "# " << timer << ", " << s.width << "x" << s.height << "; the Cornell box's floor meeting its back wall, R = "
+      << kCornerRadius << "; mean_abs: mean |A - closed form| within R of the crease; crease_signed: mean A - closed "
+      << "form within R / 5; ao_ms: the AO pass, mean and fastest of " << s.frames << " frames\n"
+      << "method,samples,two_radii,ao_ms,ao_min_ms,mean_abs,crease_signed,pixels," << csv_measure_columns() << "\n";
+  AoSettings two{.method = AoMethod::Classic, .samples = 16, .radius = kCornerRadius};
+  two.two_radii = true;
+  const std::vector<Variant> methods = {{"classic", {.method = AoMethod::Classic, .samples = 16, .radius = kCornerRadius}},
+                                        {"classic", two},
+                                        {"disk", {.method = AoMethod::Disk, .samples = 32, .radius = kCornerRadius}},
+                                        {"gtao", {.method = AoMethod::Gtao, .samples = 32, .radius = kCornerRadius}}};
+  for (const Variant& v : methods) {
+    const ImageF ao = frame.ao(cam, v.ao);
+    double mean_abs = 0, crease = 0;
+    long n = 0, n_crease = 0;
+    for (const CornerPixel& p : pixels) {
+      if (p.h >= 1.0) continue;
+      const double closed = dihedral_ao(p.h) * (v.ao.two_radii ? dihedral_ao(5.0 * p.h) : 1.0);
+      const double e = ao.at(p.x, p.y, 0) - closed;
+      mean_abs += std::abs(e), ++n;
+      if (p.h < 0.2) crease += e, ++n_crease;
+    }
+    mean_abs /= double(std::max(n, 1L)), crease /= double(std::max(n_crease, 1L));
+    const PassMeasurement t = frame.time(cam, v.ao, s.frames);
+    csv << v.name << ',' << v.ao.samples << ',' << (v.ao.two_radii ? 1 : 0) << ',' << t.mean_ms << ',' << t.min_ms << ','
+        << mean_abs << ',' << crease << ',' << n << ',' << csv_measure_values(s.renderer, s.width, s.height, t.frames)
+        << '\n';
+    std::cout << "  corner: " << v.name << (v.ao.two_radii ? " (two radii)" : "") << " " << t.mean_ms
+              << " ms, mean abs " << mean_abs << ", crease signed " << crease << std::endl;
+  }
+  std::cout << "wrote " << path << '\n';
+}
+// [/corner-rows]
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -157,12 +208,14 @@ int main(int argc, char** argv) {
         .integer("--truth-samples", s.truth_samples).text("--only", s.only).text("--method", s.method);
   }, [&] {
     if (s.truth_samples < 1) throw UsageError("--truth-samples must be at least 1");
+    if (!s.only.empty() && s.only != "cornell" && s.only != "atrium" && s.only != "wall" && s.only != "corner")
+      throw UsageError("--only must be cornell, atrium, wall or corner, not '" + s.only + "'");
     std::filesystem::create_directories(s.out);
     auto context = Context::create({.headless = true, .width = s.width, .height = s.height});
     s.renderer = context->renderer();
     const std::string timer = (context->is_software() ? "llvmpipe CPU time: " : "GPU time: ") + context->renderer();
     std::cout << timer << '\n';
-    if (s.only != "wall") {
+    if (s.only.empty() || s.only == "cornell" || s.only == "atrium") {
       const std::string path = s.out + (context->is_software() ? "/07_ssao_llvmpipe.csv" : "/07_ssao.csv");
       std::ofstream csv(path);
       csv << "# " << timer << ", " << s.width << "x" << s.height << ", truth " << s.truth_samples
@@ -176,5 +229,6 @@ int main(int argc, char** argv) {
       std::cout << "wrote " << path << '\n';
     }
     if (s.only.empty() || s.only == "wall") wall_approach(s, timer);
+    if (s.only.empty() || s.only == "corner") corner_rows(s, timer);
   });
 }

@@ -5,6 +5,7 @@
 #include "01_forward/shaders/lighting.glsl"
 #include "02_gbuffer/shaders/gbuffer.glsl"
 #include FRAME_VISIBILITY  // hooks/full_visibility.glsl, or a later chapter's (shadows)
+#include "03_light_volumes/shaders/local_light.glsl"
 
 // Depth and stencil tests before the shader, so what the stencil mask rejects is never
 // shaded (and GL_SAMPLES_PASSED counts shaded fragments).
@@ -39,17 +40,8 @@ layout(location = 1) out vec4 out_specular;  // L2: light reflected by the specu
 void main() {
   GpuLight light = GpuLight(v_position_type, v_direction_range, v_radiance, v_spot);
   Surface s = decode_gbuffer(ivec2(gl_FragCoord.xy));
-  vec3 diffuse = vec3(0.0), specular = vec3(0.0);
-  // [light-pixel]
-  // The light ends at its cut, here as well as in its volume: then every strategy, and any
-  // tessellation of the volume, lights exactly the same pixels.
-  if (!s.is_sky && distance(light.position_type.xyz, s.position) <= v_cut) {
-    vec3 to_light, radiance;
-    light_incident(light, s.position, to_light, radiance);
-    radiance *= local_visibility(v_light_index, light, s);
-    blinn_phong(s.normal, normalize(gb_eye.xyz - s.position), to_light, radiance, s.exponent, diffuse, specular);
-  }
-  // [/light-pixel]
+  vec3 diffuse, specular;
+  local_light(light, v_cut, v_light_index, s, diffuse, specular);  // local_light.glsl
   bool lit = any(greaterThan(diffuse + specular, vec3(0.0)));
 #ifdef COUNT_FRAGMENTS
   count_fragment(kCountShaded);

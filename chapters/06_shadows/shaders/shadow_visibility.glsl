@@ -13,9 +13,10 @@ layout(std140, binding = 8) uniform ShadowBlock {
   mat4 sh_matrix;   // world to the light's clip space (orthographic)
   vec4 sh_map;      // x: metres per texel, y: depth range in metres, z: map size, w: PCF radius (texels)
   vec4 sh_bias;     // x: constant (texels), y: slope-scaled (texels), z: normal offset (texels), w: VSM min variance
-  vec4 sh_filter;   // x: ESM's c, y: VSM's p_min
+  vec4 sh_filter;   // x: ESM's c, y: VSM's p_min, z: PCF's Poisson taps (0: the grid)
   mat4 sh_view;     // world to the light's view space (looking down -z)
   vec4 sh_extent;   // x, y: the box's width and height in metres
+  vec4 sh_poisson[32];  // PCF's Poisson disk in the unit disk, two taps a vec4
 };
 layout(binding = 8) uniform sampler2D sh_depth;
 layout(binding = 9) uniform sampler2DShadow sh_depth_compare;
@@ -65,6 +66,20 @@ float directional_visibility(int index, GpuLight light, Surface s) {
   int r = int(sh_map.w);
   float texel = 1.0 / sh_map.z, lit = 0.0;
   vec2 g = receiver_plane_gradient(s);
+  int taps = int(sh_filter.z);
+  if (taps > 0) {
+    // Or `taps` comparisons on a Poisson disk k texels across, turned by an angle that
+    // interleaved gradient noise (Jimenez 2014) draws from the pixel's position.
+    float angle = 6.2831853 * fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
+    mat2 turn = mat2(cos(angle), sin(angle), -sin(angle), cos(angle));
+    float scale = (float(r) + 0.5) * texel;
+    for (int i = 0; i < taps; ++i) {
+      vec4 pair = sh_poisson[i / 2];
+      vec2 o = turn * ((i & 1) == 0 ? pair.xy : pair.zw) * scale;
+      lit += q.z + dot(g, o) <= texture(sh_depth, q.xy + o).r ? 1.0 : 0.0;
+    }
+    return lit / float(taps);
+  }
   for (int y = -r; y <= r; ++y)
     for (int x = -r; x <= r; ++x) {
       vec2 o = vec2(x, y) * texel;

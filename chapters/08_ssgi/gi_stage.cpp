@@ -1,0 +1,89 @@
+#include "chapters/08_ssgi/gi_stage.h"
+
+namespace lp::ch08 {
+
+void GiStage::reload_shaders() {
+  ssgi_.reload_shaders();
+  add_program_.reset();
+  show_program_.reset();
+}
+
+void GiStage::set(GiMode mode, const GiSettings& settings, GiShow show, glm::vec3 ambient, float exposure) {
+  mode_ = mode;
+  settings_ = settings;
+  settings_.indirect = settings.indirect && mode == GiMode::Ssgi;
+  settings_.ao = settings.ao && mode != GiMode::Off;
+  show_ = show;
+  ambient_ = ambient;
+  exposure_ = exposure;
+}
+
+void GiStage::set_picture(const ImageF& picture, float heat_full_scale) {
+  if (picture.width != picture_w_ || picture.height != picture_h_) {
+    picture_ = gl::make_texture_2d(GL_RGBA32F, picture.width, picture.height);
+    picture_w_ = picture.width;
+    picture_h_ = picture.height;
+  }
+  ImageF up = picture;
+  flip_vertically(up);  // OpenGL's rows start at the bottom
+  std::vector<float> rgba(std::size_t(up.width) * up.height * 4, 1.f);
+  for (std::size_t i = 0; i < std::size_t(up.width) * up.height; ++i)
+    for (int c = 0; c < 3; ++c) rgba[i * 4 + c] = up.data[i * std::size_t(up.channels) + std::size_t(std::min(c, up.channels - 1))];
+  glTextureSubImage2D(picture_.id(), 0, 0, 0, up.width, up.height, GL_RGBA, GL_FLOAT, rgba.data());
+  heat_ = heat_full_scale;
+}
+
+// [gi-stage]
+void GiStage::add_light(ch03::DeferredFrame& frame, PassMetrics* metrics) {
+  ran_ = mode_ != GiMode::Off;
+  if (ran_) {
+    auto pass = timed(metrics, "ssgi: " + kModeNames[int(mode_)] + " (" + kPatternNames[int(settings_.pattern)] + ")");
+    ssgi_.compute(frame.gbuffer(), frame.light().diffuse(), frame.camera(), settings_);
+  }
+  // A x ambient + L1_ind into the light buffer (bound by the frame), added to the direct light
+  auto pass = timed(metrics, "ssgi: add to the light buffer");
+  if (!add_program_)
+    add_program_ = std::make_unique<ShaderProgram>(std::vector<ShaderStage>{
+        {GL_VERTEX_SHADER, "02_gbuffer/shaders/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "08_ssgi/shaders/add_indirect.frag"}});
+  frame.light().bind();
+  glViewport(0, 0, frame.light().width(), frame.light().height());
+  add_program_->use();
+  add_program_->set("u_ambient", ambient_);
+  add_program_->set("u_gi_on", ran_ ? 1 : 0);
+  glBindTextureUnit(ch03::DeferredFrame::kFirstStageUnit, ran_ ? ssgi_.texture() : 0);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_STENCIL_TEST);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_ONE, GL_ONE);
+  glBlendEquation(GL_FUNC_ADD);
+  glBindVertexArray(vao_.id());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDisable(GL_BLEND);
+}
+// [/gi-stage]
+
+bool GiStage::composite(ch03::DeferredFrame& frame, PassMetrics* metrics) {
+  if (show_ == GiShow::Image) return false;  // chapter 03's composite shows the light buffer
+  auto pass = timed(metrics, "composite: the indirect light");
+  if (!show_program_) {
+    std::vector<std::string> defines = frame.gbuffer().shader_defines(0);
+    show_program_ = std::make_unique<ShaderProgram>(
+        std::vector<ShaderStage>{{GL_VERTEX_SHADER, "02_gbuffer/shaders/fullscreen.vert"},
+                                 {GL_FRAGMENT_SHADER, "08_ssgi/shaders/show_gi.frag"}},
+        defines);
+  }
+  show_program_->use();
+  const int mode = show_ == GiShow::Indirect ? 0 : show_ == GiShow::Ao ? 1 : show_ == GiShow::Picture ? 2 : 3;
+  show_program_->set("u_mode", mode);
+  show_program_->set("u_exposure", exposure_);
+  show_program_->set("u_heat", heat_ > 0.f ? heat_ : 1.f);
+  const bool picture = show_ == GiShow::Picture || show_ == GiShow::Heat;
+  glBindTextureUnit(ch03::DeferredFrame::kFirstStageUnit, picture ? picture_.id() : ran_ ? ssgi_.texture() : 0);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glBindVertexArray(vao_.id());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  return true;
+}
+
+}  // namespace lp::ch08

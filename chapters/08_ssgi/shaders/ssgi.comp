@@ -1,0 +1,127 @@
+#version 450
+// Chapter 08's one pass of screen-space AO and one-bounce diffuse interreflection, one
+// invocation per pixel. Each sample i of the pattern (gi_math.h's pattern_point) is read
+// twice: in the narrow disk (radius R_ao, chapter 07's 2D-disk AO with the form factor) and in
+// the wide one (R_gi, 5 R_ao by default: the source's 1:5), where the G-buffer gives the
+// emitter's position and normal and the light buffer its diffuse light, and the disk transfer
+// (gi_math.h's disk_transfer, its C++ twin) carries albedo x L1 to the pixel. Writes rgb: the
+// indirect diffuse light L1_ind (before the receiver's albedo, in the light buffer's units),
+// a: the visibility A of the narrow disk. The sky gets (0, 0, 0, 1): no light to it.
+layout(local_size_x = 8, local_size_y = 8) in;
+#include "02_gbuffer/shaders/gbuffer.glsl"
+
+layout(rgba16f, binding = 0) uniform writeonly image2D u_out;
+layout(binding = 9) uniform sampler2D u_light;   // chapter 03's L1: direct diffuse light
+layout(binding = 10) uniform sampler2D u_extra;  // a first bounce's L1_ind (u_bounce = 1), else unused
+
+uniform mat4 u_view, u_projection;
+uniform int u_samples;               // samples of the pattern actually used (regular: rings x spokes)
+uniform int u_rings, u_spokes;       // the regular pattern
+uniform int u_pattern;               // 0 regular, 1 spiral, 2 randomised
+uniform float u_ao_radius, u_gi_radius;    // world units
+uniform float u_max_screen_radius;         // the wide disk: at most this fraction of the image height
+uniform int u_bounce;                       // 1: the emitters' light includes u_extra (a second pass)
+uniform int u_indirect_on, u_ao_on;
+
+const float PI = 3.14159265358979;
+
+bool sky_depth(float depth) { return depth == gb_depth_info.z; }
+vec3 world_at(ivec2 pixel, float depth) { return reconstruct_position(vec2(pixel) + 0.5, depth); }
+float view_depth(vec3 world) { return -(u_view * vec4(world, 1.0)).z; }
+
+uint wang_hash(uint h) {
+  h = (h ^ 61u) ^ (h >> 16);
+  h *= 9u;
+  h ^= h >> 4;
+  h *= 0x27d4eb2du;
+  h ^= h >> 15;
+  return h;
+}
+
+// [pattern-glsl]
+vec2 pattern_point(int i, vec2 jitter) {
+  if (u_pattern == 0) {
+    int ring = i / u_spokes, spoke = i % u_spokes;
+    float a = 2.0 * PI * float(spoke) / float(u_spokes);
+    return sqrt((float(ring) + 0.5) / float(u_rings)) * vec2(cos(a), sin(a));
+  }
+  float offset = u_pattern == 2 ? jitter.y : 0.5;
+  float a = 2.39996323 * float(i) + (u_pattern == 2 ? 2.0 * PI * jitter.x : 0.0);
+  return sqrt((float(i) + offset) / float(u_samples)) * vec2(cos(a), sin(a));
+}
+// [/pattern-glsl]
+
+// [transfer-glsl]
+float disk_transfer(vec3 p, vec3 np, vec3 e, vec3 ne, float area) {
+  vec3 v = e - p;
+  float r2 = dot(v, v);
+  if (r2 <= 0.0 || area <= 0.0) return 0.0;
+  v *= inversesqrt(r2);
+  return area * max(-dot(ne, v), 0.0) * max(dot(np, v), 0.0) / (PI * r2 + area);
+}
+// [/transfer-glsl]
+
+// The area a sample stands for: its share of the disk at the receiver's depth zr, grown to the
+// emitter's depth ze and spread over the surface the pixel sees at a slant (chapter 07's disk).
+float sample_area(float share, float zr, vec3 e, vec3 ne) {
+  float ze = view_depth(e);
+  return share * (ze / zr) * (ze / zr) / max(abs(dot(ne, normalize(gb_eye.xyz - e))), 0.2);
+}
+
+// [ssgi]
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(pixel, ivec2(gb_size.xy)))) return;
+  Surface s = decode_gbuffer(pixel);
+  if (s.is_sky) { imageStore(u_out, pixel, vec4(0.0, 0.0, 0.0, 1.0)); return; }
+  float zr = view_depth(s.position);
+  float scale_px = u_projection[1][1] * 0.5 * gb_size.y / zr;  // pixels per world unit at depth zr
+  // the wide disk clamped on the screen near the camera, the narrow one kept at its ratio
+  float gi_px = min(u_gi_radius * scale_px, u_max_screen_radius * gb_size.y);
+  float ao_px = gi_px * (u_ao_radius / u_gi_radius);
+  float gi_world = gi_px / scale_px, ao_world = ao_px / scale_px;
+  float gi_share = PI * gi_world * gi_world / float(u_samples);
+  float ao_share = PI * ao_world * ao_world / float(u_samples);
+  vec2 jitter = vec2(0.5);
+  if (u_pattern == 2) {
+    uint a = wang_hash(uint(pixel.x) * 1973u + uint(pixel.y) * 9277u + 26699u), b = wang_hash(a);
+    jitter = vec2(float(a >> 8), float(b >> 8)) / 16777216.0;
+  }
+  vec3 indirect = vec3(0.0);
+  float occlusion = 0.0, transfer = 0.0;
+  for (int i = 0; i < u_samples; ++i) {
+    vec2 u = pattern_point(i, jitter);
+    for (int wide = 0; wide < 2; ++wide) {
+      if ((wide == 0 && u_ao_on == 0) || (wide == 1 && u_indirect_on == 0)) continue;
+      float radius = wide == 1 ? u_gi_radius : u_ao_radius;
+      ivec2 sp = pixel + ivec2(round(u * (wide == 1 ? gi_px : ao_px)));
+      if (sp == pixel || any(lessThan(sp, ivec2(0))) || any(greaterThanEqual(sp, ivec2(gb_size.xy)))) continue;
+      float depth = texelFetch(gb_depth, sp, 0).r;
+      if (sky_depth(depth)) continue;  // the sky sends nothing and hides nothing
+      vec3 e = world_at(sp, depth);
+      vec3 v = e - s.position;
+      float d2 = dot(v, v);
+      if (d2 > radius * radius || d2 <= 0.0) continue;
+      vec3 ne = decode_normal(texelFetch(gb_normal, sp, 0));
+      float area = sample_area(wide == 1 ? gi_share : ao_share, zr, e, ne);
+      if (wide == 0) {
+        // chapter 07's disk AO with the form factor: a surface blocks from either side
+        v *= inversesqrt(d2);
+        occlusion += area * abs(dot(ne, v)) * max(dot(s.normal, v), 0.0) / (PI * d2 + area);
+      } else {
+        vec3 light = texelFetch(u_light, sp, 0).rgb;
+        if (u_bounce == 1) light += texelFetch(u_extra, sp, 0).rgb;
+        vec3 albedo = texelFetch(gb_albedo, sp, 0).rgb;  // what the emitter reflects of it
+        float f = disk_transfer(s.position, s.normal, e, ne, area);
+        indirect += albedo * light * f;
+        transfer += f;
+      }
+    }
+  }
+  // The form factors from a point to surfaces that do not overlap sum to at most 1 (the whole
+  // hemisphere). Large sample disks close to the pixel (a wall beside the floor) overlap and
+  // can sum to more: scale them back to 1, as the AO's occlusion is clamped.
+  if (transfer > 1.0) indirect /= transfer;
+  imageStore(u_out, pixel, vec4(indirect, 1.0 - clamp(occlusion, 0.0, 1.0)));
+}
+// [/ssgi]

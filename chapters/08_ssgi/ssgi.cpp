@@ -1,0 +1,99 @@
+#include "chapters/08_ssgi/ssgi.h"
+
+#include "common/error.h"
+
+namespace lp::ch08 {
+
+const ShaderProgram& Ssgi::program(const std::string& file, const ch02::GBuffer& gbuffer) {
+  std::vector<std::string> defines = gbuffer.shader_defines(0);
+  std::string key = file;
+  for (const auto& d : defines) key += "|" + d;
+  auto& slot = programs_[key];
+  if (!slot) slot = std::make_unique<ShaderProgram>(std::vector<ShaderStage>{{GL_COMPUTE_SHADER, file}}, defines);
+  return *slot;
+}
+
+int Ssgi::used_samples(Pattern pattern, int samples) {
+  if (pattern != Pattern::Regular) return samples;
+  const int rings = regular_rings(samples);
+  return rings * (samples / rings);
+}
+
+void Ssgi::pass(const ch02::GBuffer& gbuffer, GLuint light, GLuint extra, const FrameCamera& camera,
+                const GiSettings& s, GLuint out) {
+  const ShaderProgram& p = program("08_ssgi/shaders/ssgi.comp", gbuffer);
+  const int rings = regular_rings(s.samples);
+  p.set("u_view", camera.view);
+  p.set("u_projection", camera.projection);
+  p.set("u_samples", used_samples(s.pattern, s.samples));
+  p.set("u_rings", rings);
+  p.set("u_spokes", s.samples / rings);
+  p.set("u_pattern", int(s.pattern));
+  p.set("u_ao_radius", s.ao_radius);
+  p.set("u_gi_radius", s.gi_radius);
+  p.set("u_max_screen_radius", s.max_screen_radius);
+  p.set("u_bounce", extra ? 1 : 0);
+  p.set("u_indirect_on", s.indirect ? 1 : 0);
+  p.set("u_ao_on", s.ao ? 1 : 0);
+  p.use();
+  glBindTextureUnit(9, light);
+  glBindTextureUnit(10, extra ? extra : light);
+  glBindImageTexture(0, out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  glDispatchCompute(GLuint((width_ + 7) / 8), GLuint((height_ + 7) / 8), 1);
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+  glBindTextureUnit(9, 0);  // the light buffer is drawn into next: no texture of it stays bound
+  glBindTextureUnit(10, 0);
+}
+
+void Ssgi::blur(const ch02::GBuffer& gbuffer, const FrameCamera& camera, const GiSettings& s, GLuint in, GLuint out) {
+  const ShaderProgram& b = program("08_ssgi/shaders/blur.comp", gbuffer);
+  b.set("u_view", camera.view);
+  b.set("u_depth_threshold", s.blur_depth);
+  b.set("u_normal_threshold", s.blur_normal);
+  b.use();
+  glBindImageTexture(0, in, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
+  glBindImageTexture(1, out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  glDispatchCompute(GLuint((width_ + 7) / 8), GLuint((height_ + 7) / 8), 1);
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+// [compute]
+void Ssgi::compute(const ch02::GBuffer& gbuffer, GLuint light, const FrameCamera& camera, const GiSettings& s) {
+  if (s.samples < 1 || s.samples > kMaxSamples)
+    throw Error("ssgi: samples must be between 1 and " + std::to_string(kMaxSamples) + " (got " +
+                std::to_string(s.samples) + ")");
+  if (!(s.ao_radius > 0.f) || !(s.gi_radius > 0.f))
+    throw Error("ssgi: the AO and indirect radii must be positive (got " + std::to_string(s.ao_radius) + " and " +
+                std::to_string(s.gi_radius) + ")");
+  if (s.bounces != 1 && s.bounces != 2) throw Error("ssgi: bounces must be 1 or 2 (got " + std::to_string(s.bounces) + ")");
+  const int w = gbuffer.width(), h = gbuffer.height();
+  if (w != width_ || h != height_) {
+    raw_ = gl::make_texture_2d(GL_RGBA16F, w, h);
+    first_ = gl::make_texture_2d(GL_RGBA16F, w, h);
+    second_ = gl::make_texture_2d(GL_RGBA16F, w, h);
+    width_ = w;
+    height_ = h;
+  }
+  const bool blurred = s.blur && s.pattern == Pattern::Randomised;
+  // 1. the first bounce (and the AO) from the direct light
+  pass(gbuffer, light, 0, camera, s, blurred ? raw_.id() : first_.id());
+  if (blurred) blur(gbuffer, camera, s, raw_.id(), first_.id());
+  result_ = first_.id();
+  // 2. a second pass: the emitters now send direct + first-bounce light, so its result is the
+  //    first bounce and the second together (and the same AO)
+  if (s.bounces == 2) {
+    pass(gbuffer, light, first_.id(), camera, s, blurred ? raw_.id() : second_.id());
+    if (blurred) blur(gbuffer, camera, s, raw_.id(), second_.id());
+    result_ = second_.id();
+  }
+}
+// [/compute]
+
+ImageF Ssgi::read() const {
+  ImageF img = ImageF::blank(width_, height_, 4);
+  glGetTextureImage(result_, 0, GL_RGBA, GL_FLOAT, GLsizei(img.data.size() * sizeof(float)), img.data.data());
+  flip_vertically(img);
+  return img;
+}
+
+}  // namespace lp::ch08

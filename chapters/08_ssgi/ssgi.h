@@ -1,0 +1,67 @@
+#pragma once
+// Chapter 08's screen-space pass in compute: AO in the narrow disk and one-bounce diffuse
+// interreflection in the wide one, in one pass over the G-buffer and chapter 03's light
+// buffer (shaders/ssgi.comp), then the bilateral blur when the pattern is randomised, and
+// optionally a second pass that bounces the first pass's light once more. The result texture
+// holds rgb: the indirect diffuse light L1_ind, a: the visibility A of the narrow disk.
+//
+//   Ssgi gi;
+//   gi.compute(frame.gbuffer(), frame.light().diffuse(), frame.camera(), {.samples = 16});
+//   glBindTextureUnit(8, gi.texture());
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "chapters/02_gbuffer/gbuffer.h"
+#include "chapters/08_ssgi/gi_math.h"
+#include "common/camera.h"
+#include "common/gl.h"
+#include "common/image.h"
+#include "common/shader.h"
+
+namespace lp::ch08 {
+
+// [settings]
+struct GiSettings {
+  bool indirect = true;          // the wide disk: one-bounce indirect light (off: AO alone)
+  bool ao = true;                // the narrow disk: chapter 07's disk AO on the ambient light
+  int samples = 32;              // samples of the pattern, 1..kMaxSamples (each read in both disks)
+  Pattern pattern = Pattern::Randomised;
+  float ao_radius = 0.5f;        // R_ao, world units
+  float gi_radius = 2.5f;        // R_gi, world units: 5 R_ao, the source's 1:5
+  float max_screen_radius = 1.f;   // the wide disk: at most this fraction of the image height (its height)
+  bool blur = true;              // the bilateral 5x5 blur (randomised pattern only: the others have no noise)
+  float blur_depth = 0.05f, blur_normal = 0.8f;  // chapter 07's thresholds
+  int bounces = 1;               // 1, or 2: a second pass that bounces direct + first bounce again
+};
+inline constexpr int kMaxSamples = 128;
+// [/settings]
+
+class Ssgi {
+ public:
+  void reload_shaders() { programs_.clear(); }
+  // Reads the G-buffer (units 0..4, as the deferred frame leaves them) and L1 (`light`, chapter
+  // 03's diffuse light target, which must hold only the direct light: see no_ambient.glsl).
+  void compute(const ch02::GBuffer& gbuffer, GLuint light, const FrameCamera& camera, const GiSettings& settings);
+  GLuint texture() const { return result_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  // The result read back, rows top to bottom: 4 channels, rgb L1_ind, a A.
+  ImageF read() const;
+  // Samples of the pattern actually used for `samples` (the regular grid uses rings x spokes).
+  static int used_samples(Pattern pattern, int samples);
+
+ private:
+  const ShaderProgram& program(const std::string& file, const ch02::GBuffer& gbuffer);
+  void pass(const ch02::GBuffer& gbuffer, GLuint light, GLuint extra, const FrameCamera& camera, const GiSettings& s,
+            GLuint out);
+  void blur(const ch02::GBuffer& gbuffer, const FrameCamera& camera, const GiSettings& s, GLuint in, GLuint out);
+
+  std::map<std::string, std::unique_ptr<ShaderProgram>> programs_;
+  gl::Texture raw_{GL_TEXTURE_2D}, first_{GL_TEXTURE_2D}, second_{GL_TEXTURE_2D};
+  GLuint result_ = 0;
+  int width_ = 0, height_ = 0;
+};
+
+}  // namespace lp::ch08

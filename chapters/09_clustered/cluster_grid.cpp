@@ -1,0 +1,81 @@
+#include "chapters/09_clustered/cluster_grid.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace lp::ch09 {
+
+Grid grid_of_tiles(int width, int height, int tile_px, int slices, float znear, float zfar) {
+  Grid g;
+  g.width = width;
+  g.height = height;
+  g.tile_w = g.tile_h = std::max(tile_px, 1);
+  g.tiles_x = (width + g.tile_w - 1) / g.tile_w;
+  g.tiles_y = (height + g.tile_h - 1) / g.tile_h;
+  g.slices = std::max(slices, 1);
+  g.znear = znear;
+  g.zfar = zfar;
+  return g;
+}
+
+Grid grid_of_counts(int width, int height, int nx, int ny, int slices, float znear, float zfar) {
+  Grid g;
+  g.width = width;
+  g.height = height;
+  nx = std::clamp(nx, 1, std::max(width, 1));
+  ny = std::clamp(ny, 1, std::max(height, 1));
+  g.tile_w = (width + nx - 1) / nx;
+  g.tile_h = (height + ny - 1) / ny;
+  g.tiles_x = (width + g.tile_w - 1) / g.tile_w;  // 16 over 20 pixels: tiles of 2, 10 of them
+  g.tiles_y = (height + g.tile_h - 1) / g.tile_h;
+  g.slices = std::max(slices, 1);
+  g.znear = znear;
+  g.zfar = zfar;
+  return g;
+}
+
+// [slices]
+float slice_start(const Grid& g, int k) {
+  if (k <= 0) return g.znear;
+  if (k >= g.slices) return g.zfar;
+  return g.znear * std::pow(g.zfar / g.znear, float(k) / float(g.slices));
+}
+
+int slice_of(const Grid& g, float view_depth) {
+  const float t = std::log(std::max(view_depth, g.znear) / g.znear) / std::log(g.zfar / g.znear);
+  return std::clamp(int(std::floor(t * float(g.slices))), 0, g.slices - 1);
+}
+// [/slices]
+
+Box cell_box(const FrameCamera& camera, const Grid& g, int x0, int y0, int x1, int y1, float d0, float d1) {
+  d0 *= 1.f - kDepthPad;
+  d1 *= 1.f + kDepthPad;
+  const glm::mat4& p = camera.projection;
+  Box b{glm::vec3(1e30f), glm::vec3(-1e30f)};
+  for (float d : {d0, d1})
+    for (int x : {x0, x1})
+      for (int y : {y0, y1}) {
+        // clip = P * (vx, vy, -d, 1), w = d: ndc_x = (P00 vx - P20 d) / d.
+        const float nx = float(x) / float(g.width) * 2.f - 1.f, ny = float(y) / float(g.height) * 2.f - 1.f;
+        const glm::vec3 v(d * (nx + p[2][0]) / p[0][0], d * (ny + p[2][1]) / p[1][1], -d);
+        b.lo = glm::min(b.lo, v);
+        b.hi = glm::max(b.hi, v);
+      }
+  return b;
+}
+
+Box cluster_box(const FrameCamera& camera, const Grid& g, int tx, int ty, int slice) {
+  return cell_box(camera, g, tx * g.tile_w, ty * g.tile_h, std::min((tx + 1) * g.tile_w, g.width),
+                  std::min((ty + 1) * g.tile_h, g.height), slice_start(g, slice), slice_start(g, slice + 1));
+}
+
+// [sphere-box]
+bool sphere_meets_box(const glm::vec3& centre, float radius, const Box& box) {
+  const glm::vec3 nearest = glm::clamp(centre, box.lo, box.hi);
+  const glm::vec3 d = centre - nearest;
+  const float r = radius * (1.f + 1e-5f) + 1e-6f;
+  return glm::dot(d, d) <= r * r;
+}
+// [/sphere-box]
+
+}  // namespace lp::ch09

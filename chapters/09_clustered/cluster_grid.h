@@ -1,0 +1,57 @@
+#pragma once
+// The cells lights are binned into, and the one test that bins them: a light's cut sphere
+// against a cell's box in view space. shaders/grid.glsl is the GLSL twin of this file; the
+// unit tests hold this one, the image tests the GLSL one.
+//
+// A cell is a screen tile (a rectangle of pixels) times a depth range:
+// - tiled: one range per tile, the tile's own depth bounds, found from the G-buffer;
+// - clustered: `slices` ranges fixed in advance, exponential in depth (Olsson et al. 2012):
+//   slice k spans  near * (far / near)^(k / S)  to  near * (far / near)^((k + 1) / S),
+//   so every cell is about as deep as it is wide, near and far.
+#include <glm/glm.hpp>
+
+#include "common/camera.h"
+
+namespace lp::ch09 {
+
+// [grid]
+struct Grid {
+  int width = 0, height = 0;    // the image, pixels
+  int tile_w = 16, tile_h = 16; // a tile, pixels (the last column and row may be cut short)
+  int tiles_x = 0, tiles_y = 0; // ceil(width / tile_w), ceil(height / tile_h)
+  int slices = 1;               // depth slices (1 for tiled: its range comes from the G-buffer)
+  float znear = 0.1f, zfar = 1000.f;  // the camera's, positive view depths
+  int cells() const { return tiles_x * tiles_y * slices; }
+};
+// Tiles of `tile_px` square pixels (tiled shading, or clusters of a given tile size).
+Grid grid_of_tiles(int width, int height, int tile_px, int slices, float znear, float zfar);
+// `nx` x `ny` tiles over the whole image (DOOM 2016's clusters: 16 x 9 x 24).
+Grid grid_of_counts(int width, int height, int nx, int ny, int slices, float znear, float zfar);
+
+// The view depth (positive, metres) where slice k begins; slice_start(S) is zfar.
+float slice_start(const Grid& g, int k);
+// The slice a view depth falls in, clamped to 0 .. slices - 1.
+int slice_of(const Grid& g, float view_depth);
+
+// An axis-aligned box in view space (the camera looks down -z).
+struct Box {
+  glm::vec3 lo, hi;
+};
+// The box around the part of the view frustum over pixels [x0, x1) x [y0, y1) (OpenGL's
+// bottom-left origin) between view depths d0 <= d1, grown by a relative `pad` of its depth
+// so that what the shading pass computes for a pixel inside it lies inside it too.
+Box cell_box(const FrameCamera& camera, const Grid& g, int x0, int y0, int x1, int y1, float d0, float d1);
+// Cell (tx, ty, slice) of a clustered grid.
+Box cluster_box(const FrameCamera& camera, const Grid& g, int tx, int ty, int slice);
+
+// Does the sphere (centre in view space, radius) reach the box? Conservative by a relative
+// 1e-5 of the radius (plus 1e-6 m), so that a point the shading pass finds exactly at the
+// cut distance is never left out by a rounding of the other test.
+bool sphere_meets_box(const glm::vec3& centre, float radius, const Box& box);
+// [/grid]
+
+// The relative depth padding of cell_box (and grid.glsl): far larger than float rounding in
+// a view depth (about 1e-7 relative), far smaller than any slice (S <= 256 over 1e6: 5 %).
+inline constexpr float kDepthPad = 1e-4f;
+
+}  // namespace lp::ch09

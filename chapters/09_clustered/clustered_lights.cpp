@@ -1,0 +1,245 @@
+#include "chapters/09_clustered/clustered_lights.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "common/error.h"
+
+namespace lp::ch09 {
+
+bool is_cluster_mode(const std::string& name) {
+  return std::find(kClusterModes.begin(), kClusterModes.end(), name) != kClusterModes.end();
+}
+
+ClusterSettings settings_for_mode(const std::string& name, ClusterSettings s) {
+  if (!is_cluster_mode(name)) throw Error("unknown culling mode '" + name + "'");
+  s.kind = name.rfind("tiled", 0) == 0 ? CullKind::Tiled : CullKind::Clustered;
+  s.shade = name.find("fragment") != std::string::npos ? ShadeIn::Fragment : ShadeIn::Compute;
+  return s;
+}
+
+std::string mode_name(const ClusterSettings& s) {
+  return std::string(s.kind == CullKind::Tiled ? "tiled" : "clustered") + (s.shade == ShadeIn::Fragment ? "-fragment" : "");
+}
+
+std::vector<std::string> ClusteredLights::pass_names(const std::string& mode) {
+  return {"local lights: " + mode + ": depth bounds", "local lights: " + mode + ": assign",
+          "local lights: " + mode + ": shade"};
+}
+
+namespace {
+// The GPU's record of a light: chapter 03's packing plus its kind (grid.glsl's ClusterLight).
+struct GpuClusterLight {
+  glm::vec4 position_radius, radiance_range, direction_cone, kind;
+};
+static_assert(sizeof(GpuClusterLight) == 64);
+
+struct ListState {
+  std::uint32_t head, capacity, cells_over, dropped_lo, dropped_hi, needed_lo, needed_hi, max_count;
+};
+
+template <class T>
+bool same(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+void set4i(const ShaderProgram& p, const char* name, int a, int b, int c, int d) {
+  glProgramUniform4i(p.id(), glGetUniformLocation(p.id(), name), a, b, c, d);
+}
+
+// The largest number of lights the 32-bit arithmetic of assign.comp holds (n * 64 < 2^32) and llvmpipe's loop limit allows (n / 64 / 4 < 65 535).
+constexpr std::size_t kMaxLights = std::size_t(1) << 22;
+}  // namespace
+
+ClusteredLights::ClusteredLights(const ch03::LightVolumes& volumes, ClusterSettings settings)
+    : volumes_(volumes), settings_(settings) {}
+
+const ShaderProgram& ClusteredLights::program(GLenum stage, const std::string& file, const std::vector<std::string>& defines) {
+  std::string key = file;
+  for (const auto& d : defines) key += "|" + d;
+  auto it = programs_.find(key);
+  if (it == programs_.end()) {
+    std::vector<ShaderStage> stages = {{stage, file}};
+    if (stage == GL_FRAGMENT_SHADER) stages.insert(stages.begin(), {GL_VERTEX_SHADER, "02_gbuffer/shaders/fullscreen.vert"});
+    it = programs_.emplace(key, ShaderProgram(stages, defines)).first;
+  }
+  return it->second;
+}
+
+void ClusteredLights::upload_lights() {
+  const ch03::LightSet& set = volumes_.lights();
+  if (uploaded_ && same(set.points, points_) && same(set.cones, cones_) && same(set.wide_spots, wide_)) return;
+  if (set.local_count() > kMaxLights)
+    throw Error("clustered lights: " + std::to_string(set.local_count()) + " local lights, at most " +
+                std::to_string(kMaxLights));
+  std::vector<GpuClusterLight> g;
+  g.reserve(set.local_count());
+  for (const auto& p : set.points) g.push_back({p.position_radius, p.radiance_range, glm::vec4(0), glm::vec4(0)});
+  for (const auto* spots : {&set.cones, &set.wide_spots})
+    for (const auto& s : *spots) g.push_back({s.position_radius, s.radiance_range, s.direction_cone, glm::vec4(1, 0, 0, 0)});
+  lights_bytes_ = std::max<std::size_t>(g.size() * sizeof(GpuClusterLight), 64);
+  glNamedBufferData(lights_.id(), GLsizeiptr(lights_bytes_), nullptr, GL_STATIC_DRAW);
+  if (!g.empty()) glNamedBufferSubData(lights_.id(), 0, GLsizeiptr(g.size() * sizeof(GpuClusterLight)), g.data());
+  light_count_ = int(g.size());
+  points_ = set.points;
+  cones_ = set.cones;
+  wide_ = set.wide_spots;
+  uploaded_ = true;
+}
+
+void ClusteredLights::set_grid_uniforms(const ShaderProgram& p, const FrameCamera& camera) const {
+  p.set("u_view", camera.view);
+  p.set("u_projection", glm::vec4(camera.projection[0][0], camera.projection[1][1], camera.projection[2][0],
+                                  camera.projection[2][1]));
+  set4i(p, "u_grid", grid_.width, grid_.height, grid_.tile_w, grid_.tile_h);
+  set4i(p, "u_tiles", grid_.tiles_x, grid_.tiles_y, grid_.slices, light_count_);
+  p.set("u_depth_range", glm::vec2(grid_.znear, grid_.zfar));
+}
+
+// [draw]
+void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceView& view,
+                           ch03::LightVolumes::Output output) {
+  const FrameCamera& camera = view.camera;
+  const int w = light.width(), h = light.height();
+  const bool clustered = settings_.kind == CullKind::Clustered;
+  grid_ = clustered ? grid_of_counts(w, h, settings_.clusters.x, settings_.clusters.y, settings_.clusters.z,
+                                     camera.znear, camera.zfar)
+                    : grid_of_tiles(w, h, settings_.tile_px, 1, camera.znear, camera.zfar);
+  // Bounded work and memory for any knob values: at most 2^22 cells (32 MiB of cell records).
+  if (std::uint64_t(grid_.tiles_x) * std::uint64_t(grid_.tiles_y) * std::uint64_t(grid_.slices) > (1u << 22))
+    throw Error("clustered lights: a grid of " + std::to_string(grid_.tiles_x) + " x " + std::to_string(grid_.tiles_y) +
+                " x " + std::to_string(grid_.slices) + " cells is more than 4 194 304; use larger tiles or fewer slices");
+  upload_lights();
+  stats_ = {};
+  stats_.cells = grid_.cells();
+
+  std::vector<std::string> defines = view.defines;
+  for (const auto& d : view.hooks.defines()) defines.push_back(d);
+  if (clustered) defines.push_back("CLUSTERED 1");
+
+  // The cells and the bounds: one (offset, count) per cell; tiled: (min, max) per tile,
+  // clustered: an occupied flag per cell.
+  const std::size_t cells_bytes = std::size_t(grid_.cells()) * 8;
+  const std::size_t bounds_bytes = clustered ? std::size_t(grid_.cells()) * 4 : std::size_t(grid_.cells()) * 8;
+  if (cells_bytes != cells_bytes_) glNamedBufferData(cells_.id(), GLsizeiptr(cells_bytes_ = cells_bytes), nullptr, GL_DYNAMIC_DRAW);
+  if (bounds_bytes != bounds_bytes_) glNamedBufferData(bounds_.id(), GLsizeiptr(bounds_bytes_ = bounds_bytes), nullptr, GL_DYNAMIC_DRAW);
+  if (capacity_ == 0) {
+    capacity_ = std::max<std::uint32_t>(settings_.initial_indices, 1);
+    glNamedBufferData(indices_.id(), GLsizeiptr(capacity_) * 4, nullptr, GL_DYNAMIC_DRAW);
+    glNamedBufferData(state_.id(), sizeof(ListState), nullptr, GL_DYNAMIC_READ);
+  }
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, lights_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, cells_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, bounds_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, indices_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, state_.id());
+  const std::vector<std::string> names = pass_names(name());
+
+  // 1. Depth bounds: what depths each tile's surfaces span (tiled), which clusters hold any (clustered).
+  {
+    auto pass = timed(metrics_, names[0]);
+    const std::uint32_t zero = 0;
+    glClearNamedBufferData(bounds_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    const ShaderProgram& p = program(GL_COMPUTE_SHADER, "09_clustered/shaders/depth_bounds.comp", defines);
+    set_grid_uniforms(p, camera);
+    p.use();
+    glDispatchCompute(GLuint(grid_.tiles_x), GLuint(grid_.tiles_y), 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+  // 2. Assign: each cell's lights into the index list; grown and run again if it did not fit.
+  {
+    auto pass = timed(metrics_, names[1]);
+    assign(defines, camera);
+  }
+  // 3. Shade: each pixel adds the lights of its cell into L1 and L2.
+  {
+    auto pass = timed(metrics_, names[2]);
+    std::vector<std::string> d = defines;
+    if (counting_) {
+      for (const auto& c : ch03::FragmentCounters::defines()) d.push_back(c);
+      counters_.reset();
+      counters_.bind();
+    }
+    if (output == ch03::LightVolumes::Output::HeatShaded) d.push_back("HEAT_SHADED 1");
+    if (output == ch03::LightVolumes::Output::HeatLit) d.push_back("HEAT_LIT 1");
+    if (settings_.shade == ShadeIn::Compute) {
+      const ShaderProgram& p = program(GL_COMPUTE_SHADER, "09_clustered/shaders/shade.comp", d);
+      set_grid_uniforms(p, camera);
+      p.use();
+      glBindImageTexture(0, light.diffuse(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
+      glBindImageTexture(1, light.specular(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
+      glDispatchCompute(GLuint((w + 7) / 8), GLuint((h + 7) / 8), 1);
+      glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    } else {
+      const ShaderProgram& p = program(GL_FRAGMENT_SHADER, "09_clustered/shaders/shade.frag", d);
+      set_grid_uniforms(p, camera);
+      light.bind();
+      glDisable(GL_DEPTH_TEST);
+      glDepthMask(GL_FALSE);
+      glEnable(GL_BLEND);
+      glBlendFunc(GL_ONE, GL_ONE);
+      p.use();
+      full_screen_.draw();
+      glDisable(GL_BLEND);
+      glDepthMask(GL_TRUE);
+    }
+  }
+  light.bind();
+}
+// [/draw]
+
+void ClusteredLights::assign(const std::vector<std::string>& defines, const FrameCamera& camera) {
+  const ShaderProgram& p = program(GL_COMPUTE_SHADER, "09_clustered/shaders/assign.comp", defines);
+  set_grid_uniforms(p, camera);
+  for (int attempt = 0;; ++attempt) {
+    const ListState start{0, capacity_, 0, 0, 0, 0, 0, 0};
+    glNamedBufferSubData(state_.id(), 0, sizeof(start), &start);
+    p.use();
+    glDispatchCompute(GLuint(grid_.tiles_x), GLuint(grid_.tiles_y), GLuint(grid_.slices));
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    // [overflow]
+    // The one read-back of the frame: did every cell's list fit? If not, grow the list to
+    // what the frame asked for and assign again (once: the count is exact); past max_indices,
+    // or with growth off, the dropped lights are counted and reported, never lost unseen.
+    ListState s{};
+    glGetNamedBufferSubData(state_.id(), 0, sizeof(s), &s);
+    const std::uint64_t needed = s.needed_lo + (std::uint64_t(s.needed_hi) << 32);
+    stats_.indices = needed;
+    stats_.max_list = s.max_count;
+    stats_.cells_over = s.cells_over;
+    stats_.dropped = s.dropped_lo + (std::uint64_t(s.dropped_hi) << 32);
+    if (s.cells_over == 0 || !settings_.grow || attempt > 0 || capacity_ >= settings_.max_indices) break;
+    capacity_ = std::uint32_t(std::min<std::uint64_t>(needed + needed / 4, settings_.max_indices));
+    glNamedBufferData(indices_.id(), GLsizeiptr(capacity_) * 4, nullptr, GL_DYNAMIC_DRAW);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, indices_.id());
+    ++stats_.regrown;
+    // [/overflow]
+  }
+  stats_.capacity = capacity_;
+  stats_.bytes = std::size_t(capacity_) * 4 + cells_bytes_ + bounds_bytes_ + lights_bytes_;
+}
+
+EvalCounts ClusteredLights::counts() const {
+  const std::vector<std::uint64_t> c = counters_.read();
+  return {c[0], c[1]};
+}
+
+std::vector<glm::uvec2> ClusteredLights::cell_lists() const {
+  std::vector<glm::uvec2> v(std::size_t(grid_.cells()));
+  if (!v.empty()) glGetNamedBufferSubData(cells_.id(), 0, GLsizeiptr(v.size() * 8), v.data());
+  return v;
+}
+
+std::vector<std::uint32_t> ClusteredLights::cell_counts() const {
+  std::vector<std::uint32_t> n;
+  for (const glm::uvec2& c : cell_lists()) n.push_back(c.y);
+  return n;
+}
+
+std::vector<std::uint32_t> ClusteredLights::index_list() const {
+  std::vector<std::uint32_t> v(std::size_t(std::min<std::uint64_t>(stats_.indices, capacity_)));
+  if (!v.empty()) glGetNamedBufferSubData(indices_.id(), 0, GLsizeiptr(v.size() * 4), v.data());
+  return v;
+}
+
+}  // namespace lp::ch09

@@ -1,0 +1,119 @@
+#pragma once
+// Chapter 09's stage: the local lights binned into screen tiles or 3D clusters by compute
+// shaders, then each pixel lit by its cell's list alone. It plugs into chapter 03's frame as
+// its LocalLightPass, so the G-buffer, the global lights, the composite and every later
+// chapter's stage stay as they are; only how the local lights reach the light buffer changes.
+//
+//   ClusteredLights clustered(frame.volumes(), {.kind = CullKind::Clustered});
+//   frame.set_local_lights(&clustered);
+//   frame.render(camera, output, &metrics);   // depth bounds, assign, shade: three passes
+//
+// The lights, their cut and their lighting are chapter 03's (frame.volumes().lights(), and
+// local_light.glsl): the image equals the stencil volumes' within float rounding.
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "chapters/03_light_volumes/deferred_frame.h"
+#include "chapters/03_light_volumes/fragment_counters.h"
+#include "chapters/09_clustered/cluster_grid.h"
+#include "common/gl.h"
+#include "common/shader.h"
+
+namespace lp::ch09 {
+
+// [settings]
+enum class CullKind { Tiled, Clustered };
+enum class ShadeIn { Compute, Fragment };
+struct ClusterSettings {
+  CullKind kind = CullKind::Clustered;
+  ShadeIn shade = ShadeIn::Compute;
+  int tile_px = 16;          // tiled: square tiles of this many pixels
+  glm::ivec3 clusters{16, 9, 24};  // clustered: tiles across, tiles down, depth slices (DOOM 2016's)
+  // The index list starts this large (indices) and grows to what a frame needs, re-running
+  // the assignment, up to max_indices. grow = false keeps it as it is: a cell that does not
+  // fit gets no lights, and the frame reports how many it dropped.
+  std::uint32_t initial_indices = 1u << 20;
+  std::uint32_t max_indices = 1u << 28;  // 1 GiB of indices
+  bool grow = true;
+};
+// The four ways of the program's --mode, beside chapter 03's: "tiled", "tiled-fragment",
+// "clustered" (compute), "clustered-fragment".
+inline const std::vector<std::string> kClusterModes = {"tiled", "tiled-fragment", "clustered", "clustered-fragment"};
+bool is_cluster_mode(const std::string& name);
+ClusterSettings settings_for_mode(const std::string& name, ClusterSettings base = {});  // throws Error
+std::string mode_name(const ClusterSettings& s);
+// [/settings]
+
+// What the last draw() did, read back from the GPU.
+struct ClusterStats {
+  int cells = 0;                 // of the grid
+  std::uint64_t indices = 0;     // entries in the index list (every cell's list, compacted)
+  std::uint32_t max_list = 0;    // the longest cell list
+  std::uint32_t capacity = 0;    // the index list's size, after any growth
+  int regrown = 0;               // times this frame grew the list and assigned again
+  std::uint32_t cells_over = 0;  // cells that did not fit (after any growth)
+  std::uint64_t dropped = 0;     // lights those cells left out: not 0 only when grow is off
+                                 // or max_indices is reached, and then reported
+  std::size_t bytes = 0;         // the lists' memory: index list, cells, bounds, lights
+};
+
+// Exact per-pixel counts over the frame (with counting on).
+struct EvalCounts {
+  std::uint64_t evaluated = 0;  // (pixel, light) pairs the shading looked at
+  std::uint64_t lit = 0;        // of those, the ones where the light added anything
+  double evaluated_per_lit() const { return lit ? double(evaluated) / double(lit) : 0.0; }
+};
+
+class ClusteredLights : public ch03::LocalLightPass {
+ public:
+  explicit ClusteredLights(const ch03::LightVolumes& volumes, ClusterSettings settings = {});
+  std::string name() const override { return mode_name(settings_); }
+  void draw(const ch03::LightBuffer& light, const ch03::SurfaceView& view, ch03::LightVolumes::Output output) override;
+  // Times its three passes apart: "<mode>: depth bounds", "<mode>: assign", "<mode>: shade".
+  bool times_own_passes() const override { return true; }
+  void set_metrics(PassMetrics* metrics) override { metrics_ = metrics; }
+  static std::vector<std::string> pass_names(const std::string& mode);
+
+  const ClusterSettings& settings() const { return settings_; }
+  void set_settings(const ClusterSettings& s) { settings_ = s; }
+  void set_counting(bool on) { counting_ = on; }
+  const ClusterStats& stats() const { return stats_; }
+  EvalCounts counts() const;  // of the last draw (waits for the GPU)
+  const Grid& grid() const { return grid_; }
+  // Every cell's light count in the last draw (cell_index order: x fastest, then y, then slice).
+  std::vector<std::uint32_t> cell_counts() const;
+  // Every cell's list as stored: (offset, count) per cell and the index list, for the tests.
+  std::vector<glm::uvec2> cell_lists() const;
+  std::vector<std::uint32_t> index_list() const;
+  void reload_shaders() { programs_.clear(); }
+
+ private:
+  void upload_lights();
+  void assign(const std::vector<std::string>& defines, const FrameCamera& camera);
+  void set_grid_uniforms(const ShaderProgram& p, const FrameCamera& camera) const;
+  const ShaderProgram& program(GLenum stage, const std::string& file, const std::vector<std::string>& defines);
+
+  const ch03::LightVolumes& volumes_;
+  ClusterSettings settings_;
+  PassMetrics* metrics_ = nullptr;
+  bool counting_ = false;
+  Grid grid_;
+  ClusterStats stats_;
+  // What was uploaded, to see when chapter 03's light set changes.
+  std::vector<ch03::PointInstance> points_;
+  std::vector<ch03::SpotInstance> cones_, wide_;
+  bool uploaded_ = false;
+  int light_count_ = 0;
+  gl::Buffer lights_, cells_, bounds_, indices_, state_;
+  std::size_t lights_bytes_ = 0, cells_bytes_ = 0, bounds_bytes_ = 0;
+  std::uint32_t capacity_ = 0;
+  ch03::FragmentCounters counters_{2};
+  ch02::FullScreenPass full_screen_;
+  std::map<std::string, ShaderProgram> programs_;
+};
+
+}  // namespace lp::ch09

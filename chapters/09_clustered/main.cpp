@@ -1,0 +1,175 @@
+// Chapter 09: tiled and clustered light culling. Chapter 03 drew every local light as a
+// volume: a draw per light, which stops scaling long before 100 000 lights. Here compute
+// shaders bin the lights into screen tiles (with each tile's depth bounds) or into a 3D grid
+// of clusters (exponential depth slices), and each pixel is lit by its cell's list alone,
+// in compute or in a full-screen fragment pass. The lights, their cut and their lighting
+// are chapter 03's, so every mode gives chapter 03's image; the modes are chapter 03's
+// stencil volumes and the four ways of this chapter, `--show` draws the heat maps.
+#include <chrono>
+#include <iostream>
+#include <memory>
+
+#include <imgui.h>
+
+#include "chapters/01_forward/ground_truth.h"
+#include "chapters/03_light_volumes/deferred_frame.h"
+#include "chapters/03_light_volumes/light_counts.h"
+#include "chapters/03_light_volumes/light_radius.h"
+#include "chapters/09_clustered/cluster_picture.h"
+#include "chapters/09_clustered/clustered_lights.h"
+#include "common/app.h"
+
+namespace {
+
+using namespace lp;
+using namespace lp::ch09;
+
+enum Show { kResult, kHeatEvaluated, kHeatLit, kClusters };  // --show's order
+
+std::vector<std::string> modes() {
+  std::vector<std::string> m = {"clustered"};
+  for (const auto& c : kClusterModes)
+    if (c != "clustered") m.push_back(c);
+  m.push_back("stencil");  // chapter 03's volumes, the image to equal
+  return m;
+}
+
+std::vector<Shot> references() {
+  // Every mode on the street's own lights and inside a light: all chapter 03's stencil image
+  // (the GL tests hold how close; here each against its own reference). The heat maps at 1000
+  // lights: lights evaluated and lit per pixel, tiles against clusters, and the grid itself.
+  std::vector<Shot> shots;
+  for (const auto& m : modes()) shots.push_back({"street_level", m});
+  shots.push_back({"inside_light", "clustered"});
+  shots.push_back({"inside_light", "tiled"});
+  for (const std::string m : {"tiled", "clustered"})
+    for (int show : {kHeatEvaluated, kHeatLit, kClusters})
+      shots.push_back({"street_level", m, {{"lights", 1000}, {"show", show}, {"heat-scale", 200}}});
+  shots.push_back({"street_level", "clustered",
+                   {{"lights", 1000}, {"clusters-x", 32}, {"clusters-y", 18}, {"slices", 8}, {"show", kHeatEvaluated}, {"heat-scale", 200}}});
+  return shots;
+}
+
+const lp::Chapter kChapter{
+    .cli = {.program = "09_clustered",
+            .summary = "Tiled and clustered light culling: lights binned into screen tiles or 3D clusters by compute "
+                       "shaders, each pixel lit by its cell's list; chapter 03's image, towards 100 000 lights.",
+            .default_scene = "assets/street/street.gltf",
+            .modes = modes(),
+            .knobs = {{"lights", "local lights (0: the scene's own; more adds lights like them)", 0, 0, 1000000, true},
+                      choice_knob("show", "result, lights evaluated or lit per pixel, lights per cluster (the grid)",
+                                  {"result", "heat-evaluated", "heat-lit", "clusters"}),
+                      {"tile", "tiled: tile size in pixels", 16, 1, 512, true},
+                      {"clusters-x", "clustered: tiles across (DOOM 2016: 16)", 16, 1, 1024, true},
+                      {"clusters-y", "clustered: tiles down (DOOM 2016: 9)", 9, 1, 1024, true},
+                      {"slices", "clustered: exponential depth slices (DOOM 2016: 24)", 24, 1, 256, true},
+                      {"heat-scale", "heat maps: lights per pixel or per cluster shown white", 100, 1, 1e7, false},
+                      {"count", "count lights evaluated and lit (atomic counters, costs a little time)", 1, 0, 1, true}}},
+    .references = references(),
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return lp::run_chapter(argc, argv, kChapter, [](lp::App& app) {
+    ch03::DeferredFrame frame(app.scene_gpu());
+    ClusteredLights clustered(frame.volumes());
+    ClusterPicture picture;
+    double lights_key = -1;
+
+    while (app.next_frame()) {
+      const lp::Frame& f = app.frame();
+      const auto start = std::chrono::steady_clock::now();
+      if (f.reload_shaders) {
+        frame.reload_shaders();
+        clustered.reload_shaders();
+      }
+      // 1. The lights: chapter 03's set for the count asked, cut where chapter 03 cuts them.
+      if (f.knob("lights") != lights_key) {
+        lights_key = f.knob("lights");
+        ch03::LightSet set = ch03::build_light_set(ch03::lights_for_count(app.scene(), f.knob_int("lights")),
+                                                   ch03::cut_threshold(1.f, ch03::peak_reflectance(app.scene())),
+                                                   frame.volumes().shapes());
+        for (const auto& w : set.warnings) std::cerr << "warning: " << w << '\n';
+        frame.volumes().set_lights(std::move(set));
+      }
+      // 2. The culling: chapter 03's stencil volumes, or this chapter's tiles or clusters.
+      const bool ours = f.mode != "stencil";
+      if (ours) {
+        ClusterSettings s = settings_for_mode(f.mode);
+        s.tile_px = std::max(f.knob_int("tile"), 1);
+        s.clusters = {f.knob_int("clusters-x"), f.knob_int("clusters-y"), f.knob_int("slices")};
+        clustered.set_settings(s);
+        clustered.set_counting(f.knob_int("count") != 0);
+        frame.set_local_lights(&clustered);
+      } else {
+        frame.set_local_lights(nullptr);
+        frame.set_strategy(ch03::Strategy::Stencil);
+        frame.volumes().set_counting(f.knob_int("count") != 0);
+      }
+      // 3. The frame (chapter 03's deferred_frame.cpp): G-buffer, global light, the local
+      //    lights through the pass chosen above, composite; or a heat map of the light buffer.
+      const int show = f.knob_int("show");
+      const ch03::FrameShow frame_show = show == kHeatEvaluated ? ch03::FrameShow::HeatShaded
+                                         : show == kHeatLit     ? ch03::FrameShow::HeatLit
+                                                                : ch03::FrameShow::Image;
+      frame.render(f.camera, {f.target, f.width, f.height}, &app.metrics(),
+                   {.show = frame_show, .heat_full_scale = float(f.knob("heat-scale"))});
+      // 4. The grid itself: each cell's light count, slice by slice, over the image.
+      if (show == kClusters && ours) picture.draw(clustered.grid(), clustered.cell_counts(), {f.target, f.width, f.height}, float(f.knob("heat-scale")));
+
+      // What it did: lights evaluated against lit, the lists, any overflow.
+      std::uint64_t evaluated = 0, lit = 0;
+      if (f.knob_int("count")) {
+        if (ours) {
+          const EvalCounts c = clustered.counts();
+          evaluated = c.evaluated;
+          lit = c.lit;
+        } else {
+          const ch03::FragmentCounts c = frame.volumes().counts();
+          evaluated = c.shaded;
+          lit = c.lit;
+        }
+      }
+      if (f.knob_int("count") && ours) {  // --bench reports them with the shading pass
+        const std::string shade = ClusteredLights::pass_names(f.mode)[2];
+        app.metrics().count(shade, "evaluated", evaluated);
+        app.metrics().count(shade, "lit", lit);
+      }
+      const ClusterStats& st = clustered.stats();
+      if (ours) {
+        app.metrics().set_allocation("light lists (index list, cells, bounds, lights)", st.bytes);
+        if (st.dropped) std::cerr << "warning: " << st.dropped << " light entries dropped in " << st.cells_over
+                                  << " cells: the index list is full (" << st.capacity << " entries)\n";
+      }
+      app.metrics().set_allocation("G-buffer (chapter 02) + light buffer L1 + L2 RGBA16F + depth-stencil",
+                                   frame.allocated_bytes());
+      if (std::ostream& out = app.report()) {
+        glFinish();
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        out << frame.volumes().lights().local_count() << " local lights, " << f.mode << ": frame took " << ms
+            << " ms (wall clock, " << app.context().renderer() << ")";
+        if (f.knob_int("count"))
+          out << "; lights evaluated " << evaluated << ", lit " << lit << ", evaluated per lit "
+              << (lit ? double(evaluated) / double(lit) : 0.0);
+        if (ours)
+          out << "; " << st.cells << " cells, " << st.indices << " list entries (longest " << st.max_list << "), "
+              << st.bytes << " bytes of lists, regrown " << st.regrown << ", dropped " << st.dropped;
+        out << '\n';
+      }
+      app.panel([&] {
+        const ch03::LightSet& set = frame.volumes().lights();
+        ImGui::Text("%zu local lights", set.local_count());
+        if (f.knob_int("count"))
+          ImGui::Text("evaluated %llu, lit %llu: %.2f per lit", (unsigned long long)evaluated, (unsigned long long)lit,
+                      lit ? double(evaluated) / double(lit) : 0.0);
+        if (ours) {
+          ImGui::Text("%d cells (%d x %d x %d), %llu entries, longest %u", st.cells, clustered.grid().tiles_x,
+                      clustered.grid().tiles_y, clustered.grid().slices, (unsigned long long)st.indices, st.max_list);
+          ImGui::Text("lists: %.2f MiB, regrown %d, dropped %llu", double(st.bytes) / (1 << 20), st.regrown,
+                      (unsigned long long)st.dropped);
+        }
+      });
+    }
+  });
+}

@@ -1,0 +1,64 @@
+// The cells lights are binned into, in GLSL: the twin of cluster_grid.h (its comments say
+// why each line is what it is). Needs the uniforms below set by ClusteredLights.
+uniform mat4 u_view;         // world to view space (the G-buffer's camera)
+uniform vec4 u_projection;   // P[0][0], P[1][1], P[2][0], P[2][1]: the frustum's shape
+uniform ivec4 u_grid;        // width, height, tile_w, tile_h (pixels)
+uniform ivec4 u_tiles;       // tiles_x, tiles_y, slices, local lights
+uniform vec2 u_depth_range;  // znear, zfar (positive view depths)
+
+const float kDepthPad = 1e-4;
+
+float view_depth(vec3 world) { return -(u_view * vec4(world, 1.0)).z; }
+
+float slice_start(int k) {
+  if (k <= 0) return u_depth_range.x;
+  if (k >= u_tiles.z) return u_depth_range.y;
+  return u_depth_range.x * pow(u_depth_range.y / u_depth_range.x, float(k) / float(u_tiles.z));
+}
+
+int slice_of(float d) {
+  float t = log(max(d, u_depth_range.x) / u_depth_range.x) / log(u_depth_range.y / u_depth_range.x);
+  return clamp(int(floor(t * float(u_tiles.z))), 0, u_tiles.z - 1);
+}
+
+struct Box {
+  vec3 lo, hi;
+};
+
+Box cell_box(ivec2 p0, ivec2 p1, float d0, float d1) {
+  d0 *= 1.0 - kDepthPad;
+  d1 *= 1.0 + kDepthPad;
+  Box b = Box(vec3(1e30), vec3(-1e30));
+  for (int i = 0; i < 8; ++i) {
+    float d = (i & 1) != 0 ? d1 : d0;
+    vec2 pixel = vec2((i & 2) != 0 ? p1.x : p0.x, (i & 4) != 0 ? p1.y : p0.y);
+    vec2 ndc = pixel / vec2(u_grid.xy) * 2.0 - 1.0;
+    vec3 v = vec3(d * (ndc.x + u_projection.z) / u_projection.x, d * (ndc.y + u_projection.w) / u_projection.y, -d);
+    b.lo = min(b.lo, v);
+    b.hi = max(b.hi, v);
+  }
+  return b;
+}
+
+bool sphere_meets_box(vec3 centre, float radius, Box box) {
+  vec3 d = centre - clamp(centre, box.lo, box.hi);
+  float r = radius * (1.0 + 1e-5) + 1e-6;
+  return dot(d, d) <= r * r;
+}
+
+ivec2 tile_of(ivec2 pixel) { return pixel / u_grid.zw; }
+// Cells in the order the assignment dispatches them: x fastest, then y, then the slice.
+int cell_index(ivec2 tile, int slice) { return (slice * u_tiles.y + tile.y) * u_tiles.x + tile.x; }
+
+// The lights, in chapter 03's light order (points, cones, wide spots), as chapter 03 packs
+// them (light_instances.h) plus which kind each is.
+struct ClusterLight {
+  vec4 position_radius;  // xyz world position, w the cut
+  vec4 radiance_range;
+  vec4 direction_cone;   // spots only
+  vec4 kind;             // x: 1 for a spot
+};
+layout(std430, binding = 0) readonly buffer Lights { ClusterLight cluster_lights[]; };
+// Each cell's list: where it starts in the index list and how many lights it holds.
+layout(std430, binding = 1) buffer Cells { uvec2 cells[]; };
+layout(std430, binding = 4) buffer Indices { uint light_indices[]; };

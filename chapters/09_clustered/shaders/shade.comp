@@ -1,0 +1,17 @@
+#version 450
+// Pass 3 in compute: one invocation per pixel adds its cell's lights into the light buffer
+// (read, add, write: each pixel is one invocation's alone).
+layout(local_size_x = 8, local_size_y = 8) in;
+#include "09_clustered/shaders/shade.glsl"
+
+layout(binding = 0, rgba16f) uniform image2D u_l1;
+layout(binding = 1, rgba16f) uniform image2D u_l2;
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(pixel, u_grid.xy))) return;
+  vec4 l1, l2;
+  pixel_output(pixel, l1, l2);
+  imageStore(u_l1, pixel, imageLoad(u_l1, pixel) + l1);
+  imageStore(u_l2, pixel, imageLoad(u_l2, pixel) + l2);
+}

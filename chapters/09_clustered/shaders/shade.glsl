@@ -1,0 +1,82 @@
+// Pass 3 for one pixel: its cell's lights, each lit with chapter 03's local_light(), in the
+// order the list holds them (light order). The compute pass (shade.comp) and the
+// full-screen fragment pass (shade.frag) both call shade_pixel(); they differ only in how
+// the sum reaches the light buffer.
+#include "01_forward/shaders/lighting.glsl"
+#include "02_gbuffer/shaders/gbuffer.glsl"
+#include FRAME_VISIBILITY
+#include "03_light_volumes/shaders/light_instance.glsl"
+#include "03_light_volumes/shaders/local_light.glsl"
+#include "09_clustered/shaders/grid.glsl"
+#ifdef COUNT_FRAGMENTS
+#include "03_light_volumes/shaders/fragment_counters.glsl"
+const uint kCountEvaluated = 0u, kCountLit = 1u;
+// fragment_counters.glsl's count_fragment() adds 1; a pixel adds its whole count at once.
+void count_add(uint counter, uint n) {
+  if (n == 0u) return;
+  if (atomicAdd(fragment_counters[counter].lo, n) > 0xFFFFFFFFu - n) atomicAdd(fragment_counters[counter].hi, 1u);
+}
+#endif
+#ifndef CLUSTERED
+layout(std430, binding = 2) readonly buffer Bounds { uint bounds[]; };
+#endif
+
+// The light at place `at` of the index list, added to the pixel's sums.
+void add_light(Surface s, uint at, inout vec3 diffuse, inout vec3 specular, inout uint lit) {
+  int i = int(light_indices[at]);
+  ClusterLight c = cluster_lights[i];
+  GpuLight light = c.kind.x > 0.5 ? unpack_spot(c.position_radius, c.radiance_range, c.direction_cone)
+                                  : unpack_point(c.position_radius, c.radiance_range);
+  vec3 d, sp;
+  local_light(light, c.position_radius.w, i, s, d, sp);
+  diffuse += d;
+  specular += s.specular * sp;
+  if (any(greaterThan(d + sp, vec3(0.0)))) ++lit;
+}
+
+// [shade-pixel]
+// diffuse goes to L1, specular (already tinted by the surface's specular colour) to L2;
+// `evaluated` lights were looked at, `lit` of them added anything.
+void shade_pixel(ivec2 pixel, out vec3 diffuse, out vec3 specular, out uint evaluated, out uint lit) {
+  diffuse = specular = vec3(0.0);
+  evaluated = lit = 0u;
+  Surface s = decode_gbuffer(pixel);
+  if (s.is_sky) return;
+#ifdef CLUSTERED
+  uvec2 list = cells[cell_index(tile_of(pixel), slice_of(view_depth(s.position)))];
+#else
+  uvec2 list = cells[cell_index(tile_of(pixel), 0)];
+#endif
+  // Four lights an iteration: llvmpipe ends a shader's loops after 65 535 iterations in all
+  // (gallivm's loop limiter), and a tile's list can hold 100 000 lights (262 140 at most here).
+  for (uint k = 0u; k < list.y; k += 4u) {
+    add_light(s, list.x + k, diffuse, specular, lit);
+    if (k + 1u < list.y) add_light(s, list.x + k + 1u, diffuse, specular, lit);
+    if (k + 2u < list.y) add_light(s, list.x + k + 2u, diffuse, specular, lit);
+    if (k + 3u < list.y) add_light(s, list.x + k + 3u, diffuse, specular, lit);
+  }
+  evaluated = list.y;
+#ifdef COUNT_FRAGMENTS
+  count_add(kCountEvaluated, evaluated);
+  count_add(kCountLit, lit);
+#endif
+}
+// [/shade-pixel]
+
+// What the pass adds into L1 and L2: the light, or a heat map's count (chapter 03's
+// Output::HeatShaded / HeatLit: lights evaluated, or lights that lit the pixel).
+void pixel_output(ivec2 pixel, out vec4 l1, out vec4 l2) {
+  vec3 diffuse, specular;
+  uint evaluated, lit;
+  shade_pixel(pixel, diffuse, specular, evaluated, lit);
+#if defined(HEAT_SHADED)
+  l1 = vec4(float(evaluated));
+  l2 = vec4(0.0);
+#elif defined(HEAT_LIT)
+  l1 = vec4(float(lit));
+  l2 = vec4(0.0);
+#else
+  l1 = vec4(diffuse, 0.0);
+  l2 = vec4(specular, 0.0);
+#endif
+}

@@ -1,0 +1,21 @@
+# Chapter 08: screen-space diffuse interreflection merged with SSAO. Unit tests of the maths (no
+# OpenGL), GPU tests (against the ray-traced one-bounce truth, the hard cases), and the program:
+# references per mode and view, bad input.
+lightpass_gtests(08_ssgi unit lightpass_08_ssgi unit/test_08_gi_math.cpp)
+lightpass_gtests(08_ssgi gl lightpass_08_ssgi unit/test_08_ssgi_gl.cpp)
+
+set(P08 $<TARGET_FILE:08_ssgi>)
+lightpass_program_test(08_ssgi.reference.cornell 0 "12 of 12 references match" ${P08} --check --out ${CHECK_OUT}/08_ssgi)
+lightpass_program_test(08_ssgi.reference.atrium 0 "2 of 2 references match"
+  ${P08} --check --scene assets/atrium/atrium.gltf --out ${CHECK_OUT}/08_ssgi_atrium)
+lightpass_program_test(08_ssgi.headless_says_what_it_computed 0
+  "SSGI ssgi, 16 samples, regular, radii 0.5 / 2.5, 1 bounce: frame took"
+  ${P08} --headless --size 160x90 --samples 17 --pattern regular --out ${CMAKE_BINARY_DIR}/out/08_headless.png)
+lightpass_program_test(08_ssgi.off_runs_no_pass 0 "no SSGI pass \\(mode off\\)"
+  ${P08} --headless --size 160x90 --mode off --out ${CMAKE_BINARY_DIR}/out/08_off.png)
+lightpass_program_test(08_ssgi.bad_samples 2 "--samples must be between 1 and 128, got 0" ${P08} --samples 0)
+lightpass_program_test(08_ssgi.bad_bounces 2 "--bounces must be between 1 and 2, got 3" ${P08} --bounces 3)
+lightpass_program_test(08_ssgi.bad_mode 2 "unknown mode 'rtgi'" ${P08} --mode rtgi)
+lightpass_program_test(08_ssgi.bad_pattern 2 "--pattern must be one of: regular spiral randomised. got .hexagonal." ${P08} --pattern hexagonal)
+add_test(NAME 08_ssgi.sweep_unknown_option COMMAND ${EXPECT} 2 "unknown option '--fast'" -- $<TARGET_FILE:08_ssgi_sweep> --fast)
+add_test(NAME 08_ssgi.sweep_bad_only COMMAND ${EXPECT} 2 "--only must be cornell, atrium or pan .got 'street'." -- $<TARGET_FILE:08_ssgi_sweep> --only street)

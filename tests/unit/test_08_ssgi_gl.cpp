@@ -1,0 +1,453 @@
+// Chapter 08's pass on the GPU (llvmpipe in CI) against the ray-traced one-bounce truth: the
+// Cornell box's colour bleeding, the patterns, the second bounce, and the hard cases. Bounds are
+// stated where they are asserted; they hold on any conforming renderer.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "chapters/08_ssgi/gi_frame.h"
+#include "chapters/07_ssao/ao_truth.h"
+#include "chapters/08_ssgi/gi_truth.h"
+#include "common/target.h"
+#include <algorithm>
+#include "common/error.h"
+#include "common/paths.h"
+#include "common/raytrace.h"
+#include "tests/unit/gl_environment.h"
+
+using namespace lp;
+using namespace lp::ch08;
+
+namespace {
+
+constexpr int kW = 160, kH = 90;
+
+struct World {
+  explicit World(const std::string& file, float light_scale = 1.f)
+      : scene(scaled(load_scene(from_root(file)), light_scale)), gpu(scene), frame(gpu, kW, kH) {}
+  explicit World(Scene s) : scene(std::move(s)), gpu(scene), frame(gpu, kW, kH) {}
+  static Scene scaled(Scene s, float light_scale) {
+    for (Light& l : s.lights) l.intensity *= light_scale;
+    return s;
+  }
+  FrameCamera camera(const std::string& view) const { return frame_camera(scene.camera(view), float(kW) / kH); }
+  // The instance each pixel sees (its name), from the ray tracer's primary hits (the raster's pixels).
+  // With `near_x` > 0, only the points within near_x of the left (name "<", x < -1 + near_x) or
+  // right (">": x > 1 - near_x) wall of the box keep their name ("floor<", "floor>").
+  std::vector<std::string> names(const FrameCamera& cam, float near_x = 0.f) const {
+    RayScene rays(scene);
+    std::vector<std::string> n;
+    for (const auto& h : primary_hits(rays, cam, kW, kH)) {
+      std::string name = h ? scene.instances[std::size_t(h->instance)].name : "";
+      if (h && near_x > 0.f) name += h->position.x < -1.f + near_x ? "<" : h->position.x > 1.f - near_x ? ">" : "";
+      n.push_back(name);
+    }
+    return n;
+  }
+  Scene scene;
+  SceneGpu gpu;
+  GiFrame frame;
+};
+
+World& cornell() {
+  // never destroyed: its GL objects must not outlive the test environment's context
+  static World* w = new World("assets/cornell/cornell.gltf");
+  return *w;
+}
+
+// The truth at 160x90: 1024 cosine-weighted rays per pixel.
+ImageF truth(World& w, const FrameCamera& cam, GiTruthSettings s = {.samples = 1024}) {
+  return cached_ray_traced_indirect(w.scene, w.frame.lights(), cam, kW, kH, s);
+}
+
+// Mean of channel c over the pixels that see `name` and lie in columns [x0, x1).
+double region_mean(const ImageF& img, const std::vector<std::string>& names, const std::string& name, int c, int x0 = 0,
+                   int x1 = kW) {
+  double sum = 0;
+  long n = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = x0; x < x1; ++x)
+      if (names[std::size_t(y) * kW + x] == name) {
+        sum += img.at(x, y, c);
+        ++n;
+      }
+  return n ? sum / double(n) : std::nan("");
+}
+
+// A camera at `eye` looking at `at`, with the Cornell view's lens.
+FrameCamera look(World& w, glm::vec3 eye, glm::vec3 at, glm::vec3 up = glm::vec3(0, 1, 0)) {
+  FrameCamera c = w.camera("front");
+  c.view = glm::lookAt(eye, at, up);
+  c.position = eye;
+  return c;
+}
+
+// The colour bleeding of one region: how much redder than the light its indirect light is,
+// R - G / 0.93 (the Cornell light is (1, 0.93, 0.8): light off a white wall gives 0; off the red
+// wall > 0, off the green wall < 0).
+double red_excess(const ImageF& img, const std::vector<std::string>& names, const std::string& name, int x0 = 0,
+                  int x1 = kW) {
+  return region_mean(img, names, name, 0, x0, x1) - region_mean(img, names, name, 1, x0, x1) / 0.93;
+}
+
+bool all_finite(const ImageF& img) {
+  for (float v : img.data)
+    if (!std::isfinite(v)) return false;
+  return true;
+}
+
+// The most any pixel can receive: the form factors from a point sum to at most 1 (the pass
+// scales them back when its disks overlap), so L1_ind <= max over the screen of albedo x L1.
+// The light buffer's L1 with no stage light (mode off, ambient 0) times the G-buffer's largest
+// albedo in the scene (0.78, the light patch) bounds it.
+float brightest_emitter(World& w, const FrameCamera& cam) {
+  w.frame.frame().set_ambient(glm::vec3(0));
+  w.frame.image(cam, GiMode::Off, {}, GiShow::Image, 0.f);
+  ImageF l = ImageF::blank(kW, kH, 4);
+  glGetTextureImage(w.frame.frame().light().diffuse(), 0, GL_RGBA, GL_FLOAT, GLsizei(l.data.size() * sizeof(float)),
+                    l.data.data());
+  w.frame.frame().set_ambient(w.scene.ambient);
+  float most = 0.f;
+  for (std::size_t i = 0; i < l.data.size(); ++i)
+    if (i % 4 != 3) most = std::max(most, l.data[i]);
+  return most * 0.78f;
+}
+
+float largest_rgb(const ImageF& img) {
+  float most = 0.f;
+  for (std::size_t i = 0; i < img.data.size(); ++i)
+    if (i % std::size_t(img.channels) < 3) most = std::max(most, img.data[i]);
+  return most;
+}
+
+GiErrors cornell_errors(const GiSettings& s) {
+  World& w = cornell();
+  const FrameCamera cam = w.camera("front");
+  GiErrors e = gi_errors(w.frame.indirect(cam, GiMode::Ssgi, s), truth(w, cam));
+  std::cout << kPatternNames[int(s.pattern)] << " " << s.samples << " samples: mean abs " << e.mean_abs << ", relative "
+            << e.relative << ", captured " << e.captured << "\n";
+  return e;
+}
+
+}  // namespace
+
+// [bleeding]
+// Colour bleeding in the Cornell box, 128 samples, randomised + blurred. The red wall reddens
+// the floor within 0.3 of it and the tall box's face toward it; the green wall greens the short
+// box's face toward it. Each region's bleeding (red_excess) must have the truth's sign and
+// between 0.3 and 1.3 times its size. Why these bounds: the pass finds only what the screen
+// shows within R_gi (the screen-limited truth: 0.91 of the true energy here, and all of it in
+// these regions), and 128 samples find 0.92 of that over the image (ConvergesToWhatTheScreenShows);
+// but where the emitter touches the receiver (the floor in the red wall's corner, the box faces
+// beside the floor) one sample disk stands for a large patch whose cosines, taken at its centre,
+// are near 0: the pass finds 0.42 to 0.65 of the bleeding there (llvmpipe). The upper bound 1.3
+// allows for light the pass counts through occluders (it has no visibility term). A pass that
+// bled the wrong colour, or none (mode ssao gives 0), or counted twice fails.
+TEST(SsgiCornell, ColourBleedingHasTheTruthsSignAndMagnitude) {
+  World& w = cornell();
+  const FrameCamera cam = w.camera("front");
+  const auto names = w.names(cam);
+  const ImageF t = truth(w, cam);
+  const ImageF gi = w.frame.indirect(cam, GiMode::Ssgi, {.samples = 128, .pattern = Pattern::Randomised});
+  struct Region {
+    const char* name;
+    int x0, x1;
+    double sign;
+  };
+  const auto near = w.names(cam, 0.3f);
+  for (Region r : {Region{"floor<", 0, kW, 1}, Region{"tall_box_nx", 0, kW, 1},
+                   Region{"short_box_px", 0, kW, -1}}) {
+    const double want = red_excess(t, near, r.name, r.x0, r.x1), got = red_excess(gi, near, r.name, r.x0, r.x1);
+    std::cout << r.name << ": bleeding " << got << ", truth " << want << "\n";
+    EXPECT_GT(want * r.sign, 0.02) << r.name;  // the truth bleeds there (well above its noise, 0.008)
+    EXPECT_GT(got * r.sign, 0.3 * want * r.sign) << r.name << " [" << r.x0 << ", " << r.x1 << ")";
+    EXPECT_LT(got * r.sign, 1.3 * want * r.sign) << r.name << " [" << r.x0 << ", " << r.x1 << ")";
+  }
+  // The floor beside the green wall is where the missing visibility shows: the truth bleeds green
+  // there, the pass about nothing, because it also receives the red wall's light through the short
+  // box: its red is more than 1.1x the truth's and more than 1.1x its own green's share (measured
+  // 1.33x and 1.13x: red / green 1.18 on llvmpipe). A visibility-aware gather would fix it (not
+  // done in this chapter).
+  {
+    const double red = region_mean(gi, near, "floor>", 0) / region_mean(t, near, "floor>", 0);
+    const double green = region_mean(gi, near, "floor>", 1) / region_mean(t, near, "floor>", 1);
+    std::cout << "floor beside the green wall: red x" << red << ", green x" << green << " of the truth\n";
+    EXPECT_LT(red_excess(t, near, "floor>"), -0.02);
+    EXPECT_GT(red, 1.1);
+    EXPECT_GT(red / green, 1.1);
+  }
+  // the same frame without the wide disk bleeds nothing
+  const ImageF ao_only = w.frame.indirect(cam, GiMode::Ssao, {.samples = 64});
+  EXPECT_EQ(largest_rgb(ao_only), 0.f);
+}
+// [/bleeding]
+
+// [samples]
+// The error against the truth falls as samples grow, for every pattern (16 -> 64 -> 128), and
+// the randomised pattern with its blur is closer than the regular grid at 16 samples (the
+// grid's bands: measured 0.47 against 0.63 relative error). The truth's own noise is far below
+// every error: two truths of 1024 rays with other seeds differ by 0.011 mean absolute (each
+// 0.011 / sqrt 2 = 0.008 from the expectation), a fifth of the smallest error here (0.040).
+TEST(SsgiCornell, MoreSamplesComeCloserToTheTruth) {
+  for (Pattern p : {Pattern::Regular, Pattern::Spiral, Pattern::Randomised}) {
+    double e16 = cornell_errors({.samples = 16, .pattern = p}).mean_abs;
+    double e64 = cornell_errors({.samples = 64, .pattern = p}).mean_abs;
+    double e128 = cornell_errors({.samples = 128, .pattern = p}).mean_abs;
+    EXPECT_LT(e64, e16) << kPatternNames[int(p)];
+    EXPECT_LT(e128, e64) << kPatternNames[int(p)];
+    EXPECT_GT(e128, 0.03) << "closer than the truth's noise allows: " << kPatternNames[int(p)];
+  }
+  EXPECT_LT(cornell_errors({.samples = 16, .pattern = Pattern::Randomised}).relative,
+            0.85 * cornell_errors({.samples = 16, .pattern = Pattern::Regular}).relative);
+}
+TEST(SsgiCornell, TruthNoiseIsFarBelowTheErrors) {
+  World& w = cornell();
+  const FrameCamera cam = w.camera("front");
+  GiErrors noise = gi_errors(truth(w, cam, {.samples = 1024, .seed = 99}), truth(w, cam));
+  std::cout << "two truths differ by " << noise.mean_abs << " mean absolute\n";
+  EXPECT_LT(noise.mean_abs / std::sqrt(2.0), 0.25 * cornell_errors({.samples = 128, .pattern = Pattern::Randomised}).mean_abs);
+}
+// [/samples]
+
+// The screen-limited truth (only what the camera sees within R_gi) is what the pass
+// approximates: with 128 samples it finds between 0.8 and 1.1 of its energy (measured 0.92).
+TEST(SsgiCornell, ConvergesToWhatTheScreenShows) {
+  World& w = cornell();
+  const FrameCamera cam = w.camera("front");
+  const ImageF screen = truth(w, cam, {.samples = 256, .screen_limited = true});  // sums over the image
+  GiErrors e = gi_errors(w.frame.indirect(cam, GiMode::Ssgi, {.samples = 128, .pattern = Pattern::Randomised}), screen);
+  std::cout << "against the screen-limited truth: captured " << e.captured << ", relative " << e.relative << "\n";
+  EXPECT_GT(e.captured, 0.8);
+  EXPECT_LT(e.captured, 1.1);
+  EXPECT_LT(gi_errors(screen, truth(w, cam, {.samples = 256})).captured, 1.0);  // the screen sees less than everything
+}
+
+// [second-bounce]
+// A second pass bounces direct + first-bounce light once more. In the truth (one more
+// cosine-weighted ray per hit) the second bounce adds 0.43 of the first in this white box; the
+// pass adds less (measured 0.24: the first bounce it bounces is itself short), but it adds:
+// between 0.1 and the truth's share.
+TEST(SsgiCornell, SecondBounceAddsLessThanTheTruthsButAdds) {
+  World& w = cornell();
+  const FrameCamera cam = w.camera("front");
+  // the ratio of two sums over the image: 256 rays are plenty
+  const double truth_gain =
+      gi_errors(truth(w, cam, {.samples = 256, .bounces = 2}), truth(w, cam, {.samples = 256})).captured;
+  const ImageF one = w.frame.indirect(cam, GiMode::Ssgi, {.samples = 64, .pattern = Pattern::Randomised});
+  const ImageF two = w.frame.indirect(cam, GiMode::Ssgi, {.samples = 64, .pattern = Pattern::Randomised, .bounces = 2});
+  const double gain = gi_errors(two, one).captured;  // sum two / sum one
+  std::cout << "second bounce: truth x" << truth_gain << ", the pass x" << gain << "\n";
+  EXPECT_GT(truth_gain, 1.2);
+  EXPECT_GT(gain, 1.1);
+  EXPECT_LT(gain, truth_gain);
+}
+// [/second-bounce]
+
+// The narrow disk is chapter 07's disk AO with the form factor: against chapter 07's truth
+// (R = 0.5, 512 rays) it keeps chapter 07's bound for its disk method (0.13).
+TEST(SsgiCornell, NarrowDiskIsChapter07sAo) {
+  World& w = cornell();
+  const FrameCamera cam = w.camera("front");
+  const ImageF gi = w.frame.indirect(cam, GiMode::Ssgi, {.samples = 32});
+  ImageF a = ImageF::blank(kW, kH, 1);
+  for (int i = 0; i < kW * kH; ++i) a.data[std::size_t(i)] = gi.data[std::size_t(i) * 4 + 3];
+  const ImageF t = ch07::cached_ray_traced_ao(w.scene, cam, kW, kH, {.radius = 0.5f, .samples = 512});
+  ch07::AoErrors e = ch07::ao_errors(a, t);
+  std::cout << "AO of the narrow disk: mean absolute error " << e.mean_abs << "\n";
+  EXPECT_LT(e.mean_abs, 0.13);
+}
+
+// Mode off adds the constant ambient light after the lights instead of in chapter 03's global
+// pass: the same sum in another order, so the image is chapter 03's within one 8-bit step.
+TEST(SsgiCornell, ModeOffIsChapter03sImage) {
+  World& w = cornell();
+  const FrameCamera cam = w.camera("front");
+  const ImageRGBA8 ours = w.frame.image(cam, GiMode::Off, {}, GiShow::Image, 10.f);
+  ch03::DeferredFrame plain(w.gpu);
+  plain.volumes().set_lights(w.frame.lights());
+  plain.set_ambient(w.scene.ambient * 10.f);
+  OutputTarget target(kW, kH);
+  plain.render(cam, {target.framebuffer(), kW, kH});
+  const ImageRGBA8 theirs = target.read();
+  int worst = 0;
+  for (std::size_t i = 0; i < ours.pixels.size(); ++i) worst = std::max(worst, std::abs(int(ours.pixels[i]) - int(theirs.pixels[i])));
+  EXPECT_LE(worst, 1);
+  EXPECT_NE(ours.pixels, w.frame.image(cam, GiMode::Ssgi, {}, GiShow::Image, 10.f).pixels);  // and SSGI changes it
+}
+
+// [hard-cases]
+// The red wall entirely off screen (the camera above the floor's right half, looking down): in
+// the truth the red wall still reddens the floor's left edge; the screen cannot show it, so the
+// pass loses it. Documented loss, bounded: the pass's red bleeding there is below a fifth of the
+// truth's, as the screen-limited truth's is, and it invents no light: its total stays below 1.3x
+// the screen-limited truth's.
+TEST(SsgiHardCases, EmitterEntirelyOffScreenIsLost) {
+  World& w = cornell();
+  const FrameCamera cam = look(w, glm::vec3(0.4f, 1.9f, 0.2f), glm::vec3(0.4f, 0.f, 0.2f), glm::vec3(0, 0, -1));
+  const auto names = w.names(cam);
+  // 256 rays: the test reads means over some 2 700 pixels, where their noise (0.015 a pixel)
+  // averages to below 0.001
+  const ImageF t = truth(w, cam, {.samples = 256}), screen = truth(w, cam, {.samples = 256, .screen_limited = true});
+  const ImageF gi = w.frame.indirect(cam, GiMode::Ssgi, {.samples = 64, .pattern = Pattern::Randomised});
+  const double want = red_excess(t, names, "floor", 0, 30), seen = red_excess(screen, names, "floor", 0, 30);
+  const double got = red_excess(gi, names, "floor", 0, 30);
+  std::cout << "off-screen red wall: truth " << want << ", screen-limited " << seen << ", pass " << got << "\n";
+  EXPECT_GT(want, 0.01);
+  EXPECT_LT(seen, 0.2 * want);
+  EXPECT_LT(got, 0.2 * want);
+  EXPECT_LT(gi_errors(gi, screen).captured, 1.3);
+}
+
+// The sky (tests/data/minimal.gltf: one plane and the sky around it): nothing bounces between
+// the plane and itself (every sample lies in its tangent plane: cos = 0, up to the depth's
+// rounding, bound 1e-3 of the plane's own light) and nothing to or from the sky: no NaN, the
+// sky's pixels 0, the AO 1 (to 0.995, chapter 07's bound).
+TEST(SsgiHardCases, SkySendsAndReceivesNothing) {
+  World w("tests/data/minimal.gltf");
+  const FrameCamera cam = w.camera("view");
+  const ImageF gi = w.frame.indirect(cam, GiMode::Ssgi, {.samples = 64, .pattern = Pattern::Randomised});
+  ASSERT_TRUE(all_finite(gi));
+  EXPECT_LE(largest_rgb(gi), 1e-3f * std::max(brightest_emitter(w, cam), 1e-3f));
+  float lowest_ao = 1.f;
+  for (std::size_t i = 3; i < gi.data.size(); i += 4) lowest_ao = std::min(lowest_ao, gi.data[i]);
+  EXPECT_GE(lowest_ao, 0.995f);
+}
+
+// A light 1000x brighter, the camera close to the floor beside the tall box's base: no
+// fireflies. The pass is linear in the light, so every pixel's indirect light is exactly 1000x
+// what the normal light gives, up to half-float rounding (11 bits: 5e-4 relative per value, a
+// few roundings per sum: bound 1 %, and 1e-3 absolute at the normal light for the darkest pixels);
+// nothing saturates or switches on brightness. And no pixel gets more than the brightest emitter
+// on screen sends (the transfers sum to at most 1). None is NaN.
+TEST(SsgiHardCases, BrightEmitterNextToADarkReceiverMakesNoFireflies) {
+  World bright("assets/cornell/cornell.gltf", 1000.f);
+  World& normal = cornell();
+  const FrameCamera cam = look(normal, glm::vec3(-0.2f, 0.5f, 0.6f), glm::vec3(-0.4f, 0.2f, -0.1f));
+  const GiSettings s{.samples = 32, .pattern = Pattern::Randomised};
+  const ImageF hot = bright.frame.indirect(cam, GiMode::Ssgi, s), cool = normal.frame.indirect(cam, GiMode::Ssgi, s);
+  ASSERT_TRUE(all_finite(hot));
+  EXPECT_LE(largest_rgb(hot), brightest_emitter(bright, cam));
+  double worst = 0;
+  for (std::size_t i = 0; i < hot.data.size(); ++i) {
+    if (i % 4 == 3) continue;
+    const double want = 1000.0 * cool.data[i];
+    worst = std::max(worst, std::abs(hot.data[i] - want) / std::max(want, 1.0));
+  }
+  std::cout << "bright light: worst deviation from 1000x " << worst << "\n";
+  EXPECT_LT(worst, 0.01);
+}
+
+// Grazing angles: the camera 5 cm above the floor looking along it. The floor's pixels are
+// long slivers; the sample area's slant clamp (0.2) keeps them finite. No NaN, within the
+// energy bound, and the floor gets what the screen shows it within 0.5 .. 1.5 (measured 0.98 on
+// llvmpipe). Most of its true light comes from the ceiling and the upper walls, off screen: the
+// screen-limited truth is 0.018 of the truth, the documented loss.
+TEST(SsgiHardCases, GrazingAnglesStayBounded) {
+  World& w = cornell();
+  const FrameCamera cam = look(w, glm::vec3(0.f, 0.05f, 0.95f), glm::vec3(0.f, 0.05f, -1.f));
+  const auto names = w.names(cam);
+  const ImageF gi = w.frame.indirect(cam, GiMode::Ssgi, {.samples = 64, .pattern = Pattern::Randomised});
+  ASSERT_TRUE(all_finite(gi));
+  EXPECT_LE(largest_rgb(gi), brightest_emitter(w, cam));
+  const ImageF t = truth(w, cam, {.samples = 256}), screen = truth(w, cam, {.samples = 256, .screen_limited = true});
+  const double got = region_mean(gi, names, "floor", 1), seen = region_mean(screen, names, "floor", 1);
+  const double want = region_mean(t, names, "floor", 1);
+  std::cout << "grazing floor: pass " << got << ", screen-limited truth " << seen << ", truth " << want << "\n";
+  EXPECT_GT(got, 0.5 * seen);
+  EXPECT_LT(got, 1.5 * seen);
+  EXPECT_LT(seen, 0.05 * want);
+}
+
+// The camera 6 cm from the back wall, looking at it: the whole screen is one plane, so the
+// wide disk (clamped to the image height) finds nothing that faces the pixel: the pass gives
+// almost nothing (below 5 % of the truth, which comes from the floor, ceiling and walls off
+// screen: the documented loss), no NaN, and the AO of a plane: 1 (to 0.99).
+TEST(SsgiHardCases, CameraAgainstAWallFindsNothingAndBreaksNothing) {
+  World& w = cornell();
+  const FrameCamera cam = look(w, glm::vec3(0.f, 1.f, -0.94f), glm::vec3(0.f, 1.f, -1.f));
+  const ImageF gi = w.frame.indirect(cam, GiMode::Ssgi, {.samples = 64, .pattern = Pattern::Randomised});
+  ASSERT_TRUE(all_finite(gi));
+  const GiErrors e = gi_errors(gi, truth(w, cam, {.samples = 256}));
+  std::cout << "against the wall: captured " << e.captured << " of " << e.mean_truth << "\n";
+  EXPECT_GT(e.mean_truth, 0.05);
+  EXPECT_LT(e.captured, 0.05);
+  float lowest_ao = 1.f;
+  for (std::size_t i = 3; i < gi.data.size(); i += 4) lowest_ao = std::min(lowest_ao, gi.data[i]);
+  EXPECT_GE(lowest_ao, 0.99f);
+}
+// A thin object: a panel 1 cm thick (two back-to-back copies of the floor's 2x2 quad, 0.4 tall
+// and 0.6 deep) standing on the floor of the Cornell box at x = -0.3, edge-on to the camera
+// but for a sliver. In the truth it changes the floor beside it (measured: darker by 0.035: it
+// hides more of the walls' light than its lit side adds); the pass sees a one- or two-pixel
+// sliver of it and has no visibility term, so it changes almost nothing: documented loss,
+// bounded. On the floor within 0.3 of it (the pixels that see the floor with and without it),
+// the truth changes by more than 0.01 and the pass by less than half the truth's change;
+// nothing is NaN; the energy bound holds.
+TEST(SsgiHardCases, ThinObjectIsMostlyMissed) {
+  World& plain = cornell();
+  Scene scene = plain.scene;
+  int floor_mesh = -1;
+  for (const Instance& i : scene.instances)
+    if (i.name == "floor") floor_mesh = i.mesh;
+  ASSERT_GE(floor_mesh, 0);
+  for (float side : {-1.f, 1.f}) {
+    Instance panel{.name = "panel", .mesh = floor_mesh};
+    panel.model = glm::translate(glm::mat4(1), glm::vec3(-0.3f + 0.005f * side, 0.4f, 0.35f)) *
+                  glm::rotate(glm::mat4(1), -side * glm::half_pi<float>(), glm::vec3(0, 0, 1)) *
+                  glm::scale(glm::mat4(1), glm::vec3(0.2f, 1.f, 0.3f));
+    scene.instances.push_back(panel);
+  }
+  World w(std::move(scene));
+  const FrameCamera cam = w.camera("front");
+  const auto before = plain.names(cam), after = w.names(cam);
+  RayScene rays(w.scene);
+  const auto hits = primary_hits(rays, cam, kW, kH);
+  const GiSettings s{.samples = 64};
+  const ImageF pass0 = plain.frame.indirect(cam, GiMode::Ssgi, s), pass1 = w.frame.indirect(cam, GiMode::Ssgi, s);
+  const ImageF truth0 = truth(plain, cam, {.samples = 256}), truth1 = truth(w, cam, {.samples = 256});
+  ASSERT_TRUE(all_finite(pass1));
+  EXPECT_LE(largest_rgb(pass1), brightest_emitter(w, cam));
+  double d_pass = 0, d_truth = 0;
+  long n = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const std::size_t i = std::size_t(y) * kW + x;
+      if (before[i] != "floor" || after[i] != "floor" || std::abs(hits[i]->position.x + 0.3f) > 0.3f ||
+          hits[i]->position.z < 0.f || hits[i]->position.z > 0.7f)
+        continue;
+      for (int c = 0; c < 3; ++c) {
+        d_pass += pass1.at(x, y, c) - pass0.at(x, y, c);
+        d_truth += truth1.at(x, y, c) - truth0.at(x, y, c);
+      }
+      ++n;
+    }
+  ASSERT_GT(n, 50);
+  d_pass /= 3.0 * double(n);
+  d_truth /= 3.0 * double(n);
+  std::cout << "thin panel: the floor beside it changes by " << d_truth << " in the truth, " << d_pass << " in the pass ("
+            << n << " pixels)\n";
+  EXPECT_GT(std::abs(d_truth), 0.01);
+  EXPECT_LT(std::abs(d_pass), 0.5 * std::abs(d_truth));
+}
+
+// [/hard-cases]
+
+TEST(SsgiSettings, BadSettingsSayWhat) {
+  World& w = cornell();
+  const FrameCamera cam = w.camera("front");
+  auto message = [&](const GiSettings& s) {
+    try {
+      w.frame.indirect(cam, GiMode::Ssgi, s);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message({.samples = 0}).find("samples must be between 1 and 128"), std::string::npos);
+  EXPECT_NE(message({.gi_radius = -1.f}).find("radii must be positive"), std::string::npos);
+  EXPECT_NE(message({.bounces = 3}).find("bounces must be 1 or 2"), std::string::npos);
+}
+

@@ -1,0 +1,96 @@
+// Chapter 09's grid maths on the CPU (cluster_grid.h; shaders/grid.glsl is its twin): the
+// exponential slices and the sphere-against-cell test the assignment relies on.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "chapters/09_clustered/cluster_grid.h"
+
+using namespace lp;
+using namespace lp::ch09;
+
+namespace {
+FrameCamera test_camera() {  // at the origin, looking down -z, 16:9, near 0.1, far 100
+  FrameCamera c;
+  c.yfov = 0.8f;
+  c.aspect = 16.f / 9.f;
+  c.znear = 0.1f;
+  c.zfar = 100.f;
+  c.projection = glm::perspective(c.yfov, c.aspect, c.znear, c.zfar);
+  return c;
+}
+const Grid kDoom = grid_of_counts(1920, 1080, 16, 9, 24, 0.1f, 100.f);
+}  // namespace
+
+TEST(ClusterGrid, DoomsPresetIs16By9By24OverTheImage) {
+  EXPECT_EQ(kDoom.tiles_x, 16);
+  EXPECT_EQ(kDoom.tiles_y, 9);
+  EXPECT_EQ(kDoom.slices, 24);
+  EXPECT_EQ(kDoom.tile_w, 120);
+  EXPECT_EQ(kDoom.tile_h, 120);
+  EXPECT_EQ(kDoom.cells(), 3456);
+  const Grid odd = grid_of_tiles(100, 50, 16, 1, 0.1f, 100.f);  // the last column and row cut short
+  EXPECT_EQ(odd.tiles_x, 7);
+  EXPECT_EQ(odd.tiles_y, 4);
+}
+
+TEST(ClusterGrid, ExponentialSlicesGrowByAConstantRatio) {
+  EXPECT_FLOAT_EQ(slice_start(kDoom, 0), 0.1f);
+  EXPECT_FLOAT_EQ(slice_start(kDoom, 24), 100.f);
+  const double ratio = std::pow(1000.0, 1.0 / 24.0);  // (far / near)^(1 / S)
+  for (int k = 0; k < 24; ++k)
+    EXPECT_NEAR(slice_start(kDoom, k + 1) / slice_start(kDoom, k), ratio, 1e-4) << "slice " << k;
+  for (int k = 0; k < 24; ++k) {  // a depth inside a slice finds that slice
+    const float mid = std::sqrt(slice_start(kDoom, k) * slice_start(kDoom, k + 1));
+    EXPECT_EQ(slice_of(kDoom, mid), k);
+  }
+  EXPECT_EQ(slice_of(kDoom, 0.01f), 0);    // before the near plane: the first slice
+  EXPECT_EQ(slice_of(kDoom, 1000.f), 23);  // past the far plane: the last
+}
+
+TEST(ClusterGrid, ACellBoxHoldsTheFrustumPieceOverItsPixels) {
+  const FrameCamera c = test_camera();
+  const Box b = cluster_box(c, kDoom, 0, 0, 10);
+  // The bottom-left corner ray at the slice's far depth lies in the box.
+  const float d = slice_start(kDoom, 11);
+  const float t = std::tan(c.yfov / 2);
+  const glm::vec3 corner(-d * t * c.aspect, -d * t, -d);
+  EXPECT_TRUE(glm::all(glm::lessThanEqual(b.lo, corner + 1e-4f * d)));
+  EXPECT_TRUE(glm::all(glm::greaterThanEqual(b.hi, corner - 1e-4f * d)));
+  EXPECT_LE(b.hi.z, -slice_start(kDoom, 10) * (1 - kDepthPad) + 1e-6f);
+}
+
+TEST(ClusterGrid, ASphereStraddlingTwoSlicesMeetsBoth) {
+  const FrameCamera c = test_camera();
+  const float boundary = slice_start(kDoom, 12);
+  // Centre tile's centre ray, 1 cm before the boundary, radius 5 cm: it reaches slice 12 too.
+  const glm::vec3 centre(0, 0, -(boundary - 0.01f));
+  EXPECT_TRUE(sphere_meets_box(centre, 0.05f, cluster_box(c, kDoom, 8, 4, 11)));
+  EXPECT_TRUE(sphere_meets_box(centre, 0.05f, cluster_box(c, kDoom, 8, 4, 12)));
+  EXPECT_FALSE(sphere_meets_box(centre, 0.05f, cluster_box(c, kDoom, 8, 4, 14)));
+  EXPECT_FALSE(sphere_meets_box(centre, 0.005f, cluster_box(c, kDoom, 8, 4, 12))) << "too small to reach it";
+}
+
+TEST(ClusterGrid, ALightBehindTheCameraMeetsNoCellUnlessItReachesPastTheNearPlane) {
+  const FrameCamera c = test_camera();
+  const glm::vec3 behind(0, 0, 2);  // 2 m behind the eye
+  for (int k = 0; k < 24; ++k) EXPECT_FALSE(sphere_meets_box(behind, 1.5f, cluster_box(c, kDoom, 8, 4, k))) << k;
+  EXPECT_TRUE(sphere_meets_box(behind, 2.2f, cluster_box(c, kDoom, 8, 4, 0)));  // reaches 0.2 m in front
+}
+
+TEST(ClusterGrid, ALightHoldingTheCameraMeetsEveryNearCell) {
+  const FrameCamera c = test_camera();
+  for (int ty = 0; ty < 9; ++ty)
+    for (int tx = 0; tx < 16; ++tx) EXPECT_TRUE(sphere_meets_box(glm::vec3(0), 0.5f, cluster_box(c, kDoom, tx, ty, 0)));
+  EXPECT_FALSE(sphere_meets_box(glm::vec3(0), 0.5f, cluster_box(c, kDoom, 8, 4, 23)));
+}
+
+TEST(ClusterGrid, ASphereBesideATileMissesItAndTheTestIsConservativeByLittle) {
+  const FrameCamera c = test_camera();
+  const Box b = cluster_box(c, kDoom, 8, 4, 12);
+  const glm::vec3 outside(b.hi.x + 0.1f, 0.5f * (b.lo.y + b.hi.y), 0.5f * (b.lo.z + b.hi.z));
+  EXPECT_FALSE(sphere_meets_box(outside, 0.099f, b));
+  EXPECT_TRUE(sphere_meets_box(outside, 0.1f, b));  // touching counts
+}

@@ -1,0 +1,448 @@
+// Chapter 09 on the GPU (llvmpipe in CI): tiled and clustered culling against chapter 03's
+// stencil volumes through the same frame, the exact counts, the lists, and the hard cases.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "chapters/03_light_volumes/deferred_frame.h"
+#include "chapters/03_light_volumes/light_counts.h"
+#include "chapters/03_light_volumes/light_radius.h"
+#include "chapters/09_clustered/clustered_lights.h"
+#include "common/image.h"
+#include "common/metrics.h"
+#include "common/paths.h"
+#include "common/target.h"
+#include "tests/unit/gl_environment.h"
+
+using namespace lp;
+using namespace lp::ch09;
+using ch03::Strategy;
+
+namespace {
+
+struct Render {
+  ImageRGBA8 image;
+  std::vector<float> l1, l2;       // the light buffer, RGBA float
+  std::vector<float> heat;         // lights lit per pixel (chapter 03's HeatLit), R
+  ch03::FragmentCounts stencil;    // the stencil pass's counts
+  EvalCounts counts;               // ours
+  ClusterStats stats;
+};
+
+std::vector<float> read_rgba(GLuint texture, int w, int h) {
+  std::vector<float> v(std::size_t(w) * h * 4);
+  glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, GLsizei(v.size() * 4), v.data());
+  return v;
+}
+
+class World {
+ public:
+  explicit World(const std::string& scene) : scene_(load_scene(from_root(scene))), gpu_(scene_), frame_(gpu_) {}
+  Scene scene_;
+  SceneGpu gpu_;
+  ch03::DeferredFrame frame_;
+};
+
+class ClusteredGl : public ::testing::Test {
+ protected:
+  static void TearDownTestSuite() {  // GL objects go before the context (gl_environment.h)
+    delete street_;
+    delete atrium_;
+    street_ = atrium_ = nullptr;
+  }
+  static World& street() { return *(street_ ? street_ : street_ = new World("assets/street/street.gltf")); }
+  static World& atrium() { return *(atrium_ ? atrium_ : atrium_ = new World("assets/atrium/atrium.gltf")); }
+
+  static FrameCamera camera(World& w, const std::string& view, int width, int height) {
+    return frame_camera(w.scene_.camera(view), float(width) / float(height));
+  }
+  static void set_lights(World& w, int count) {
+    w.frame_.volumes().set_lights(ch03::build_light_set(ch03::lights_for_count(w.scene_, count),
+                                                        ch03::cut_threshold(1.f, ch03::peak_reflectance(w.scene_)),
+                                                        w.frame_.volumes().shapes()));
+  }
+  // The frame with chapter 03's stencil volumes (pass = nullptr) or with `pass`.
+  static Render render(World& w, const FrameCamera& cam, int width, int height, ClusteredLights* pass,
+                       bool heat = true, Strategy volumes = Strategy::Stencil) {
+    OutputTarget target(width, height);
+    w.frame_.set_local_lights(pass);
+    w.frame_.set_strategy(volumes);
+    w.frame_.volumes().set_counting(true);
+    if (pass) pass->set_counting(true);
+    Render r;
+    PassMetrics metrics;
+    w.frame_.render(cam, {target.framebuffer(), width, height}, &metrics);
+    metrics.end_frame();
+    metrics.wait_all();
+    EXPECT_EQ(metrics.error(), "");
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+    r.image = target.read();
+    r.l1 = read_rgba(w.frame_.light().diffuse(), width, height);
+    r.l2 = read_rgba(w.frame_.light().specular(), width, height);
+    if (pass) {
+      r.counts = pass->counts();
+      r.stats = pass->stats();
+    } else {
+      r.stencil = w.frame_.volumes().counts();
+    }
+    if (heat) {
+      w.frame_.render(cam, {target.framebuffer(), width, height}, nullptr, {.show = ch03::FrameShow::HeatLit});
+      std::vector<float> h = read_rgba(w.frame_.light().diffuse(), width, height);
+      for (std::size_t i = 0; i < h.size(); i += 4) r.heat.push_back(h[i]);
+    }
+    w.frame_.set_local_lights(nullptr);
+    return r;
+  }
+
+  static World* street_;
+  static World* atrium_;
+};
+World* ClusteredGl::street_ = nullptr;
+World* ClusteredGl::atrium_ = nullptr;
+
+// [tolerance]
+// How far our light buffer may be from the stencil volumes'. Both add the same lights (the
+// same cut, the same local_light() code) in the same order, light order, starting from the
+// same global light. The stencil volumes add each light by blending into RGBA16F: every add
+// rounds the running sum to half precision (relative error at most 2^-11). We sum in float
+// and round once when we store. With k lights lighting a pixel the two sums differ by at
+// most (k + 1) * 2^-11 of the larger of them (each partial sum is at most the final one: the
+// terms are not negative), and each light evaluation may differ by float rounding (a few
+// 2^-24 relative; nothing next to 2^-11). So, per channel: |ours - stencil| <= (k + 1) *
+// 2^-11 * max(ours, stencil) + 2^-24, with k from our heat map of lit lights (our lit pairs
+// are exactly the full-screen pass's: LitPairsEqualTheFullScreenPassExactly).
+// (Chapter 03's volumes miss nothing that is lit within 99 % of the cut, and our count of lit
+// pixel-light pairs is compared with the full-screen count exactly below; what the last 1 %
+// of a radius adds is at most the threshold, 1/(255*12.92) ~ 3e-4, so a missed light there
+// is allowed by a further threshold x peak reflectance per light: the cut bound.)
+struct Tolerance {
+  double cut_slack = 0;  // threshold x peak reflectance: what one light beyond 99 % of its cut adds
+  bool within(float ours, float theirs, float k_lit) const {
+    const double bound = (double(k_lit) + 1.0) * std::ldexp(1.0, -11) * std::max(std::fabs(ours), std::fabs(theirs)) +
+                         std::ldexp(1.0, -24) + cut_slack;
+    return std::fabs(double(ours) - double(theirs)) <= bound;
+  }
+};
+// [/tolerance]
+
+struct Diff {
+  std::size_t failing = 0;
+  double max_abs = 0;
+  std::string first;
+};
+Diff diff(const Render& ours, const Render& theirs, const std::vector<float>& k_lit, const Tolerance& tol) {
+  Diff d;
+  for (std::size_t i = 0; i < ours.l1.size(); ++i) {
+    if (i % 4 == 3) continue;
+    const float k = k_lit[i / 4];  // lights lit here, from our heat map: we count every one (LitPairsEqual...)
+    for (const auto* pair : {&ours.l1, &ours.l2}) {
+      const float a = (*pair)[i], b = (pair == &ours.l1 ? theirs.l1 : theirs.l2)[i];
+      d.max_abs = std::max(d.max_abs, std::fabs(double(a) - double(b)));
+      if (!tol.within(a, b, k)) {
+        if (d.failing++ == 0)
+          d.first = "pixel " + std::to_string(i / 4) + (pair == &ours.l1 ? " L1 " : " L2 ") + std::to_string(a) + " vs " +
+                    std::to_string(b) + " (" + std::to_string(k) + " lights)";
+      }
+    }
+  }
+  return d;
+}
+
+// The image, from the light buffers' bound: F = albedo L1 + L2 + emissive has the same
+// relative bound e = (k + 1) 2^-11 (its terms are not negative). The sRGB encoding's slope
+// times F is at most 1.055 / 2.4 ~ 0.44 on its power segment (0.04 on its linear one), so F
+// moves by at most 255 * 0.44 * e steps before rounding; plus one step for the rounding and
+// one for chapter 03's own edge allowance (a light beyond 99 % of its cut that the volumes
+// missed moves the output by at most one step: test_03_light_volumes_gl.cpp, kSameImage).
+std::size_t image_failures(const ImageRGBA8& ours, const ImageRGBA8& theirs, const std::vector<float>& k_lit,
+                           std::string& first) {
+  std::size_t failing = 0;
+  const std::size_t w = std::size_t(ours.width), h = std::size_t(ours.height);
+  for (std::size_t i = 0; i < ours.pixels.size(); ++i) {
+    if (i % 4 == 3) continue;
+    const std::size_t x = (i / 4) % w, y = (i / 4) / w;  // the image's rows run top down, GL's bottom up
+    const float k = k_lit[(h - 1 - y) * w + x];
+    const double e = (double(k) + 1.0) * std::ldexp(1.0, -11);
+    const int allowed = int(std::floor(255.0 * (1.055 / 2.4) * e)) + 2;
+    const int d = std::abs(int(ours.pixels[i]) - int(theirs.pixels[i]));
+    if (d > allowed && failing++ == 0)
+      first = "pixel " + std::to_string(i / 4) + ": " + std::to_string(d) + " steps, allowed " + std::to_string(allowed) +
+              " k " + std::to_string(k) + " values " + std::to_string(ours.pixels[i]) + " " + std::to_string(theirs.pixels[i]);
+  }
+  return failing;
+}
+
+Tolerance tolerance_for(const Scene& s) {
+  return {double(ch03::cut_threshold(1.f, ch03::peak_reflectance(s))) * double(ch03::peak_reflectance(s))};
+}
+
+}  // namespace
+
+TEST_F(ClusteredGl, TiledAndClusteredEqualTheStencilVolumes) {
+  struct Case {
+    World* world;
+    std::string view;
+    int lights;
+  };
+  const std::vector<Case> cases = {{&street(), "street_level", 0},   {&street(), "street_level", 2000},
+                                   {&atrium(), "overview", 0},
+                                   {&atrium(), "overview", 600}};
+  const int w = 128, h = 72;
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.view + " with " + std::to_string(c.lights) + " lights");
+    set_lights(*c.world, c.lights);
+    const FrameCamera cam = camera(*c.world, c.view, w, h);
+    const Render stencil = render(*c.world, cam, w, h, nullptr, false);
+    ASSERT_GT(stencil.stencil.lit, 1000u);
+    std::vector<float> k;
+    for (const std::string& mode : kClusterModes) {
+      SCOPED_TRACE(mode);
+      ClusteredLights pass(c.world->frame_.volumes(), settings_for_mode(mode));
+      // Lights lit per pixel: the same in every mode (the same cut, every lit pair listed), so
+      // the first mode's heat map serves the others.
+      const Render r = render(*c.world, cam, w, h, &pass, k.empty());
+      if (k.empty()) k = r.heat;
+      const Diff d = diff(r, stencil, k, tolerance_for(c.world->scene_));
+      EXPECT_EQ(d.failing, 0u) << d.first << "; largest difference " << d.max_abs;
+      EXPECT_EQ(r.stats.dropped, 0u);
+      // Every pixel a light lights is in its cell's list: we light at least what the volumes do.
+      EXPECT_GE(r.counts.lit, stencil.stencil.lit_inner);
+      EXPECT_GE(r.counts.evaluated, r.counts.lit);
+      std::string first;
+      EXPECT_EQ(image_failures(r.image, stencil.image, k, first), 0u) << first;
+    }
+  }
+}
+
+namespace {
+// The street's lights plus `extra` (the directional lights kept).
+void set_light_list(World& w, std::vector<Light> lights) {
+  w.frame_.volumes().set_lights(ch03::build_light_set(lights, ch03::cut_threshold(1.f, ch03::peak_reflectance(w.scene_)),
+                                                      w.frame_.volumes().shapes()));
+}
+}  // namespace
+
+// Our lit count is exact: every (pixel, light) pair the full-screen pass lights (chapter 03's
+// reference: every light at every pixel) is lit by exactly one evaluation from the lists.
+TEST_F(ClusteredGl, LitPairsEqualTheFullScreenPassExactly) {
+  World& w = street();
+  set_lights(w, 0);
+  const int width = 96, height = 54;
+  const FrameCamera cam = camera(w, "street_level", width, height);
+  OutputTarget target(width, height);
+  w.frame_.set_strategy(Strategy::FullScreen);
+  w.frame_.volumes().set_counting(true);
+  w.frame_.render(cam, {target.framebuffer(), width, height});
+  const ch03::FragmentCounts full = w.frame_.volumes().counts();
+  ASSERT_GT(full.lit, 1000u);
+  for (const std::string& mode : kClusterModes) {
+    ClusteredLights pass(w.frame_.volumes(), settings_for_mode(mode));
+    const Render r = render(w, cam, width, height, &pass, false);
+    EXPECT_EQ(r.counts.lit, full.lit) << mode;
+    EXPECT_LT(r.counts.evaluated, full.shaded) << mode << ": culling evaluates fewer than every light everywhere";
+  }
+}
+
+// The index list is compacted: the cells' lists tile [0, total) without gap or overlap, each
+// in ascending light order (the order chapter 03 adds them in), and every entry names a light.
+TEST_F(ClusteredGl, ListsAreCompactedAndInLightOrder) {
+  World& w = street();
+  set_lights(w, 3000);
+  const int width = 160, height = 90;
+  for (const std::string& mode : {std::string("tiled"), std::string("clustered")}) {
+    SCOPED_TRACE(mode);
+    ClusteredLights pass(w.frame_.volumes(), settings_for_mode(mode));
+    render(w, camera(w, "street_level", width, height), width, height, &pass, false);
+    std::vector<glm::uvec2> cells = pass.cell_lists();
+    const std::vector<std::uint32_t> list = pass.index_list();
+    ASSERT_EQ(list.size(), pass.stats().indices);
+    ASSERT_GT(list.size(), 0u);
+    std::sort(cells.begin(), cells.end(), [](glm::uvec2 a, glm::uvec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+    std::uint64_t next = 0;
+    for (const glm::uvec2& c : cells) {
+      if (c.y == 0) continue;
+      ASSERT_EQ(c.x, next) << "a gap or an overlap in the index list";
+      for (std::uint32_t k = 0; k < c.y; ++k) {
+        ASSERT_LT(list[c.x + k], w.frame_.volumes().lights().local_count());
+        if (k) ASSERT_LT(list[c.x + k - 1], list[c.x + k]) << "not in light order";
+      }
+      next += c.y;
+    }
+    EXPECT_EQ(next, list.size());
+  }
+}
+
+// Over capacity: a list that cannot hold the frame's lights grows to what was asked and the
+// assignment runs again; the image is the one a large enough list gives, and no light is lost.
+// With growth off the overflow is reported, counted exactly: the dropped lights are the
+// entries the big list holds.
+TEST_F(ClusteredGl, AListOverCapacityGrowsAndLosesNoLight) {
+  World& w = street();
+  set_lights(w, 0);
+  const int width = 160, height = 90;
+  const FrameCamera cam = camera(w, "street_level", width, height);
+  ClusteredLights roomy(w.frame_.volumes());
+  const Render want = render(w, cam, width, height, &roomy, false);
+  ASSERT_GT(want.stats.indices, 100u);
+  ASSERT_EQ(want.stats.regrown, 0);
+
+  ClusterSettings small;
+  small.initial_indices = 16;
+  ClusteredLights tight(w.frame_.volumes(), small);
+  const Render grown = render(w, cam, width, height, &tight, false);
+  EXPECT_EQ(grown.stats.regrown, 1);
+  EXPECT_EQ(grown.stats.dropped, 0u);
+  EXPECT_EQ(grown.stats.cells_over, 0u);
+  EXPECT_GE(grown.stats.capacity, want.stats.indices);
+  EXPECT_EQ(grown.l1, want.l1);
+  EXPECT_EQ(grown.counts.lit, want.counts.lit);
+
+  small.grow = false;
+  ClusteredLights fixed(w.frame_.volumes(), small);
+  const Render dropped = render(w, cam, width, height, &fixed, false);
+  EXPECT_EQ(dropped.stats.regrown, 0);
+  EXPECT_GT(dropped.stats.cells_over, 0u);
+  // What did not fit is what was asked minus what was stored: every entry the roomy list holds.
+  std::uint64_t stored = 0;
+  for (const glm::uvec2& c : fixed.cell_lists()) stored += c.y;
+  EXPECT_LE(stored, 16u);
+  EXPECT_EQ(dropped.stats.dropped + stored, want.stats.indices);
+  EXPECT_LT(dropped.counts.lit, want.counts.lit);
+}
+
+TEST_F(ClusteredGl, ZeroLightsAddNothing) {
+  World& w = street();
+  std::vector<Light> none;
+  for (const Light& l : w.scene_.lights)
+    if (l.type == LightType::Directional) none.push_back(l);
+  set_light_list(w, none);
+  const int width = 64, height = 36;
+  const FrameCamera cam = camera(w, "street_level", width, height);
+  const Render stencil = render(w, cam, width, height, nullptr, false);
+  for (const std::string& mode : kClusterModes) {
+    ClusteredLights pass(w.frame_.volumes(), settings_for_mode(mode));
+    const Render r = render(w, cam, width, height, &pass, false);
+    EXPECT_EQ(r.counts.evaluated, 0u) << mode;
+    EXPECT_EQ(r.stats.indices, 0u) << mode;
+    EXPECT_EQ(r.l1, stencil.l1) << mode << ": the global light alone, untouched";
+    EXPECT_EQ(r.l2, stencil.l2) << mode;
+  }
+}
+
+namespace {
+// One cross-check of all four modes against the stencil volumes on a given light list.
+void expect_all_modes_equal_stencil(World& w, const FrameCamera& cam, int width, int height,
+                                    Render (*render)(World&, const FrameCamera&, int, int, ClusteredLights*, bool, Strategy),
+                                    std::vector<Render>* out = nullptr) {
+  const Render stencil = render(w, cam, width, height, nullptr, false, Strategy::Stencil);
+  std::vector<float> k;
+  for (const std::string& mode : kClusterModes) {
+    SCOPED_TRACE(mode);
+    ClusteredLights pass(w.frame_.volumes(), settings_for_mode(mode));
+    const Render r = render(w, cam, width, height, &pass, k.empty(), Strategy::Stencil);
+    if (k.empty()) k = r.heat;  // lights lit per pixel, the same in every mode
+    const Diff d = diff(r, stencil, k, tolerance_for(w.scene_));
+    EXPECT_EQ(d.failing, 0u) << d.first << "; largest difference " << d.max_abs;
+    EXPECT_GE(r.counts.lit, stencil.stencil.lit_inner);
+    EXPECT_EQ(r.stats.dropped, 0u);
+    if (out) out->push_back(r);
+  }
+}
+}  // namespace
+
+// One light whose cut sphere holds the camera and everything it sees: every cell lists it,
+// every surface pixel evaluates it once.
+TEST_F(ClusteredGl, ALightCoveringTheWholeScreen) {
+  World& w = street();
+  const int width = 64, height = 36;
+  const FrameCamera cam = camera(w, "street_level", width, height);
+  Light big;
+  big.name = "big";
+  big.position = cam.position;
+  big.intensity = 5000;
+  set_light_list(w, {big});
+  ASSERT_GT(w.frame_.volumes().lights().points[0].position_radius.w, 500.f);
+  std::vector<Render> rs;
+  expect_all_modes_equal_stencil(w, cam, width, height, &ClusteredGl::render, &rs);
+  std::uint64_t surface = 0;  // pixels the light lights (its heat map is 1 there)
+  for (float k : rs[0].heat) surface += k > 0 ? 1 : 0;
+  ASSERT_GT(surface, std::uint64_t(width * height / 2));
+  for (const Render& r : rs) EXPECT_EQ(r.counts.evaluated, r.counts.lit);
+  for (const Render& r : rs) EXPECT_EQ(r.counts.lit, surface);
+}
+
+// The camera inside many lights (chapter 03's hardest case for front faces): 200 lights
+// around the eye, each reaching past it.
+TEST_F(ClusteredGl, CameraInsideManyLights) {
+  World& w = street();
+  const int width = 96, height = 54;
+  const FrameCamera cam = camera(w, "street_level", width, height);
+  std::vector<Light> lights;
+  for (int i = 0; i < 200; ++i) {
+    Light l;
+    l.name = "around " + std::to_string(i);
+    const float a = float(i) * 2.39996f;
+    l.position = cam.position + glm::vec3(std::cos(a), 0.3f * std::sin(3.f * a), std::sin(a)) * (0.2f + 0.01f * float(i));
+    l.color = glm::vec3(0.5f + 0.5f * std::cos(a), 0.6f, 0.5f + 0.5f * std::sin(a));
+    l.intensity = 2.f;
+    lights.push_back(l);
+  }
+  set_light_list(w, lights);
+  int inside = 0;
+  for (const auto& p : w.frame_.volumes().lights().points)
+    inside += glm::distance(glm::vec3(p.position_radius), cam.position) < p.position_radius.w;
+  ASSERT_EQ(inside, 200);
+  expect_all_modes_equal_stencil(w, cam, width, height, &ClusteredGl::render);
+}
+
+// A depth discontinuity inside a tile: tiled shading's weakness. A lamp post in front of the
+// far street gives tiles whose depth range spans both; the lights between are evaluated for
+// pixels they cannot reach. Counted: tiled evaluates more per lit pixel than clustered does on
+// the same view, and both still give the stencil image.
+TEST_F(ClusteredGl, DepthDiscontinuityInATileCostsTiledExtraEvaluations) {
+  World& w = street();
+  set_lights(w, 2000);
+  const int width = 160, height = 90;
+  const FrameCamera cam = camera(w, "street_level", width, height);
+  ClusteredLights tiled(w.frame_.volumes(), settings_for_mode("tiled"));
+  ClusterSettings fine = settings_for_mode("clustered");
+  fine.clusters = {10, 6, 24};  // tiles of 16 pixels, as tiled's
+  ClusteredLights clustered(w.frame_.volumes(), fine);
+  const Render t = render(w, cam, width, height, &tiled, false);
+  const Render c = render(w, cam, width, height, &clustered, false);
+  EXPECT_EQ(t.counts.lit, c.counts.lit);
+  EXPECT_GT(t.counts.evaluated, c.counts.evaluated + c.counts.evaluated / 4)
+      << "tiled " << t.counts.evaluated_per_lit() << " per lit, clustered " << c.counts.evaluated_per_lit();
+}
+
+// 100 000 lights at a small size (16x9): correctness, not time. Every light reaches the GPU and the
+// light is what chapter 03's volumes give. Here its instanced back faces stand in for the
+// stencil volumes (chapter 03's own 100 000-light test uses them too: the
+// stencil strategy's two draws per light are much slower on llvmpipe); chapter 03's tests hold
+// that every one of its strategies gives the same image and lights every pair within 99 %
+// of the cut (EveryStrategyGivesTheFullScreenImage), the same tolerance applies.
+TEST_F(ClusteredGl, HundredThousandLightsAtASmallSize) {
+  World& w = street();
+  set_lights(w, 100000);
+  ASSERT_EQ(w.frame_.volumes().lights().local_count(), 100000u);
+  const int width = 16, height = 9;  // about 10 s on llvmpipe: every pixel evaluates tens of thousands
+  const FrameCamera cam = camera(w, "street_level", width, height);
+  const Render stencil = render(w, cam, width, height, nullptr, false, Strategy::BackFaces);
+  ASSERT_GT(stencil.stencil.lit, 100000u) << "thousands of lights at each of the 144 pixels";
+  std::vector<float> k;
+  for (const std::string& mode : {std::string("tiled"), std::string("clustered")}) {
+    ClusterSettings settings = settings_for_mode(mode);
+    settings.tile_px = 8;  // tiled: 2 x 2 tiles
+    ClusteredLights pass(w.frame_.volumes(), settings);
+    const Render r = render(w, cam, width, height, &pass, k.empty());
+    if (k.empty()) k = r.heat;  // lights lit per pixel, the same in both modes
+    const Diff d = diff(r, stencil, k, tolerance_for(w.scene_));
+    EXPECT_EQ(d.failing, 0u) << mode << ": " << d.first << " indices " << r.stats.indices << " max " << r.stats.max_list
+                             << " cap " << r.stats.capacity << " regrown " << r.stats.regrown << " over " << r.stats.cells_over;
+    EXPECT_GE(r.counts.lit, stencil.stencil.lit_inner) << mode;
+    EXPECT_EQ(r.stats.dropped, 0u) << mode;
+  }
+}

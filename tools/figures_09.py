@@ -1,0 +1,84 @@
+#!/usr/bin/env python3
+"""Chapter 09's figures: the plots from the CSVs 09_clustered_sweep writes (book/figures/),
+through tools/plot.py, and with --png the heat-map pictures, rendered by the chapter's program.
+
+    python3 tools/figures_09.py [FIGURES_DIR]                  the plots (SVG)
+    python3 tools/figures_09.py --png BUILD_DIR [FIGURES_DIR]  the pictures (PNG) too
+
+The plots are drawn for each CSV present: 09_lights_llvmpipe.csv (llvmpipe: times are CPU
+time with a glFinish around each pass, common/metrics.h) and, once the lead has measured it on
+the GPU (tools/device-measure writes 09_lights.csv; named after the GPU), 09_lights_h200.csv.
+"""
+import subprocess
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from plot import Series, plot, read_csv  # noqa: E402
+
+ROOT = Path(__file__).resolve().parent.parent
+MODES = ["stencil", "tiled", "tiled-fragment", "clustered", "clustered-fragment"]
+PASSES = [("depth_bounds_ms", "depth bounds"), ("assign_ms", "assign"), ("shade_ms", "shade")]
+
+# The pictures: (file, program arguments); 1920x1080 would take minutes a picture on llvmpipe.
+PICTURES = [
+    ("09_street_clustered.png", ["--view", "street_level", "--lights", "1000"]),
+    ("09_heat_tiled.png", ["--view", "street_level", "--lights", "1000", "--mode", "tiled", "--show", "heat-evaluated",
+                           "--heat-scale", "200"]),
+    ("09_heat_clustered.png", ["--view", "street_level", "--lights", "1000", "--show", "heat-evaluated",
+                               "--heat-scale", "200"]),
+    ("09_heat_lit.png", ["--view", "street_level", "--lights", "1000", "--show", "heat-lit", "--heat-scale", "200"]),
+    ("09_clusters.png", ["--view", "street_level", "--lights", "1000", "--show", "clusters", "--heat-scale", "200"]),
+]
+
+
+def series(rows, col, modes=MODES):
+    return [Series(m, [(float(r["lights"]), float(r[col])) for r in rows if r["method"] == m]) for m in modes
+            if any(r["method"] == m for r in rows)]
+
+
+def plots(d: Path, csv: Path, tag: str, where: str):
+    notes, rows = read_csv(csv)
+    note = notes[0] if notes else ""
+    unit = "GPU" if tag != "llvmpipe" else "llvmpipe CPU time"
+    plot(d / f"09_lights_{tag}.svg", f"Frame time against lights (street, {where})", note, series(rows, "total_ms"),
+         "local lights (log)", f"ms per frame ({unit}, log)", xlog=True, ylog=True)
+    plot(d / f"09_local_{tag}.svg", f"The local lights' passes against lights ({where})", note, series(rows, "local_ms"),
+         "local lights (log)", f"ms of the local lights ({unit}, log)", xlog=True, ylog=True)
+    split = [Series(f"{m}: {name}", [(float(r["lights"]), float(r[col])) for r in rows if r["method"] == m],
+                    dashed=(m == "tiled"))
+             for m in ("clustered", "tiled") for col, name in PASSES if any(r["method"] == m for r in rows)]
+    plot(d / f"09_passes_{tag}.svg", f"Depth bounds, assignment and shading ({where})", note, split,
+         "local lights (log)", f"ms ({unit}, log)", xlog=True, ylog=True)
+    plot(d / f"09_evaluated_per_lit_{tag}.svg", "Lights evaluated per light that lights the pixel",
+         "exact counts (the same on any renderer at this size); stencil: chapter 3's overshading",
+         series(rows, "evaluated_per_lit", ["stencil", "tiled", "clustered"]), "local lights (log)",
+         "evaluated / lit (log)", xlog=True, ylog=True)
+    ours = [m for m in MODES if m != "stencil"]
+    plot(d / f"09_memory_{tag}.svg", "Memory of the light lists", note,
+         [Series(m, [(float(r["lights"]), float(r["list_bytes"]) / 2**20) for r in rows if r["method"] == m])
+          for m in ("tiled", "clustered") if m in ours], "local lights (log)", "MiB (index list, cells, bounds, lights; log)",
+         xlog=True, ylog=True)
+
+
+def pictures(build: Path, d: Path):
+    exe = build / "chapters" / "09_clustered" / "09_clustered"
+    for name, args in PICTURES:
+        subprocess.run([str(exe), "--headless", "--size", "640x360", "--out", str(d / name)] + args, check=True)
+
+
+def main(argv):
+    png = None
+    if len(argv) >= 2 and argv[0] == "--png":
+        png, argv = Path(argv[1]), argv[2:]
+    d = Path(argv[0]) if argv else ROOT / "book" / "figures"
+    for csv, tag, where in ((d / "09_lights_llvmpipe.csv", "llvmpipe", "llvmpipe"),
+                            (d / "09_lights_h200.csv", "h200", "NVIDIA H200")):
+        if csv.exists():
+            plots(d, csv, tag, where)
+    if png:
+        pictures(png, d)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
