@@ -34,6 +34,14 @@ std::vector<std::string> modes() {
   return m;
 }
 
+// The heat maps draw counts: where a light's cut sphere grazes a pixel's position or a tile's
+// box within float rounding, another renderer may count it one way and llvmpipe the other,
+// and a count one apart is a colour several steps apart. On an NVIDIA H200 0.3 to 1.25 % of
+// these views' pixels differed so (single pixels, and two whole tiles of the grid view);
+// another renderer gets 2 %, the allowance of the book's other implementation-defined views,
+// and the renderer that made the references keeps 0.1 %. The images (lit) are held as usual.
+const CompareOptions kCounts{.threshold = 3, .max_failing_fraction = 0.02};
+
 std::vector<Shot> references() {
   // Every mode on the street's own lights and inside a light: all chapter 03's stencil image
   // (the GL tests hold how close; here each against its own reference). The heat maps at 1000
@@ -44,9 +52,10 @@ std::vector<Shot> references() {
   shots.push_back({"inside_light", "tiled"});
   for (const std::string m : {"tiled", "clustered"})
     for (int show : {kHeatEvaluated, kHeatLit, kClusters})
-      shots.push_back({"street_level", m, {{"lights", 1000}, {"show", show}, {"heat-scale", 200}}});
+      shots.push_back({"street_level", m, {{"lights", 1000}, {"show", show}, {"heat-scale", 200}}, {}, kCounts});
   shots.push_back({"street_level", "clustered",
-                   {{"lights", 1000}, {"clusters-x", 32}, {"clusters-y", 18}, {"slices", 8}, {"show", kHeatEvaluated}, {"heat-scale", 200}}});
+                   {{"lights", 1000}, {"clusters-x", 32}, {"clusters-y", 18}, {"slices", 8}, {"show", kHeatEvaluated}, {"heat-scale", 200}},
+                   {}, kCounts});
   return shots;
 }
 
