@@ -520,7 +520,9 @@ class Loader {
       if (!supported_extensions().count(name)) unsupported_once("extension " + name);
     if (pbr.metallicRoughnessTexture.index >= 0) unsupported("metallicRoughnessTexture (the roughness factor is used)");
     if (gm.occlusionTexture.index >= 0) unsupported("occlusionTexture");
-    if (gm.alphaMode != "OPAQUE" && !gm.alphaMode.empty()) unsupported("alphaMode " + gm.alphaMode + " (drawn opaque)");
+    mat.blend = gm.alphaMode == "BLEND";
+    if (gm.alphaMode != "OPAQUE" && gm.alphaMode != "BLEND" && !gm.alphaMode.empty())
+      unsupported("alphaMode " + gm.alphaMode + " (drawn opaque)");
     if (gm.doubleSided) unsupported("doubleSided materials (back faces are culled)");
     auto bad = [&](const char* what) { throw Error(file() + ": material '" + label + "': " + what + " must be finite and >= 0"); };
     if (!finite(mat.base_color) || glm::any(glm::lessThan(mat.base_color, glm::vec4(0)))) bad("baseColorFactor");

@@ -43,6 +43,9 @@ struct Material {
   int normal_texture = -1;      // index into Scene::textures (linear)
   float normal_scale = 1;
   int emissive_texture = -1;    // index into Scene::textures (sRGB); emitted = emissive * texel
+  // alphaMode BLEND: drawn over the opaque image, covering base_color.a of what lies behind
+  // (chapter 10). The deferred G-buffer skips these surfaces (SceneGpu::Primitives::Opaque).
+  bool blend = false;
 };
 
 struct Texture {

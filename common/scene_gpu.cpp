@@ -74,15 +74,24 @@ SceneGpu::SceneGpu(const Scene& scene)
   }
 }
 
-void SceneGpu::draw(const DrawCallback& before_each_primitive) const {
+void SceneGpu::draw(const DrawCallback& before_each_primitive, Primitives which) const {
   glBindVertexArray(vao_.id());
   for (const auto& inst : scene_.instances) {
     for (const auto& p : scene_.meshes[inst.mesh].primitives) {
+      const bool blend = scene_.materials[p.material].blend;
+      if ((which == Primitives::Opaque && blend) || (which == Primitives::Blended && !blend)) continue;
       before_each_primitive(inst, scene_.materials[p.material]);
       glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(p.index_count), GL_UNSIGNED_INT,
                      reinterpret_cast<const void*>(std::uintptr_t(p.first_index) * sizeof(std::uint32_t)));
     }
   }
+}
+
+void SceneGpu::draw_primitive(std::size_t instance, std::size_t primitive) const {
+  const Primitive& p = scene_.meshes.at(scene_.instances.at(instance).mesh).primitives.at(primitive);
+  glBindVertexArray(vao_.id());
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(p.index_count), GL_UNSIGNED_INT,
+                 reinterpret_cast<const void*>(std::uintptr_t(p.first_index) * sizeof(std::uint32_t)));
 }
 
 std::size_t SceneGpu::triangle_count() const {
