@@ -190,7 +190,7 @@ void TransparencyStage::draw_wboit(const ch03::DeferredFrame& frame, PassMetrics
   const bool picture = settings_.show != TransparencyShow::Image;
   if (!picture) {
     glEnable(GL_BLEND);
-    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);  // average (1 - revealage) + image revealage
+    glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // average (1 - revealage) + image revealage
   }
   composite_.use();
   composite_.set("u_show", int(settings_.show));
@@ -253,7 +253,10 @@ ExactComposite TransparencyStage::exact_composite(const ch03::DeferredFrame& fra
     for (int k = 0; k < 3; ++k) c[k] = srgb_to_linear(rgba[k] / 255.f);
     for (std::size_t j = end; j-- > i;) {  // farthest first
       const CapturedFragment& f = fragments[j];
-      for (int k = 0; k < 3; ++k) c[k] = double(f.colour[k]) + (1.0 - double(f.colour.a)) * c[k];
+      // What blending into the 8-bit output does with each layer in the right order, without
+      // rounding: a fixed-point target clamps the shader's colour and what it holds to [0, 1].
+      for (int k = 0; k < 3; ++k)
+        c[k] = std::clamp(std::clamp(double(f.colour[k]), 0.0, 1.0) + (1.0 - double(f.colour.a)) * c[k], 0.0, 1.0);
       if (j + 1 < end && fragments[j + 1].rank > f.rank) out.surface_order_right[row] = 0;  // drawn after a nearer one
     }
     for (int k = 0; k < 3; ++k)

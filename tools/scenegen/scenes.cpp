@@ -518,7 +518,7 @@ void write_glass(const fs::path& out) {
 
   b.add_camera("front", {0.0f, 1.4f, 5.5f}, {0.0f, 0.9f, -0.5f}, 0.75f, 0.05f, 100.0f);
   b.add_camera("side", {3.6f, 1.6f, 4.2f}, {0.2f, 0.9f, -0.6f}, 0.75f, 0.05f, 100.0f);
-  b.add_camera("crossing", {2.3f, 1.2f, 2.6f}, {2.0f, 0.9f, -0.4f}, 0.8f, 0.05f, 100.0f);
+  b.add_camera("crossing", {1.6f, 1.6f, 2.8f}, {2.0f, 0.9f, -0.4f}, 0.7f, 0.05f, 100.0f);
 
   b.add_directional_light("sun", {0.35f, -0.75f, -0.55f}, {1.0f, 0.9f, 0.75f}, 0.6f);
   b.add_point_light("lamp_warm", {-2.2f, 2.4f, 1.5f}, {1.0f, 0.7f, 0.4f}, 4.0f, 12.0f);
