@@ -17,3 +17,6 @@ lightpass_program_test(10_frame.bad_transparency 2 "transparency" ${P10} --trans
 lightpass_image_test(10_frame.scene_without_glass_renders_as_chapter_03 "0 transparent surfaces" ${CMAKE_BINARY_DIR}/out/10_street.png
   --matches ${CMAKE_SOURCE_DIR}/tests/reference/03_light_volumes/street_level_stencil.png
   RUN ${P10} --headless --size 320x180 --scene assets/street/street.gltf --view street_level --out ${CMAKE_BINARY_DIR}/out/10_street.png)
+# The sweep's options (the sweep itself runs on the GPU machine through tools/device-measure).
+lightpass_program_test(10_frame.sweep_unknown_option 2 "unknown option '--fast'" $<TARGET_FILE:10_frame_sweep> --fast)
+lightpass_program_test(10_frame.sweep_bad_layers 2 "--layers must be between 1 and 128" $<TARGET_FILE:10_frame_sweep> --layers 0)

@@ -91,7 +91,8 @@ class TransparencyStage : public ch03::FrameStage {
   void after_composite(ch03::DeferredFrame& frame, PassMetrics* metrics) override;
 
   // The exact order over the image the frame's last render() left in its output (which must
-  // hold the opaque image only: render with Method::Off first). Reads the output back.
+  // hold the opaque image only: render with Method::Off first). Reads the output back as sRGB8
+  // bytes: it is the truth for the sRGB8 output (a float radiance target would need its own).
   ExactComposite exact_composite(const ch03::DeferredFrame& frame, std::size_t max_fragments_per_pixel = 16);
   // WBOIT's targets after the last wboit frame (RGBA16F accumulation, R16F revealage).
   GLuint accumulation() const { return accum_.id(); }

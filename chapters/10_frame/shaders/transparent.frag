@@ -31,7 +31,8 @@ in vec4 v_tangent;
 
 // [glass-shading]
 // Chapter 01's per-pixel Blinn-Phong (lighting.glsl) with every light, as the opaque surfaces
-// are lit; the result premultiplied by the coverage alpha: the surface adds alpha of its colour
+// are lit (the interpolated normal: normal maps on glass are not read yet); the result
+// premultiplied by the coverage alpha: the surface adds alpha of its colour
 // and lets (1 - alpha) of what is behind through.
 vec4 glass_colour() {
   vec4 base = u_base_color * texture(u_base_color_texture, v_uv);
