@@ -5,10 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "chapters/01_forward/ground_truth.h"
 #include "chapters/02_gbuffer/layout.h"
 #include "chapters/03_light_volumes/deferred_frame.h"
 #include "chapters/03_light_volumes/light_radius.h"
@@ -224,7 +226,9 @@ TEST(TransparencyGl, GlassOfAlphaOneEqualsTheOpaquePath) {
       ++compared;
       EXPECT_LE(sorted[i], 2) << view << ": sorted, pixel " << i;
       // WBOIT only where one layer: with alpha 1 the layers behind still weigh in (below).
-      if (exact.layers[i] == 1) EXPECT_LE(wboit[i], 2) << view << ": wboit, pixel " << i;
+      if (exact.layers[i] == 1) {
+        EXPECT_LE(wboit[i], 2) << view << ": wboit, pixel " << i;
+      }
     }
     EXPECT_GT(compared, 5000u) << view;
   }
@@ -282,4 +286,43 @@ TEST(TransparencyGl, TheWeightFallsWithDepthWithinItsClamp) {
   EXPECT_FLOAT_EQ(wboit_weight(0.01f, 0.5f), 0.5f * 3e3f);   // clamped near
   EXPECT_FLOAT_EQ(wboit_weight(1e4f, 1.f), 1e-2f);           // clamped far
   EXPECT_GT(wboit_weight(1.f, 1.f), wboit_weight(2.f, 1.f));  // nearer weighs more
+}
+
+TEST(TransparencyGl, GlassBeforeTheSkyBlendsOverTheBackground) {
+  // Looking up past the panes' tops over the wall: there the G-buffer holds no surface (the
+  // depth is the cleared far value) and the glass blends over the background colour. Sorted
+  // and WBOIT must keep their bounds there as anywhere.
+  World w(glass_scene());
+  Camera up;
+  up.world = glm::inverse(glm::lookAt(glm::vec3(-0.5f, 0.2f, 2.5f), glm::vec3(-0.5f, 2.6f, 0.f), glm::vec3(0, 1, 0)));
+  up.yfov = 0.9f, up.znear = 0.05f, up.zfar = 100.f;
+  const FrameCamera cam = frame_camera(up, float(kW) / kH);
+  w.render(cam, {.method = Method::Off});
+  const ImageRGBA8 opaque = w.target.read();
+  ExactComposite exact = w.stage.exact_composite(w.frame);
+  ASSERT_FALSE(exact.overflow);
+  const ImageRGBA8 sorted = w.render(cam, {.method = Method::Sorted});
+  const ImageRGBA8 wboit = w.render(cam, {.method = Method::Wboit, .order = DrawOrder::AsListed});
+  const std::vector<int> sorted_error = steps(sorted, exact.image), wboit_error = steps(wboit, exact.image);
+  const std::vector<int> glass_shows = steps(sorted, opaque);
+  const glm::vec3 b = ch01::kBackground;
+  const int bg[3] = {int(std::lround(linear_to_srgb(b.r) * 255)), int(std::lround(linear_to_srgb(b.g) * 255)),
+                     int(std::lround(linear_to_srgb(b.b) * 255))};
+  std::size_t before_sky = 0, changed = 0;
+  for (std::size_t i = 0; i < exact.layers.size(); ++i) {
+    const bool background = std::abs(opaque.pixels[i * 4] - bg[0]) <= 1 && std::abs(opaque.pixels[i * 4 + 1] - bg[1]) <= 1 &&
+                            std::abs(opaque.pixels[i * 4 + 2] - bg[2]) <= 1;
+    if (!background || exact.layers[i] == 0) continue;
+    ++before_sky;
+    if (exact.surface_order_right[i]) {
+      EXPECT_LE(sorted_error[i], sorted_bound(exact.layers[i])) << "pixel " << i;
+    }
+    if (exact.layers[i] == 1) {
+      EXPECT_LE(wboit_error[i], 1) << "pixel " << i;
+    }
+    changed += glass_shows[i] > 0;
+  }
+  std::printf("  %zu pixels of glass before the sky, %zu changed by it\n", before_sky, changed);
+  EXPECT_GT(before_sky, 200u) << "the view should see glass against the sky";
+  EXPECT_GT(changed, before_sky * 9 / 10) << "the glass shows against the sky";
 }
