@@ -326,6 +326,9 @@ class Loader {
     note_unsupported_document();
     s_.materials.reserve(m_.materials.size() + 1);
     for (size_t i = 0; i < m_.materials.size(); ++i) s_.materials.push_back(material(m_.materials[i], int(i)));
+    if (std::size_t blended = std::count_if(s_.materials.begin(), s_.materials.end(), [](const Material& m) { return m.blend; }))
+      s_.notes.push_back(std::to_string(blended) + " material(s) with alphaMode BLEND: chapter 10 draws them blended over the "
+                         "image; the deferred G-buffer (chapters 02-09) leaves them out, chapter 01 draws them opaque");
     default_material_ = static_cast<int>(s_.materials.size());
     s_.materials.push_back(Material{.name = "default", .base_color = glm::vec4(0.8f, 0.8f, 0.8f, 1), .specular_color = glm::vec3(0.04f)});
     uv_transform_.resize(s_.materials.size());
@@ -520,7 +523,9 @@ class Loader {
       if (!supported_extensions().count(name)) unsupported_once("extension " + name);
     if (pbr.metallicRoughnessTexture.index >= 0) unsupported("metallicRoughnessTexture (the roughness factor is used)");
     if (gm.occlusionTexture.index >= 0) unsupported("occlusionTexture");
-    if (gm.alphaMode != "OPAQUE" && !gm.alphaMode.empty()) unsupported("alphaMode " + gm.alphaMode + " (drawn opaque)");
+    mat.blend = gm.alphaMode == "BLEND";
+    if (gm.alphaMode != "OPAQUE" && gm.alphaMode != "BLEND" && !gm.alphaMode.empty())
+      unsupported("alphaMode " + gm.alphaMode + " (drawn opaque)");
     mat.double_sided = gm.doubleSided;
     auto bad = [&](const char* what) { throw Error(file() + ": material '" + label + "': " + what + " must be finite and >= 0"); };
     if (!finite(mat.base_color) || glm::any(glm::lessThan(mat.base_color, glm::vec4(0)))) bad("baseColorFactor");

@@ -44,6 +44,9 @@ struct Material {
   float normal_scale = 1;
   int emissive_texture = -1;    // index into Scene::textures (sRGB); emitted = emissive * texel
   bool double_sided = false;    // glTF doubleSided: no back-face culling, the normal flips behind
+  // alphaMode BLEND: drawn over the opaque image, covering base_color.a of what lies behind
+  // (chapter 10). The deferred G-buffer skips these surfaces (SceneGpu::Primitives::Opaque).
+  bool blend = false;
 };
 
 struct Texture {

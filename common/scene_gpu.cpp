@@ -82,7 +82,7 @@ SceneGpu::SceneGpu(const Scene& scene)
 // determinant) turns its triangles' winding around, so its front faces are the other
 // winding; and a doubleSided material is drawn with culling off (its shaders flip the normal
 // of back faces: chapter 01's surface_normal()). The pass's own state is restored after.
-void SceneGpu::draw(const DrawCallback& before_each_primitive) const {
+void SceneGpu::draw(const DrawCallback& before_each_primitive, Primitives which) const {
   glBindVertexArray(vao_.id());
   const bool culling = glIsEnabled(GL_CULL_FACE);
   GLint front = GL_CCW;
@@ -92,6 +92,7 @@ void SceneGpu::draw(const DrawCallback& before_each_primitive) const {
     glFrontFace(glm::determinant(glm::mat3(inst.model)) < 0 ? other : GLenum(front));
     for (const auto& p : scene_.meshes[inst.mesh].primitives) {
       const Material& material = scene_.materials[p.material];
+      if ((which == Primitives::Opaque && material.blend) || (which == Primitives::Blended && !material.blend)) continue;
       if (culling) material.double_sided ? glDisable(GL_CULL_FACE) : glEnable(GL_CULL_FACE);
       before_each_primitive(inst, material);
       glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(p.index_count), GL_UNSIGNED_INT,
@@ -102,6 +103,22 @@ void SceneGpu::draw(const DrawCallback& before_each_primitive) const {
   if (culling) glEnable(GL_CULL_FACE);
 }
 // [/winding]
+
+void SceneGpu::draw_primitive(std::size_t instance, std::size_t primitive) const {
+  const Instance& inst = scene_.instances.at(instance);
+  const Primitive& p = scene_.meshes.at(inst.mesh).primitives.at(primitive);
+  glBindVertexArray(vao_.id());
+  // The same two glTF rules as draw() (above), for one primitive.
+  const bool culling = glIsEnabled(GL_CULL_FACE);
+  GLint front = GL_CCW;
+  glGetIntegerv(GL_FRONT_FACE, &front);
+  if (glm::determinant(glm::mat3(inst.model)) < 0) glFrontFace(front == GL_CCW ? GL_CW : GL_CCW);
+  if (culling && scene_.materials.at(p.material).double_sided) glDisable(GL_CULL_FACE);
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(p.index_count), GL_UNSIGNED_INT,
+                 reinterpret_cast<const void*>(std::uintptr_t(p.first_index) * sizeof(std::uint32_t)));
+  glFrontFace(GLenum(front));
+  if (culling) glEnable(GL_CULL_FACE);
+}
 
 std::size_t SceneGpu::triangle_count() const {
   std::size_t n = 0;

@@ -29,8 +29,13 @@ class SceneGpu {
   const std::vector<std::string>& warnings() const { return warnings_; }
 
   using DrawCallback = std::function<void(const Instance&, const Material&)>;
-  // Binds the vertex array and draws every primitive of every instance.
-  void draw(const DrawCallback& before_each_primitive) const;
+  // Which primitives draw() draws, by their material's alphaMode: all, the opaque ones (the
+  // G-buffer's), or the blended ones (chapter 10's glass).
+  enum class Primitives { All, Opaque, Blended };
+  // Binds the vertex array and draws every primitive of every instance (of that kind).
+  void draw(const DrawCallback& before_each_primitive, Primitives which = Primitives::All) const;
+  // Binds the vertex array and draws one primitive of one instance (chapter 10 sorts them).
+  void draw_primitive(std::size_t instance, std::size_t primitive) const;
   // Triangles drawn by one draw() call (for the cost report).
   std::size_t triangle_count() const;
 

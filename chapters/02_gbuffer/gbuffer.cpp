@@ -181,7 +181,7 @@ void GeometryPass::draw(GBuffer& gbuffer, const FrameCamera& camera) {
     program.set("u_emissive_code", emissive_code(static_cast<int>(&m - first_material)));
     float base = std::max({m.base_color.r, m.base_color.g, m.base_color.b, 1e-6f});
     program.set("u_emissive_strength", std::clamp(std::max({m.emissive.r, m.emissive.g, m.emissive.b}) / base, 0.f, 1.f));
-  });
+  }, SceneGpu::Primitives::Opaque);  // glass (alphaMode BLEND) is drawn after the deferred passes
   GBuffer::restore_default_depth_convention();
 }
 // [/geometry-pass]

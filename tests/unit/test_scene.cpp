@@ -2,6 +2,8 @@
 // missing data is generated or replaced with a warning.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <unistd.h>
 
 #include <chrono>
@@ -55,6 +57,23 @@ TEST(Scene, BookScenesLoadWithoutWarnings) {
       ASSERT_NEAR(glm::dot(v.normal, glm::vec3(v.tangent)), 0.f, 2e-2f) << name;
     }
   }
+}
+
+TEST(Scene, AlphaModeBlendIsKeptAndSaidOnce) {
+  // Chapter 10's glass: alphaMode BLEND becomes Material::blend (no warning), with the base
+  // colour's alpha; the opaque materials stay opaque; a note says what the chapters do with it.
+  Scene s = load_scene(from_root("assets/glass/glass.gltf"));
+  EXPECT_TRUE(s.warnings.empty()) << (s.warnings.empty() ? "" : s.warnings.front());
+  int blended = 0;
+  for (const Material& m : s.materials) {
+    EXPECT_EQ(m.blend, m.name.rfind("glass_", 0) == 0) << m.name;
+    if (m.blend) ++blended, EXPECT_LT(m.base_color.a, 1.f) << m.name;
+  }
+  EXPECT_EQ(blended, 7);
+  EXPECT_EQ(std::count_if(s.notes.begin(), s.notes.end(), [](const std::string& n) { return n.find("alphaMode BLEND") != std::string::npos; }), 1);
+  for (const char* name : {"forward", "atrium", "street", "cornell"})
+    for (const Material& m : load_scene(from_root(std::string("assets/") + name + "/" + name + ".gltf")).materials)
+      EXPECT_FALSE(m.blend) << name << ": " << m.name;
 }
 
 TEST(Scene, ForwardSceneHasTheChapterViewsAndExactShapes) {

@@ -142,6 +142,7 @@ int GltfBuilder::add_material(const Material& m) {
                {{"KHR_materials_specular",
                  {{"specularFactor", fnum(m.specular)}, {"specularColorFactor", jvec(m.specular_color)}}}}}};
   if (m.normal_texture >= 0) mat["normalTexture"] = {{"index", m.normal_texture}};
+  if (!m.alpha_mode.empty()) mat["alphaMode"] = m.alpha_mode;
   materials_.push_back(mat);
   return static_cast<int>(materials_.size()) - 1;
 }

@@ -47,6 +47,9 @@ struct Material {
   int normal_texture = -1;
   glm::vec3 specular_color{0.5f};
   float specular = 1.0f;
+  // glTF alphaMode: "" writes none (OPAQUE, every scene before chapter 10), "BLEND" for glass
+  // (chapter 10 draws those surfaces after the deferred passes, blended by base_color.a).
+  std::string alpha_mode;
 };
 
 enum class IndexType { Auto, U16, U32 };

@@ -503,3 +503,64 @@ void write_street_neon(const fs::path& out) {
 }
 
 }  // namespace scenegen
+
+namespace scenegen {
+
+// ---------------------------------------------------------------------------------------------
+// glass: chapter 10's transparency. Thin panes of tinted glass (alphaMode BLEND, one face each:
+// back faces are culled, so a pane is one layer) standing one behind another in front of a lit
+// wall, a floor and an opaque box; two panes cross in an X (where sorting whole panes cannot be
+// right), and one pane stands behind the wall (the depth test must hide it).
+void write_glass(const fs::path& out) {
+  const fs::path dir = fresh_dir(out, "glass");
+  GltfBuilder b("glass");
+  b.set_ambient({0.04f, 0.04f, 0.045f});
+
+  b.add_camera("front", {0.0f, 1.4f, 5.5f}, {0.0f, 0.9f, -0.5f}, 0.75f, 0.05f, 100.0f);
+  b.add_camera("side", {3.6f, 1.6f, 4.2f}, {0.2f, 0.9f, -0.6f}, 0.75f, 0.05f, 100.0f);
+  b.add_camera("crossing", {1.6f, 1.6f, 2.8f}, {2.0f, 0.9f, -0.4f}, 0.7f, 0.05f, 100.0f);
+
+  b.add_directional_light("sun", {0.35f, -0.75f, -0.55f}, {1.0f, 0.9f, 0.75f}, 0.6f);
+  b.add_point_light("lamp_warm", {-2.2f, 2.4f, 1.5f}, {1.0f, 0.7f, 0.4f}, 4.0f, 12.0f);
+  b.add_point_light("lamp_cool", {2.4f, 2.0f, 2.0f}, {0.5f, 0.7f, 1.0f}, 3.0f, 12.0f);
+
+  RectMeshes rects(b);
+  const int floor_mat = b.add_material(matte("floor", {0.35f, 0.35f, 0.33f}, 0.8f, 0.2f));
+  const int wall_mat = b.add_material(matte("wall", {0.5f, 0.48f, 0.45f}, 0.7f, 0.2f));
+  const int box_mat = b.add_material(matte("box_red", {0.7f, 0.15f, 0.1f}, 0.4f, 0.4f));
+  rects.node("floor", {0.0f, 0.0f, 0.0f}, kUp, {1, 0, 0}, 10.0f, 10.0f, floor_mat);
+  rects.node("wall", {0.0f, 2.0f, -3.0f}, {0, 0, 1}, {1, 0, 0}, 10.0f, 4.0f, wall_mat);
+  b.add_mesh_node("box", b.add_mesh("box", make_box({0.8f, 0.8f, 0.8f}), box_mat), {-0.4f, 0.4f, -1.9f});
+
+  auto glass = [&](const char* name, glm::vec3 color, float alpha) {
+    Material m = matte(name, color, 0.15f, 0.5f);
+    m.base_color.a = alpha;
+    m.alpha_mode = "BLEND";
+    return b.add_material(m);
+  };
+  const int blue = glass("glass_blue", {0.15f, 0.35f, 0.9f}, 0.35f);
+  const int amber = glass("glass_amber", {0.95f, 0.6f, 0.1f}, 0.5f);
+  const int green = glass("glass_green", {0.2f, 0.8f, 0.3f}, 0.6f);
+  const int pink = glass("glass_pink", {0.95f, 0.3f, 0.6f}, 0.25f);
+  const int clear = glass("glass_clear", {0.9f, 0.95f, 1.0f}, 0.2f);
+  const int violet = glass("glass_violet", {0.55f, 0.25f, 0.9f}, 0.45f);
+  const int hidden = glass("glass_hidden", {0.1f, 1.0f, 0.9f}, 0.8f);
+
+  // Four panes one behind another (0.6 m apart), shifted so that 1 to 4 overlap on screen.
+  const glm::vec3 facing(0, 0, 1), right(1, 0, 0);
+  rects.node("pane_blue", {-1.1f, 0.9f, 0.8f}, facing, right, 1.4f, 1.6f, blue);
+  rects.node("pane_amber", {-0.5f, 1.1f, 0.2f}, facing, right, 1.4f, 1.6f, amber);
+  rects.node("pane_green", {0.1f, 0.9f, -0.4f}, facing, right, 1.4f, 1.6f, green);
+  rects.node("pane_pink", {-0.6f, 1.5f, -1.0f}, facing, right, 1.8f, 1.2f, pink);
+  // Two panes crossing in an X: each is in front of the other on one side of the crossing line.
+  const float a = 0.6f;
+  rects.node("cross_clear", {2.0f, 0.9f, -0.4f}, {std::sin(a), 0.0f, std::cos(a)}, {std::cos(a), 0.0f, -std::sin(a)},
+             1.4f, 1.6f, clear);
+  rects.node("cross_violet", {2.0f, 0.9f, -0.4f}, {-std::sin(a), 0.0f, std::cos(a)}, {std::cos(a), 0.0f, std::sin(a)},
+             1.4f, 1.6f, violet);
+  // Behind the wall: never seen.
+  rects.node("pane_hidden", {0.0f, 1.2f, -3.5f}, facing, right, 2.0f, 1.6f, hidden);
+  b.write(dir);
+}
+
+}  // namespace scenegen

@@ -1,0 +1,142 @@
+// Chapter 10: the whole frame. So far: chapter 03's deferred frame, then the glass it cannot
+// hold (glTF alphaMode BLEND), drawn by this chapter's transparency stage over the finished
+// image with a forward pass lit by the same lights: sorted back to front, or weighted blended
+// order-independent transparency (WBOIT), or the exact per-pixel order composited on the CPU
+// (the ground truth). `--show` draws WBOIT's two targets, or a method's error against the
+// exact order. The whole frame (shadows, AO, HDR, ...) and MSAA are assembled here later.
+#include <chrono>
+#include <iostream>
+
+#include <imgui.h>
+
+#include "chapters/03_light_volumes/deferred_frame.h"
+#include "chapters/03_light_volumes/light_radius.h"
+#include "chapters/10_frame/transparency.h"
+#include "common/app.h"
+#include "common/error.h"
+
+namespace {
+
+using namespace lp;
+using namespace lp::ch10;
+
+enum Show { kImage, kAccumulation, kRevealage, kError };  // --show's order
+const std::vector<std::string> kTransparency = {"sorted", "wboit", "exact", "off"};  // --transparency's order
+constexpr float kErrorFullScale = 16.f;  // --show error: 8-bit steps drawn red
+
+const CliSpec kCli{
+    .program = "10_frame",
+    .summary = "The whole frame (so far: transparency). Glass drawn after the deferred passes by a forward pass "
+               "lit by the same lights: sorted back to front, weighted blended OIT, or the exact per-pixel order.",
+    .default_scene = "assets/glass/glass.gltf",
+    .modes = {"frame"},
+    .knobs = {choice_knob("transparency", "the glass: sorted back to front, weighted blended OIT (McGuire & Bavoil), "
+                                          "the exact per-pixel order (CPU), or none",
+                          kTransparency),
+              choice_knob("show", "the image; WBOIT's accumulation (its average colour) or revealage; the method's "
+                                  "error against the exact order (red: 16 steps)",
+                          {"image", "accumulation", "revealage", "error"})}};
+
+std::vector<Shot> references() {
+  std::vector<Shot> shots;
+  for (const char* view : {"front", "side", "crossing"})
+    for (int t : {0, 1, 2}) shots.push_back({view, "frame", {{"transparency", t}}});
+  shots.push_back({"front", "frame", {{"transparency", 3}}});
+  shots.push_back({"front", "frame", {{"transparency", 1}, {"show", kAccumulation}}});
+  shots.push_back({"front", "frame", {{"transparency", 1}, {"show", kRevealage}}});
+  shots.push_back({"front", "frame", {{"transparency", 0}, {"show", kError}}});
+  shots.push_back({"front", "frame", {{"transparency", 1}, {"show", kError}}});
+  shots.push_back({"crossing", "frame", {{"transparency", 0}, {"show", kError}}});
+  return shots;
+}
+
+const Chapter kChapter{.cli = kCli, .references = references()};
+
+// An image drawn into the output as it is (no sRGB encoding: the bytes are already sRGB).
+void put_image(const ImageRGBA8& image, GLuint framebuffer) {
+  ImageRGBA8 rows = image;
+  flip_vertically(rows);  // GL's rows start at the bottom
+  gl::Texture t = gl::make_texture_2d(GL_SRGB8_ALPHA8, image.width, image.height);
+  glTextureSubImage2D(t.id(), 0, 0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE, rows.pixels.data());
+  gl::Framebuffer source;
+  glNamedFramebufferTexture(source.id(), GL_COLOR_ATTACHMENT0, t.id(), 0);
+  glDisable(GL_FRAMEBUFFER_SRGB);
+  glBlitNamedFramebuffer(source.id(), framebuffer, 0, 0, image.width, image.height, 0, 0, image.width, image.height,
+                         GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glEnable(GL_FRAMEBUFFER_SRGB);
+}
+
+ImageRGBA8 read_output(const Frame& f) {
+  ImageRGBA8 image = ImageRGBA8::blank(f.width, f.height);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, f.target);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, f.width, f.height, GL_RGBA, GL_UNSIGNED_BYTE, image.pixels.data());
+  flip_vertically(image);
+  return image;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return run_chapter(argc, argv, kChapter, [](App& app) {
+    // 1. Chapter 03's deferred frame, its lights cut as chapter 03 cuts them.
+    ch03::DeferredFrame frame(app.scene_gpu());
+    frame.volumes().set_lights(ch03::build_light_set(
+        app.scene().lights, ch03::cut_threshold(1.f, ch03::peak_reflectance(app.scene())), frame.volumes().shapes()));
+    for (const auto& w : frame.volumes().lights().warnings) std::cerr << "warning: " << w << '\n';
+    // 2. This chapter's stage: the glass, after the composite, lit by the same lights.
+    TransparencyStage glass(app.scene_gpu(), app.scene().lights);
+    frame.add_stage(glass);
+
+    while (app.next_frame()) {
+      const Frame& f = app.frame();
+      const auto start = std::chrono::steady_clock::now();
+      if (f.reload_shaders) {
+        frame.reload_shaders();
+        glass.reload_shaders();
+      }
+      const ch03::FrameOutput output{f.target, f.width, f.height};
+      const std::string& which = f.choice("transparency");
+      const int show = f.knob_int("show");
+      // [frame]
+      // 3. The frame: G-buffer, lights, composite, then the glass over it.
+      const bool exact_needed = which == "exact" || show == kError;
+      ExactComposite exact;
+      if (exact_needed) {  // the exact order over the opaque image, as the ground truth
+        glass.set({.method = Method::Off});
+        frame.render(f.camera, output);
+        exact = glass.exact_composite(frame);
+        if (exact.overflow) std::cerr << "warning: the exact composite's fragment list overflowed\n";
+      }
+      if (which != "exact") {
+        const Method method = which == "off" ? Method::Off : method_named(which);
+        TransparencySettings s{.method = method};
+        if (method == Method::Wboit) s.order = DrawOrder::AsListed;  // no sorting: the point of it
+        if (show == kAccumulation) s.show = TransparencyShow::Accumulation;
+        if (show == kRevealage) s.show = TransparencyShow::Revealage;
+        glass.set(s);
+        frame.render(f.camera, output, &app.metrics());
+      }
+      // 4. The pictures: a method's error against the exact order.
+      if (show == kError) {
+        const ImageRGBA8 image = which == "exact" ? exact.image : read_output(f);
+        put_image(diff_heatmap(image, exact.image, 1, int(kErrorFullScale)), f.target);
+        if (std::ostream& out = app.report()) out << which << " against the exact order: " << compare(image, exact.image).summary() << '\n';
+      } else if (which == "exact") {
+        put_image(exact.image, f.target);
+      }
+      // [/frame]
+      app.metrics().set_allocation("G-buffer (chapter 02) + light buffer (chapter 03)", frame.allocated_bytes());
+      if (which == "wboit") app.metrics().set_allocation("WBOIT accumulation RGBA16F + revealage R16F + depth", glass.allocated_bytes());
+      if (std::ostream& out = app.report()) {
+        glFinish();
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        out << glass.blended_count() << " transparent surfaces, " << which << ": frame took " << ms << " ms (wall clock, "
+            << app.context().renderer() << ")";
+        if (exact_needed) out << "; exact order: " << exact.fragments << " fragments";
+        out << '\n';
+      }
+      app.panel([&] { ImGui::Text("%zu transparent surfaces", glass.blended_count()); });
+    }
+  });
+}

@@ -1,0 +1,88 @@
+#version 450
+// Chapter 10: a blended surface (glTF alphaMode BLEND), shaded forward after the deferred
+// passes with chapter 01's lighting model and the scene's lights, in one of three outputs:
+//   GLASS_OVER     premultiplied colour for "over" blending, back to front (sorted);
+//   GLASS_WBOIT    weighted blended OIT: the weighted colour sum and the coverage (McGuire & Bavoil 2013);
+//   GLASS_CAPTURE  every fragment appended to a list (the exact order, sorted on the CPU).
+#include "01_forward/shaders/lighting.glsl"
+
+// The depth test (against the G-buffer's depth) before the shader: hidden glass is never
+// shaded, never captured, and GL_SAMPLES_PASSED counts exactly the fragments shaded.
+layout(early_fragment_tests) in;
+
+layout(std430, binding = 0) readonly buffer Lights { GpuLight lights[]; };
+
+layout(binding = 0) uniform sampler2D u_base_color_texture;
+layout(binding = 2) uniform sampler2D u_emissive_texture;
+
+uniform vec3 u_eye;
+uniform mat4 u_view;
+uniform vec4 u_base_color;
+uniform vec3 u_specular;
+uniform float u_exponent;
+uniform vec3 u_emissive;
+uniform vec3 u_ambient;
+uniform int u_light_count;
+
+in vec3 v_position;
+in vec3 v_normal;
+in vec2 v_uv;
+in vec4 v_tangent;
+
+// [glass-shading]
+// Chapter 01's per-pixel Blinn-Phong (lighting.glsl) with every light, as the opaque surfaces
+// are lit (the interpolated normal: normal maps on glass are not read yet); the result
+// premultiplied by the coverage alpha: the surface adds alpha of its colour
+// and lets (1 - alpha) of what is behind through.
+vec4 glass_colour() {
+  vec4 base = u_base_color * texture(u_base_color_texture, v_uv);
+  vec3 n = normalize(v_normal);
+  vec3 to_eye = normalize(u_eye - v_position);
+  vec3 diffuse = vec3(0.0), specular = vec3(0.0);
+  for (int i = 0; i < u_light_count; ++i) {
+    vec3 to_light, radiance;
+    light_incident(lights[i], v_position, to_light, radiance);
+    blinn_phong(n, to_eye, to_light, radiance, u_exponent, diffuse, specular);
+  }
+  vec3 colour = base.rgb * (diffuse + u_ambient) + u_specular * specular
+              + u_emissive * texture(u_emissive_texture, v_uv).rgb;
+  return vec4(colour * base.a, base.a);
+}
+// [/glass-shading]
+
+float view_depth() { return -(u_view * vec4(v_position, 1.0)).z; }
+
+#if defined(GLASS_WBOIT)
+layout(location = 0) out vec4 out_accumulation;
+layout(location = 1) out vec4 out_revealage;
+// [wboit-weight-glsl]
+// McGuire and Bavoil's first depth weight (transparency.h's wboit_weight, its C++ twin).
+float wboit_weight(float z, float alpha) {
+  float a = z / 5.0, b = z / 200.0;
+  return alpha * clamp(10.0 / (1e-5 + a * a + b * b * b * b * b * b), 1e-2, 3e3);
+}
+// [/wboit-weight-glsl]
+void main() {
+  vec4 c = glass_colour();
+  // [wboit-accumulate]
+  out_accumulation = c * wboit_weight(view_depth(), c.a);  // blended ONE, ONE: w (alpha c, alpha) summed
+  out_revealage = vec4(c.a);  // blended ZERO, ONE_MINUS_SRC_COLOR: revealage *= (1 - alpha)
+  // [/wboit-accumulate]
+}
+#elif defined(GLASS_CAPTURE)
+struct Fragment { uint pixel; uint rank; float depth; float pad; vec4 colour; };
+layout(std430, binding = 1) writeonly buffer Fragments { Fragment fragments[]; };
+layout(std430, binding = 2) buffer Counter { uint fragment_count; };
+uniform vec2 u_size;
+uniform int u_rank;
+uniform int u_capacity;
+void main() {
+  uint i = atomicAdd(fragment_count, 1u);  // counts past the capacity: the overflow is seen
+  if (i >= uint(u_capacity)) return;
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  fragments[i] = Fragment(uint(p.y) * uint(u_size.x) + uint(p.x), uint(u_rank), view_depth(), 0.0, glass_colour());
+}
+#else
+out vec4 out_color;
+void main() { out_color = glass_colour(); }
+#endif

@@ -1,0 +1,272 @@
+#include "chapters/10_frame/transparency.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <random>
+
+#include "chapters/01_forward/material.h"
+#include "chapters/02_gbuffer/layout.h"
+#include "common/error.h"
+
+namespace lp::ch10 {
+
+Method method_named(const std::string& name) {
+  for (std::size_t i = 0; i < kMethods.size(); ++i)
+    if (kMethods[i] == name) return static_cast<Method>(i);
+  throw Error("unknown transparency method '" + name + "' (off, sorted or wboit)");
+}
+
+std::vector<BlendedDraw> blended_draws(const Scene& scene) {
+  std::vector<BlendedDraw> draws;
+  for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+    const Instance& inst = scene.instances[i];
+    const auto& primitives = scene.meshes[inst.mesh].primitives;
+    for (std::size_t p = 0; p < primitives.size(); ++p) {
+      if (!scene.materials[primitives[p].material].blend) continue;
+      glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+      for (std::uint32_t k = 0; k < primitives[p].index_count; ++k) {
+        const glm::vec3 w = glm::vec3(inst.model * glm::vec4(scene.vertices[scene.indices[primitives[p].first_index + k]].position, 1.f));
+        lo = glm::min(lo, w);
+        hi = glm::max(hi, w);
+      }
+      draws.push_back({i, p, primitives[p].index_count ? 0.5f * (lo + hi) : glm::vec3(inst.model[3])});
+    }
+  }
+  return draws;
+}
+
+// [sort]
+std::vector<BlendedDraw> ordered(std::vector<BlendedDraw> draws, const glm::mat4& view, DrawOrder order,
+                                 std::uint32_t seed) {
+  auto depth = [&](const BlendedDraw& d) { return -(view * glm::vec4(d.centre, 1.f)).z; };  // metres ahead
+  if (order == DrawOrder::BackToFront)
+    std::stable_sort(draws.begin(), draws.end(), [&](const auto& a, const auto& b) { return depth(a) > depth(b); });
+  if (order == DrawOrder::FrontToBack)
+    std::stable_sort(draws.begin(), draws.end(), [&](const auto& a, const auto& b) { return depth(a) < depth(b); });
+  if (order == DrawOrder::Shuffled) std::shuffle(draws.begin(), draws.end(), std::mt19937(seed));
+  return draws;
+}
+// [/sort]
+
+float wboit_weight(float z, float alpha) {
+  const float a = z / 5.f, b = z / 200.f;
+  return alpha * std::clamp(10.f / (1e-5f + a * a + b * b * b * b * b * b), 1e-2f, 3e3f);
+}
+
+namespace {
+std::vector<ShaderStage> surface_stages() {
+  return {{GL_VERTEX_SHADER, "01_forward/shaders/forward.vert"}, {GL_FRAGMENT_SHADER, "10_frame/shaders/transparent.frag"}};
+}
+constexpr GLuint kCaptureBinding = 1, kCounterBinding = 2;
+struct CapturedFragment {  // std430 twin of `Fragment` in transparent.frag
+  std::uint32_t pixel, rank;
+  float depth, pad;
+  glm::vec4 colour;  // premultiplied linear colour, alpha
+};
+static_assert(sizeof(CapturedFragment) == 32);
+}  // namespace
+
+TransparencyStage::TransparencyStage(const SceneGpu& scene, const std::vector<Light>& lights)
+    : scene_(scene), draws_(blended_draws(scene.scene())),
+      over_(surface_stages(), {"GLASS_OVER 1"}), accumulate_(surface_stages(), {"GLASS_WBOIT 1"}),
+      capture_(surface_stages(), {"GLASS_CAPTURE 1"}),
+      composite_({{GL_VERTEX_SHADER, "02_gbuffer/shaders/fullscreen.vert"},
+                  {GL_FRAGMENT_SHADER, "10_frame/shaders/wboit_composite.frag"}}) {
+  lights_.upload(lights);
+}
+
+void TransparencyStage::reload_shaders() {
+  over_.reload();
+  accumulate_.reload();
+  capture_.reload();
+  composite_.reload();
+}
+
+std::size_t TransparencyStage::allocated_bytes() const {
+  return std::size_t(width_) * std::size_t(height_) *
+         (gl::bytes_per_texel(GL_RGBA16F) + gl::bytes_per_texel(GL_R16F) + gl::bytes_per_texel(depth_format_));
+}
+
+// WBOIT's targets, and a depth buffer of the G-buffer's format to test against its depth.
+void TransparencyStage::resize(const ch03::DeferredFrame& frame) {
+  const int w = frame.output().width, h = frame.output().height;
+  const GLenum depth = ch02::depth_format(frame.gbuffer().layout().depth);
+  if (w == width_ && h == height_ && depth == depth_format_) return;
+  width_ = w, height_ = h, depth_format_ = depth;
+  accum_ = gl::make_texture_2d(GL_RGBA16F, w, h);
+  reveal_ = gl::make_texture_2d(GL_R16F, w, h);
+  depth_ = gl::make_texture_2d(depth, w, h);
+  fbo_ = gl::Framebuffer();
+  glNamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT0, accum_.id(), 0);
+  glNamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT1, reveal_.id(), 0);
+  const bool stencil = depth == GL_DEPTH24_STENCIL8 || depth == GL_DEPTH32F_STENCIL8;
+  glNamedFramebufferTexture(fbo_.id(), stencil ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT, depth_.id(), 0);
+  const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  glNamedFramebufferDrawBuffers(fbo_.id(), 2, buffers);
+  if (glCheckNamedFramebufferStatus(fbo_.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw Error("chapter 10: the WBOIT framebuffer is incomplete");
+}
+
+// Every blended surface in `draws`' order: chapter 01's vertex shader and material, the
+// G-buffer's camera and depth convention (reversed-Z layouts included), the depth test on and
+// depth writes off, back faces culled.
+void TransparencyStage::draw_surfaces(const ch03::DeferredFrame& frame, const ShaderProgram& program,
+                                      const std::vector<BlendedDraw>& draws, bool ranks) const {
+  const FrameCamera& camera = frame.gbuffer().camera();
+  program.use();
+  program.set("u_view_projection", camera.view_projection());
+  program.set("u_view", frame.camera().view);
+  program.set("u_eye", frame.camera().position);
+  program.set("u_ambient", scene_.scene().ambient);
+  program.set("u_light_count", lights_.count());
+  program.set("u_size", glm::vec2(width_, height_));
+  lights_.bind();
+  frame.gbuffer().begin_depth_convention();
+  glEnable(GL_DEPTH_TEST);
+  glDepthMask(GL_FALSE);
+  glEnable(GL_CULL_FACE);
+  glDisable(GL_STENCIL_TEST);
+  // The rank of each draw in the back-to-front order, for the exact composite's bookkeeping.
+  std::vector<BlendedDraw> back_to_front;
+  if (ranks) back_to_front = ordered(draws_, frame.camera().view, DrawOrder::BackToFront);
+  for (const BlendedDraw& d : draws) {
+    const Scene& s = scene_.scene();
+    const Instance& inst = s.instances[d.instance];
+    ch01::set_surface(program, scene_, inst, s.materials[s.meshes[inst.mesh].primitives[d.primitive].material]);
+    if (ranks) {
+      auto same = [&](const BlendedDraw& o) { return o.instance == d.instance && o.primitive == d.primitive; };
+      program.set("u_rank", int(std::find_if(back_to_front.begin(), back_to_front.end(), same) - back_to_front.begin()));
+    }
+    scene_.draw_primitive(d.instance, d.primitive);
+  }
+  glDepthMask(GL_TRUE);
+  ch02::GBuffer::restore_default_depth_convention();
+}
+
+// [after-composite]
+void TransparencyStage::after_composite(ch03::DeferredFrame& frame, PassMetrics* metrics) {
+  if (settings_.method == Method::Off || draws_.empty()) return;
+  resize(frame);
+  if (settings_.method == Method::Sorted) draw_sorted(frame, metrics);
+  else draw_wboit(frame, metrics);
+}
+
+// Sorted: each surface blended over the image in the output itself ("over", premultiplied).
+void TransparencyStage::draw_sorted(const ch03::DeferredFrame& frame, PassMetrics* metrics) {
+  frame.copy_depth_to_output();  // the G-buffer's depth, and the output bound
+  auto pass = timed(metrics, "transparency: sorted, back to front");
+  const auto draws = ordered(draws_, frame.camera().view, settings_.order, settings_.shuffle_seed);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // C = c alpha (the shader's) + (1 - alpha) C
+  draw_surfaces(frame, over_, draws, false);
+  glDisable(GL_BLEND);
+}
+
+// WBOIT: the sum of w * (alpha c, alpha) into RGBA16F and the product of (1 - alpha) into
+// R16F, in any order; then their average over the image where any glass is.
+void TransparencyStage::draw_wboit(const ch03::DeferredFrame& frame, PassMetrics* metrics) {
+  {
+    auto pass = timed(metrics, "transparency: WBOIT accumulate");
+    const int w = width_, h = height_;
+    glBlitNamedFramebuffer(frame.gbuffer().framebuffer(), fbo_.id(), 0, 0, w, h, 0, 0, w, h, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+    const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 0, 0, 0};
+    glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 0, zero);
+    glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 1, one);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
+    glViewport(0, 0, w, h);
+    glEnable(GL_BLEND);
+    glBlendFunci(0, GL_ONE, GL_ONE);                  // accumulation: a sum
+    glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_COLOR);  // revealage: a product of (1 - alpha)
+    draw_surfaces(frame, accumulate_, ordered(draws_, frame.camera().view, settings_.order, settings_.shuffle_seed), false);
+    glBlendFunc(GL_ONE, GL_ZERO);
+    glDisable(GL_BLEND);
+  }
+  auto pass = timed(metrics, "transparency: WBOIT composite");
+  frame.output().bind();
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  const bool picture = settings_.show != TransparencyShow::Image;
+  if (!picture) {
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // average (1 - revealage) + image revealage
+  }
+  composite_.use();
+  composite_.set("u_show", int(settings_.show));
+  glBindTextureUnit(0, accum_.id());
+  glBindTextureUnit(1, reveal_.id());
+  glBindVertexArray(empty_vao_.id());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDisable(GL_BLEND);
+}
+// [/after-composite]
+
+// [exact]
+ExactComposite TransparencyStage::exact_composite(const ch03::DeferredFrame& frame, std::size_t max_per_pixel) {
+  resize(frame);
+  const int w = width_, h = height_;
+  const std::size_t pixels = std::size_t(w) * std::size_t(h);
+  if (max_per_pixel == 0 || max_per_pixel > 256) throw Error("exact_composite: 1 to 256 fragments per pixel");
+  const std::size_t capacity = pixels * max_per_pixel;
+  if (capacity * sizeof(CapturedFragment) > (std::size_t(1) << 30)) throw Error("exact_composite: capture over 1 GiB");
+  ExactComposite out;
+  // The opaque image the frame left.
+  out.image.width = w, out.image.height = h;
+  out.image.pixels.resize(pixels * 4);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, frame.output().framebuffer);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, out.image.pixels.data());
+  // Every fragment in front of the opaque surface, in no order, appended to a list.
+  gl::Buffer list = gl::make_buffer(nullptr, capacity * sizeof(CapturedFragment), GL_MAP_READ_BIT);
+  const std::uint32_t zero = 0;
+  gl::Buffer counter = gl::make_buffer(&zero, sizeof zero, GL_MAP_READ_BIT);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCaptureBinding, list.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCounterBinding, counter.id());
+  glBlitNamedFramebuffer(frame.gbuffer().framebuffer(), fbo_.id(), 0, 0, w, h, 0, 0, w, h, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
+  glViewport(0, 0, w, h);
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  capture_.set("u_capacity", int(std::min<std::size_t>(capacity, std::numeric_limits<int>::max())));
+  draw_surfaces(frame, capture_, draws_, true);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::uint32_t count = 0;
+  glGetNamedBufferSubData(counter.id(), 0, sizeof count, &count);
+  out.overflow = count > capacity;
+  out.fragments = std::min<std::size_t>(count, capacity);
+  std::vector<CapturedFragment> fragments(out.fragments);
+  glGetNamedBufferSubData(list.id(), 0, GLsizeiptr(fragments.size() * sizeof(CapturedFragment)), fragments.data());
+  // Per pixel: sorted by depth (ties in draw order), composited back to front in double.
+  std::stable_sort(fragments.begin(), fragments.end(), [](const auto& a, const auto& b) {
+    return a.pixel != b.pixel ? a.pixel < b.pixel : a.depth < b.depth;  // view depth: nearest first
+  });
+  out.layers.assign(pixels, 0);
+  out.surface_order_right.assign(pixels, 1);
+  for (std::size_t i = 0; i < fragments.size();) {
+    std::size_t end = i;
+    while (end < fragments.size() && fragments[end].pixel == fragments[i].pixel) ++end;
+    const std::uint32_t px = fragments[i].pixel % w, py = fragments[i].pixel / w;  // GL rows: bottom first
+    const std::size_t row = std::size_t(h - 1 - py) * w + px;
+    std::uint8_t* rgba = &out.image.pixels[(std::size_t(py) * w + px) * 4];
+    double c[3];
+    for (int k = 0; k < 3; ++k) c[k] = srgb_to_linear(rgba[k] / 255.f);
+    for (std::size_t j = end; j-- > i;) {  // farthest first
+      const CapturedFragment& f = fragments[j];
+      // What blending into the 8-bit output does with each layer in the right order, without
+      // rounding: a fixed-point target clamps the shader's colour and what it holds to [0, 1].
+      for (int k = 0; k < 3; ++k)
+        c[k] = std::clamp(std::clamp(double(f.colour[k]), 0.0, 1.0) + (1.0 - double(f.colour.a)) * c[k], 0.0, 1.0);
+      if (j + 1 < end && fragments[j + 1].rank > f.rank) out.surface_order_right[row] = 0;  // drawn after a nearer one
+    }
+    for (int k = 0; k < 3; ++k)
+      rgba[k] = std::uint8_t(std::lround(std::clamp(double(linear_to_srgb(float(c[k]))), 0.0, 1.0) * 255.0));
+    out.layers[row] = int(end - i);
+    i = end;
+  }
+  flip_vertically(out.image);
+  return out;
+}
+// [/exact]
+
+}  // namespace lp::ch10

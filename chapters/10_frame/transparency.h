@@ -1,0 +1,121 @@
+#pragma once
+// Chapter 10's transparency: the glass (materials with glTF alphaMode BLEND) that a G-buffer
+// cannot hold, one surface per pixel as it is. Chapter 02's geometry pass skips it; this stage
+// draws it after the deferred passes, over the finished image, with a forward pass lit by the
+// scene's lights through chapter 01's lighting model, depth-tested against the G-buffer's
+// depth and writing none. Two ways to blend, as a knob:
+//   sorted  whole surfaces back to front by the view depth of their centres, each blended over
+//           what is there ("over": C = alpha c + (1 - alpha) C_behind, premultiplied);
+//   wboit   weighted blended order-independent transparency (McGuire & Bavoil 2013): in any
+//           order, a weighted sum of the premultiplied colours and the product of (1 - alpha)
+//           into two float targets, and a full-screen pass that puts their average over the image.
+// The exact order (every fragment of every surface at every pixel, sorted by depth, composited
+// in double on the CPU) is the ground truth both are measured against (exact_composite()).
+//
+//   ch03::DeferredFrame frame(scene_gpu);   TransparencyStage glass(scene_gpu, scene.lights);
+//   frame.add_stage(glass);
+//   glass.set({.method = Method::Wboit});
+//   frame.render(camera, output, &metrics);
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "chapters/01_forward/light_buffer.h"
+#include "chapters/03_light_volumes/deferred_frame.h"
+#include "common/gl.h"
+#include "common/image.h"
+#include "common/shader.h"
+
+namespace lp::ch10 {
+
+enum class Method { Off, Sorted, Wboit };
+inline const std::vector<std::string> kMethods = {"off", "sorted", "wboit"};
+Method method_named(const std::string& name);  // throws Error for an unknown name
+
+// The order the surfaces are drawn in. BackToFront is what sorting means; the others are for
+// the tests (a method that is order independent must not care).
+enum class DrawOrder { BackToFront, FrontToBack, AsListed, Shuffled };
+
+// What is drawn: the image, or one of WBOIT's two targets in its place.
+enum class TransparencyShow { Image, Accumulation, Revealage };
+
+struct TransparencySettings {
+  Method method = Method::Sorted;
+  DrawOrder order = DrawOrder::BackToFront;
+  std::uint32_t shuffle_seed = 1;  // DrawOrder::Shuffled
+  TransparencyShow show = TransparencyShow::Image;
+};
+
+// One blended primitive of one instance, and where its centre is (world space).
+struct BlendedDraw {
+  std::size_t instance = 0, primitive = 0;
+  glm::vec3 centre{0};
+};
+// The scene's blended primitives, in scene order.
+std::vector<BlendedDraw> blended_draws(const Scene& scene);
+// The draws in `order`; BackToFront by the view depth of their centres (farthest first, ties
+// in scene order). Per surface, not per pixel: two panes that cross are each in front of the
+// other on one side of the crossing line, and any order of the two is wrong on one side.
+std::vector<BlendedDraw> ordered(std::vector<BlendedDraw> draws, const glm::mat4& view, DrawOrder order,
+                                 std::uint32_t seed = 1);
+
+// [wboit-weight]
+// WBOIT's weight of a fragment at view depth z (metres, > 0) with coverage alpha: McGuire and
+// Bavoil's first depth weight, w = alpha * clamp(10 / (1e-5 + (z/5)^2 + (z/200)^6), 1e-2, 3e3).
+// Near surfaces weigh more, so the nearest layer dominates the average as "over" would make it.
+// The C++ twin of wboit_weight() in shaders/transparent.frag.
+float wboit_weight(float view_depth, float alpha);
+// [/wboit-weight]
+
+// The exact per-pixel order, composited on the CPU.
+struct ExactComposite {
+  ImageRGBA8 image;                  // rows top to bottom, as the output reads back
+  std::vector<int> layers;           // per pixel: transparent fragments in front of the opaque surface
+  // per pixel: the back-to-front order of whole surfaces (ordered()) is this pixel's depth order
+  std::vector<std::uint8_t> surface_order_right;
+  std::size_t fragments = 0;
+  bool overflow = false;             // more fragments than the capture holds (then not exact)
+};
+
+class TransparencyStage : public ch03::FrameStage {
+ public:
+  TransparencyStage(const SceneGpu& scene, const std::vector<Light>& lights);
+  void reload_shaders();
+  void set(const TransparencySettings& settings) { settings_ = settings; }
+  const TransparencySettings& settings() const { return settings_; }
+  std::size_t blended_count() const { return draws_.size(); }
+
+  void after_composite(ch03::DeferredFrame& frame, PassMetrics* metrics) override;
+
+  // The exact order over the image the frame's last render() left in its output (which must
+  // hold the opaque image only: render with Method::Off first). Reads the output back as sRGB8
+  // bytes: it is the truth for the sRGB8 output (a float radiance target would need its own).
+  ExactComposite exact_composite(const ch03::DeferredFrame& frame, std::size_t max_fragments_per_pixel = 16);
+  // WBOIT's targets after the last wboit frame (RGBA16F accumulation, R16F revealage).
+  GLuint accumulation() const { return accum_.id(); }
+  GLuint revealage() const { return reveal_.id(); }
+  std::size_t allocated_bytes() const;  // WBOIT's targets and their depth
+
+ private:
+  void resize(const ch03::DeferredFrame& frame);
+  void draw_surfaces(const ch03::DeferredFrame& frame, const ShaderProgram& program,
+                     const std::vector<BlendedDraw>& draws, bool ranks) const;
+  void draw_sorted(const ch03::DeferredFrame& frame, PassMetrics* metrics);
+  void draw_wboit(const ch03::DeferredFrame& frame, PassMetrics* metrics);
+
+  const SceneGpu& scene_;
+  std::vector<BlendedDraw> draws_;
+  ch01::LightBuffer lights_;
+  TransparencySettings settings_;
+  ShaderProgram over_, accumulate_, capture_, composite_;
+  gl::VertexArray empty_vao_;
+  int width_ = 0, height_ = 0;
+  GLenum depth_format_ = 0;
+  gl::Texture accum_{GL_TEXTURE_2D}, reveal_{GL_TEXTURE_2D}, depth_{GL_TEXTURE_2D};
+  gl::Framebuffer fbo_;
+};
+
+}  // namespace lp::ch10

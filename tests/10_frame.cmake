@@ -1,0 +1,22 @@
+# Chapter 10: the whole frame. So far its transparency: GPU tests of the stage against the
+# exact per-pixel order and its hard cases, and the program (references, bad input).
+lightpass_gtests(10_frame gl lightpass_10_frame unit/test_10_transparency_gl.cpp)
+
+# The program: its references (tests/reference/10_frame/, made on llvmpipe and looked at), what
+# a headless run says, and bad input.
+set(P10 $<TARGET_FILE:10_frame>)
+lightpass_program_test(10_frame.reference 0 "15 of 15 references match" ${P10} --check --out ${CHECK_OUT}/10_frame)
+lightpass_program_test(10_frame.headless_says_what_it_drew 0
+  "7 transparent surfaces, wboit: frame took .* ms.*exact order: [1-9][0-9]* fragments"
+  ${P10} --headless --size 160x90 --transparency wboit --show error --out ${CMAKE_BINARY_DIR}/out/10_headless.png)
+lightpass_program_test(10_frame.bench_prints_the_wboit_passes 0 "\"name\":\"transparency: WBOIT composite\""
+  ${P10} --bench --frames 2 --size 160x90 --transparency wboit)
+lightpass_program_test(10_frame.bad_transparency 2 "transparency" ${P10} --transparency painter)
+# A scene without glass is chapter 03's frame, bit for bit up to its reference's tolerance: the
+# stage draws nothing (chapter 03's stencil reference of the street).
+lightpass_image_test(10_frame.scene_without_glass_renders_as_chapter_03 "0 transparent surfaces" ${CMAKE_BINARY_DIR}/out/10_street.png
+  --matches ${CMAKE_SOURCE_DIR}/tests/reference/03_light_volumes/street_level_stencil.png
+  RUN ${P10} --headless --size 320x180 --scene assets/street/street.gltf --view street_level --out ${CMAKE_BINARY_DIR}/out/10_street.png)
+# The sweep's options (the sweep itself runs on the GPU machine through tools/device-measure).
+lightpass_program_test(10_frame.sweep_unknown_option 2 "unknown option '--fast'" $<TARGET_FILE:10_frame_sweep> --fast)
+lightpass_program_test(10_frame.sweep_bad_layers 2 "--layers must be between 1 and 128" $<TARGET_FILE:10_frame_sweep> --layers 0)
