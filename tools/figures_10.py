@@ -14,7 +14,7 @@ METHODS = ("sorted", "wboit")
 
 def main(d: Path):
     for csv_name, suffix, where in (("10_transparency_llvmpipe.csv", "_llvmpipe", "llvmpipe"),
-                                    ("10_transparency.csv", "", "GPU")):
+                                    ("10_transparency_h200.csv", "_h200", "NVIDIA H200")):
         if not (d / csv_name).exists():
             continue
         notes, rows = read_csv(d / csv_name)

@@ -37,6 +37,14 @@ const CliSpec kCli{
                                   "error against the exact order (red: 16 steps)",
                           {"image", "accumulation", "revealage", "error"})}};
 
+// The error views draw |method - exact| as a heat map whose first level (one 8-bit step,
+// colour value 64) is most of what they show: half-float and 8-bit rounding of each layer
+// differ by a step between renderers, so on an NVIDIA H200 7-15 % of their pixels moved by
+// that one level, and 0.02-0.48 % by more. Another renderer is held to the structure:
+// differences beyond one heat level (threshold 70) on at most 1 % of the pixels; the
+// renderer that made the references keeps 3 steps and 0.1 %.
+const CompareOptions kOneHeatLevel{.threshold = 70, .max_failing_fraction = 0.01};
+
 std::vector<Shot> references() {
   std::vector<Shot> shots;
   for (const char* view : {"front", "side", "crossing"})
@@ -44,9 +52,9 @@ std::vector<Shot> references() {
   shots.push_back({"front", "frame", {{"transparency", 3}}});
   shots.push_back({"front", "frame", {{"transparency", 1}, {"show", kAccumulation}}});
   shots.push_back({"front", "frame", {{"transparency", 1}, {"show", kRevealage}}});
-  shots.push_back({"front", "frame", {{"transparency", 0}, {"show", kError}}});
-  shots.push_back({"front", "frame", {{"transparency", 1}, {"show", kError}}});
-  shots.push_back({"crossing", "frame", {{"transparency", 0}, {"show", kError}}});
+  shots.push_back({"front", "frame", {{"transparency", 0}, {"show", kError}}, {}, kOneHeatLevel});
+  shots.push_back({"front", "frame", {{"transparency", 1}, {"show", kError}}, {}, kOneHeatLevel});
+  shots.push_back({"crossing", "frame", {{"transparency", 0}, {"show", kError}}, {}, kOneHeatLevel});
   return shots;
 }
 

@@ -67,7 +67,10 @@ TEST(Scene, AlphaModeBlendIsKeptAndSaidOnce) {
   int blended = 0;
   for (const Material& m : s.materials) {
     EXPECT_EQ(m.blend, m.name.rfind("glass_", 0) == 0) << m.name;
-    if (m.blend) ++blended, EXPECT_LT(m.base_color.a, 1.f) << m.name;
+    if (m.blend) {
+      ++blended;
+      EXPECT_LT(m.base_color.a, 1.f) << m.name;
+    }
   }
   EXPECT_EQ(blended, 7);
   EXPECT_EQ(std::count_if(s.notes.begin(), s.notes.end(), [](const std::string& n) { return n.find("alphaMode BLEND") != std::string::npos; }), 1);
