@@ -82,12 +82,7 @@ void draw_forward(const SceneGpu& gpu, const ch03::DeferredFrame& frame, Cluster
 
 }  // namespace
 
-// The counts are asserted; the light values are not yet: on llvmpipe 5 641 of the 55 296
-// channels here differ from the deferred ones by more than the bound derived below (the
-// first: 1.0936 against 1.0928 with 142 lights, about 3e-4 relative beyond half rounding),
-// which says the two surfaces are not yet bit-identical; until that is understood the
-// comparison stays out of the assertions (see the report of issue 15) instead of a wider bound.
-TEST(ClusteredForwardGl, ForwardEvaluatesAndLightsTheSamePairsAsClusteredDeferred) {
+TEST(ClusteredForwardGl, ForwardEqualsClusteredDeferredOnTheStreet) {
   // The float G-buffer: what the deferred pass reads is exactly what the forward fragment has
   // (world position, normal, specular colour and exponent in RGBA32F), so the two differ only
   // by rounding, and the bound below can be derived.
@@ -110,7 +105,7 @@ TEST(ClusteredForwardGl, ForwardEvaluatesAndLightsTheSamePairsAsClusteredDeferre
   pass.set_counting(true);
   pass.draw(frame.light(), frame.view(), ch03::LightVolumes::Output::Light);
   const EvalCounts deferred = pass.counts();
-  const std::vector<float> d1 = read_rgba(frame.light().diffuse(), w, h);
+  const std::vector<float> d1 = read_rgba(frame.light().diffuse(), w, h), d2 = read_rgba(frame.light().specular(), w, h);
   // All cells were assigned, not only the occupied ones.
   const std::vector<std::uint32_t> counts = pass.cell_counts();
   ASSERT_EQ(counts.size(), std::size_t(16 * 9 * 24));
@@ -121,7 +116,13 @@ TEST(ClusteredForwardGl, ForwardEvaluatesAndLightsTheSamePairsAsClusteredDeferre
   ShaderProgram forward(stages, pass.forward_defines(frame.view(), true));
   draw_forward(gpu, frame, pass, forward, target, true);
   const EvalCounts ours = pass.counts();
-  const std::vector<float> f1 = read_rgba(target.l1.id(), w, h);
+  const std::vector<float> f1 = read_rgba(target.l1.id(), w, h), f2 = read_rgba(target.l2.id(), w, h);
+  // Lights evaluated per pixel, from the same pass with HEAT_SHADED.
+  std::vector<std::string> heat_defines = pass.forward_defines(frame.view());
+  heat_defines.push_back("HEAT_SHADED 1");
+  ShaderProgram heat(stages, heat_defines);
+  draw_forward(gpu, frame, pass, heat, target, false);
+  const std::vector<float> k = read_rgba(target.l1.id(), w, h);
   frame.set_local_lights(nullptr);
   ASSERT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 
@@ -138,6 +139,34 @@ TEST(ClusteredForwardGl, ForwardEvaluatesAndLightsTheSamePairsAsClusteredDeferre
     }
   EXPECT_GT(deferred_lit, std::size_t(w * h / 4));
   EXPECT_EQ(both, deferred_lit);
+
+  // [forward-tolerance]
+  // Both sum the same lights in the same order in float with the same local_light(). The
+  // surfaces differ only in the normal: deferred renormalises the stored unit normal once
+  // more, moving it by a few float ulps, so each of the k terms may differ by a relative
+  // 2^-20 at most (generous for a few 2^-24). The deferred sum is then stored once in
+  // RGBA16F; OpenGL leaves the rounding of that conversion to the implementation (on
+  // llvmpipe a pixel whose forward sum is 1.093606 holds 1.092773, a step below; the nearest
+  // half is 1.09375), so it may move the value by one half-float step: relative 2^-10 in the
+  // normal range, 2^-24 absolute among the subnormals. The forward sum is stored in RGBA32F.
+  // Per channel, with k the lights evaluated at the pixel:
+  //   |forward - deferred| <= 2^-10 max + (k + 1) 2^-20 max + 2^-24.
+  std::size_t failing = 0, compared = 0;
+  std::string first;
+  for (std::size_t i = 0; i < f1.size(); ++i) {
+    if (i % 4 == 3) continue;
+    for (int t = 0; t < 2; ++t) {
+      const double a = (t == 0 ? f1 : f2)[i], b = (t == 0 ? d1 : d2)[i];
+      const double m = std::max(std::fabs(a), std::fabs(b));
+      const double bound = std::ldexp(m, -10) + (double(k[i - i % 4]) + 1.0) * std::ldexp(m, -20) + std::ldexp(1.0, -24);
+      ++compared;
+      if (std::fabs(a - b) > bound && failing++ == 0)
+        first = "pixel " + std::to_string(i / 4) + (t == 0 ? " L1 " : " L2 ") + std::to_string(a) + " vs " +
+                std::to_string(b) + " (" + std::to_string(k[i - i % 4]) + " lights)";
+    }
+  }
+  // [/forward-tolerance]
+  EXPECT_EQ(failing, 0u) << "of " << compared << "; first: " << first;
 
 }
 
