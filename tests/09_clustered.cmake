@@ -29,3 +29,5 @@ lightpass_program_test(09_clustered.huge_grid_is_refused 1 "a grid of 1024 x 102
 lightpass_image_test(09_clustered.window_smoke_screenshot "window screenshot, 320x180" ${CMAKE_BINARY_DIR}/out/09_window.png
   --size 320x180 --background ${BACKGROUND_SRGB8} --lit 0.3 1
   RUN xvfb-run -a -s "-screen 0 320x180x24" ${P09} --size 320x180 --frames 3 --out ${CMAKE_BINARY_DIR}/out/09_window.png)
+# Clustered forward: the opaque street drawn forward from the cluster lists equals the deferred.
+lightpass_gtests(09_clustered_forward gl lightpass_09_clustered unit/test_09_clustered_forward_gl.cpp)

@@ -116,6 +116,7 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
   std::vector<std::string> defines = view.defines;
   for (const auto& d : view.hooks.defines()) defines.push_back(d);
   if (clustered) defines.push_back("CLUSTERED 1");
+  if (clustered && settings_.all_cells) defines.push_back("ALL_CELLS 1");
 
   // The cells and the bounds: one (offset, count) per cell; tiled: (min, max) per tile,
   // clustered: an occupied flag per cell.
@@ -217,6 +218,31 @@ void ClusteredLights::assign(const std::vector<std::string>& defines, const Fram
   }
   stats_.capacity = capacity_;
   stats_.bytes = std::size_t(capacity_) * 4 + cells_bytes_ + bounds_bytes_ + lights_bytes_;
+}
+
+std::vector<std::string> ClusteredLights::forward_defines(const ch03::SurfaceView& view, bool counting) const {
+  std::vector<std::string> d = view.defines;
+  for (const auto& h : view.hooks.defines()) d.push_back(h);
+  d.push_back("CLUSTERED 1");
+  if (counting)
+    for (const auto& c : ch03::FragmentCounters::defines()) d.push_back(c);
+  return d;
+}
+
+void ClusteredLights::bind_for_forward(const ShaderProgram& program, const FrameCamera& camera, bool counting) {
+  if (settings_.kind != CullKind::Clustered || !settings_.all_cells || grid_.cells() == 0)
+    throw Error("clustered forward: needs the lists of a clustered draw() with all_cells on (" + name() +
+                (settings_.all_cells ? "" : ", all_cells off") + ")");
+  program.use();
+  set_grid_uniforms(program, camera);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, lights_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, cells_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, indices_.id());
+  if (counting) {
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);  // a previous pass's counting done before the reset
+    counters_.reset();
+    counters_.bind();
+  }
 }
 
 EvalCounts ClusteredLights::counts() const {

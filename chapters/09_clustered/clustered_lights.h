@@ -39,6 +39,9 @@ struct ClusterSettings {
   std::uint32_t initial_indices = 1u << 20;
   std::uint32_t max_indices = 1u << 28;  // 1 GiB of indices
   bool grow = true;
+  // Clustered forward (bind_for_forward): build the list of every cluster, not only of those
+  // the G-buffer's surfaces occupy, so that any fragment a forward pass draws finds its lights.
+  bool all_cells = false;
 };
 // The four ways of the program's --mode, beside chapter 03's: "tiled", "tiled-fragment",
 // "clustered" (compute), "clustered-fragment".
@@ -90,6 +93,16 @@ class ClusteredLights : public ch03::LocalLightPass {
   std::vector<glm::uvec2> cell_lists() const;
   std::vector<std::uint32_t> index_list() const;
   void reload_shaders() { programs_.clear(); }
+
+  // [forward-api]
+  // Clustered forward: a forward fragment shader that includes
+  // 09_clustered/shaders/clustered_forward.glsl, compiled with forward_defines(view), lights
+  // its fragments from the lists the last draw() built (clustered, with all_cells on: throws
+  // Error otherwise). bind_for_forward() binds them and sets the program's grid uniforms for
+  // the camera that draw() had; with `counting`, counts() then reads the forward pass's counts.
+  std::vector<std::string> forward_defines(const ch03::SurfaceView& view, bool counting = false) const;
+  void bind_for_forward(const ShaderProgram& program, const FrameCamera& camera, bool counting = false);
+  // [/forward-api]
 
  private:
   void upload_lights();

@@ -45,6 +45,9 @@ void main() {
   bool occupied = bounds[2 * ti] <= bounds[2 * ti + 1];
   Box box = cell_box(p0, p1, uintBitsToFloat(bounds[2 * ti]), uintBitsToFloat(bounds[2 * ti + 1]));
 #endif
+#ifdef ALL_CELLS
+  occupied = true;  // clustered forward: every cell a forward surface may reach gets its list
+#endif
   uint n = occupied ? uint(u_tiles.w) : 0u;
   uint first = n * t / 64u, last = n * (t + 1u) / 64u;  // n <= 2^22 (upload_lights): no overflow
 

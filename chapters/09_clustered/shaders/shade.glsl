@@ -36,11 +36,12 @@ void add_light(Surface s, uint at, inout vec3 diffuse, inout vec3 specular, inou
 
 // [shade-pixel]
 // diffuse goes to L1, specular (already tinted by the surface's specular colour) to L2;
-// `evaluated` lights were looked at, `lit` of them added anything.
-void shade_pixel(ivec2 pixel, out vec3 diffuse, out vec3 specular, out uint evaluated, out uint lit) {
+// `evaluated` lights were looked at, `lit` of them added anything. `pixel` names the cell's
+// tile, the surface's view depth its slice: the G-buffer's pixel here, a forward fragment's
+// gl_FragCoord in clustered_forward.glsl.
+void shade_surface(Surface s, ivec2 pixel, out vec3 diffuse, out vec3 specular, out uint evaluated, out uint lit) {
   diffuse = specular = vec3(0.0);
   evaluated = lit = 0u;
-  Surface s = decode_gbuffer(pixel);
   if (s.is_sky) return;
 #ifdef CLUSTERED
   uvec2 list = cells[cell_index(tile_of(pixel), slice_of(view_depth(s.position)))];
@@ -60,6 +61,10 @@ void shade_pixel(ivec2 pixel, out vec3 diffuse, out vec3 specular, out uint eval
   count_add(kCountEvaluated, evaluated);
   count_add(kCountLit, lit);
 #endif
+}
+
+void shade_pixel(ivec2 pixel, out vec3 diffuse, out vec3 specular, out uint evaluated, out uint lit) {
+  shade_surface(decode_gbuffer(pixel), pixel, diffuse, specular, evaluated, lit);
 }
 // [/shade-pixel]
 
