@@ -5,7 +5,7 @@ lightpass_gtests(08_ssgi unit lightpass_08_ssgi unit/test_08_gi_math.cpp)
 lightpass_gtests(08_ssgi gl lightpass_08_ssgi unit/test_08_ssgi_gl.cpp)
 
 set(P08 $<TARGET_FILE:08_ssgi>)
-lightpass_program_test(08_ssgi.reference.cornell 0 "12 of 12 references match" ${P08} --check --out ${CHECK_OUT}/08_ssgi)
+lightpass_program_test(08_ssgi.reference.cornell 0 "13 of 13 references match" ${P08} --check --out ${CHECK_OUT}/08_ssgi)
 lightpass_program_test(08_ssgi.reference.atrium 0 "2 of 2 references match"
   ${P08} --check --scene assets/atrium/atrium.gltf --out ${CHECK_OUT}/08_ssgi_atrium)
 lightpass_program_test(08_ssgi.headless_says_what_it_computed 0
