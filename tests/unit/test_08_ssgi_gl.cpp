@@ -169,8 +169,8 @@ TEST(SsgiCornell, ColourBleedingHasTheTruthsSignAndMagnitude) {
   // The floor beside the green wall is where the missing visibility shows: the truth bleeds green
   // there, the pass about nothing, because it also receives the red wall's light through the short
   // box: its red is more than 1.1x the truth's and more than 1.1x its own green's share (measured
-  // 1.33x and 1.13x: red / green 1.18 on llvmpipe). A visibility-aware gather would fix it (not
-  // done in this chapter).
+  // 1.33x and 1.13x: red / green 1.18 on llvmpipe). A visibility-aware gather cuts it (Gather::Bitmask:
+  // BitmaskCutsTheLightThroughTheShortBox).
   {
     const double red = region_mean(gi, near, "floor>", 0) / region_mean(t, near, "floor>", 0);
     const double green = region_mean(gi, near, "floor>", 1) / region_mean(t, near, "floor>", 1);
