@@ -12,7 +12,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from plot import Series, plot, read_csv  # noqa: E402
 
-VARIANTS = ("regular", "spiral", "randomised-no-blur", "randomised", "randomised-2-bounces")
+VARIANTS = ("regular", "spiral", "randomised-no-blur", "randomised", "randomised-2-bounces", "randomised-bitmask")
 
 
 def pareto(d: Path, csv_name: str, where: str, scene: str):

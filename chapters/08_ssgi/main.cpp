@@ -38,6 +38,11 @@ const CliSpec kCli{
                                      "or the spiral randomised per pixel (then blurred)",
                           {"regular", "spiral", "randomised"}, 2),
               {"blur", "randomised pattern: the bilateral 5x5 blur (1) or the raw noise (0)", 1, 0, 1, true},
+              choice_knob("gather", "the wide disk's light: the source's disk samples (no visibility) or, beyond "
+                                    "the source, slices with a visibility bitmask (Therrien et al. 2023)",
+                          {"disk", "bitmask"}, 0),
+              {"thickness", "--gather bitmask: the depth each sample is taken to have, world units", 0.5, 0.01, 100,
+               false},
               {"bounces", "1, or 2: a second pass bounces direct + first bounce once more", 1, 1, 2, true},
               choice_knob("show", "the lit image; the indirect light alone (albedo x L1_ind, x --exposure); the AO "
                                   "term; the ray-traced truth (the CPU traces --truth-samples rays per pixel, cached); "
@@ -72,7 +77,8 @@ std::vector<Shot> cornell_shots() {
           {"front", "ssgi", {{"show", kIndirect}, {"bounces", 2}}},
           {"front", "ssgi", {{"show", kAo}}},
           {"front", "ssgi", {{"show", kTruth}, {"truth-samples", 64}}},
-          {"front", "ssgi", {{"show", kError}, {"truth-samples", 64}}, {}, kCornerTies}};
+          {"front", "ssgi", {{"show", kError}, {"truth-samples", 64}}, {}, kCornerTies},
+          {"front", "ssgi", {{"show", kIndirect}, {"gather", 1}}}};
 }
 std::vector<Shot> atrium_shots() {
   return {{"overview", "ssgi", {}, {}, kOtherRenderer}, {"overview", "ssgi", {{"show", kIndirect}}, {}, kOtherRenderer}};
@@ -93,6 +99,8 @@ GiSettings settings_from(const Frame& f) {
                                                : Pattern::Randomised;
   s.blur = f.knob_int("blur") != 0;
   s.bounces = f.knob_int("bounces");
+  s.gather = f.choice("gather") == "bitmask" ? Gather::Bitmask : Gather::Disk;
+  s.thickness = float(f.knob("thickness"));
   return s;
 }
 
@@ -159,7 +167,8 @@ int main(int argc, char** argv) {
         if (gi.ran())
           out << "SSGI " << f.mode << ", " << Ssgi::used_samples(s.pattern, s.samples) << " samples, "
               << kPatternNames[int(s.pattern)] << ", radii " << s.ao_radius << " / " << s.gi_radius << ", "
-              << s.bounces << (s.bounces == 1 ? " bounce" : " bounces");
+              << s.bounces << (s.bounces == 1 ? " bounce" : " bounces")
+              << (s.gather == Gather::Bitmask ? ", bitmask gather" : "");
         else
           out << "no SSGI pass (mode off)";
         out << ": frame took " << ms << " ms (wall clock, " << app.context().renderer() << ")\n";

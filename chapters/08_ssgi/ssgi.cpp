@@ -35,6 +35,8 @@ void Ssgi::pass(const ch02::GBuffer& gbuffer, GLuint light, GLuint extra, const 
   p.set("u_bounce", extra ? 1 : 0);
   p.set("u_indirect_on", s.indirect ? 1 : 0);
   p.set("u_ao_on", s.ao ? 1 : 0);
+  p.set("u_gather", int(s.gather));
+  p.set("u_thickness", s.thickness);
   p.use();
   glBindTextureUnit(9, light);
   glBindTextureUnit(10, extra ? extra : light);
@@ -65,6 +67,7 @@ void Ssgi::compute(const ch02::GBuffer& gbuffer, GLuint light, const FrameCamera
   if (!(s.ao_radius > 0.f) || !(s.gi_radius > 0.f))
     throw Error("ssgi: the AO and indirect radii must be positive (got " + std::to_string(s.ao_radius) + " and " +
                 std::to_string(s.gi_radius) + ")");
+  if (!(s.thickness > 0.f)) throw Error("ssgi: the bitmask's thickness must be positive (got " + std::to_string(s.thickness) + ")");
   if (s.bounces != 1 && s.bounces != 2) throw Error("ssgi: bounces must be 1 or 2 (got " + std::to_string(s.bounces) + ")");
   const int w = gbuffer.width(), h = gbuffer.height();
   if (w != width_ || h != height_) {

@@ -22,6 +22,13 @@
 
 namespace lp::ch08 {
 
+// How the wide disk's light is gathered: the source's samples over the disk, each sending its
+// light whatever lies between (Disk), or beyond the source, along slices with a visibility
+// bitmask (Therrien et al. 2023): a sample's light counts only where nearer samples of its
+// slice do not hide it (Bitmask).
+enum class Gather { Disk, Bitmask };
+inline const std::vector<std::string> kGatherNames = {"disk", "bitmask"};
+
 // [settings]
 struct GiSettings {
   bool indirect = true;          // the wide disk: one-bounce indirect light (off: AO alone)
@@ -34,6 +41,8 @@ struct GiSettings {
   bool blur = true;              // the bilateral 5x5 blur (randomised pattern only: the others have no noise)
   float blur_depth = 0.05f, blur_normal = 0.8f;  // chapter 07's thresholds
   int bounces = 1;               // 1, or 2: a second pass that bounces direct + first bounce again
+  Gather gather = Gather::Disk;  // the wide disk's gather: the source's (no visibility) or slices + bitmask
+  float thickness = 0.5f;        // Gather::Bitmask: the depth each sample is taken to have, world units
 };
 inline constexpr int kMaxSamples = 128;
 // [/settings]

@@ -56,6 +56,8 @@ std::vector<Variant> variants() {
     v.push_back({"randomised-no-blur", {.samples = n, .pattern = Pattern::Randomised, .blur = false}});
     v.push_back({"randomised", {.samples = n, .pattern = Pattern::Randomised}});
     v.push_back({"randomised-2-bounces", {.samples = n, .pattern = Pattern::Randomised, .bounces = 2}});
+    // beyond the source: the same samples' budget along slices with a visibility bitmask
+    v.push_back({"randomised-bitmask", {.samples = n, .pattern = Pattern::Randomised, .gather = Gather::Bitmask}});
   }
   return v;
 }

@@ -169,8 +169,8 @@ TEST(SsgiCornell, ColourBleedingHasTheTruthsSignAndMagnitude) {
   // The floor beside the green wall is where the missing visibility shows: the truth bleeds green
   // there, the pass about nothing, because it also receives the red wall's light through the short
   // box: its red is more than 1.1x the truth's and more than 1.1x its own green's share (measured
-  // 1.33x and 1.13x: red / green 1.18 on llvmpipe). A visibility-aware gather would fix it (not
-  // done in this chapter).
+  // 1.33x and 1.13x: red / green 1.18 on llvmpipe). A visibility-aware gather cuts it (Gather::Bitmask:
+  // BitmaskCutsTheLightThroughTheShortBox).
   {
     const double red = region_mean(gi, near, "floor>", 0) / region_mean(t, near, "floor>", 0);
     const double green = region_mean(gi, near, "floor>", 1) / region_mean(t, near, "floor>", 1);
@@ -184,6 +184,49 @@ TEST(SsgiCornell, ColourBleedingHasTheTruthsSignAndMagnitude) {
   EXPECT_EQ(largest_rgb(ao_only), 0.f);
 }
 // [/bleeding]
+
+// [bitmask-test]
+// Beyond the source: the same case with the wide disk gathered along slices with a visibility
+// bitmask (Gather::Bitmask, 128 samples: 8 slices of 2 x 8 steps). On the floor beside the green
+// wall the source's pass gets the red wall's light through the short box; the bitmask, whose
+// nearer samples (the short box) hide the farther (the red wall), must cut that wrongly received
+// red, the pass's red minus the truth's, to at most 0.4 of the source's (measured 0.17 on
+// llvmpipe: 0.0070 against 0.0414; the margin for other renderers and the noise of the
+// randomised slices). And where colour bleeding is visible it must not break it: the regions of
+// ColourBleedingHasTheTruthsSignAndMagnitude keep the truth's sign, and its mean absolute error
+// against the truth over the Cornell box may exceed the source's by at most 20 % (measured 1.12x:
+// the slabs, 0.5 deep, also hide some light the truth receives past thin edges and at grazing
+// angles; it captures 0.76 of the true energy against the source's 0.83). A bound of 10 % was
+// tried first and failed at 1.12: the variant is not free, and the book says so.
+TEST(SsgiCornell, BitmaskCutsTheLightThroughTheShortBox) {
+  World& w = cornell();
+  const FrameCamera cam = w.camera("front");
+  const auto near = w.names(cam, 0.3f);
+  const ImageF t = truth(w, cam);
+  const GiSettings source{.samples = 128, .pattern = Pattern::Randomised};
+  GiSettings bitmask = source;
+  bitmask.gather = Gather::Bitmask;
+  const ImageF a = w.frame.indirect(cam, GiMode::Ssgi, source);
+  const ImageF b = w.frame.indirect(cam, GiMode::Ssgi, bitmask);
+  const double want = region_mean(t, near, "floor>", 0);
+  const double wrong_source = region_mean(a, near, "floor>", 0) - want;
+  const double wrong_bitmask = region_mean(b, near, "floor>", 0) - want;
+  const GiErrors ea = gi_errors(a, t), eb = gi_errors(b, t);
+  std::cout << "floor beside the green wall, red above the truth: disk " << wrong_source << ", bitmask " << wrong_bitmask
+            << " (x" << wrong_bitmask / wrong_source << ")\n"
+            << "Cornell box mean abs error: disk " << ea.mean_abs << ", bitmask " << eb.mean_abs << " (x"
+            << eb.mean_abs / ea.mean_abs << "); captured " << ea.captured << " / " << eb.captured << "\n";
+  for (const char* r : {"floor<", "tall_box_nx", "short_box_px"})
+    std::cout << r << ": bleeding disk " << red_excess(a, near, r) << ", bitmask " << red_excess(b, near, r)
+              << ", truth " << red_excess(t, near, r) << "\n";
+  ASSERT_GT(wrong_source, 0.0);  // the flaw is there to cut (SsgiCornell.ColourBleeding... asserts its size)
+  EXPECT_LT(wrong_bitmask, 0.4 * wrong_source);
+  EXPECT_LT(eb.mean_abs, 1.20 * ea.mean_abs);
+  EXPECT_GT(red_excess(b, near, "floor<"), 0.0);
+  EXPECT_GT(red_excess(b, near, "tall_box_nx"), 0.0);
+  EXPECT_LT(red_excess(b, near, "short_box_px"), 0.0);
+}
+// [/bitmask-test]
 
 // [samples]
 // The error against the truth falls as samples grow, for every pattern (16 -> 64 -> 128), and

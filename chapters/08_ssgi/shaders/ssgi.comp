@@ -22,6 +22,8 @@ uniform float u_ao_radius, u_gi_radius;    // world units
 uniform float u_max_screen_radius;         // the wide disk: at most this fraction of the image height
 uniform int u_bounce;                       // 1: the emitters' light includes u_extra (a second pass)
 uniform int u_indirect_on, u_ao_on;
+uniform int u_gather;                       // 0 the source's disk (no visibility), 1 slices with a visibility bitmask
+uniform float u_thickness;                  // bitmask: the depth each sample is taken to have, world units
 
 const float PI = 3.14159265358979;
 
@@ -68,6 +70,80 @@ float sample_area(float share, float zr, vec3 e, vec3 ne) {
   return share * (ze / zr) * (ze / zr) / max(abs(dot(ne, normalize(gb_eye.xyz - e))), 0.2);
 }
 
+// [bitmask-glsl]
+// Beyond the source: the wide disk's light gathered along slices with a visibility bitmask
+// (Therrien et al. 2023). The same samples' budget (u_samples, 2 x 8 steps a slice, at least one
+// slice) is spent on slices through the view vector, each marched both ways from the pixel,
+// nearest first, at radii that keep each sample's share of the disk equal (sqrt spacing: the
+// same gi_share as the disk's samples, so the same disk_transfer carries the same light). The
+// slice's hemisphere about the normal is cut into 32 sectors of equal angle; a sample, taken as
+// a slab u_thickness deep behind its depth, covers the sectors between its front and back
+// angles; its light counts only if the sector of its front is not covered by a nearer sample of
+// its slice: light behind the short box stops at the box. (Weighting by the uncovered share of
+// its own slab instead let each sample of one wall hide the next: 0.70 of the true energy
+// captured, against 0.76 this way.)
+vec3 bitmask_indirect(ivec2 pixel, Surface s, float gi_px, float gi_share, vec2 jitter, out float transfer) {
+  const int steps = 8;
+  int slices = max(1, u_samples / (2 * steps));
+  float share = gi_share * float(u_samples) / float(2 * steps * slices);
+  vec3 p = (u_view * vec4(s.position, 1.0)).xyz;
+  vec3 view_vec = normalize(-p);
+  vec3 normal = normalize(mat3(u_view) * s.normal);
+  float zr = -p.z;
+  vec3 indirect = vec3(0.0);
+  transfer = 0.0;
+  for (int i = 0; i < slices; ++i) {
+    float phi = (float(i) + jitter.x) / float(slices) * PI;
+    vec2 omega = vec2(cos(phi), sin(phi));
+    vec3 dir = vec3(omega, 0.0);
+    vec3 ortho = normalize(dir - dot(dir, view_vec) * view_vec);   // the slice's direction, seen square
+    vec3 axis = normalize(cross(ortho, view_vec));
+    vec3 projected = normal - axis * dot(normal, axis);
+    float projected_len = length(projected);
+    if (projected_len < 1e-6) continue;
+    float sign_n = dot(ortho, projected) >= 0.0 ? 1.0 : -1.0;
+    float n = sign_n * acos(clamp(dot(projected, view_vec) / projected_len, -1.0, 1.0));
+    uint occluded = 0u;
+    for (int j = 0; j < steps; ++j) {
+      float r = sqrt((float(j) + jitter.y) / float(steps)) * gi_px;
+      for (int side = 0; side < 2; ++side) {
+        float sgn = side == 0 ? 1.0 : -1.0;
+        ivec2 sp = pixel + ivec2(round(sgn * r * omega));
+        if (sp == pixel || any(lessThan(sp, ivec2(0))) || any(greaterThanEqual(sp, ivec2(gb_size.xy)))) continue;
+        float depth = texelFetch(gb_depth, sp, 0).r;
+        if (sky_depth(depth)) continue;  // the sky sends nothing and hides nothing
+        vec3 e = world_at(sp, depth);
+        vec3 q = (u_view * vec4(e, 1.0)).xyz;
+        vec3 front = q - p, back = q + normalize(q) * u_thickness - p;
+        // the angles in the slice from the view vector, + toward omega, then as fractions of
+        // the hemisphere about the normal's angle n: 0 and 1 are its two horizons
+        float a0 = sgn * acos(clamp(dot(normalize(front), view_vec), -1.0, 1.0));
+        float a1 = sgn * acos(clamp(dot(normalize(back), view_vec), -1.0, 1.0));
+        vec2 h = clamp((vec2(min(a0, a1), max(a0, a1)) - n) / PI + 0.5, 0.0, 1.0);
+        uint lo = uint(floor(h.x * 32.0)), hi = uint(ceil(h.y * 32.0));
+        uint span = hi - lo;
+        uint mask = span >= 32u ? 0xffffffffu : span == 0u ? 0u : ((1u << span) - 1u) << lo;
+        vec3 v = e - s.position;
+        float d2 = dot(v, v);
+        if (d2 > u_gi_radius * u_gi_radius || d2 <= 0.0) continue;  // beyond R: neither sends nor hides
+        float hf = clamp((a0 - n) / PI + 0.5, 0.0, 0.99999);
+        float seen = (occluded & (1u << uint(hf * 32.0))) == 0u ? 1.0 : 0.0;
+        occluded |= mask;
+        if (seen <= 0.0) continue;
+        vec3 ne = decode_normal(texelFetch(gb_normal, sp, 0));
+        vec3 light = texelFetch(u_light, sp, 0).rgb;
+        if (u_bounce == 1) light += texelFetch(u_extra, sp, 0).rgb;
+        vec3 albedo = texelFetch(gb_albedo, sp, 0).rgb;
+        float f = seen * disk_transfer(s.position, s.normal, e, ne, sample_area(share, zr, e, ne));
+        indirect += albedo * light * f;
+        transfer += f;
+      }
+    }
+  }
+  return indirect;
+}
+// [/bitmask-glsl]
+
 // [ssgi]
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -92,7 +168,7 @@ void main() {
   for (int i = 0; i < u_samples; ++i) {
     vec2 u = pattern_point(i, jitter);
     for (int wide = 0; wide < 2; ++wide) {
-      if ((wide == 0 && u_ao_on == 0) || (wide == 1 && u_indirect_on == 0)) continue;
+      if ((wide == 0 && u_ao_on == 0) || (wide == 1 && (u_indirect_on == 0 || u_gather != 0))) continue;
       float radius = wide == 1 ? u_gi_radius : u_ao_radius;
       ivec2 sp = pixel + ivec2(round(u * (wide == 1 ? gi_px : ao_px)));
       if (sp == pixel || any(lessThan(sp, ivec2(0))) || any(greaterThanEqual(sp, ivec2(gb_size.xy)))) continue;
@@ -118,6 +194,7 @@ void main() {
       }
     }
   }
+  if (u_gather == 1 && u_indirect_on != 0) indirect = bitmask_indirect(pixel, s, gi_px, gi_share, jitter, transfer);
   // The form factors from a point to surfaces that do not overlap sum to at most 1 (the whole
   // hemisphere). Large sample disks close to the pixel (a wall beside the floor) overlap and
   // can sum to more: scale them back to 1, as the AO's occlusion is clamped.
