@@ -217,7 +217,9 @@ int main(int argc, char** argv) {
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         if (settings.method == ShadowMethod::Volumes)
           out << "sun shadow volumes: " << shadows.volume_stats().cap_triangles << " cap triangles, "
-              << shadows.volume_stats().side_quads << " sides to infinity\n";
+              << shadows.volume_stats().side_quads << " sides to infinity, no map (" << shadows.allocated_bytes() / 1024
+              << " KiB); frame took " << ms << " ms (wall clock, " << app.context().renderer() << ")\n";
+        else
         out << "sun shadows, " << f.mode << ": map " << settings.map_size << "x" << settings.map_size << " ("
             << shadows.allocated_bytes() / 1024 << " KiB), " << shadows.frustum().texel_world(settings.map_size) * 100.f
             << " cm per texel; frame took " << ms << " ms (wall clock, " << app.context().renderer() << ")\n";
