@@ -71,7 +71,7 @@ const CliSpec kCli{
     .summary = "Shadows from the sun in the deferred frame: a depth map from a fitted orthographic frustum, looked up "
                "with one comparison, PCF, the hardware comparison sampler, VSM or ESM.",
     .default_scene = "assets/atrium/atrium.gltf",
-    .modes = {"pcf", "hard", "pcf-hardware", "vsm", "esm"},  // the chapter's recommendation first
+    .modes = {"pcf", "hard", "pcf-hardware", "vsm", "esm", "volumes"},  // the chapter's recommendation first
     .knobs = {{"map", "shadow map width and height in texels (8192: 1.3 GiB with vsm or esm)", 1024, 16, 8192, true},
               {"kernel", "pcf: the k x k grid; vsm, esm: the box filter's width (odd)", 3, 1, 31, true},
               {"taps", "pcf: 0 for the k x k grid, or this many taps of a Poisson disk k texels across, rotated per "
@@ -215,6 +215,11 @@ int main(int argc, char** argv) {
       if (std::ostream& out = app.report()) {
         glFinish();
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        if (settings.method == ShadowMethod::Volumes)
+          out << "sun shadow volumes: " << shadows.volume_stats().cap_triangles << " cap triangles, "
+              << shadows.volume_stats().side_quads << " sides to infinity, no map (" << shadows.allocated_bytes() / 1024
+              << " KiB); frame took " << ms << " ms (wall clock, " << app.context().renderer() << ")\n";
+        else
         out << "sun shadows, " << f.mode << ": map " << settings.map_size << "x" << settings.map_size << " ("
             << shadows.allocated_bytes() / 1024 << " KiB), " << shadows.frustum().texel_world(settings.map_size) * 100.f
             << " cm per texel; frame took " << ms << " ms (wall clock, " << app.context().renderer() << ")\n";

@@ -21,6 +21,7 @@ constexpr GLuint kDepthUnit = ch03::DeferredFrame::kFirstStageUnit;  // 8: sampl
 constexpr GLuint kCompareUnit = kDepthUnit + 1;                      // 9: sampler2DShadow
 constexpr GLuint kMomentsUnit = kDepthUnit + 2;                      // 10: VSM / ESM, linear
 constexpr GLuint kFilterInputUnit = kDepthUnit + 3;                  // 11: the pre-filter's input
+constexpr GLuint kVolumeUnit = kDepthUnit + 4;                       // 12: the volumes' visibility
 }  // namespace
 
 ShadowMethod method_from_name(const std::string& name) {
@@ -106,12 +107,15 @@ void ShadowStage::allocate() {
 }
 
 std::size_t ShadowStage::allocated_bytes() const {
+  if (settings_.method == ShadowMethod::Volumes)  // the visibility bytes and the volumes' vertices
+    return std::size_t(volume_width_) * std::size_t(volume_height_) + volume_buffer_bytes_;
   const std::size_t texels = std::size_t(allocated_size_) * std::size_t(allocated_size_);
   return texels * (4 + (allocated_filtered_ ? 2 * 2 * std::size_t(allocated_bits_ / 8) : 0));
 }
 
 // [shadow-stage]
 void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics) {
+  if (settings_.method == ShadowMethod::Volumes) return draw_volumes(frame, metrics);
   allocate();
   const int n = settings_.map_size;
   const glm::mat4 inverse_view_projection = glm::inverse(frame.camera().projection * frame.camera().view);
@@ -187,6 +191,115 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
   glBindSampler(kMomentsUnit, linear_.id());
 }
 // [/shadow-stage]
+
+// [volumes-stage]
+void ShadowStage::draw_volumes(ch03::DeferredFrame& frame, PassMetrics* metrics) {
+  const ch02::GBuffer& g = frame.gbuffer();
+  const Scene& scene = scene_.scene();
+  if (adjacency_.empty())
+    for (const Mesh& m : scene.meshes) adjacency_.push_back(build_adjacency(scene, m));
+  {
+    // 1. The volumes on the CPU: every instance's casting triangles and net edges.
+    auto pass = timed(metrics, "shadow volumes: silhouettes and extrusion (CPU)");
+    volume_vertices_.clear();
+    volume_stats_ = {};
+    for (const Instance& inst : scene.instances) {
+      if (inst.mesh < 0) continue;
+      const VolumeCounts c = append_sun_volume(adjacency_[std::size_t(inst.mesh)], inst.model, sun_.direction,
+                                               settings_.volume_offset, volume_vertices_);
+      volume_stats_.cap_triangles += c.cap_triangles;
+      volume_stats_.side_quads += c.side_quads;
+    }
+    const std::size_t bytes = volume_vertices_.size() * sizeof(glm::vec4);
+    if (bytes > volume_buffer_bytes_ || volume_buffer_bytes_ == 0) {
+      volume_buffer_bytes_ = std::max<std::size_t>(bytes, 1024);
+      volume_buffer_ = gl::make_buffer(nullptr, volume_buffer_bytes_, GL_DYNAMIC_STORAGE_BIT);
+      glVertexArrayVertexBuffer(volume_vao_.id(), 0, volume_buffer_.id(), 0, sizeof(glm::vec4));
+      glEnableVertexArrayAttrib(volume_vao_.id(), 0);
+      glVertexArrayAttribFormat(volume_vao_.id(), 0, 4, GL_FLOAT, GL_FALSE, 0);
+      glVertexArrayAttribBinding(volume_vao_.id(), 0, 0);
+    }
+    if (bytes) glNamedBufferSubData(volume_buffer_.id(), 0, GLsizeiptr(bytes), volume_vertices_.data());
+  }
+  // The visibility target beside the G-buffer's depth-stencil (whose stencil the geometry
+  // pass cleared to 0, and which this pass leaves at 0).
+  if (volume_width_ != g.width() || volume_height_ != g.height() || volume_depth_stencil_ != g.depth_stencil()) {
+    volume_visibility_ = gl::make_texture_2d(GL_R8, g.width(), g.height());
+    volume_fbo_ = gl::Framebuffer();
+    glNamedFramebufferTexture(volume_fbo_.id(), GL_COLOR_ATTACHMENT0, volume_visibility_.id(), 0);
+    glNamedFramebufferTexture(volume_fbo_.id(), GL_DEPTH_STENCIL_ATTACHMENT, g.depth_stencil(), 0);
+    volume_width_ = g.width(), volume_height_ = g.height(), volume_depth_stencil_ = g.depth_stencil();
+  }
+  const ShaderProgram& p = program("06_shadows/shaders/shadow_volume.vert", "06_shadows/shaders/shadow_depth.frag", {});
+  const auto count = GLsizei(volume_vertices_.size());
+  glBindFramebuffer(GL_FRAMEBUFFER, volume_fbo_.id());
+  glViewport(0, 0, volume_width_, volume_height_);
+  glDisable(GL_BLEND), glDisable(GL_SCISSOR_TEST), glDisable(GL_CULL_FACE);
+  const GLfloat lit[] = {1, 1, 1, 1};
+  glClearNamedFramebufferfv(volume_fbo_.id(), GL_COLOR, 0, lit);
+  p.use();
+  p.set("u_view_projection", g.camera().view_projection());
+  glBindVertexArray(volume_vao_.id());
+  {
+    // 2. The z-fail count (Carmack's reverse) against the G-buffer's depth: where a volume's
+    // face lies behind the visible surface, +1 for a back face, -1 for a front face. What is
+    // left is the number of volumes the surface lies in: every face behind it is counted, so
+    // the count is right wherever the camera is, inside a volume too. Depth clamp instead of
+    // clipping at the near and far planes: the w = 0 corners lie beyond any far plane, and a
+    // cap cut off by the near plane would open the volume.
+    auto pass = timed(metrics, "shadow volumes: z-fail stencil count");
+    g.begin_depth_convention();
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_DEPTH_CLAMP);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glEnable(GL_STENCIL_TEST);
+    glStencilMask(0xff);
+    glStencilFunc(GL_ALWAYS, 0, 0xff);
+    glStencilOpSeparate(GL_BACK, GL_KEEP, GL_INCR_WRAP, GL_KEEP);
+    glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_DECR_WRAP, GL_KEEP);
+    glDrawArrays(GL_TRIANGLES, 0, count);
+    glDisable(GL_DEPTH_CLAMP);
+    ch02::GBuffer::restore_default_depth_convention();
+  }
+  {
+    // 3. The visibility term: 0 where the count is not 0 (in shadow; modulo 256: a pixel in
+    // exactly 256 volumes reads lit), 1 elsewhere. Then the stencil back to 0.
+    auto pass = timed(metrics, "shadow volumes: visibility from the stencil");
+    const ShaderProgram& fill = program("02_gbuffer/shaders/fullscreen.vert", "06_shadows/shaders/shadow_volume_fill.frag", {});
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDisable(GL_DEPTH_TEST);
+    glStencilFunc(GL_NOTEQUAL, 0, 0xff);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    fill.use();
+    full_screen_.draw();
+    glDisable(GL_STENCIL_TEST);
+    const GLint zero = 0;
+    glClearNamedFramebufferiv(volume_fbo_.id(), GL_STENCIL, 0, &zero);
+  }
+  if (settings_.count_volume_fragments) {
+    // The fill rate, counted exactly: the same triangles again with no depth or stencil test
+    // and nothing written, inside a GL_SAMPLES_PASSED query: every fragment they rasterise.
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glEnable(GL_DEPTH_CLAMP);
+    p.use();
+    glBindVertexArray(volume_vao_.id());
+    glBeginQuery(GL_SAMPLES_PASSED, fragments_query_.id());
+    glDrawArrays(GL_TRIANGLES, 0, count);
+    glEndQuery(GL_SAMPLES_PASSED);
+    GLuint64 samples = 0;
+    glGetQueryObjectui64v(fragments_query_.id(), GL_QUERY_RESULT, &samples);
+    volume_stats_.fragments = samples;
+    glDisable(GL_DEPTH_CLAMP);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  }
+  glBindVertexArray(0);
+  glEnable(GL_DEPTH_TEST);
+  glDepthMask(GL_TRUE);
+  glBindTextureUnit(kVolumeUnit, volume_visibility_.id());
+  glBindSampler(kVolumeUnit, nearest_.id());
+}
+// [/volumes-stage]
 
 bool ShadowStage::composite(ch03::DeferredFrame& frame, PassMetrics* metrics) {
   if (picture_ == ShadowPicture::None) return false;

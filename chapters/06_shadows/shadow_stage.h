@@ -14,13 +14,15 @@
 #include "chapters/02_gbuffer/deferred.h"
 #include "chapters/03_light_volumes/deferred_frame.h"
 #include "chapters/06_shadows/shadow_math.h"
+#include "chapters/06_shadows/shadow_volumes.h"
 #include "common/scene.h"
 #include "common/shader.h"
 
 namespace lp::ch06 {
 
-enum class ShadowMethod { Hard, Pcf, PcfHardware, Vsm, Esm };
-inline const std::vector<std::string> kMethodNames = {"hard", "pcf", "pcf-hardware", "vsm", "esm"};
+// Volumes: no map; the sun's shadow volumes counted in the stencil (z-fail), shadow_volumes.h.
+enum class ShadowMethod { Hard, Pcf, PcfHardware, Vsm, Esm, Volumes };
+inline const std::vector<std::string> kMethodNames = {"hard", "pcf", "pcf-hardware", "vsm", "esm", "volumes"};
 ShadowMethod method_from_name(const std::string& name);  // throws Error for an unknown one
 
 struct ShadowSettings {
@@ -37,6 +39,14 @@ struct ShadowSettings {
   float c = 80.f;               // ESM's exponent (window depth in [0, 1])
   bool fit_to_view = true;      // the map's box cut to what the camera sees (else the whole scene)
   int moment_bits = 32;         // VSM, ESM: the filtered map in RG32F (32) or RG16F (16), half the bytes
+  float volume_offset = 0.01f;  // volumes: metres each volume is pushed along the light ([silhouette])
+  bool count_volume_fragments = false;  // volumes: count the fragments the volumes rasterise (a second draw)
+};
+
+// What the last frame's shadow volumes were (method Volumes).
+struct VolumeStats {
+  std::size_t cap_triangles = 0, side_quads = 0;
+  std::uint64_t fragments = 0;  // rasterised by the volumes, every one (count_volume_fragments); else 0
 };
 
 // What composite() draws instead of the image.
@@ -52,6 +62,7 @@ class ShadowStage : public ch03::FrameStage {
   const LightFrustum& frustum() const { return frustum_; }
   // Bytes the method keeps per frame: the depth map, and the moments with their filter target.
   std::size_t allocated_bytes() const;
+  const VolumeStats& volume_stats() const { return volume_stats_; }
 
   ch03::ShaderHooks shader_hooks() const override;
   void before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics) override;
@@ -59,6 +70,7 @@ class ShadowStage : public ch03::FrameStage {
 
  private:
   void allocate();
+  void draw_volumes(ch03::DeferredFrame& frame, PassMetrics* metrics);
   const ShaderProgram& program(const std::string& vertex, const std::string& fragment, std::vector<std::string> defines);
   const SceneGpu& scene_;
   Light sun_;
@@ -76,6 +88,19 @@ class ShadowStage : public ch03::FrameStage {
   gl::Buffer block_;
   std::map<std::string, ShaderProgram> programs_;
   ch02::FullScreenPass full_screen_;
+  // Shadow volumes: each mesh's edge table (built on first use), the volumes' vertices, and
+  // the visibility they leave, one byte per pixel, beside the G-buffer's depth-stencil.
+  std::vector<MeshAdjacency> adjacency_;
+  std::vector<glm::vec4> volume_vertices_;
+  gl::Buffer volume_buffer_;
+  std::size_t volume_buffer_bytes_ = 0;
+  gl::VertexArray volume_vao_;
+  gl::Texture volume_visibility_{GL_TEXTURE_2D};
+  gl::Framebuffer volume_fbo_;
+  int volume_width_ = 0, volume_height_ = 0;
+  GLuint volume_depth_stencil_ = 0;
+  gl::Query fragments_query_{GL_SAMPLES_PASSED};
+  VolumeStats volume_stats_;
 };
 
 // The first directional light of the scene (the sun), or an Error naming the scene's lights.

@@ -12,6 +12,7 @@
 
 #include "chapters/06_shadows/shadow_math.h"
 #include "chapters/06_shadows/shadow_truth.h"
+#include "chapters/06_shadows/shadow_volumes.h"
 #include "common/error.h"
 
 using namespace lp;
@@ -230,4 +231,85 @@ TEST(ShadowMath, PoissonDiskIsSpreadAndInTheDisk) {
   }
   EXPECT_THROW(poisson_disk(0, 7), Error);
   EXPECT_THROW(poisson_disk(kMaxPoissonTaps + 1, 7), Error);
+}
+
+// Shadow volumes' edge table and silhouettes (shadow_volumes.h), on meshes small enough to
+// count by hand.
+namespace {
+// A mesh of the given triangles (corner positions, 3 per triangle), each triangle with its own
+// three vertices: the welding must find the shared corners.
+lp::Scene soup(const std::vector<glm::vec3>& corners, bool double_sided = false) {
+  lp::Scene s;
+  for (const glm::vec3& p : corners) {
+    lp::Vertex v;
+    v.position = p;
+    s.indices.push_back(std::uint32_t(s.vertices.size()));
+    s.vertices.push_back(v);
+  }
+  lp::Material m;
+  m.double_sided = double_sided;
+  s.materials.push_back(m);
+  s.meshes.push_back({"soup", {{0, std::uint32_t(s.indices.size()), 0}}});
+  return s;
+}
+// The unit cube's 12 triangles, wound outward.
+std::vector<glm::vec3> cube() {
+  const glm::vec3 c[8] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  const int quads[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {3, 7, 6, 2}, {0, 4, 7, 3}, {1, 2, 6, 5}};
+  std::vector<glm::vec3> out;
+  for (const auto& q : quads)
+    for (int i : {q[0], q[1], q[2], q[0], q[2], q[3]}) out.push_back(c[i]);
+  return out;
+}
+}  // namespace
+
+TEST(ShadowVolumes, ACubeLitFromAboveHasFourSilhouetteEdges) {
+  const lp::Scene s = soup(cube());
+  const MeshAdjacency a = build_adjacency(s, s.meshes[0]);
+  EXPECT_EQ(a.corners.size(), 8u);   // 36 vertices welded to the cube's 8 corners
+  EXPECT_EQ(a.edges.size(), 18u);    // 12 edges of the cube + 6 face diagonals
+  EXPECT_EQ(a.open_edges, 0u);
+  EXPECT_EQ(a.non_manifold_edges, 0u);
+  std::vector<glm::vec4> v;
+  const VolumeCounts c = append_sun_volume(a, glm::mat4(1), {0, -1, 0}, 0.f, v);
+  EXPECT_EQ(c.cap_triangles, 2u);    // the top face
+  EXPECT_EQ(c.side_quads, 4u);       // the top face's border: lit top, unlit sides
+  EXPECT_EQ(v.size(), 3 * (c.cap_triangles + c.side_quads));
+  // Every side has one corner at infinity along the light, the others on the cube's top.
+  for (std::size_t i = 3 * c.cap_triangles; i < v.size(); i += 3) {
+    EXPECT_EQ(v[i + 1], glm::vec4(0, -1, 0, 0));
+    EXPECT_EQ(v[i].w, 1.f);
+    EXPECT_EQ(v[i].y, 1.f);
+  }
+  // Lit along a diagonal, three faces face the light and six edges are the silhouette.
+  v.clear();
+  const VolumeCounts d = append_sun_volume(a, glm::mat4(1), glm::normalize(glm::vec3(-1, -1, -1)), 0.f, v);
+  EXPECT_EQ(d.cap_triangles, 6u);
+  EXPECT_EQ(d.side_quads, 6u);
+}
+
+TEST(ShadowVolumes, AnOpenQuadCastsFromEitherSideThroughItsBorder) {
+  // A one-sided quad facing up, 4 open edges; lit from below it still casts (an open mesh).
+  const lp::Scene s = soup({{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {0, 0, 0}, {1, 0, 1}, {1, 0, 0}});
+  const MeshAdjacency a = build_adjacency(s, s.meshes[0]);
+  EXPECT_EQ(a.open_edges, 4u);
+  for (float y : {-1.f, 1.f}) {
+    std::vector<glm::vec4> v;
+    const VolumeCounts c = append_sun_volume(a, glm::mat4(1), {0, y, 0}, 0.f, v);
+    EXPECT_EQ(c.cap_triangles, 2u);
+    EXPECT_EQ(c.side_quads, 4u);  // the border; the shared diagonal cancels
+  }
+}
+
+TEST(ShadowVolumes, ANonManifoldEdgeGetsItsNetCount) {
+  // Three triangles on the edge (0,0,0)-(1,0,0), all facing up and running the same way along
+  // it: the edge's net count is 3, so three sides there (the prisms' walls, not cancelled).
+  const lp::Scene s = soup({{0, 0, 0}, {1, 0, 0}, {0.5f, 0, -1}, {0, 0, 0}, {1, 0, 0}, {0.5f, 0.1f, -1},
+                            {0, 0, 0}, {1, 0, 0}, {0.5f, 0.2f, -1}});
+  const MeshAdjacency a = build_adjacency(s, s.meshes[0]);
+  EXPECT_EQ(a.non_manifold_edges, 1u);
+  std::vector<glm::vec4> v;
+  const VolumeCounts c = append_sun_volume(a, glm::mat4(1), {0, -1, 0}, 0.f, v);
+  EXPECT_EQ(c.cap_triangles, 3u);
+  EXPECT_EQ(c.side_quads, 3u + 6u);  // 3 on the shared edge, and each triangle's two own edges
 }
