@@ -1,6 +1,9 @@
 #include "chapters/03_light_volumes/deferred_frame.h"
 
+#include <iostream>
+
 #include "chapters/01_forward/ground_truth.h"
+#include "chapters/03_light_volumes/light_radius.h"
 #include "common/error.h"
 
 namespace lp::ch03 {
@@ -135,5 +138,11 @@ void DeferredFrame::render(const FrameCamera& camera, const FrameOutput& output,
   }
 }
 // [/frame]
+
+void use_lights(DeferredFrame& frame, const Scene& scene, const std::vector<Light>& lights, bool say_warnings) {
+  frame.volumes().set_lights(build_light_set(lights, cut_threshold(1.f, peak_reflectance(scene)), frame.volumes().shapes()));
+  if (say_warnings)
+    for (const auto& w : frame.volumes().lights().warnings) std::cerr << "warning: " << w << '\n';
+}
 
 }  // namespace lp::ch03

@@ -170,4 +170,10 @@ class DeferredFrame {
   glm::vec3 ambient_{0}, background_;
 };
 
+// What every program from chapter 03 on does first: `lights` (the scene's, or a chapter's
+// variant of them) cut where they fall below one output step for the scene's glossiest
+// material (light_radius.h), set as the frame's local and global lights. The light set's
+// warnings (a light it cannot draw, and why) go to std::cerr when `say_warnings`.
+void use_lights(DeferredFrame& frame, const Scene& scene, const std::vector<Light>& lights, bool say_warnings = true);
+
 }  // namespace lp::ch03

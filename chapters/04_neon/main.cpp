@@ -99,9 +99,7 @@ int main(int argc, char** argv) {
     // The deferred path: chapter 03's frame, its lights cut as chapter 03 cuts them, and
     // the tubes as a stage of it.
     ch03::DeferredFrame frame(app.scene_gpu());
-    frame.volumes().set_lights(ch03::build_light_set(
-        app.scene().lights, ch03::cut_threshold(1.f, ch03::peak_reflectance(app.scene())), frame.volumes().shapes()));
-    for (const auto& w : frame.volumes().lights().warnings) std::cerr << "warning: " << w << '\n';
+    ch03::use_lights(frame, app.scene(), app.scene().lights);
     NeonStage stage(app.scene_gpu(), tubes);
     frame.add_stage(stage);
     NeonVolumes& neon = stage.volumes();

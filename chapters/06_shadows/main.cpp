@@ -153,11 +153,7 @@ int main(int argc, char** argv) {
       if (float(f.knob("sun")) != sun_scale) {
         const bool first = sun_scale < 0.f;
         sun_scale = float(f.knob("sun"));
-        frame.volumes().set_lights(ch03::build_light_set(scaled_lights(app.scene().lights, sun_scale),
-                                                         ch03::cut_threshold(1.f, ch03::peak_reflectance(app.scene())),
-                                                         frame.volumes().shapes()));
-        if (first)
-          for (const auto& w : frame.volumes().lights().warnings) std::cerr << "warning: " << w << '\n';
+        ch03::use_lights(frame, app.scene(), scaled_lights(app.scene().lights, sun_scale), first);
       }
       first_frame = false;
       // [settings]

@@ -106,9 +106,7 @@ AoSettings settings_from(const Frame& f) {
 int main(int argc, char** argv) {
   return run_chapter(argc, argv, kChapter, [](App& app) {
     ch03::DeferredFrame frame(app.scene_gpu());
-    frame.volumes().set_lights(ch03::build_light_set(
-        app.scene().lights, ch03::cut_threshold(1.f, ch03::peak_reflectance(app.scene())), frame.volumes().shapes()));
-    for (const auto& w : frame.volumes().lights().warnings) std::cerr << "warning: " << w << '\n';
+    ch03::use_lights(frame, app.scene(), app.scene().lights);
     AoStage ao;
     frame.add_stage(ao);
 

@@ -114,9 +114,7 @@ int main(int argc, char** argv) {
   return run_chapter(argc, argv, kChapter, [](App& app) {
     // 1. The frame: chapter 03's deferred frame with the scene's lights, cut at one output step.
     ch03::DeferredFrame frame(app.scene_gpu());
-    frame.volumes().set_lights(ch03::build_light_set(
-        app.scene().lights, ch03::cut_threshold(1.f, ch03::peak_reflectance(app.scene())), frame.volumes().shapes()));
-    for (const auto& w : frame.volumes().lights().warnings) std::cerr << "warning: " << w << '\n';
+    ch03::use_lights(frame, app.scene(), app.scene().lights);
     // 2. The stage: its ambient hook leaves the ambient out of the global pass; after the direct
     //    lights it computes AO + indirect light in one pass and adds A x ambient + L1_ind.
     GiStage gi;

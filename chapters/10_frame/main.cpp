@@ -89,9 +89,7 @@ int main(int argc, char** argv) {
   return run_chapter(argc, argv, kChapter, [](App& app) {
     // 1. Chapter 03's deferred frame, its lights cut as chapter 03 cuts them.
     ch03::DeferredFrame frame(app.scene_gpu());
-    frame.volumes().set_lights(ch03::build_light_set(
-        app.scene().lights, ch03::cut_threshold(1.f, ch03::peak_reflectance(app.scene())), frame.volumes().shapes()));
-    for (const auto& w : frame.volumes().lights().warnings) std::cerr << "warning: " << w << '\n';
+    ch03::use_lights(frame, app.scene(), app.scene().lights);
     // 2. This chapter's stage: the glass, after the composite, lit by the same lights.
     TransparencyStage glass(app.scene_gpu(), app.scene().lights);
     frame.add_stage(glass);
