@@ -82,25 +82,48 @@ SceneGpu::SceneGpu(const Scene& scene)
 // determinant) turns its triangles' winding around, so its front faces are the other
 // winding; and a doubleSided material is drawn with culling off (its shaders flip the normal
 // of back faces: chapter 01's surface_normal()). The pass's own state is restored after.
+namespace {
+class GltfFaceRules {
+ public:
+  GltfFaceRules() : culling_(glIsEnabled(GL_CULL_FACE)) { glGetIntegerv(GL_FRONT_FACE, &front_); }
+  ~GltfFaceRules() {  // GL calls: nothing here throws
+    glFrontFace(GLenum(front_));
+    if (culling_) glEnable(GL_CULL_FACE);
+  }
+  GltfFaceRules(const GltfFaceRules&) = delete;
+  GltfFaceRules& operator=(const GltfFaceRules&) = delete;
+  void instance(const Instance& inst) const {
+    const bool mirrored = glm::determinant(glm::mat3(inst.model)) < 0;
+    glFrontFace(mirrored ? (front_ == GL_CCW ? GL_CW : GL_CCW) : GLenum(front_));
+  }
+  void material(const Material& m) const {
+    if (culling_) m.double_sided ? glDisable(GL_CULL_FACE) : glEnable(GL_CULL_FACE);
+  }
+
+ private:
+  bool culling_;
+  GLint front_ = GL_CCW;
+};
+
+void draw_elements(const Primitive& p) {
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(p.index_count), GL_UNSIGNED_INT,
+                 reinterpret_cast<const void*>(std::uintptr_t(p.first_index) * sizeof(std::uint32_t)));
+}
+}  // namespace
+
 void SceneGpu::draw(const DrawCallback& before_each_primitive, Primitives which) const {
   glBindVertexArray(vao_.id());
-  const bool culling = glIsEnabled(GL_CULL_FACE);
-  GLint front = GL_CCW;
-  glGetIntegerv(GL_FRONT_FACE, &front);
-  const GLenum other = front == GL_CCW ? GL_CW : GL_CCW;
+  const GltfFaceRules rules;
   for (const auto& inst : scene_.instances) {
-    glFrontFace(glm::determinant(glm::mat3(inst.model)) < 0 ? other : GLenum(front));
+    rules.instance(inst);
     for (const auto& p : scene_.meshes[inst.mesh].primitives) {
       const Material& material = scene_.materials[p.material];
       if ((which == Primitives::Opaque && material.blend) || (which == Primitives::Blended && !material.blend)) continue;
-      if (culling) material.double_sided ? glDisable(GL_CULL_FACE) : glEnable(GL_CULL_FACE);
+      rules.material(material);
       before_each_primitive(inst, material);
-      glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(p.index_count), GL_UNSIGNED_INT,
-                     reinterpret_cast<const void*>(std::uintptr_t(p.first_index) * sizeof(std::uint32_t)));
+      draw_elements(p);
     }
   }
-  glFrontFace(GLenum(front));
-  if (culling) glEnable(GL_CULL_FACE);
 }
 // [/winding]
 
@@ -108,16 +131,10 @@ void SceneGpu::draw_primitive(std::size_t instance, std::size_t primitive) const
   const Instance& inst = scene_.instances.at(instance);
   const Primitive& p = scene_.meshes.at(inst.mesh).primitives.at(primitive);
   glBindVertexArray(vao_.id());
-  // The same two glTF rules as draw() (above), for one primitive.
-  const bool culling = glIsEnabled(GL_CULL_FACE);
-  GLint front = GL_CCW;
-  glGetIntegerv(GL_FRONT_FACE, &front);
-  if (glm::determinant(glm::mat3(inst.model)) < 0) glFrontFace(front == GL_CCW ? GL_CW : GL_CCW);
-  if (culling && scene_.materials.at(p.material).double_sided) glDisable(GL_CULL_FACE);
-  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(p.index_count), GL_UNSIGNED_INT,
-                 reinterpret_cast<const void*>(std::uintptr_t(p.first_index) * sizeof(std::uint32_t)));
-  glFrontFace(GLenum(front));
-  if (culling) glEnable(GL_CULL_FACE);
+  const GltfFaceRules rules;  // the same two rules as draw(), for one primitive
+  rules.instance(inst);
+  rules.material(scene_.materials.at(p.material));
+  draw_elements(p);
 }
 
 std::size_t SceneGpu::triangle_count() const {

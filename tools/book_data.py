@@ -17,6 +17,9 @@ import io
 import sys
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from book_numbers import Table  # noqa: E402
+
 ROOT = Path(__file__).resolve().parent.parent
 FIGURES = ROOT / "book" / "figures"
 HEADER = ("# The tests' own measurements (tests/unit/book_data.h), collected by tools/book_data.py "
@@ -24,9 +27,9 @@ HEADER = ("# The tests' own measurements (tests/unit/book_data.h), collected by 
 
 
 def read_rows(path: Path):
-    lines = [l for l in path.read_text().splitlines() if l.strip() and not l.startswith("#")]
-    reader = csv.DictReader(lines)
-    return list(reader.fieldnames or []), list(reader)
+    """The columns and rows of a CSV, '#' lines skipped: tools/book_numbers.py's reader."""
+    t = Table(path)
+    return t.columns, t.rows
 
 
 def key_count(row_file: Path) -> int:

@@ -96,11 +96,7 @@ int main(int argc, char** argv) {
       // 1. The lights: chapter 03's set for the count asked, cut where chapter 03 cuts them.
       if (f.knob("lights") != lights_key) {
         lights_key = f.knob("lights");
-        ch03::LightSet set = ch03::build_light_set(ch03::lights_for_count(app.scene(), f.knob_int("lights")),
-                                                   ch03::cut_threshold(1.f, ch03::peak_reflectance(app.scene())),
-                                                   frame.volumes().shapes());
-        for (const auto& w : set.warnings) std::cerr << "warning: " << w << '\n';
-        frame.volumes().set_lights(std::move(set));
+        ch03::use_lights(frame, app.scene(), ch03::lights_for_count(app.scene(), f.knob_int("lights")));
       }
       // 2. The culling: chapter 03's stencil volumes, or this chapter's tiles or clusters.
       const bool ours = f.mode != "stencil";
