@@ -17,8 +17,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from plot import Series, plot, read_csv  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
-MODES = ["stencil", "tiled", "tiled-fragment", "clustered", "clustered-fragment"]
-PASSES = [("depth_bounds_ms", "depth bounds"), ("assign_ms", "assign"), ("shade_ms", "shade")]
+MODES = ["stencil", "tiled", "tiled-2.5d", "tiled-fragment", "clustered", "clustered-fragment", "clustered-forward"]
+PASSES = [("depth_bounds_ms", "depth bounds"), ("assign_ms", "assign"), ("prepass_ms", "depth pre-pass"),
+          ("shade_ms", "shade")]
 
 # The pictures: (file, program arguments); 1920x1080 would take minutes a picture on llvmpipe.
 PICTURES = [
@@ -45,19 +46,21 @@ def plots(d: Path, csv: Path, tag: str, where: str):
          "local lights (log)", f"ms per frame ({unit}, log)", xlog=True, ylog=True)
     plot(d / f"09_local_{tag}.svg", f"The local lights' passes against lights ({where})", note, series(rows, "local_ms"),
          "local lights (log)", f"ms of the local lights ({unit}, log)", xlog=True, ylog=True)
+    # Each method's passes that it runs (a column of 0 or absent: a pass it does not have).
     split = [Series(f"{m}: {name}", [(float(r["lights"]), float(r[col])) for r in rows if r["method"] == m],
                     dashed=(m == "tiled"))
-             for m in ("clustered", "tiled") for col, name in PASSES if any(r["method"] == m for r in rows)]
+             for m in ("clustered", "tiled", "clustered-forward") for col, name in PASSES
+             if any(r["method"] == m and float(r.get(col) or 0) > 0 for r in rows)]
     plot(d / f"09_passes_{tag}.svg", f"Depth bounds, assignment and shading ({where})", note, split,
          "local lights (log)", f"ms ({unit}, log)", xlog=True, ylog=True)
     plot(d / f"09_evaluated_per_lit_{tag}.svg", "Lights evaluated per light that lights the pixel",
          "exact counts (the same on any renderer at this size); stencil: chapter 3's overshading",
-         series(rows, "evaluated_per_lit", ["stencil", "tiled", "clustered"]), "local lights (log)",
+         series(rows, "evaluated_per_lit", ["stencil", "tiled", "tiled-2.5d", "clustered"]), "local lights (log)",
          "evaluated / lit (log)", xlog=True, ylog=True)
     ours = [m for m in MODES if m != "stencil"]
     plot(d / f"09_memory_{tag}.svg", "Memory of the light lists", note,
          [Series(m, [(float(r["lights"]), float(r["list_bytes"]) / 2**20) for r in rows if r["method"] == m])
-          for m in ("tiled", "clustered") if m in ours], "local lights (log)", "MiB (index list, cells, bounds, lights; log)",
+          for m in ("tiled", "clustered", "clustered-forward") if m in ours], "local lights (log)", "MiB (index list, cells, bounds, lights; log)",
          xlog=True, ylog=True)
 
 

@@ -78,4 +78,22 @@ bool sphere_meets_box(const glm::vec3& centre, float radius, const Box& box) {
 }
 // [/sphere-box]
 
+// [depth-bits]
+int depth_bin(float lo, float hi, float d) {
+  const float t = (d - lo) / std::max(hi - lo, 1e-30f) * float(kDepthBins);
+  return int(std::clamp(std::floor(t), 0.f, float(kDepthBins - 1)));  // clamped as a float: no overflow
+}
+
+std::uint32_t depth_range_bits(float lo, float hi, float d0, float d1) {
+  const int b0 = depth_bin(lo, hi, d0), b1 = depth_bin(lo, hi, d1);
+  const std::uint32_t upto_b1 = b1 == kDepthBins - 1 ? 0xFFFFFFFFu : (1u << (b1 + 1)) - 1u;
+  return upto_b1 & ~((1u << b0) - 1u);
+}
+
+std::uint32_t light_depth_bits(float lo, float hi, float z, float radius) {
+  const float r = radius * (1.f + 1e-5f) + 1e-6f + kDepthPad * hi;
+  return depth_range_bits(lo, hi, z - r, z + r);
+}
+// [/depth-bits]
+
 }  // namespace lp::ch09

@@ -8,6 +8,8 @@
 // - clustered: `slices` ranges fixed in advance, exponential in depth (Olsson et al. 2012):
 //   slice k spans  near * (far / near)^(k / S)  to  near * (far / near)^((k + 1) / S),
 //   so every cell is about as deep as it is wide, near and far.
+#include <cstdint>
+
 #include <glm/glm.hpp>
 
 #include "common/camera.h"
@@ -49,6 +51,21 @@ Box cluster_box(const FrameCamera& camera, const Grid& g, int tx, int ty, int sl
 // cut distance is never left out by a rounding of the other test.
 bool sphere_meets_box(const glm::vec3& centre, float radius, const Box& box);
 // [/grid]
+
+// Harada's 2.5D culling (Harada, Forward+, 2012) for tiled shading: a tile's depth range
+// [lo, hi] is cut into 32 equal bins. The tile's mask has bit b set where one of its surfaces
+// lies in bin b; a light's mask has the bins its sphere's depth extent overlaps. A light the
+// tile's box lets through is kept only where the two masks share a bit, so a lamp post in
+// front of a far wall no longer hands the wall's tile every light in the gap between them.
+inline constexpr int kDepthBins = 32;
+// The bin of view depth d in [lo, hi] (clamped: depths outside fall in the end bins).
+int depth_bin(float lo, float hi, float d);
+// Bits of the bins that [d0, d1] overlaps (d0 <= d1).
+std::uint32_t depth_range_bits(float lo, float hi, float d0, float d1);
+// The light's mask: its centre's view depth z and cut radius, padded as sphere_meets_box is,
+// plus kDepthPad of the tile's far depth, so that a surface the light reaches never falls in
+// a bin the light's mask leaves out by a rounding of the two computations.
+std::uint32_t light_depth_bits(float lo, float hi, float z, float radius);
 
 // The relative depth padding of cell_box (and grid.glsl): far larger than float rounding in
 // a view depth (about 1e-7 relative), far smaller than any slice (S <= 256 over 1e6: 5 %).

@@ -15,11 +15,14 @@ ClusterSettings settings_for_mode(const std::string& name, ClusterSettings s) {
   if (!is_cluster_mode(name)) throw Error("unknown culling mode '" + name + "'");
   s.kind = name.rfind("tiled", 0) == 0 ? CullKind::Tiled : CullKind::Clustered;
   s.shade = name.find("fragment") != std::string::npos ? ShadeIn::Fragment : ShadeIn::Compute;
+  s.depth_mask = name.find("2.5d") != std::string::npos;
   return s;
 }
 
 std::string mode_name(const ClusterSettings& s) {
-  return std::string(s.kind == CullKind::Tiled ? "tiled" : "clustered") + (s.shade == ShadeIn::Fragment ? "-fragment" : "");
+  const bool mask = s.kind == CullKind::Tiled && s.depth_mask;
+  return std::string(s.kind == CullKind::Tiled ? "tiled" : "clustered") + (mask ? "-2.5d" : "") +
+         (s.shade == ShadeIn::Fragment ? "-fragment" : "");
 }
 
 std::vector<std::string> ClusteredLights::pass_names(const std::string& mode) {
@@ -101,57 +104,8 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
                            ch03::LightVolumes::Output output) {
   const FrameCamera& camera = view.camera;
   const int w = light.width(), h = light.height();
-  const bool clustered = settings_.kind == CullKind::Clustered;
-  grid_ = clustered ? grid_of_counts(w, h, settings_.clusters.x, settings_.clusters.y, settings_.clusters.z,
-                                     camera.znear, camera.zfar)
-                    : grid_of_tiles(w, h, settings_.tile_px, 1, camera.znear, camera.zfar);
-  // Bounded work and memory for any knob values: at most 2^22 cells (32 MiB of cell records).
-  if (std::uint64_t(grid_.tiles_x) * std::uint64_t(grid_.tiles_y) * std::uint64_t(grid_.slices) > (1u << 22))
-    throw Error("clustered lights: a grid of " + std::to_string(grid_.tiles_x) + " x " + std::to_string(grid_.tiles_y) +
-                " x " + std::to_string(grid_.slices) + " cells is more than 4 194 304; use larger tiles or fewer slices");
-  upload_lights();
-  stats_ = {};
-  stats_.cells = grid_.cells();
-
-  std::vector<std::string> defines = view.defines;
-  for (const auto& d : view.hooks.defines()) defines.push_back(d);
-  if (clustered) defines.push_back("CLUSTERED 1");
-  if (clustered && settings_.all_cells) defines.push_back("ALL_CELLS 1");
-
-  // The cells and the bounds: one (offset, count) per cell; tiled: (min, max) per tile,
-  // clustered: an occupied flag per cell.
-  const std::size_t cells_bytes = std::size_t(grid_.cells()) * 8;
-  const std::size_t bounds_bytes = clustered ? std::size_t(grid_.cells()) * 4 : std::size_t(grid_.cells()) * 8;
-  if (cells_bytes != cells_bytes_) glNamedBufferData(cells_.id(), GLsizeiptr(cells_bytes_ = cells_bytes), nullptr, GL_DYNAMIC_DRAW);
-  if (bounds_bytes != bounds_bytes_) glNamedBufferData(bounds_.id(), GLsizeiptr(bounds_bytes_ = bounds_bytes), nullptr, GL_DYNAMIC_DRAW);
-  if (capacity_ == 0) {
-    capacity_ = std::max<std::uint32_t>(settings_.initial_indices, 1);
-    glNamedBufferData(indices_.id(), GLsizeiptr(capacity_) * 4, nullptr, GL_DYNAMIC_DRAW);
-    glNamedBufferData(state_.id(), sizeof(ListState), nullptr, GL_DYNAMIC_READ);
-  }
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, lights_.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, cells_.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, bounds_.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, indices_.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, state_.id());
+  const std::vector<std::string> defines = build_lists(w, h, view);
   const std::vector<std::string> names = pass_names(name());
-
-  // 1. Depth bounds: what depths each tile's surfaces span (tiled), which clusters hold any (clustered).
-  {
-    auto pass = timed(metrics_, names[0]);
-    const std::uint32_t zero = 0;
-    glClearNamedBufferData(bounds_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    const ShaderProgram& p = program(GL_COMPUTE_SHADER, "09_clustered/shaders/depth_bounds.comp", defines);
-    set_grid_uniforms(p, camera);
-    p.use();
-    glDispatchCompute(GLuint(grid_.tiles_x), GLuint(grid_.tiles_y), 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-  }
-  // 2. Assign: each cell's lights into the index list; grown and run again if it did not fit.
-  {
-    auto pass = timed(metrics_, names[1]);
-    assign(defines, camera);
-  }
   // 3. Shade: each pixel adds the lights of its cell into L1 and L2.
   {
     auto pass = timed(metrics_, names[2]);
@@ -188,6 +142,67 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
   light.bind();
 }
 // [/draw]
+
+// [build-lists]
+std::vector<std::string> ClusteredLights::build_lists(int w, int h, const ch03::SurfaceView& view) {
+  const FrameCamera& camera = view.camera;
+  const bool clustered = settings_.kind == CullKind::Clustered;
+  grid_ = clustered ? grid_of_counts(w, h, settings_.clusters.x, settings_.clusters.y, settings_.clusters.z,
+                                     camera.znear, camera.zfar)
+                    : grid_of_tiles(w, h, settings_.tile_px, 1, camera.znear, camera.zfar);
+  // Bounded work and memory for any knob values: at most 2^22 cells (32 MiB of cell records).
+  if (std::uint64_t(grid_.tiles_x) * std::uint64_t(grid_.tiles_y) * std::uint64_t(grid_.slices) > (1u << 22))
+    throw Error("clustered lights: a grid of " + std::to_string(grid_.tiles_x) + " x " + std::to_string(grid_.tiles_y) +
+                " x " + std::to_string(grid_.slices) + " cells is more than 4 194 304; use larger tiles or fewer slices");
+  upload_lights();
+  stats_ = {};
+  stats_.cells = grid_.cells();
+
+  std::vector<std::string> defines = view.defines;
+  for (const auto& d : view.hooks.defines()) defines.push_back(d);
+  if (clustered) defines.push_back("CLUSTERED 1");
+  if (clustered && settings_.all_cells) defines.push_back("ALL_CELLS 1");
+  const bool mask = !clustered && settings_.depth_mask;
+  if (mask) defines.push_back("DEPTH_MASK 1");
+
+  // The cells and the bounds: one (offset, count) per cell; tiled: (min, max) per tile and
+  // with the depth mask its 32 bins, clustered: an occupied flag per cell.
+  const std::size_t cells_bytes = std::size_t(grid_.cells()) * 8;
+  const std::size_t bounds_bytes = std::size_t(grid_.cells()) * 4 * (clustered ? 1 : mask ? 3 : 2);
+  if (cells_bytes != cells_bytes_) glNamedBufferData(cells_.id(), GLsizeiptr(cells_bytes_ = cells_bytes), nullptr, GL_DYNAMIC_DRAW);
+  if (bounds_bytes != bounds_bytes_) glNamedBufferData(bounds_.id(), GLsizeiptr(bounds_bytes_ = bounds_bytes), nullptr, GL_DYNAMIC_DRAW);
+  if (capacity_ == 0) {
+    capacity_ = std::max<std::uint32_t>(settings_.initial_indices, 1);
+    glNamedBufferData(indices_.id(), GLsizeiptr(capacity_) * 4, nullptr, GL_DYNAMIC_DRAW);
+    glNamedBufferData(state_.id(), sizeof(ListState), nullptr, GL_DYNAMIC_READ);
+  }
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, lights_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, cells_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, bounds_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, indices_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, state_.id());
+  const std::vector<std::string> names = pass_names(name());
+
+  // 1. Depth bounds: what depths each tile's surfaces span (tiled), which clusters hold any
+  //    (clustered; not needed when every cell gets its list).
+  if (!(clustered && settings_.all_cells)) {
+    auto pass = timed(metrics_, names[0]);
+    const std::uint32_t zero = 0;
+    glClearNamedBufferData(bounds_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    const ShaderProgram& p = program(GL_COMPUTE_SHADER, "09_clustered/shaders/depth_bounds.comp", defines);
+    set_grid_uniforms(p, camera);
+    p.use();
+    glDispatchCompute(GLuint(grid_.tiles_x), GLuint(grid_.tiles_y), 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+  // 2. Assign: each cell's lights into the index list; grown and run again if it did not fit.
+  {
+    auto pass = timed(metrics_, names[1]);
+    assign(defines, camera);
+  }
+  return defines;
+}
+// [/build-lists]
 
 void ClusteredLights::assign(const std::vector<std::string>& defines, const FrameCamera& camera) {
   const ShaderProgram& p = program(GL_COMPUTE_SHADER, "09_clustered/shaders/assign.comp", defines);

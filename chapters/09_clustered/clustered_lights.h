@@ -32,6 +32,7 @@ struct ClusterSettings {
   CullKind kind = CullKind::Clustered;
   ShadeIn shade = ShadeIn::Compute;
   int tile_px = 16;          // tiled: square tiles of this many pixels
+  bool depth_mask = false;   // tiled: Harada's 2.5D culling, 32 depth bins per tile (cluster_grid.h)
   glm::ivec3 clusters{16, 9, 24};  // clustered: tiles across, tiles down, depth slices (DOOM 2016's)
   // The index list starts this large (indices) and grows to what a frame needs, re-running
   // the assignment, up to max_indices. grow = false keeps it as it is: a cell that does not
@@ -43,9 +44,10 @@ struct ClusterSettings {
   // the G-buffer's surfaces occupy, so that any fragment a forward pass draws finds its lights.
   bool all_cells = false;
 };
-// The four ways of the program's --mode, beside chapter 03's: "tiled", "tiled-fragment",
-// "clustered" (compute), "clustered-fragment".
-inline const std::vector<std::string> kClusterModes = {"tiled", "tiled-fragment", "clustered", "clustered-fragment"};
+// The five ways of the program's --mode, beside chapter 03's: "tiled", "tiled-2.5d" (with the
+// depth mask), "tiled-fragment", "clustered" (compute), "clustered-fragment".
+inline const std::vector<std::string> kClusterModes = {"tiled", "tiled-2.5d", "tiled-fragment", "clustered",
+                                                       "clustered-fragment"};
 bool is_cluster_mode(const std::string& name);
 ClusterSettings settings_for_mode(const std::string& name, ClusterSettings base = {});  // throws Error
 std::string mode_name(const ClusterSettings& s);
@@ -80,6 +82,9 @@ class ClusteredLights : public ch03::LocalLightPass {
   bool times_own_passes() const override { return true; }
   void set_metrics(PassMetrics* metrics) override { metrics_ = metrics; }
   static std::vector<std::string> pass_names(const std::string& mode);
+  // Passes 1 and 2 alone (depth bounds, assign) for a w x h image seen as `view`: the lists
+  // draw() shades from, and a forward pass's (ClusteredForward). Returns the shaders' defines.
+  std::vector<std::string> build_lists(int w, int h, const ch03::SurfaceView& view);
 
   const ClusterSettings& settings() const { return settings_; }
   void set_settings(const ClusterSettings& s) { settings_ = s; }

@@ -4,7 +4,8 @@
 // of clusters (exponential depth slices), and each pixel is lit by its cell's list alone,
 // in compute or in a full-screen fragment pass. The lights, their cut and their lighting
 // are chapter 03's, so every mode gives chapter 03's image; the modes are chapter 03's
-// stencil volumes and the four ways of this chapter, `--show` draws the heat maps.
+// stencil volumes and the five ways of this chapter (tiled with Harada's 2.5D depth mask
+// among them), `--show` draws the heat maps.
 #include <chrono>
 #include <iostream>
 #include <memory>
@@ -16,6 +17,7 @@
 #include "chapters/03_light_volumes/light_counts.h"
 #include "chapters/03_light_volumes/light_radius.h"
 #include "chapters/09_clustered/cluster_picture.h"
+#include "chapters/09_clustered/clustered_forward.h"
 #include "chapters/09_clustered/clustered_lights.h"
 #include "common/app.h"
 
@@ -30,7 +32,8 @@ std::vector<std::string> modes() {
   std::vector<std::string> m = {"clustered"};
   for (const auto& c : kClusterModes)
     if (c != "clustered") m.push_back(c);
-  m.push_back("stencil");  // chapter 03's volumes, the image to equal
+  m.push_back("clustered-forward");  // the scene drawn again, forward, from every cluster's list
+  m.push_back("stencil");            // chapter 03's volumes, the image to equal
   return m;
 }
 
@@ -48,11 +51,13 @@ std::vector<Shot> references() {
   // lights: lights evaluated and lit per pixel, tiles against clusters, and the grid itself.
   std::vector<Shot> shots;
   for (const auto& m : modes()) shots.push_back({"street_level", m});
+  shots.push_back({"street_level", "clustered-forward", {{"lights", 1000}, {"show", kHeatEvaluated}, {"heat-scale", 200}}, {}, kCounts});
   shots.push_back({"inside_light", "clustered"});
   shots.push_back({"inside_light", "tiled"});
   for (const std::string m : {"tiled", "clustered"})
     for (int show : {kHeatEvaluated, kHeatLit, kClusters})
       shots.push_back({"street_level", m, {{"lights", 1000}, {"show", show}, {"heat-scale", 200}}, {}, kCounts});
+  shots.push_back({"street_level", "tiled-2.5d", {{"lights", 1000}, {"show", kHeatEvaluated}, {"heat-scale", 200}}, {}, kCounts});
   shots.push_back({"street_level", "clustered",
                    {{"lights", 1000}, {"clusters-x", 32}, {"clusters-y", 18}, {"slices", 8}, {"show", kHeatEvaluated}, {"heat-scale", 200}},
                    {}, kCounts});
@@ -83,6 +88,7 @@ int main(int argc, char** argv) {
   return lp::run_chapter(argc, argv, kChapter, [](lp::App& app) {
     ch03::DeferredFrame frame(app.scene_gpu());
     ClusteredLights clustered(frame.volumes());
+    ClusteredForward forward(frame, app.scene_gpu());
     ClusterPicture picture;
     double lights_key = -1;
 
@@ -92,21 +98,30 @@ int main(int argc, char** argv) {
       if (f.reload_shaders) {
         frame.reload_shaders();
         clustered.reload_shaders();
+        forward.reload_shaders();
       }
       // 1. The lights: chapter 03's set for the count asked, cut where chapter 03 cuts them.
       if (f.knob("lights") != lights_key) {
         lights_key = f.knob("lights");
         ch03::use_lights(frame, app.scene(), ch03::lights_for_count(app.scene(), f.knob_int("lights")));
       }
-      // 2. The culling: chapter 03's stencil volumes, or this chapter's tiles or clusters.
-      const bool ours = f.mode != "stencil";
+      // 2. The culling: chapter 03's stencil volumes, or this chapter's tiles or clusters,
+      //    shaded deferred or (clustered-forward) by drawing the scene again.
+      const bool ours = f.mode != "stencil", is_forward = f.mode == "clustered-forward";
+      ClusteredLights& lists = is_forward ? forward.lists() : clustered;
       if (ours) {
-        ClusterSettings s = settings_for_mode(f.mode);
+        ClusterSettings s = settings_for_mode(is_forward ? "clustered" : f.mode);
         s.tile_px = std::max(f.knob_int("tile"), 1);
         s.clusters = {f.knob_int("clusters-x"), f.knob_int("clusters-y"), f.knob_int("slices")};
-        clustered.set_settings(s);
-        clustered.set_counting(f.knob_int("count") != 0);
-        frame.set_local_lights(&clustered);
+        if (is_forward) {
+          forward.set_settings(s);
+          forward.set_counting(f.knob_int("count") != 0);
+          frame.set_local_lights(&forward);
+        } else {
+          clustered.set_settings(s);
+          clustered.set_counting(f.knob_int("count") != 0);
+          frame.set_local_lights(&clustered);
+        }
       } else {
         frame.set_local_lights(nullptr);
         frame.set_strategy(ch03::Strategy::Stencil);
@@ -121,13 +136,13 @@ int main(int argc, char** argv) {
       frame.render(f.camera, {f.target, f.width, f.height}, &app.metrics(),
                    {.show = frame_show, .heat_full_scale = float(f.knob("heat-scale"))});
       // 4. The grid itself: each cell's light count, slice by slice, over the image.
-      if (show == kClusters && ours) picture.draw(clustered.grid(), clustered.cell_counts(), {f.target, f.width, f.height}, float(f.knob("heat-scale")));
+      if (show == kClusters && ours) picture.draw(lists.grid(), lists.cell_counts(), {f.target, f.width, f.height}, float(f.knob("heat-scale")));
 
       // What it did: lights evaluated against lit, the lists, any overflow.
       std::uint64_t evaluated = 0, lit = 0;
       if (f.knob_int("count")) {
         if (ours) {
-          const EvalCounts c = clustered.counts();
+          const EvalCounts c = lists.counts();
           evaluated = c.evaluated;
           lit = c.lit;
         } else {
@@ -137,11 +152,11 @@ int main(int argc, char** argv) {
         }
       }
       if (f.knob_int("count") && ours) {  // --bench reports them with the shading pass
-        const std::string shade = ClusteredLights::pass_names(f.mode)[2];
+        const std::string shade = is_forward ? ClusteredForward::pass_names()[2] : ClusteredLights::pass_names(f.mode)[2];
         app.metrics().count(shade, "evaluated", evaluated);
         app.metrics().count(shade, "lit", lit);
       }
-      const ClusterStats& st = clustered.stats();
+      const ClusterStats& st = lists.stats();
       if (ours) {
         app.metrics().set_allocation("light lists (index list, cells, bounds, lights)", st.bytes);
         if (st.dropped) std::cerr << "warning: " << st.dropped << " light entries dropped in " << st.cells_over
@@ -169,8 +184,8 @@ int main(int argc, char** argv) {
           ImGui::Text("evaluated %llu, lit %llu: %.2f per lit", (unsigned long long)evaluated, (unsigned long long)lit,
                       lit ? double(evaluated) / double(lit) : 0.0);
         if (ours) {
-          ImGui::Text("%d cells (%d x %d x %d), %llu entries, longest %u", st.cells, clustered.grid().tiles_x,
-                      clustered.grid().tiles_y, clustered.grid().slices, (unsigned long long)st.indices, st.max_list);
+          ImGui::Text("%d cells (%d x %d x %d), %llu entries, longest %u", st.cells, lists.grid().tiles_x,
+                      lists.grid().tiles_y, lists.grid().slices, (unsigned long long)st.indices, st.max_list);
           ImGui::Text("lists: %.2f MiB, regrown %d, dropped %llu", double(st.bytes) / (1 << 20), st.regrown,
                       (unsigned long long)st.dropped);
         }

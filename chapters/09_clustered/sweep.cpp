@@ -1,7 +1,7 @@
 // Chapter 09's measurement: time per frame against the number of lights, 1 ... 100 000, on
-// the street at 1920x1080, for chapter 03's stencil volumes and the four ways of this
-// chapter, each split into its passes (depth bounds, assign, shade), with the lists' memory
-// and the exact evaluated-per-lit ratio. On llvmpipe (no --size) it runs a small size and
+// the street at 1920x1080, for chapter 03's stencil volumes, the five deferred ways of this
+// chapter and clustered forward, each split into its passes (depth bounds, assign, the
+// forward depth pre-pass, shade), with the lists' memory and the exact evaluated-per-lit ratio. On llvmpipe (no --size) it runs a small size and
 // fewer lights so that it ends in minutes; on a GPU, the full sweep.
 //   09_clustered_sweep [--out DIR] [--size WxH] [--frames N] [--max-lights N] [--stencil-max N]
 #include <filesystem>
@@ -12,6 +12,7 @@
 #include "chapters/03_light_volumes/deferred_frame.h"
 #include "chapters/03_light_volumes/light_counts.h"
 #include "chapters/03_light_volumes/light_radius.h"
+#include "chapters/09_clustered/clustered_forward.h"
 #include "chapters/09_clustered/clustered_lights.h"
 #include "common/context.h"
 #include "common/measure.h"
@@ -59,7 +60,7 @@ int main(int argc, char** argv) {
     const std::string file = s.out + (software ? "/09_lights_llvmpipe.csv" : "/09_lights.csv");
     std::ofstream csv(file);
     csv << "# " << timer << ", " << s.width << "x" << s.height << ", street, view " << s.view << "\n"
-        << "lights,method,total_ms,local_ms,depth_bounds_ms,assign_ms,shade_ms,list_bytes,list_entries,regrown,"
+        << "lights,method,total_ms,local_ms,depth_bounds_ms,assign_ms,prepass_ms,shade_ms,list_bytes,list_entries,regrown,"
         << "dropped,evaluated,lit,evaluated_per_lit," << csv_measure_columns() << "\n";
     const float threshold = ch03::cut_threshold(1.f, ch03::peak_reflectance(scene));
     for (int n : {1, 10, 100, 1000, 10000, 100000}) {
@@ -68,15 +69,21 @@ int main(int argc, char** argv) {
       auto draw = [&](PassMetrics& m) { frame.render(camera, {target.framebuffer(), s.width, s.height}, &m); };
       std::vector<std::string> methods = {"stencil"};
       for (const auto& m : ch09::kClusterModes) methods.push_back(m);
+      methods.push_back("clustered-forward");  // the scene drawn again, lit from every cluster's list
       for (const std::string& method : methods) {
         if (method == "stencil" && n > s.stencil_max) continue;
-        ch09::ClusteredLights pass(frame.volumes(), ch09::settings_for_mode(method == "stencil" ? "clustered" : method));
-        frame.set_local_lights(method == "stencil" ? nullptr : &pass);
+        const bool forward = method == "clustered-forward";
+        ch09::ClusteredForward forward_pass(frame, gpu);
+        ch09::ClusteredLights deferred_pass(frame.volumes(), ch09::settings_for_mode(
+                                                method == "stencil" || forward ? "clustered" : method));
+        ch09::ClusteredLights& pass = forward ? forward_pass.lists() : deferred_pass;
+        frame.set_local_lights(method == "stencil" ? nullptr : forward ? static_cast<ch03::LocalLightPass*>(&forward_pass) : &pass);
         frame.set_strategy(ch03::Strategy::Stencil);
         // One counted frame for the exact counts, then the timed frames without counting.
         std::uint64_t evaluated = 0, lit = 0;
         frame.volumes().set_counting(method == "stencil");
-        pass.set_counting(method != "stencil");
+        pass.set_counting(method != "stencil" && !forward);
+        forward_pass.set_counting(forward);
         {
           PassMetrics m;
           measure(m, [&] { draw(m); }, {.frames = 1, .skip_warmup = true});
@@ -92,6 +99,7 @@ int main(int argc, char** argv) {
         }
         frame.volumes().set_counting(false);
         pass.set_counting(false);
+        forward_pass.set_counting(false);
         PassMetrics metrics;
         // The stencil volumes at 10 000 lights and more take most of a second a frame (seconds
         // at 100 000 on the H200): a few frames, one-frame warm-up blocks (a pass that long
@@ -102,17 +110,20 @@ int main(int argc, char** argv) {
           options.warmup = {.block_frames = 1, .block_seconds = 0, .min_seconds = 0, .tolerance = 0.03, .max_seconds = 1};
         }
         const Measurement t = measure(metrics, [&] { draw(metrics); }, options);
-        double parts[3] = {0, 0, 0}, local = 0;
+        double parts[4] = {0, 0, 0, 0}, local = 0;  // depth bounds, assign, pre-pass, shade
         if (method == "stencil") {
           local = t.pass("local lights: stencil").mean_ms;
+        } else if (forward) {
+          const auto names = ch09::ClusteredForward::pass_names();  // assign, depth pre-pass, shade
+          for (int k = 0; k < 3; ++k) local += parts[k + 1] = t.pass(names[k]).mean_ms;
         } else {
           const auto names = ch09::ClusteredLights::pass_names(method);
-          for (int k = 0; k < 3; ++k) local += parts[k] = t.pass(names[k]).mean_ms;
+          for (int k = 0; k < 3; ++k) local += parts[k == 2 ? 3 : k] = t.pass(names[k]).mean_ms;
         }
         const ch09::ClusterStats& st = pass.stats();
         const bool ours = method != "stencil";
         csv << n << ',' << method << ',' << t.total_ms() << ',' << local << ',' << parts[0] << ',' << parts[1] << ','
-            << parts[2] << ',' << (ours ? st.bytes : 0) << ',' << (ours ? st.indices : 0) << ',' << (ours ? st.regrown : 0)
+            << parts[2] << ',' << parts[3] << ',' << (ours ? st.bytes : 0) << ',' << (ours ? st.indices : 0) << ',' << (ours ? st.regrown : 0)
             << ',' << (ours ? st.dropped : 0) << ',' << evaluated << ',' << lit << ','
             << (lit ? double(evaluated) / double(lit) : 0.0) << ',' << csv_measure_values(context->renderer(), s.width, s.height, t.frames)
             << std::endl;  // a row at a time: a long GPU run cut short keeps what it measured

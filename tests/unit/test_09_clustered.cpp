@@ -94,3 +94,35 @@ TEST(ClusterGrid, ASphereBesideATileMissesItAndTheTestIsConservativeByLittle) {
   EXPECT_FALSE(sphere_meets_box(outside, 0.099f, b));
   EXPECT_TRUE(sphere_meets_box(outside, 0.1f, b));  // touching counts
 }
+
+// Harada's 2.5D mask: 32 equal bins over the tile's depth range.
+TEST(ClusterGrid, DepthBinsCutTheTileRangeIn32AndClampOutside) {
+  EXPECT_EQ(depth_bin(10.f, 42.f, 10.f), 0);
+  EXPECT_EQ(depth_bin(10.f, 42.f, 10.99f), 0);
+  EXPECT_EQ(depth_bin(10.f, 42.f, 11.f), 1);   // bins of 1 m
+  EXPECT_EQ(depth_bin(10.f, 42.f, 41.5f), 31);
+  EXPECT_EQ(depth_bin(10.f, 42.f, 42.f), 31);  // the far bound is in the last bin, not past it
+  EXPECT_EQ(depth_bin(10.f, 42.f, -1e30f), 0);
+  EXPECT_EQ(depth_bin(10.f, 42.f, 1e30f), 31);
+  EXPECT_EQ(depth_bin(5.f, 5.f, 5.f), 0) << "a flat tile: one bin, no division by zero";
+  EXPECT_EQ(depth_range_bits(10.f, 42.f, 12.5f, 14.5f), 0b11100u);
+  EXPECT_EQ(depth_range_bits(10.f, 42.f, 0.f, 1000.f), 0xFFFFFFFFu);
+  EXPECT_EQ(depth_range_bits(10.f, 42.f, 41.2f, 41.3f), 1u << 31);
+}
+
+// The case the mask is for: a post 2 m away in front of a wall 30 m away share a tile. A light
+// 15 m away in the gap meets the tile's box, but its depth extent holds neither surface's bin;
+// a light at the wall keeps the wall's bin, and one reaching the post the post's.
+TEST(ClusterGrid, TheDepthMaskDropsALightInTheGapOfADepthDiscontinuity) {
+  const float lo = 2.f, hi = 30.f;
+  const std::uint32_t tile = (1u << depth_bin(lo, hi, 2.f)) | (1u << depth_bin(lo, hi, 30.f));
+  EXPECT_EQ(tile, 1u | (1u << 31));
+  EXPECT_EQ(light_depth_bits(lo, hi, 15.f, 3.f) & tile, 0u);
+  EXPECT_NE(light_depth_bits(lo, hi, 29.f, 1.f) & tile, 0u);
+  EXPECT_NE(light_depth_bits(lo, hi, 4.f, 2.f) & tile, 0u) << "reaches the post exactly: kept (padded)";
+  // Conservative by the padding, and by little: a light stopping 1 cm short of the post's bin
+  // edge is dropped; kDepthPad x 30 m = 3 mm of slack.
+  const float bin = (hi - lo) / 32.f;
+  EXPECT_EQ(light_depth_bits(lo, hi, 2.f + bin + 1.01f + 0.01f, 1.f) & 1u, 0u);
+  EXPECT_NE(light_depth_bits(lo, hi, 2.f + bin + 1.f - 0.002f, 1.f) & 1u, 0u);
+}

@@ -11,6 +11,7 @@
 #include "chapters/03_light_volumes/deferred_frame.h"
 #include "chapters/03_light_volumes/light_counts.h"
 #include "chapters/03_light_volumes/light_radius.h"
+#include "chapters/09_clustered/clustered_forward.h"
 #include "chapters/09_clustered/clustered_lights.h"
 #include "common/error.h"
 #include "common/metrics.h"
@@ -45,40 +46,18 @@ struct ForwardTarget {
   gl::Texture l1, l2, depth;
 };
 
-// [forward-draw]
-// The opaque scene drawn forward, lit from the clusters: chapter 01's vertex stage and
-// material, the same draws in the same order with the same depth format and test as chapter
-// 02's geometry pass. First a depth pre-pass (colour writes off), then the same program again
-// with depth test EQUAL and no depth writes: forward.vert's position is invariant, so each
-// pixel's nearest fragment alone passes and is shaded once (no overdraw in the counts).
+// The opaque scene drawn forward into the RGBA32F target (clustered_forward.h's draw_forward,
+// the program's pass too), with the shading program itself as the pre-pass's: the colours
+// cleared first, nothing added to them.
 void draw_forward(const SceneGpu& gpu, const ch03::DeferredFrame& frame, ClusteredLights& pass,
                   const ShaderProgram& program, const ForwardTarget& target, bool counting) {
   const float zero[4] = {0, 0, 0, 0};
-  const int w = frame.light().width(), h = frame.light().height();
   glClearNamedFramebufferfv(target.fbo.id(), GL_COLOR, 0, zero);
   glClearNamedFramebufferfv(target.fbo.id(), GL_COLOR, 1, zero);
-  glClearNamedFramebufferfi(target.fbo.id(), GL_DEPTH_STENCIL, 0, 1.f, 0);
-  glBindFramebuffer(GL_FRAMEBUFFER, target.fbo.id());
-  glViewport(0, 0, w, h);
-  glEnable(GL_CULL_FACE);
   glDisable(GL_BLEND);
-  glDisable(GL_STENCIL_TEST);
-  glEnable(GL_DEPTH_TEST);
-  for (int prepass = 1; prepass >= 0; --prepass) {
-    pass.bind_for_forward(program, frame.view().camera, counting);  // resets the counts: the last pass's stay
-    program.set("u_view_projection", frame.gbuffer().camera().view_projection());
-    frame.gbuffer().begin_depth_convention();
-    if (!prepass) glDepthFunc(GL_EQUAL);
-    glDepthMask(prepass ? GL_TRUE : GL_FALSE);
-    glColorMask(!prepass, !prepass, !prepass, !prepass);
-    gpu.draw([&](const Instance& inst, const Material& m) { ch01::set_surface(program, gpu, inst, m); },
-             SceneGpu::Primitives::Opaque);
-  }
-  glDepthMask(GL_TRUE);
-  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  ch02::GBuffer::restore_default_depth_convention();
+  ch09::draw_forward(gpu, frame.gbuffer(), frame.view().camera, pass, program, program, target.fbo.id(),
+                     frame.light().width(), frame.light().height(), counting, false);
 }
-// [/forward-draw]
 
 }  // namespace
 

@@ -24,11 +24,22 @@ shared uint s_count[64];
 shared uint s_offset;
 shared bool s_stored;
 
-void add64(inout uint lo, inout uint hi, uint n) {}
+#ifdef DEPTH_MASK
+float g_lo, g_hi;  // the tile's depth bounds and its surfaces' bins (depth_bounds.comp)
+uint g_tile_bits;
+#endif
 
 bool meets(uint i, Box box) {
   ClusterLight l = cluster_lights[i];
-  return sphere_meets_box((u_view * vec4(l.position_radius.xyz, 1.0)).xyz, l.position_radius.w, box);
+  vec3 centre = (u_view * vec4(l.position_radius.xyz, 1.0)).xyz;
+  if (!sphere_meets_box(centre, l.position_radius.w, box)) return false;
+#ifdef DEPTH_MASK
+  // [depth-mask-test]
+  // 2.5D: the light's depth extent must overlap a bin that holds a surface.
+  if ((light_depth_bits(g_lo, g_hi, -centre.z, l.position_radius.w) & g_tile_bits) == 0u) return false;
+  // [/depth-mask-test]
+#endif
+  return true;
 }
 
 void main() {
@@ -42,8 +53,13 @@ void main() {
   Box box = cell_box(p0, p1, slice_start(slice), slice_start(slice + 1));
 #else
   int ti = tile.y * u_tiles.x + tile.x;
-  bool occupied = bounds[2 * ti] <= bounds[2 * ti + 1];
-  Box box = cell_box(p0, p1, uintBitsToFloat(bounds[2 * ti]), uintBitsToFloat(bounds[2 * ti + 1]));
+  bool occupied = bounds[kTileBounds * ti] <= bounds[kTileBounds * ti + 1];
+  Box box = cell_box(p0, p1, uintBitsToFloat(bounds[kTileBounds * ti]), uintBitsToFloat(bounds[kTileBounds * ti + 1]));
+#ifdef DEPTH_MASK
+  g_lo = uintBitsToFloat(bounds[kTileBounds * ti]);
+  g_hi = uintBitsToFloat(bounds[kTileBounds * ti + 1]);
+  g_tile_bits = bounds[kTileBounds * ti + 2];
+#endif
 #endif
 #ifdef ALL_CELLS
   occupied = true;  // clustered forward: every cell a forward surface may reach gets its list

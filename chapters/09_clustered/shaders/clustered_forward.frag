@@ -41,6 +41,9 @@ void main() {
 #if defined(HEAT_SHADED)
   out_diffuse = vec4(float(evaluated));
   out_specular = vec4(0.0);
+#elif defined(HEAT_LIT)
+  out_diffuse = vec4(float(lit));
+  out_specular = vec4(0.0);
 #else
   out_diffuse = vec4(diffuse, 0.0);
   out_specular = vec4(specular, 0.0);

@@ -46,6 +46,28 @@ bool sphere_meets_box(vec3 centre, float radius, Box box) {
   return dot(d, d) <= r * r;
 }
 
+// Harada's 2.5D depth mask (cluster_grid.h's depth_bin / depth_range_bits / light_depth_bits).
+const int kDepthBins = 32;
+int depth_bin(float lo, float hi, float d) {
+  float t = (d - lo) / max(hi - lo, 1e-30) * float(kDepthBins);
+  return int(clamp(floor(t), 0.0, float(kDepthBins - 1)));
+}
+uint depth_range_bits(float lo, float hi, float d0, float d1) {
+  int b0 = depth_bin(lo, hi, d0), b1 = depth_bin(lo, hi, d1);
+  uint upto_b1 = b1 == kDepthBins - 1 ? 0xFFFFFFFFu : (1u << uint(b1 + 1)) - 1u;
+  return upto_b1 & ~((1u << uint(b0)) - 1u);
+}
+uint light_depth_bits(float lo, float hi, float z, float radius) {
+  float r = radius * (1.0 + 1e-5) + 1e-6 + kDepthPad * hi;
+  return depth_range_bits(lo, hi, z - r, z + r);
+}
+// Tiled: per tile (min, max) view depth, and with the 2.5D mask the tile's 32 bins.
+#ifdef DEPTH_MASK
+const int kTileBounds = 3;
+#else
+const int kTileBounds = 2;
+#endif
+
 ivec2 tile_of(ivec2 pixel) { return pixel / u_grid.zw; }
 // Cells in the order the assignment dispatches them: x fastest, then y, then the slice.
 int cell_index(ivec2 tile, int slice) { return (slice * u_tiles.y + tile.y) * u_tiles.x + tile.x; }
