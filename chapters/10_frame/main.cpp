@@ -91,7 +91,7 @@ int main(int argc, char** argv) {
     ch03::DeferredFrame frame(app.scene_gpu());
     ch03::use_lights(frame, app.scene(), app.scene().lights);
     // 2. This chapter's stage: the glass, after the composite, lit by the same lights.
-    TransparencyStage glass(app.scene_gpu(), app.scene().lights);
+    TransparencyStage glass(frame, app.scene_gpu());
     frame.add_stage(glass);
 
     while (app.next_frame()) {

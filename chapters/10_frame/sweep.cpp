@@ -86,7 +86,7 @@ void sweep(const Settings& s, std::ofstream& csv) {
     ch03::DeferredFrame frame(gpu);
     frame.volumes().set_lights(ch03::build_light_set(
         scene.lights, ch03::cut_threshold(1.f, ch03::peak_reflectance(scene)), frame.volumes().shapes()));
-    TransparencyStage stage(gpu, scene.lights);
+    TransparencyStage stage(frame, gpu);
     frame.add_stage(stage);
     OutputTarget target(s.width, s.height);
     const FrameCamera camera = frame_camera(scene.camera("front"), float(s.width) / s.height);

@@ -59,7 +59,9 @@ namespace {
 std::vector<ShaderStage> surface_stages() {
   return {{GL_VERTEX_SHADER, "01_forward/shaders/forward.vert"}, {GL_FRAGMENT_SHADER, "10_frame/shaders/transparent.frag"}};
 }
-constexpr GLuint kCaptureBinding = 1, kCounterBinding = 2;
+// Storage bindings beside chapter 09's lists (0, 1, 4; 2 and 5 its assignment's) and the
+// fragment counters: the directional lights, the captured fragments and their counter.
+constexpr GLuint kDirectionalBinding = 3, kCaptureBinding = 6, kCounterBinding = 7;
 struct CapturedFragment {  // std430 twin of `Fragment` in transparent.frag
   std::uint32_t pixel, rank;
   float depth, pad;
@@ -68,21 +70,41 @@ struct CapturedFragment {  // std430 twin of `Fragment` in transparent.frag
 static_assert(sizeof(CapturedFragment) == 32);
 }  // namespace
 
-TransparencyStage::TransparencyStage(const SceneGpu& scene, const std::vector<Light>& lights)
+TransparencyStage::TransparencyStage(const ch03::DeferredFrame& frame, const SceneGpu& scene)
     : scene_(scene), draws_(blended_draws(scene.scene())),
-      over_(surface_stages(), {"GLASS_OVER 1"}), accumulate_(surface_stages(), {"GLASS_WBOIT 1"}),
-      capture_(surface_stages(), {"GLASS_CAPTURE 1"}),
+      lists_(frame.volumes(), {.kind = ch09::CullKind::Clustered, .all_cells = true}),
       composite_({{GL_VERTEX_SHADER, "02_gbuffer/shaders/fullscreen.vert"},
-                  {GL_FRAGMENT_SHADER, "10_frame/shaders/wboit_composite.frag"}}) {
-  lights_.upload(lights);
-}
+                  {GL_FRAGMENT_SHADER, "10_frame/shaders/wboit_composite.frag"}}) {}
 
 void TransparencyStage::reload_shaders() {
-  over_.reload();
-  accumulate_.reload();
-  capture_.reload();
+  programs_.clear();
+  lists_.reload_shaders();
   composite_.reload();
 }
+
+// [glass-lights]
+// The glass's lights are the frame's: its directional lights for the global part, and
+// chapter 09's lists of every cluster for the local lights (a pane may lie in a cluster no
+// opaque surface occupies). The lists are built for the frame's camera each frame.
+void TransparencyStage::build_lights(const ch03::DeferredFrame& frame, PassMetrics* metrics) {
+  auto pass = timed(metrics, "transparency: light lists (chapter 09, every cluster)");
+  const auto& directional = frame.volumes().lights().directional;
+  directional_count_ = int(directional.size());
+  glNamedBufferData(directional_.id(), GLsizeiptr(std::max<std::size_t>(directional.size(), 1) * sizeof(ch01::GpuLight)),
+                    directional.empty() ? nullptr : directional.data(), GL_DYNAMIC_DRAW);
+  lists_.build_lists(frame.light().width(), frame.light().height(), frame.view());
+}
+
+const ShaderProgram& TransparencyStage::program(Output output, const ch03::DeferredFrame& frame) {
+  std::vector<std::string> defines = lists_.forward_defines(frame.view());
+  defines.push_back(output == kOver ? "GLASS_OVER 1" : output == kWboit ? "GLASS_WBOIT 1" : "GLASS_CAPTURE 1");
+  std::string key;
+  for (const auto& d : defines) key += d + "|";
+  auto it = programs_.find(key);
+  if (it == programs_.end()) it = programs_.emplace(key, ShaderProgram(surface_stages(), defines)).first;
+  return it->second;
+}
+// [/glass-lights]
 
 std::size_t TransparencyStage::allocated_bytes() const {
   return std::size_t(width_) * std::size_t(height_) *
@@ -112,17 +134,18 @@ void TransparencyStage::resize(const ch03::DeferredFrame& frame) {
 // Every blended surface in `draws`' order: chapter 01's vertex shader and material, the
 // G-buffer's camera and depth convention (reversed-Z layouts included), the depth test on and
 // depth writes off, back faces culled.
-void TransparencyStage::draw_surfaces(const ch03::DeferredFrame& frame, const ShaderProgram& program,
-                                      const std::vector<BlendedDraw>& draws, bool ranks) const {
+void TransparencyStage::draw_surfaces(const ch03::DeferredFrame& frame, Output output,
+                                      const std::vector<BlendedDraw>& draws, bool ranks) {
   const FrameCamera& camera = frame.gbuffer().camera();
-  program.use();
+  const ShaderProgram& program = this->program(output, frame);
+  lists_.bind_for_forward(program, frame.view().camera);  // uses the program, sets the grid's uniforms
   program.set("u_view_projection", camera.view_projection());
-  program.set("u_view", frame.camera().view);
   program.set("u_eye", frame.camera().position);
   program.set("u_ambient", scene_.scene().ambient);
-  program.set("u_light_count", lights_.count());
+  program.set("u_light_count", directional_count_);
   program.set("u_size", glm::vec2(width_, height_));
-  lights_.bind();
+  if (output == kCapture) program.set("u_capacity", capacity_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDirectionalBinding, directional_.id());
   frame.gbuffer().begin_depth_convention();
   glEnable(GL_DEPTH_TEST);
   glDepthMask(GL_FALSE);
@@ -143,12 +166,15 @@ void TransparencyStage::draw_surfaces(const ch03::DeferredFrame& frame, const Sh
   }
   glDepthMask(GL_TRUE);
   ch02::GBuffer::restore_default_depth_convention();
+  // The materials' textures took units 0.. where the frame keeps the G-buffer: put it back.
+  frame.gbuffer().bind_textures(0);
 }
 
 // [after-composite]
 void TransparencyStage::after_composite(ch03::DeferredFrame& frame, PassMetrics* metrics) {
   if (settings_.method == Method::Off || draws_.empty()) return;
   resize(frame);
+  build_lights(frame, metrics);
   if (settings_.method == Method::Sorted) draw_sorted(frame, metrics);
   else draw_wboit(frame, metrics);
 }
@@ -160,7 +186,7 @@ void TransparencyStage::draw_sorted(const ch03::DeferredFrame& frame, PassMetric
   const auto draws = ordered(draws_, frame.camera().view, settings_.order, settings_.shuffle_seed);
   glEnable(GL_BLEND);
   glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // C = c alpha (the shader's) + (1 - alpha) C
-  draw_surfaces(frame, over_, draws, false);
+  draw_surfaces(frame, kOver, draws, false);
   glDisable(GL_BLEND);
 }
 
@@ -179,7 +205,7 @@ void TransparencyStage::draw_wboit(const ch03::DeferredFrame& frame, PassMetrics
     glEnable(GL_BLEND);
     glBlendFunci(0, GL_ONE, GL_ONE);                  // accumulation: a sum
     glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_COLOR);  // revealage: a product of (1 - alpha)
-    draw_surfaces(frame, accumulate_, ordered(draws_, frame.camera().view, settings_.order, settings_.shuffle_seed), false);
+    draw_surfaces(frame, kWboit, ordered(draws_, frame.camera().view, settings_.order, settings_.shuffle_seed), false);
     glBlendFunc(GL_ONE, GL_ZERO);
     glDisable(GL_BLEND);
   }
@@ -205,6 +231,7 @@ void TransparencyStage::draw_wboit(const ch03::DeferredFrame& frame, PassMetrics
 // [exact]
 ExactComposite TransparencyStage::exact_composite(const ch03::DeferredFrame& frame, std::size_t max_per_pixel) {
   resize(frame);
+  build_lights(frame, nullptr);
   const int w = width_, h = height_;
   const std::size_t pixels = std::size_t(w) * std::size_t(h);
   if (max_per_pixel == 0 || max_per_pixel > 256) throw Error("exact_composite: 1 to 256 fragments per pixel");
@@ -227,8 +254,8 @@ ExactComposite TransparencyStage::exact_composite(const ch03::DeferredFrame& fra
   glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
   glViewport(0, 0, w, h);
   glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  capture_.set("u_capacity", int(std::min<std::size_t>(capacity, std::numeric_limits<int>::max())));
-  draw_surfaces(frame, capture_, draws_, true);
+  capacity_ = int(std::min<std::size_t>(capacity, std::numeric_limits<int>::max()));
+  draw_surfaces(frame, kCapture, draws_, true);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   std::uint32_t count = 0;

@@ -2,8 +2,10 @@
 // Chapter 10's transparency: the glass (materials with glTF alphaMode BLEND) that a G-buffer
 // cannot hold, one surface per pixel as it is. Chapter 02's geometry pass skips it; this stage
 // draws it after the deferred passes, over the finished image, with a forward pass lit by the
-// scene's lights through chapter 01's lighting model, depth-tested against the G-buffer's
-// depth and writing none. Two ways to blend, as a knob:
+// frame's own lights: the directional ones as chapter 03's global pass lights them, the local
+// ones from chapter 09's cluster lists (clustered forward: the same cut, the same
+// local_light(), the same visibility hook), depth-tested against the G-buffer's depth and
+// writing none. Two ways to blend, as a knob:
 //   sorted  whole surfaces back to front by the view depth of their centres, each blended over
 //           what is there ("over": C = alpha c + (1 - alpha) C_behind, premultiplied);
 //   wboit   weighted blended order-independent transparency (McGuire & Bavoil 2013): in any
@@ -12,19 +14,20 @@
 // The exact order (every fragment of every surface at every pixel, sorted by depth, composited
 // in double on the CPU) is the ground truth both are measured against (exact_composite()).
 //
-//   ch03::DeferredFrame frame(scene_gpu);   TransparencyStage glass(scene_gpu, scene.lights);
+//   ch03::DeferredFrame frame(scene_gpu);   TransparencyStage glass(frame, scene_gpu);
 //   frame.add_stage(glass);
 //   glass.set({.method = Method::Wboit});
 //   frame.render(camera, output, &metrics);
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
-#include "chapters/01_forward/light_buffer.h"
 #include "chapters/03_light_volumes/deferred_frame.h"
+#include "chapters/09_clustered/clustered_lights.h"
 #include "common/gl.h"
 #include "common/image.h"
 #include "common/shader.h"
@@ -82,7 +85,8 @@ struct ExactComposite {
 
 class TransparencyStage : public ch03::FrameStage {
  public:
-  TransparencyStage(const SceneGpu& scene, const std::vector<Light>& lights);
+  // Lit by `frame`'s lights (frame.volumes().lights(), as use_lights() set them).
+  TransparencyStage(const ch03::DeferredFrame& frame, const SceneGpu& scene);
   void reload_shaders();
   void set(const TransparencySettings& settings) { settings_ = settings; }
   const TransparencySettings& settings() const { return settings_; }
@@ -100,19 +104,25 @@ class TransparencyStage : public ch03::FrameStage {
   std::size_t allocated_bytes() const;  // WBOIT's targets and their depth
 
  private:
+  enum Output { kOver, kWboit, kCapture };
   void resize(const ch03::DeferredFrame& frame);
-  void draw_surfaces(const ch03::DeferredFrame& frame, const ShaderProgram& program,
-                     const std::vector<BlendedDraw>& draws, bool ranks) const;
+  void build_lights(const ch03::DeferredFrame& frame, PassMetrics* metrics);
+  const ShaderProgram& program(Output output, const ch03::DeferredFrame& frame);
+  void draw_surfaces(const ch03::DeferredFrame& frame, Output output, const std::vector<BlendedDraw>& draws, bool ranks);
   void draw_sorted(const ch03::DeferredFrame& frame, PassMetrics* metrics);
   void draw_wboit(const ch03::DeferredFrame& frame, PassMetrics* metrics);
 
   const SceneGpu& scene_;
   std::vector<BlendedDraw> draws_;
-  ch01::LightBuffer lights_;
+  ch09::ClusteredLights lists_;  // every cluster's list (all_cells): glass may lie in any of them
+  gl::Buffer directional_;       // the frame's directional lights, ch01::GpuLight each
+  int directional_count_ = 0;
   TransparencySettings settings_;
-  ShaderProgram over_, accumulate_, capture_, composite_;
+  std::map<std::string, ShaderProgram> programs_;  // per output and the frame's defines
+  ShaderProgram composite_;
   gl::VertexArray empty_vao_;
   int width_ = 0, height_ = 0;
+  int capacity_ = 0;  // the exact composite's fragment list
   GLenum depth_format_ = 0;
   gl::Texture accum_{GL_TEXTURE_2D}, reveal_{GL_TEXTURE_2D}, depth_{GL_TEXTURE_2D};
   gl::Framebuffer fbo_;

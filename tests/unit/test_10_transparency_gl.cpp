@@ -33,7 +33,7 @@ Scene glass_scene() { return load_scene(from_root("assets/glass/glass.gltf")); }
 // The scene on the GPU with a deferred frame and the stage, rendering into an sRGB8 target.
 struct World {
   explicit World(Scene s, const ch02::Layout& layout = ch02::our_layout())
-      : scene(std::move(s)), gpu(scene), frame(gpu, layout), stage(gpu, scene.lights), target(kW, kH) {
+      : scene(std::move(s)), gpu(scene), frame(gpu, layout), stage(frame, gpu), target(kW, kH) {
     frame.volumes().set_lights(ch03::build_light_set(
         scene.lights, ch03::cut_threshold(1.f, ch03::peak_reflectance(scene)), frame.volumes().shapes()));
     frame.add_stage(stage);
