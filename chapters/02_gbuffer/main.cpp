@@ -69,6 +69,9 @@ const lp::Chapter kChapter{
             .knobs = {{"lights", "lights to use (0: the scene's own; more adds point lights)", 0, 0, 100000, true},
                       choice_knob("layout", "G-buffer layout (the table in the book)", layout_names())}},
     .references = references(),
+    // The street's emissive buffer: its windows and lamps (a palette code each), the image
+    // the GL test StreetEmissiveViewMatchesItsReference also holds in-process.
+    .scene_references = {{"assets/street/street.gltf", {{"street_level", "emissive"}}}},
 };
 
 const Layout& layout_for(const Frame& f) {

@@ -688,11 +688,11 @@ TEST_F(GBufferGl, StreetEmissiveViewMatchesItsReference) {
   BufferViewPass view;
   view.draw(gbuffer, BufferView::Emissive, ch01::kBackground);
   ImageRGBA8 image = target.read();
-  auto reference = source_root() / "tests" / "reference" / "02_gbuffer" / "street_level_emissive_street.png";
+  auto reference = source_root() / "tests" / "reference" / "02_gbuffer" / "street_level_emissive.png";
   if (std::getenv("LIGHTPASS_UPDATE_REFERENCES")) save_png(reference, image);
   ASSERT_TRUE(std::filesystem::exists(reference)) << "missing " << reference << " (make it on purpose: LIGHTPASS_UPDATE_REFERENCES=1)";
   CompareResult r = compare(image, load_png(reference));
-  if (!r.passed) save_png(std::filesystem::temp_directory_path() / "street_level_emissive_street.png", image);
+  if (!r.passed) save_png(std::filesystem::temp_directory_path() / "street_level_emissive.png", image);
   EXPECT_TRUE(r.passed) << r.summary();
   std::size_t glowing = 0;
   for (int i = 0; i < kW * kH; ++i) glowing += image.pixels[i * 4] > 100;
