@@ -20,3 +20,25 @@ lightpass_image_test(10_frame.scene_without_glass_renders_as_chapter_03 "0 trans
 # The sweep's options (the sweep itself runs on the GPU machine through tools/device-measure).
 lightpass_program_test(10_frame.sweep_unknown_option 2 "unknown option '--fast'" $<TARGET_FILE:10_frame_sweep> --fast)
 lightpass_program_test(10_frame.sweep_bad_layers 2 "--layers must be between 1 and 128" $<TARGET_FILE:10_frame_sweep> --layers 0)
+
+# --mode whole: every stage of the book in one frame (whole_frame.h).
+# With every stage this chapter assembles switched off, the frame is chapter 05's HDR street
+# (its reference, made by chapter 05's own program: max 0 on llvmpipe).
+lightpass_image_test(10_frame.whole_with_every_stage_off_is_chapter_05s_street "not run  shadow map" ${CMAKE_BINARY_DIR}/out/10_whole_off.png
+  --matches ${CMAKE_SOURCE_DIR}/tests/reference/05_hdr/street_level_reinhard.png
+  RUN ${P10} --headless --mode whole --size 320x180 --scene assets/street/street.gltf --view street_level --shadows 0
+      --clustered 0 --ao 0 --indirect 0 --transparency off --out ${CMAKE_BINARY_DIR}/out/10_whole_off.png)
+# Chapter 09's clusters instead of the volumes: the same image within chapter 09's cross-check (a
+# step here and there; chapter 05's reference tolerance).
+lightpass_image_test(10_frame.whole_with_clusters_is_chapter_05s_street "runs     local lights: clusters" ${CMAKE_BINARY_DIR}/out/10_whole_clusters.png
+  --matches ${CMAKE_SOURCE_DIR}/tests/reference/05_hdr/street_level_reinhard.png
+  RUN ${P10} --headless --mode whole --size 320x180 --scene assets/street/street.gltf --view street_level --shadows 0
+      --ao 0 --indirect 0 --transparency off --out ${CMAKE_BINARY_DIR}/out/10_whole_clusters.png)
+# Every stage the neon street needs runs, each timed as its chapter names it (the frame budget).
+lightpass_program_test(10_frame.whole_bench_times_every_stage 0
+  "shadow map: depth from the sun.*local lights: clustered: shade.*neon: .*ssgi: .*hdr: tonemap"
+  ${P10} --bench --frames 1 --mode whole --size 160x90 --scene assets/street_neon/street_neon.gltf)
+# What a scene does not need is not run, and the program says why (the atrium: no tubes).
+lightpass_program_test(10_frame.whole_says_what_it_does_not_run 0
+  "not run  neon tubes [(]chapter 04[)] [(]no neon tubes[)]"
+  ${P10} --headless --mode whole --size 64x36 --scene assets/atrium/atrium.gltf --out ${CMAKE_BINARY_DIR}/out/10_whole_atrium.png)

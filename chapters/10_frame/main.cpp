@@ -5,6 +5,7 @@
 // (the ground truth). `--show` draws WBOIT's two targets, or a method's error against the
 // exact order. The whole frame (shadows, AO, HDR, ...) and MSAA are assembled here later.
 #include <chrono>
+#include <memory>
 #include <iostream>
 
 #include <imgui.h>
@@ -12,6 +13,7 @@
 #include "chapters/03_light_volumes/deferred_frame.h"
 #include "chapters/03_light_volumes/light_radius.h"
 #include "chapters/10_frame/transparency.h"
+#include "chapters/10_frame/whole_frame.h"
 #include "common/app.h"
 #include "common/error.h"
 
@@ -29,13 +31,23 @@ const CliSpec kCli{
     .summary = "The whole frame (so far: transparency). Glass drawn after the deferred passes by a forward pass "
                "lit by the same lights: sorted back to front, weighted blended OIT, or the exact per-pixel order.",
     .default_scene = "assets/glass/glass.gltf",
-    .modes = {"frame"},
+    .modes = {"frame", "whole"},
     .knobs = {choice_knob("transparency", "the glass: sorted back to front, weighted blended OIT (McGuire & Bavoil), "
                                           "the exact per-pixel order (CPU), or none",
                           kTransparency),
               choice_knob("show", "the image; WBOIT's accumulation (its average colour) or revealage; the method's "
                                   "error against the exact order (red: 16 steps)",
-                          {"image", "accumulation", "revealage", "error"})}};
+                          {"image", "accumulation", "revealage", "error"}),
+              // --mode whole: every stage of the book (whole_frame.h); each can be switched off.
+              {"shadows", "whole: the sun's shadow map (chapter 06)", 1, 0, 1, true},
+              {"clustered", "whole: the local lights by chapter 09's clusters (0: chapter 03's stencil volumes)", 1, 0, 1, true},
+              {"ao", "whole: ambient occlusion (chapters 07, 08)", 1, 0, 1, true},
+              {"indirect", "whole: one bounce of indirect light (chapter 08)", 1, 0, 1, true},
+              {"neon", "whole: chapter 04's tubes", 1, 0, 1, true},
+              {"sun", "whole: multiplies directional lights (chapter 05)", 1, 0, 1000},
+              {"glow", "whole: multiplies emissive surfaces (chapter 05)", 8, 0, 10000},
+              choice_knob("bloom", "whole: chapter 05's bloom: off, after tonemapping, or before (energy-conserving)",
+                          {"off", "after", "before"})}};
 
 // The error views draw |method - exact| as a heat map whose first level (one 8-bit step,
 // colour value 64) is most of what they show: half-float and 8-bit rounding of each layer
@@ -93,6 +105,7 @@ int main(int argc, char** argv) {
     // 2. This chapter's stage: the glass, after the composite, lit by the same lights.
     TransparencyStage glass(frame, app.scene_gpu());
     frame.add_stage(glass);
+    std::unique_ptr<WholeFrame> whole;  // --mode whole: made when first asked for
 
     while (app.next_frame()) {
       const Frame& f = app.frame();
@@ -103,6 +116,29 @@ int main(int argc, char** argv) {
       }
       const ch03::FrameOutput output{f.target, f.width, f.height};
       const std::string& which = f.choice("transparency");
+      if (f.mode == "whole") {
+        // The whole frame: every chapter's stage in one deferred frame (whole_frame.cpp).
+        if (!whole) whole = std::make_unique<WholeFrame>(app.scene());
+        if (f.reload_shaders) whole->reload_shaders();
+        WholeFrameSettings s{.shadows = f.knob_int("shadows") != 0, .clustered = f.knob_int("clustered") != 0,
+                             .ao = f.knob_int("ao") != 0, .indirect = f.knob_int("indirect") != 0,
+                             .neon = f.knob_int("neon") != 0,
+                             .transparency = which == "off" || which == "exact" ? Method::Off : method_named(which),
+                             .sun = float(f.knob("sun")), .glow = float(f.knob("glow"))};
+        s.hdr.bloom = static_cast<ch05::BloomMode>(f.knob_int("bloom"));
+        whole->render(f.camera, output, s, f.dt, f.new_shot, &app.metrics());
+        app.metrics().set_allocation("the whole frame's targets (G-buffer, light, radiance, maps, lists, HDR chains)",
+                                     whole->allocated_bytes());
+        if (std::ostream& out = app.report()) {
+          out << "the whole frame:\n";
+          for (const PlannedStage& st : whole->plan(s))
+            out << "  " << (st.runs ? "runs     " : "not run  ") << st.stage << (st.runs ? "" : " (" + st.why + ")") << '\n';
+        }
+        app.panel([&] {
+          for (const PlannedStage& st : whole->plan(s)) ImGui::Text("%s %s", st.runs ? "[x]" : "[ ]", st.stage.c_str());
+        });
+        continue;
+      }
       const int show = f.knob_int("show");
       // [frame]
       // 3. The frame: G-buffer, lights, composite, then the glass over it.

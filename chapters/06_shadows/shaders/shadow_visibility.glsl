@@ -3,6 +3,7 @@
 // visibility_*.glsl define it and include this one). The C++ twins are in shadow_math.h.
 // Only the first directional light has a map; the other directional lights and every local
 // light keep visibility 1 (point and spot shadows are exercises of the chapter).
+#include "03_light_volumes/shaders/hooks/frame_pixel.glsl"
 #define SHADOW_HARD 0
 #define SHADOW_PCF 1
 #define SHADOW_PCF_HARDWARE 2
@@ -70,7 +71,7 @@ float directional_visibility(int index, GpuLight light, Surface s) {
   if (taps > 0) {
     // Or `taps` comparisons on a Poisson disk k texels across, turned by an angle that
     // interleaved gradient noise (Jimenez 2014) draws from the pixel's position.
-    float angle = 6.2831853 * fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
+    float angle = 6.2831853 * fract(52.9829189 * fract(dot(frame_pixel(), vec2(0.06711056, 0.00583715))));
     mat2 turn = mat2(cos(angle), sin(angle), -sin(angle), cos(angle));
     float scale = (float(r) + 0.5) * texel;
     for (int i = 0; i < taps; ++i) {

@@ -2,6 +2,7 @@
 // Pass 3 in compute: one invocation per pixel adds its cell's lights into the light buffer
 // (read, add, write: each pixel is one invocation's alone).
 layout(local_size_x = 8, local_size_y = 8) in;
+#define FRAME_PIXEL_COMPUTE 1  // the frame's hooks read this invocation's pixel
 #include "09_clustered/shaders/shade.glsl"
 
 layout(binding = 0, rgba16f) uniform image2D u_l1;

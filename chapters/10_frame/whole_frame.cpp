@@ -1,0 +1,150 @@
+#include "chapters/10_frame/whole_frame.h"
+
+#include "chapters/04_neon/neon_scene.h"
+#include "chapters/05_hdr/hdr_math.h"
+
+namespace lp::ch10 {
+
+namespace {
+bool any_glass(const Scene& scene) {
+  for (const Material& m : scene.materials)
+    if (m.blend) return true;
+  return false;
+}
+bool has_directional(const Scene& scene) {
+  for (const Light& l : scene.lights)
+    if (l.type == LightType::Directional) return true;
+  return false;
+}
+}  // namespace
+
+WholeFrame::WholeFrame(const Scene& scene)
+    : scene_(scene), has_sun_(has_directional(scene)), has_glass_(any_glass(scene)), neon_lights_(ch04::neon_lights(scene)) {}
+
+// [plan]
+std::vector<PlannedStage> WholeFrame::plan(const WholeFrameSettings& s) const {
+  const bool ambient = glm::length(scene_.ambient) > 0.f;
+  auto off = [](bool wanted, bool possible, const std::string& lacking) {
+    return !wanted ? std::string("switched off") : !possible ? lacking : std::string();
+  };
+  std::vector<PlannedStage> p;
+  p.push_back({"G-buffer (chapter 02)", true, ""});
+  p.push_back({"shadow map of the sun (chapter 06)", s.shadows && has_sun_, off(s.shadows, has_sun_, "no directional light")});
+  p.push_back({"global light: ambient + directional (chapter 03)", true, ""});
+  p.push_back({s.clustered ? "local lights: clusters (chapter 09)" : "local lights: stencil volumes (chapter 03)", true, ""});
+  p.push_back({"neon tubes (chapter 04)", s.neon && !neon_lights_.empty(), off(s.neon, !neon_lights_.empty(), "no neon tubes")});
+  p.push_back({"ambient occlusion (chapters 07, 08)", s.ao && ambient, off(s.ao, ambient, "no ambient light")});
+  p.push_back({"indirect light, one bounce (chapter 08)", s.indirect, off(s.indirect, true, "")});
+  p.push_back({"composite into float radiance (chapter 03)", true, ""});
+  const bool glass = s.transparency != Method::Off;
+  p.push_back({"glass (chapter 10)", glass && has_glass_, off(glass, has_glass_, "no alphaMode BLEND material")});
+  p.push_back({"log-average, adaptation, bloom, tonemap (chapter 05)", true, ""});
+  return p;
+}
+// [/plan]
+
+std::string WholeFrame::key(const WholeFrameSettings& s) const {
+  std::string k;
+  for (const PlannedStage& st : plan(s)) k += st.runs ? '1' : '0';
+  return k;
+}
+
+// [build]
+// The stages are added to chapter 03's frame in the order their hooks must run: the shadow
+// map before any light reads it, the tubes before the indirect pass reads the lit diffuse
+// light, the glass after the composite.
+void WholeFrame::build(const WholeFrameSettings& s) {
+  const std::vector<PlannedStage> p = plan(s);
+  const bool shadows = p[1].runs, neon = p[4].runs, ao = p[5].runs, indirect = p[6].runs, glass = p[8].runs;
+  glass_.reset();
+  gi_.reset();
+  shadows_.reset();
+  neon_.reset();
+  clustered_.reset();
+  source_ = std::make_unique<ch05::DeferredRadiance>(scene_);
+  ch03::DeferredFrame& frame = source_->frame();
+  clustered_ = std::make_unique<ch09::ClusteredLights>(frame.volumes());
+  if (shadows) {
+    shadows_ = std::make_unique<ch06::ShadowStage>(source_->scene_gpu(), ch06::find_sun(source_->scene()));
+    frame.add_stage(*shadows_);
+  }
+  if (neon) {
+    tubes_ = std::make_unique<ch04::NeonTubes>();
+    tubes_->upload(neon_lights_);
+    neon_ = std::make_unique<ch04::NeonStage>(source_->scene_gpu(), *tubes_);
+    frame.add_stage(*neon_);
+  }
+  if (ao || indirect) {
+    gi_ = std::make_unique<ch08::GiStage>();
+    frame.add_stage(*gi_);
+  }
+  if (glass) {
+    glass_ = std::make_unique<TransparencyStage>(frame, source_->scene_gpu());
+    frame.add_stage(*glass_);
+  }
+  radiance_.reset();
+  built_ = key(s);
+}
+// [/build]
+
+void WholeFrame::reload_shaders() {
+  if (!source_) return;
+  source_->reload_shaders();
+  if (neon_) neon_->reload_shaders();
+  if (shadows_) shadows_->reload_shaders();
+  if (gi_) gi_->reload_shaders();
+  if (clustered_) clustered_->reload_shaders();
+  if (glass_) glass_->reload_shaders();
+  hdr_.reload_shaders();
+}
+
+// [render]
+void WholeFrame::render(const FrameCamera& camera, const ch03::FrameOutput& output, const WholeFrameSettings& s,
+                        float dt, bool new_shot, PassMetrics* metrics) {
+  if (!source_ || key(s) != built_) {
+    build(s);
+    new_shot = true;
+  }
+  const std::vector<PlannedStage> p = plan(s);
+  if (new_shot) {
+    hdr_.reset_adaptation(1.f);
+    feedback_.reset();
+  }
+  ch05::HdrSettings hdr = s.hdr;
+  hdr.adaptation.dt = dt;
+  // 1. The lights cut for the largest exposure this frame can get (chapter 05), scaled.
+  const ch05::ExposureEstimate cut = feedback_.begin_frame(hdr.adaptation, hdr.delta, 1.f);
+  source_->set_cut_exposure(cut.exposure * ch05::output_slope(hdr.tonemap.op, hdr.tonemap.white));
+  source_->set_scales(s.sun, s.glow);
+  // 2. The stages' settings: each chapter's defaults.
+  ch03::DeferredFrame& frame = source_->frame();
+  frame.set_local_lights(s.clustered ? clustered_.get() : nullptr);
+  frame.set_strategy(ch03::Strategy::Stencil);
+  if (shadows_) shadows_->set(ch06::ShadowSettings{});
+  if (gi_) {
+    ch08::GiSettings g;
+    g.ao = p[5].runs;
+    g.indirect = p[6].runs;
+    gi_->set(g.indirect ? ch08::GiMode::Ssgi : ch08::GiMode::Ssao, g, ch08::GiShow::Image, source_->scene().ambient);
+  }
+  if (glass_) glass_->set({.method = s.transparency});
+  // 3. The frame into float radiance: G-buffer, shadow map, lights, tubes, AO + indirect,
+  //    composite, glass (chapter 03's DeferredFrame::render with the stages above).
+  if (!radiance_ || radiance_->width() != output.width || radiance_->height() != output.height)
+    radiance_ = std::make_unique<ch05::RadianceTarget>(output.width, output.height, GL_RGBA16F, neon_ || glass_);
+  source_->render(camera, *radiance_, metrics);
+  // 4. Chapter 05's HDR stage into the sRGB8 output.
+  hdr_.process(radiance_->texture(), output.width, output.height, hdr, output.framebuffer, metrics);
+  feedback_.end_frame(hdr_.adaptation().state_buffer());
+}
+// [/render]
+
+std::size_t WholeFrame::allocated_bytes() const {
+  std::size_t b = source_ ? source_->allocated_bytes() : 0;
+  if (radiance_) b += radiance_->bytes();
+  if (shadows_) b += shadows_->allocated_bytes();
+  if (glass_) b += glass_->allocated_bytes();
+  return b + hdr_.allocated_bytes() + (clustered_ ? clustered_->stats().bytes : 0);
+}
+
+}  // namespace lp::ch10

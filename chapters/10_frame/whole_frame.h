@@ -1,0 +1,88 @@
+#pragma once
+// The whole frame: every stage of the book in one deferred frame, in the order the sources
+// draw it, each a library call into its chapter. This file adds only the assembly:
+//
+//   1. G-buffer (chapter 02), through chapter 05's float radiance source (chapter 03's frame)
+//   2. the sun's shadow map (chapter 06)                       ShadowStage, before the lights
+//   3. ambient + directional light, then the local lights: chapter 03's stencil volumes or
+//      chapter 09's clusters                                   the frame's LocalLightPass
+//   4. chapter 04's neon tubes                                 NeonStage, a light of its own
+//   5. AO and one bounce of indirect light in one pass (chapters 07 and 08)   GiStage
+//   6. the composite into float radiance, then the glass (chapter 10)   TransparencyStage
+//   7. log-average, eye adaptation, bloom, tonemapping, sRGB (chapter 05)    HdrPipeline
+//
+// What the scene does not need is not run, and plan() says so: no tubes, no neon pass; no
+// sun, no shadow map; no glass, no transparency pass; no ambient light, no AO.
+//
+//   WholeFrame frame(scene);
+//   frame.render(camera, {target, w, h}, settings, dt, new_shot, &metrics);
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "chapters/04_neon/neon_forward.h"
+#include "chapters/04_neon/neon_stage.h"
+#include "chapters/05_hdr/exposure_feedback.h"
+#include "chapters/05_hdr/hdr_pipeline.h"
+#include "chapters/05_hdr/radiance_source.h"
+#include "chapters/06_shadows/shadow_stage.h"
+#include "chapters/08_ssgi/gi_stage.h"
+#include "chapters/09_clustered/clustered_lights.h"
+#include "chapters/10_frame/transparency.h"
+
+namespace lp::ch10 {
+
+// [whole-settings]
+struct WholeFrameSettings {
+  bool shadows = true;     // chapter 06: the sun's shadow map (PCF 3x3), when the scene has a sun
+  bool clustered = true;   // chapter 09's clusters for the local lights; false: chapter 03's stencil volumes
+  bool ao = true;          // chapters 07/08: AO on the ambient light (the narrow disk)
+  bool indirect = true;    // chapter 08: one bounce of diffuse indirect light (the wide disk)
+  bool neon = true;        // chapter 04's tubes, when the scene has any
+  Method transparency = Method::Sorted;  // chapter 10's glass, when the scene has any
+  float sun = 1.f, glow = 8.f;           // chapter 05's scales of the sun and the emissive surfaces
+  ch05::HdrSettings hdr;                 // chapter 05: its defaults (Reinhard, key 0.18, no bloom)
+};
+// [/whole-settings]
+
+// One line of the plan: a stage, whether it runs this frame, and why not.
+struct PlannedStage {
+  std::string stage;
+  bool runs = false;
+  std::string why;  // what the scene lacks, or which setting turned it off
+};
+
+class WholeFrame {
+ public:
+  explicit WholeFrame(const Scene& scene);
+  void reload_shaders();
+  std::vector<PlannedStage> plan(const WholeFrameSettings& s) const;
+  // The frame into `output` (sRGB8, any size); each pass timed in `metrics`. `dt`: seconds
+  // since the last frame (eye adaptation); `new_shot`: the eye starts adapted.
+  void render(const FrameCamera& camera, const ch03::FrameOutput& output, const WholeFrameSettings& s, float dt,
+              bool new_shot, PassMetrics* metrics = nullptr);
+  std::size_t allocated_bytes() const;
+  const ch05::DeferredRadiance& source() const { return *source_; }
+  ch05::DeferredRadiance& source() { return *source_; }
+
+ private:
+  void build(const WholeFrameSettings& s);  // the radiance source with the stages s needs
+  std::string key(const WholeFrameSettings& s) const;
+
+  const Scene& scene_;
+  bool has_sun_ = false, has_glass_ = false;
+  std::vector<ch04::NeonLight> neon_lights_;
+  std::string built_;
+  std::unique_ptr<ch05::DeferredRadiance> source_;
+  std::unique_ptr<ch04::NeonTubes> tubes_;
+  std::unique_ptr<ch04::NeonStage> neon_;
+  std::unique_ptr<ch06::ShadowStage> shadows_;
+  std::unique_ptr<ch08::GiStage> gi_;
+  std::unique_ptr<ch09::ClusteredLights> clustered_;
+  std::unique_ptr<TransparencyStage> glass_;
+  std::unique_ptr<ch05::RadianceTarget> radiance_;
+  ch05::HdrPipeline hdr_;
+  ch05::ExposureFeedback feedback_;
+};
+
+}  // namespace lp::ch10
