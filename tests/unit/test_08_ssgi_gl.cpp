@@ -17,10 +17,12 @@
 #include "common/error.h"
 #include "common/paths.h"
 #include "common/raytrace.h"
+#include "tests/unit/book_data.h"
 #include "tests/unit/gl_environment.h"
 
 using namespace lp;
 using namespace lp::ch08;
+using lp::test::book_row;
 
 namespace {
 
@@ -535,6 +537,9 @@ TEST(SsgiBackFaces, LayerRecoversAnEmitterThatFacesAway) {
   std::cout << "panel facing the wall: truth " << e_on.mean_truth << " on " << n << " wall pixels; captured without the "
             << "layer " << e_off.captured << ", with it " << e_on.captured << " (relative error " << e_off.relative
             << " -> " << e_on.relative << ")\n";
+  book_row("08_back_faces_test", {{"case", "panel facing the wall"}},
+           {{"truth", e_on.mean_truth}, {"captured_off", e_off.captured}, {"captured_on", e_on.captured},
+            {"relative_off", e_off.relative}, {"relative_on", e_on.relative}});
   EXPECT_GT(e_on.mean_truth, 0.01);  // the wall receives light from the panel (well above the noise)
   EXPECT_LT(e_off.captured, 0.05);
   EXPECT_GT(e_on.captured, 0.5);
@@ -608,6 +613,7 @@ TEST(SsgiGuardBand, ScreensPartOfTheWideFrameIsTheScreen) {
     worst = std::max(worst, d);
   }
   std::cout << "guard band 24 px, mode off: " << differ << " pixels differ, by at most " << worst << "\n";
+  book_row("08_guard_band_crop_test", {{"case", "mode off, 24 px"}}, {{"pixels_differ", double(differ)}, {"largest_difference", double(worst)}});
   EXPECT_LE(worst, 1);
   EXPECT_LE(double(differ), 0.005 * kW * kH);
 }
@@ -639,6 +645,8 @@ TEST(SsgiGuardBand, OffScreenEmitterWithinTheBandIsRecovered) {
   const double got0 = red_excess(without, names, "floor", 0, 30), got = red_excess(with, names, "floor", 0, 30);
   std::cout << "red wall in the band: truth " << want << ", band-limited truth " << in_band << ", pass without the band "
             << got0 << ", with it " << got << "\n";
+  book_row("08_guard_band_test", {{"case", "red wall in a 45 px band"}},
+           {{"truth", want}, {"band_truth", in_band}, {"pass_off", got0}, {"pass_on", got}});
   EXPECT_GT(in_band, 0.2 * want);
   EXPECT_LT(got0, 0.2 * want);
   EXPECT_GT(got, 0.5 * in_band);
