@@ -8,6 +8,7 @@
 // `--back-faces on` adds the source's back-face layer (its emitters seen by `--show back-faces`);
 // `--guard-band N` draws the frame N pixels (or N < 1: that fraction of the height) wider on
 // every side and shows the screen's part.
+#include <algorithm>
 #include <chrono>
 #include <iostream>
 
@@ -154,8 +155,17 @@ int main(int argc, char** argv) {
       gi.set_guard_band(band.pixels);
       auto render = [&](PassMetrics* metrics) {
         if (band.pixels == 0) return frame.render(f.camera, {f.target, f.width, f.height}, metrics);
-        if (!wide || wide->width() != band.width(f.width) || wide->height() != band.height(f.height))
+        if (!wide || wide->width() != band.width(f.width) || wide->height() != band.height(f.height)) {
+          // the wide frame obeys --size's own limit (16384) and this GL's texture size
+          GLint gl_most = 0;
+          glGetIntegerv(GL_MAX_TEXTURE_SIZE, &gl_most);
+          const int most = std::min(16384, int(gl_most));
+          if (band.width(f.width) > most || band.height(f.height) > most)
+            throw Error("--guard-band " + std::to_string(band.pixels) + " px makes the frame " +
+                        std::to_string(band.width(f.width)) + "x" + std::to_string(band.height(f.height)) +
+                        ", larger than the " + std::to_string(most) + " pixels a side a frame may have here");
           wide = std::make_unique<OutputTarget>(band.width(f.width), band.height(f.height));
+        }
         frame.render(band.widen(f.camera, f.width, f.height), {wide->framebuffer(), wide->width(), wide->height()},
                      metrics);
         band.crop(wide->framebuffer(), f.target, f.width, f.height);
