@@ -5,7 +5,7 @@ lightpass_gtests(08_ssgi unit lightpass_08_ssgi unit/test_08_gi_math.cpp)
 lightpass_gtests(08_ssgi gl lightpass_08_ssgi unit/test_08_ssgi_gl.cpp)
 
 set(P08 $<TARGET_FILE:08_ssgi>)
-lightpass_program_test(08_ssgi.reference.cornell 0 "13 of 13 references match" ${P08} --check --out ${CHECK_OUT}/08_ssgi)
+lightpass_program_test(08_ssgi.reference.cornell 0 "16 of 16 references match" ${P08} --check --out ${CHECK_OUT}/08_ssgi)
 lightpass_program_test(08_ssgi.reference.atrium 0 "2 of 2 references match"
   ${P08} --check --scene assets/atrium/atrium.gltf --out ${CHECK_OUT}/08_ssgi_atrium)
 lightpass_program_test(08_ssgi.headless_says_what_it_computed 0
@@ -18,8 +18,18 @@ lightpass_program_test(08_ssgi.bad_bounces 2 "--bounces must be between 1 and 2,
 lightpass_program_test(08_ssgi.bad_mode 2 "unknown mode 'rtgi'" ${P08} --mode rtgi)
 lightpass_program_test(08_ssgi.bad_pattern 2 "--pattern must be one of: regular spiral randomised. got .hexagonal." ${P08} --pattern hexagonal)
 add_test(NAME 08_ssgi.sweep_unknown_option COMMAND ${EXPECT} 2 "unknown option '--fast'" -- $<TARGET_FILE:08_ssgi_sweep> --fast)
-add_test(NAME 08_ssgi.sweep_bad_only COMMAND ${EXPECT} 2 "--only must be cornell, atrium or pan .got 'street'." -- $<TARGET_FILE:08_ssgi_sweep> --only street)
+add_test(NAME 08_ssgi.sweep_bad_only COMMAND ${EXPECT} 2 "--only must be cornell, atrium, pan or fixes .got .street.." -- $<TARGET_FILE:08_ssgi_sweep> --only street)
 lightpass_program_test(08_ssgi.headless_says_bitmask_gather 0
   "SSGI ssgi, 16 samples, randomised, radii 0.5 / 2.5, 1 bounce, bitmask gather: frame took"
   ${P08} --headless --size 160x90 --samples 16 --gather bitmask --out ${CMAKE_BINARY_DIR}/out/08_headless_bitmask.png)
 lightpass_program_test(08_ssgi.bad_gather 2 "--gather must be one of: disk bitmask. got .horizon." ${P08} --gather horizon)
+lightpass_program_test(08_ssgi.headless_says_back_faces 0
+  "SSGI ssgi, 16 samples, randomised, radii 0.5 / 2.5, 1 bounce, back-face layer: frame took"
+  ${P08} --headless --size 160x90 --samples 16 --back-faces on --out ${CMAKE_BINARY_DIR}/out/08_headless_back_faces.png)
+lightpass_program_test(08_ssgi.headless_says_guard_band 0
+  "SSGI ssgi, 16 samples, randomised, radii 0.5 / 2.5, 1 bounce, guard band 18 px .frame 196x126.: frame took"
+  ${P08} --headless --size 160x90 --samples 16 --guard-band 0.2 --out ${CMAKE_BINARY_DIR}/out/08_headless_guard_band.png)
+lightpass_program_test(08_ssgi.bad_back_faces 2 "--back-faces must be one of: off on. got .maybe." ${P08} --back-faces maybe)
+lightpass_program_test(08_ssgi.bad_guard_band 2 "--guard-band must be between 0 and 1080, got 2000" ${P08} --guard-band 2000)
+lightpass_program_test(08_ssgi.guard_band_beyond_the_gl_limit 1 "--guard-band 1000 px makes the frame 18000x2090, larger than the [0-9]+ pixels a side a frame may have here"
+  ${P08} --headless --size 16000x90 --guard-band 1000 --mode off --out ${CMAKE_BINARY_DIR}/out/08_big.png)

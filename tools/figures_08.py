@@ -37,10 +37,22 @@ def main(d: Path):
     pan = "08_ssgi_pan_h200.csv" if (d / "08_ssgi_pan_h200.csv").exists() else "08_ssgi_pan_llvmpipe.csv"
     notes, rows = read_csv(d / pan)
     series = [Series(label, [(float(r["offset"]), float(r[col])) for r in rows], dashed=col == "red_screen")
-              for label, col in (("truth", "red_truth"), ("screen-limited truth", "red_screen"), ("SSGI pass", "red_pass"))]
+              for label, col in (("truth", "red_truth"), ("screen-limited truth", "red_screen"), ("SSGI pass", "red_pass"),
+                                 ("SSGI pass, --guard-band 0.1", "red_guard"))]
     plot(d / "08_pan.svg", "The red wall leaves the screen: red light on the floor beside it",
          "a camera above the Cornell floor looking down, moved right; L1_ind red - green / 0.93 over the floor between x = -0.6 and -0.1 (errors: any renderer)",
          series, "camera position x (m); the red wall is off the image from about 0.2", "red excess of the floor's indirect light")
+
+    fixes = "08_ssgi_fixes_h200.csv" if (d / "08_ssgi_fixes_h200.csv").exists() else "08_ssgi_fixes_llvmpipe.csv"
+    if (d / fixes).exists():
+        notes, rows = read_csv(d / fixes)
+        series = [Series(f"{scene}, {'back-face layer' if fix == 'back-faces' else 'front layer only'}",
+                         [(float(r["samples"]), float(r["captured"])) for r in rows if r["scene"] == scene and r["fix"] == fix],
+                         dashed=fix == "none", in_order=True)
+                  for scene in ("cornell", "atrium") for fix in ("none", "back-faces")]
+        plot(d / "08_back_faces.svg", "The back-face layer: the true indirect energy captured",
+             notes[0] if notes else "", [s for s in series if s.points], "samples (log scale)",
+             "captured: the pass's energy over the truth's", xlog=True)
 
 
 if __name__ == "__main__":

@@ -4,6 +4,7 @@ namespace lp::ch08 {
 
 void GiStage::reload_shaders() {
   ssgi_.reload_shaders();
+  back_.reload_shaders();
   add_program_.reset();
   show_program_.reset();
 }
@@ -36,9 +37,22 @@ void GiStage::set_picture(const ImageF& picture, float heat_full_scale) {
 // [gi-stage]
 void GiStage::add_light(ch03::DeferredFrame& frame, PassMetrics* metrics) {
   ran_ = mode_ != GiMode::Off;
+  const bool back_faces = ran_ && settings_.indirect && settings_.back_faces && settings_.gather == Gather::Disk;
+  drew_back_ = back_faces || show_ == GiShow::BackFaces;
+  if (drew_back_ && !back_faces) {
+    auto pass = timed(metrics, "back-face layer (its picture)");
+    back_.draw(scene_, frame);
+  }
   if (ran_) {
+    // the back-face layer, when asked for, is part of the pass's cost: timed with it
     auto pass = timed(metrics, "ssgi: " + kModeNames[int(mode_)] + " (" + kPatternNames[int(settings_.pattern)] + ")");
-    ssgi_.compute(frame.gbuffer(), frame.light().diffuse(), frame.camera(), settings_);
+    if (back_faces) back_.draw(scene_, frame);
+    const BackFaceTextures layer = back_.textures();
+    // with a guard band the G-buffer is taller than the screen: the clamp stays the screen's
+    GiSettings s = settings_;
+    const int h = frame.gbuffer().height();
+    if (guard_ > 0 && h > 2 * guard_) s.max_screen_radius *= float(h - 2 * guard_) / float(h);
+    ssgi_.compute(frame.gbuffer(), frame.light().diffuse(), frame.camera(), s, back_faces ? &layer : nullptr);
   }
   // A x ambient + L1_ind into the light buffer (bound by the frame), added to the direct light
   auto pass = timed(metrics, "ssgi: add to the light buffer");
@@ -73,16 +87,26 @@ bool GiStage::composite(ch03::DeferredFrame& frame, PassMetrics* metrics) {
         defines);
   }
   show_program_->use();
-  const int mode = show_ == GiShow::Indirect ? 0 : show_ == GiShow::Ao ? 1 : show_ == GiShow::Picture ? 2 : 3;
+  const int mode = show_ == GiShow::Indirect  ? 0
+                 : show_ == GiShow::Ao        ? 1
+                 : show_ == GiShow::Picture   ? 2
+                 : show_ == GiShow::Heat      ? 3
+                                              : 4;
   show_program_->set("u_mode", mode);
   show_program_->set("u_exposure", exposure_);
   show_program_->set("u_heat", heat_ > 0.f ? heat_ : 1.f);
+  show_program_->set("u_picture_offset", guard_);
   const bool picture = show_ == GiShow::Picture || show_ == GiShow::Heat;
   glBindTextureUnit(ch03::DeferredFrame::kFirstStageUnit, picture ? picture_.id() : ran_ ? ssgi_.texture() : 0);
+  const BackFaceTextures layer = back_.textures();
+  glBindTextureUnit(9, drew_back_ ? layer.albedo : 0);
+  glBindTextureUnit(10, drew_back_ ? layer.light : 0);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
   glBindVertexArray(vao_.id());
   glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindTextureUnit(9, 0);
+  glBindTextureUnit(10, 0);
   return true;
 }
 

@@ -8,7 +8,7 @@
 // leaves it out of chapter 03's global pass, and the stage adds A x ambient + L1_ind into
 // the light buffer itself. The composite, albedo x L1 + L2 + emissive, then shows both.
 //
-//   ch03::DeferredFrame frame(scene_gpu);  GiStage gi;  frame.add_stage(gi);
+//   ch03::DeferredFrame frame(scene_gpu);  GiStage gi(scene_gpu);  frame.add_stage(gi);
 //   gi.set(GiMode::Ssgi, {.samples = 16}, GiShow::Image, scene.ambient);
 //   frame.render(camera, output, &metrics);
 #include <memory>
@@ -24,16 +24,25 @@ enum class GiMode { Ssgi, Ssao, Off };
 inline const std::vector<std::string> kModeNames = {"ssgi", "ssao", "off"};
 
 // The lit image; the indirect light the pixels reflect (albedo x L1_ind); the AO term; an RGB
-// picture the program computed (the truth); a one-channel picture as a heat map (the error).
-enum class GiShow { Image, Indirect, Ao, Picture, Heat };
+// picture the program computed (the truth); a one-channel picture as a heat map (the error);
+// the back-face layer: the light its surfaces send, albedo x L1 (black where there is none).
+enum class GiShow { Image, Indirect, Ao, Picture, Heat, BackFaces };
 
 class GiStage : public ch03::FrameStage {
  public:
+  explicit GiStage(const SceneGpu& scene) : scene_(scene) {}
   void reload_shaders();
   void set(GiMode mode, const GiSettings& settings, GiShow show, glm::vec3 ambient, float exposure = 1.f);
   // What Picture shows (rgb, rows top to bottom: L1_ind, multiplied by the albedo as Indirect
   // is) and what Heat shows (one channel, red at heat_full_scale).
   void set_picture(const ImageF& picture, float heat_full_scale = 0.f);
+  // The frame is drawn `pixels` wider on every side than the screen (guard_band.h): the wide
+  // disk's screen clamp stays a fraction of the screen's height, and the pictures (truth,
+  // error: screen-sized) are drawn into the screen's part.
+  void set_guard_band(int pixels) { guard_ = pixels; }
+  int guard_band() const { return guard_; }
+  const BackFaceLayer& back_faces() const { return back_; }
+  bool drew_back_faces() const { return drew_back_; }
   bool ran() const { return ran_; }
   const Ssgi& ssgi() const { return ssgi_; }
   const GiSettings& settings() const { return settings_; }
@@ -44,7 +53,11 @@ class GiStage : public ch03::FrameStage {
   bool composite(ch03::DeferredFrame& frame, PassMetrics* metrics) override;
 
  private:
+  const SceneGpu& scene_;
   Ssgi ssgi_;
+  BackFaceLayer back_;
+  bool drew_back_ = false;
+  int guard_ = 0;
   GiSettings settings_;
   GiMode mode_ = GiMode::Ssgi;
   GiShow show_ = GiShow::Image;

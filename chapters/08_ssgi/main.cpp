@@ -5,6 +5,10 @@
 // reflect toward the pixel through the disk-to-disk transfer; both are added into the light
 // buffer, and chapter 03's composite shows them. `--show indirect` shows the indirect light
 // alone, `--show truth` the ray-traced one-bounce light, `--show error` the difference.
+// `--back-faces on` adds the source's back-face layer (its emitters seen by `--show back-faces`);
+// `--guard-band N` draws the frame N pixels (or N < 1: that fraction of the height) wider on
+// every side and shows the screen's part.
+#include <algorithm>
 #include <chrono>
 #include <iostream>
 
@@ -14,6 +18,8 @@
 #include "chapters/03_light_volumes/light_radius.h"
 #include "chapters/08_ssgi/gi_stage.h"
 #include "chapters/08_ssgi/gi_truth.h"
+#include "chapters/08_ssgi/guard_band.h"
+#include "common/target.h"
 #include "common/app.h"
 #include "common/error.h"
 
@@ -22,7 +28,7 @@ namespace {
 using namespace lp;
 using namespace lp::ch08;
 
-enum Show { kImage, kIndirect, kAo, kTruth, kError };  // --show's order
+enum Show { kImage, kIndirect, kAo, kTruth, kError, kBackFaces };  // --show's order
 
 const CliSpec kCli{
     .program = "08_ssgi",
@@ -44,10 +50,16 @@ const CliSpec kCli{
               {"thickness", "--gather bitmask: the depth each sample is taken to have, world units", 0.5, 0.01, 100,
                false},
               {"bounces", "1, or 2: a second pass bounces direct + first bounce once more", 1, 1, 2, true},
+              choice_knob("back-faces", "the source's fix for emitters facing away: a second G-buffer of the "
+                                        "nearest back faces, lit, whose emitters the disk gather reads too",
+                          {"off", "on"}, 0),
+              {"guard-band", "draw the frame this much wider on every side and show the screen's part: pixels, or "
+                             "below 1 a fraction of the height (0: none)",
+               0, 0, kMaxGuardBand, false},
               choice_knob("show", "the lit image; the indirect light alone (albedo x L1_ind, x --exposure); the AO "
                                   "term; the ray-traced truth (the CPU traces --truth-samples rays per pixel, cached); "
-                                  "|SSGI - truth| as a heat map (red: 0.2)",
-                          {"image", "indirect", "ao", "truth", "error"}),
+                                  "|SSGI - truth| as a heat map (red: 0.2); the back-face layer's light (albedo x L1)",
+                          {"image", "indirect", "ao", "truth", "error", "back-faces"}),
               {"exposure", "--show indirect/truth: the indirect light times this", 4, 0.1, 100, false},
               {"truth-samples", "--show truth/error: cosine-weighted rays per pixel", 256, 1, 4096, true},
               {"ambient", "the scene's ambient light times this (the AO darkens only the ambient)", 1, 0, 1000, false}}};
@@ -78,7 +90,10 @@ std::vector<Shot> cornell_shots() {
           {"front", "ssgi", {{"show", kAo}}},
           {"front", "ssgi", {{"show", kTruth}, {"truth-samples", 64}}},
           {"front", "ssgi", {{"show", kError}, {"truth-samples", 64}}, {}, kCornerTies},
-          {"front", "ssgi", {{"show", kIndirect}, {"gather", 1}}}};
+          {"front", "ssgi", {{"show", kIndirect}, {"gather", 1}}},
+          {"front", "ssgi", {{"show", kBackFaces}}},
+          {"front", "ssgi", {{"show", kIndirect}, {"back-faces", 1}}},
+          {"front", "ssgi", {{"show", kIndirect}, {"guard-band", 0.25}}}};
 }
 std::vector<Shot> atrium_shots() {
   return {{"overview", "ssgi", {}, {}, kOtherRenderer}, {"overview", "ssgi", {{"show", kIndirect}}, {}, kOtherRenderer}};
@@ -101,6 +116,7 @@ GiSettings settings_from(const Frame& f) {
   s.bounces = f.knob_int("bounces");
   s.gather = f.choice("gather") == "bitmask" ? Gather::Bitmask : Gather::Disk;
   s.thickness = float(f.knob("thickness"));
+  s.back_faces = f.choice("back-faces") == "on";
   return s;
 }
 
@@ -117,8 +133,10 @@ int main(int argc, char** argv) {
     ch03::use_lights(frame, app.scene(), app.scene().lights);
     // 2. The stage: its ambient hook leaves the ambient out of the global pass; after the direct
     //    lights it computes AO + indirect light in one pass and adds A x ambient + L1_ind.
-    GiStage gi;
+    GiStage gi(app.scene_gpu());
     frame.add_stage(gi);
+    // 3. The guard band, when asked for: the frame drawn wider into its own target, cropped.
+    std::unique_ptr<OutputTarget> wide;
 
     while (app.next_frame()) {
       const Frame& f = app.frame();
@@ -133,8 +151,29 @@ int main(int argc, char** argv) {
       const int show = f.knob_int("show");
       const float exposure = float(f.knob("exposure"));
       const GiSettings settings = settings_from(f);
+      const GuardBand band{guard_band_pixels(f.knob("guard-band"), f.height)};
+      gi.set_guard_band(band.pixels);
+      auto render = [&](PassMetrics* metrics) {
+        if (band.pixels == 0) return frame.render(f.camera, {f.target, f.width, f.height}, metrics);
+        if (!wide || wide->width() != band.width(f.width) || wide->height() != band.height(f.height)) {
+          // the wide frame obeys --size's own limit (16384) and this GL's texture size
+          GLint gl_most = 0;
+          glGetIntegerv(GL_MAX_TEXTURE_SIZE, &gl_most);
+          const int most = std::min(16384, int(gl_most));
+          if (band.width(f.width) > most || band.height(f.height) > most)
+            throw Error("--guard-band " + std::to_string(band.pixels) + " px makes the frame " +
+                        std::to_string(band.width(f.width)) + "x" + std::to_string(band.height(f.height)) +
+                        ", larger than the " + std::to_string(most) + " pixels a side a frame may have here");
+          wide = std::make_unique<OutputTarget>(band.width(f.width), band.height(f.height));
+        }
+        frame.render(band.widen(f.camera, f.width, f.height), {wide->framebuffer(), wide->width(), wide->height()},
+                     metrics);
+        band.crop(wide->framebuffer(), f.target, f.width, f.height);
+      };
       gi.set(mode_from(f), settings,
-             show == kIndirect ? GiShow::Indirect : show == kAo ? GiShow::Ao : GiShow::Image, ambient, exposure);
+             show == kIndirect ? GiShow::Indirect : show == kAo ? GiShow::Ao : show == kBackFaces ? GiShow::BackFaces
+                                                                                               : GiShow::Image,
+             ambient, exposure);
       if (show == kTruth || show == kError) {
         // 3. The truth at this size and camera (cached on disk), and for the error the SSGI of
         //    the frame just drawn against it
@@ -147,17 +186,20 @@ int main(int argc, char** argv) {
           gi.set_picture(picture);
           gi.set(mode_from(f), settings, GiShow::Picture, ambient, exposure);
         } else {
-          frame.render(f.camera, {f.target, f.width, f.height});
+          render(nullptr);
           ImageF estimate = ImageF::blank(f.width, f.height, 4);
-          if (gi.ran() && gi.settings().indirect) estimate = gi.ssgi().read();
+          if (gi.ran() && gi.settings().indirect) estimate = band.crop(gi.ssgi().read());
           gi.set_picture(gi_error_map(estimate, truth), 0.2f);
           gi.set(mode_from(f), settings, GiShow::Heat, ambient, exposure);
         }
       }
-      // 4. G-buffer, direct lights, the SSGI pass added, the composite (or the picture)
-      frame.render(f.camera, {f.target, f.width, f.height}, &app.metrics());
+      // 4. G-buffer, direct lights, the SSGI pass added (the back-face layer drawn and lit first
+      //    when asked for), the composite (or the picture), the screen's part of a guard band
+      render(&app.metrics());
       // [/frame]
       app.metrics().set_allocation("G-buffer (chapter 02) + light buffer (chapter 03)", frame.allocated_bytes());
+      if (gi.drew_back_faces())
+        app.metrics().set_allocation("back-face layer: G-buffer + light buffer", gi.back_faces().allocated_bytes());
       if (std::ostream& out = app.report()) {
         glFinish();
         double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -166,9 +208,11 @@ int main(int argc, char** argv) {
           out << "SSGI " << f.mode << ", " << Ssgi::used_samples(s.pattern, s.samples) << " samples, "
               << kPatternNames[int(s.pattern)] << ", radii " << s.ao_radius << " / " << s.gi_radius << ", "
               << s.bounces << (s.bounces == 1 ? " bounce" : " bounces")
-              << (s.gather == Gather::Bitmask ? ", bitmask gather" : "");
+              << (s.gather == Gather::Bitmask ? ", bitmask gather" : "")
+              << (s.back_faces && s.indirect ? s.gather == Gather::Disk ? ", back-face layer" : ", no back-face layer (the bitmask gather reads the front layer only)" : "");
         else
           out << "no SSGI pass (mode off)";
+        if (band.pixels > 0) out << ", guard band " << band.pixels << " px (frame " << band.width(f.width) << "x" << band.height(f.height) << ")";
         out << ": frame took " << ms << " ms (wall clock, " << app.context().renderer() << ")\n";
       }
       app.panel([&] {

@@ -20,7 +20,7 @@ int Ssgi::used_samples(Pattern pattern, int samples) {
 }
 
 void Ssgi::pass(const ch02::GBuffer& gbuffer, GLuint light, GLuint extra, const FrameCamera& camera,
-                const GiSettings& s, GLuint out) {
+                const GiSettings& s, const BackFaceTextures* back, GLuint out) {
   const ShaderProgram& p = program("08_ssgi/shaders/ssgi.comp", gbuffer);
   const int rings = regular_rings(s.samples);
   p.set("u_view", camera.view);
@@ -37,14 +37,22 @@ void Ssgi::pass(const ch02::GBuffer& gbuffer, GLuint light, GLuint extra, const 
   p.set("u_ao_on", s.ao ? 1 : 0);
   p.set("u_gather", int(s.gather));
   p.set("u_thickness", s.thickness);
+  p.set("u_back_faces", back ? 1 : 0);
   p.use();
   glBindTextureUnit(9, light);
   glBindTextureUnit(10, extra ? extra : light);
+  // the back-face layer on units 11..14 (unused, and the front layer's stand-ins, without it)
+  const BackFaceTextures none{gbuffer.layout().depth_target ? gbuffer.depth_copy() : gbuffer.depth_stencil(),
+                              gbuffer.normal(), gbuffer.albedo(), light};
+  const BackFaceTextures& b = back ? *back : none;
+  glBindTextureUnit(11, b.depth);
+  glBindTextureUnit(12, b.normal);
+  glBindTextureUnit(13, b.albedo);
+  glBindTextureUnit(14, b.light);
   glBindImageTexture(0, out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   glDispatchCompute(GLuint((width_ + 7) / 8), GLuint((height_ + 7) / 8), 1);
   glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-  glBindTextureUnit(9, 0);  // the light buffer is drawn into next: no texture of it stays bound
-  glBindTextureUnit(10, 0);
+  for (GLuint unit = 9; unit <= 14; ++unit) glBindTextureUnit(unit, 0);  // the light buffers are drawn into next
 }
 
 void Ssgi::blur(const ch02::GBuffer& gbuffer, const FrameCamera& camera, const GiSettings& s, GLuint in, GLuint out) {
@@ -60,7 +68,8 @@ void Ssgi::blur(const ch02::GBuffer& gbuffer, const FrameCamera& camera, const G
 }
 
 // [compute]
-void Ssgi::compute(const ch02::GBuffer& gbuffer, GLuint light, const FrameCamera& camera, const GiSettings& s) {
+void Ssgi::compute(const ch02::GBuffer& gbuffer, GLuint light, const FrameCamera& camera, const GiSettings& s,
+                   const BackFaceTextures* back) {
   if (s.samples < 1 || s.samples > kMaxSamples)
     throw Error("ssgi: samples must be between 1 and " + std::to_string(kMaxSamples) + " (got " +
                 std::to_string(s.samples) + ")");
@@ -78,14 +87,16 @@ void Ssgi::compute(const ch02::GBuffer& gbuffer, GLuint light, const FrameCamera
     height_ = h;
   }
   const bool blurred = s.blur && s.pattern == Pattern::Randomised;
+  if (!s.back_faces || !s.indirect || s.gather != Gather::Disk) back = nullptr;
   // 1. the first bounce (and the AO) from the direct light
-  pass(gbuffer, light, 0, camera, s, blurred ? raw_.id() : first_.id());
+  pass(gbuffer, light, 0, camera, s, back, blurred ? raw_.id() : first_.id());
   if (blurred) blur(gbuffer, camera, s, raw_.id(), first_.id());
   result_ = first_.id();
   // 2. a second pass: the emitters now send direct + first-bounce light, so its result is the
-  //    first bounce and the second together (and the same AO)
+  //    first bounce and the second together (and the same AO); the back faces send their direct
+  //    light again (the layer has no first bounce of its own)
   if (s.bounces == 2) {
-    pass(gbuffer, light, first_.id(), camera, s, blurred ? raw_.id() : second_.id());
+    pass(gbuffer, light, first_.id(), camera, s, back, blurred ? raw_.id() : second_.id());
     if (blurred) blur(gbuffer, camera, s, raw_.id(), second_.id());
     result_ = second_.id();
   }

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "chapters/02_gbuffer/gbuffer.h"
+#include "chapters/08_ssgi/back_faces.h"
 #include "chapters/08_ssgi/gi_math.h"
 #include "common/camera.h"
 #include "common/gl.h"
@@ -43,6 +44,7 @@ struct GiSettings {
   int bounces = 1;               // 1, or 2: a second pass that bounces direct + first bounce again
   Gather gather = Gather::Disk;  // the wide disk's gather: the source's (no visibility) or slices + bitmask
   float thickness = 0.5f;        // Gather::Bitmask: the depth each sample is taken to have, world units
+  bool back_faces = false;       // Gather::Disk: also read emitters from the back-face layer (back_faces.h)
 };
 inline constexpr int kMaxSamples = 128;
 // [/settings]
@@ -51,8 +53,10 @@ class Ssgi {
  public:
   void reload_shaders() { programs_.clear(); }
   // Reads the G-buffer (units 0..4, as the deferred frame leaves them) and L1 (`light`, chapter
-  // 03's diffuse light target, which must hold only the direct light: see no_ambient.glsl).
-  void compute(const ch02::GBuffer& gbuffer, GLuint light, const FrameCamera& camera, const GiSettings& settings);
+  // 03's diffuse light target, which must hold only the direct light: see no_ambient.glsl), and
+  // with `back` the back-face layer's emitters too (settings.back_faces, the disk gather).
+  void compute(const ch02::GBuffer& gbuffer, GLuint light, const FrameCamera& camera, const GiSettings& settings,
+               const BackFaceTextures* back = nullptr);
   GLuint texture() const { return result_; }
   int width() const { return width_; }
   int height() const { return height_; }
@@ -64,7 +68,7 @@ class Ssgi {
  private:
   const ShaderProgram& program(const std::string& file, const ch02::GBuffer& gbuffer);
   void pass(const ch02::GBuffer& gbuffer, GLuint light, GLuint extra, const FrameCamera& camera, const GiSettings& s,
-            GLuint out);
+            const BackFaceTextures* back, GLuint out);
   void blur(const ch02::GBuffer& gbuffer, const FrameCamera& camera, const GiSettings& s, GLuint in, GLuint out);
 
   std::map<std::string, std::unique_ptr<ShaderProgram>> programs_;

@@ -2,13 +2,15 @@
 // (mean absolute, relative, and the fraction of the true energy captured; also against the
 // screen-limited truth, what the screen can show) and the SSGI pass's time, as the samples and
 // the pattern vary, and with a second bounce (against the two-bounce truth); then the limits: the
-// camera panned away from the red wall until it leaves the screen. On the Cornell box (and the
+// camera panned away from the red wall until it leaves the screen; and the two fixes the program
+// has for the screen's losses, with and without: the back-face layer and the guard band (their
+// errors and their time, the SSGI pass's and the whole frame's). On the Cornell box (and the
 // atrium unless --only cornell). Times are GPU time on a GPU and CPU time on llvmpipe
 // (common/measure.h); every row names the renderer, the size and the frames measured. Also
 // writes the pictures the book shows.
 //
-//   08_ssgi_sweep [--out DIR] [--size WxH] [--frames N] [--truth-samples N] [--only cornell|atrium|pan]
-//   -> DIR/08_ssgi.csv and 08_ssgi_pan.csv (..._llvmpipe.csv on llvmpipe), DIR/08_<scene>_*.png
+//   08_ssgi_sweep [--out DIR] [--size WxH] [--frames N] [--truth-samples N] [--only cornell|atrium|pan|fixes]
+//   -> DIR/08_ssgi.csv, 08_ssgi_pan.csv and 08_ssgi_fixes.csv (..._llvmpipe.csv on llvmpipe), DIR/08_<scene>_*.png
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -117,6 +119,53 @@ void sweep_scene(const Settings& s, std::ofstream& csv, const std::string& file,
   }
 }
 
+// [fixes]
+// The source's fixes for what the screen misses, each with and without, on the Cornell box and
+// the atrium: the back-face layer (the disk gather reads the nearest back faces too; its G-buffer
+// and lights are timed inside the SSGI pass), and the guard band (the frame drawn wider by a
+// fraction of the height on every side; it costs the whole frame, not only the pass: frame_ms).
+// Errors against the one-bounce truth over the screen's pixels.
+void fixes(const Settings& s, const std::string& timer) {
+  std::ofstream csv(csv_name(s, "08_ssgi_fixes"));
+  csv << "# " << timer << ", " << s.width << "x" << s.height << ", truth " << s.truth_samples
+      << " rays per pixel; gi_ms: the SSGI pass (with the back-face layer's G-buffer and lights when on), frame_ms: "
+      << "every pass of the frame, means of " << s.frames << " frames; guard: pixels on every side\n"
+      << "scene,view,fix,samples,guard,gi_ms,frame_ms,mean_abs,relative,captured,pixels," << csv_measure_columns() << "\n";
+  for (auto [file, view] : {std::pair{"assets/cornell/cornell.gltf", "front"}, std::pair{"assets/atrium/atrium.gltf", "overview"}}) {
+    const std::string stem = std::filesystem::path(file).stem().string();
+    if (!s.only.empty() && s.only != "fixes" && s.only != stem) continue;
+    Scene scene = load_scene(from_root(file));
+    SceneGpu gpu(scene);
+    GiFrame frame(gpu, s.width, s.height);
+    const FrameCamera camera = frame_camera(scene.camera(view), float(s.width) / s.height);
+    const ImageF truth = cached_ray_traced_indirect(scene, frame.lights(), camera, s.width, s.height, {.samples = s.truth_samples});
+    auto row = [&](GiFrame& f, const std::string& fix, const GiSettings& gi) {
+      const GiErrors e = gi_errors(f.indirect(camera, GiMode::Ssgi, gi), truth);
+      const Measurement m = f.measure_frame(camera, GiMode::Ssgi, gi, s.frames);
+      const PassMeasurement& t = m.pass(GiFrame::pass_name(GiMode::Ssgi, gi));
+      csv << stem << ',' << view << ',' << fix << ',' << gi.samples << ',' << f.guard_band().pixels << ',' << t.mean_ms << ','
+          << m.total_ms() << ',' << e.mean_abs << ',' << e.relative << ',' << e.captured << ',' << e.pixels << ','
+          << csv_measure_values(s.renderer, s.width, s.height, t.frames) << '\n';
+      std::cout << "  " << stem << " " << fix << " " << gi.samples << ": " << t.mean_ms << " ms (frame " << m.total_ms()
+                << "), relative " << e.relative << ", captured " << e.captured << std::endl;
+    };
+    for (int n : {16, 32, 64, 128}) {
+      GiSettings gi{.samples = n, .pattern = Pattern::Randomised};
+      row(frame, "none", gi);
+      gi.back_faces = true;
+      row(frame, "back-faces", gi);
+    }
+    for (float fraction : {0.1f, 0.25f}) {
+      GiFrame guarded(gpu, s.width, s.height, guard_band_pixels(fraction, s.height));
+      row(guarded, "guard-band", {.samples = 32, .pattern = Pattern::Randomised});
+    }
+    // the book's pictures: the back-face layer's light, and the indirect light with it
+    const GiSettings with{.samples = 32, .pattern = Pattern::Randomised, .back_faces = true};
+    save_png(s.out + "/08_" + stem + "_back_faces.png", frame.image(camera, GiMode::Ssgi, with, GiShow::BackFaces));
+  }
+}
+// [/fixes]
+
 // [pan]
 // The off-screen limit: a camera 1.9 m above the Cornell box's floor looks straight down and
 // moves to the right (+x), from x = -0.6 to 0.5: the red wall (x = -1, seen from above at a
@@ -125,9 +174,9 @@ void sweep_scene(const Settings& s, std::ofstream& csv, const std::string& file,
 // the truth, in the screen-limited truth and in the pass; the red wall's pixels; and the frame's
 // energy captured. (A camera that turns away from the wall, or moves at eye height, takes the
 // floor beside the wall off the screen with it.) And the cheaper of the source's fixes measured: a
-// guard band, the whole frame rendered 10 % of the height wider on every side with the same
-// focal length (so its inner pixels are the screen's pixels exactly), the pass run on it, the
-// screen's part kept: what it recovers, and its time.
+// guard band (guard_band.h, the program's --guard-band 0.1), the whole frame rendered 10 % of the
+// height wider on every side with the same focal length (so its inner pixels are the screen's
+// pixels), the pass run on it, the screen's part kept: what it recovers, and its time.
 void pan(const Settings& s, const std::string& timer) {
   Scene scene = load_scene(from_root("assets/cornell/cornell.gltf"));
   SceneGpu gpu(scene);
@@ -142,10 +191,7 @@ void pan(const Settings& s, const std::string& timer) {
       << "captured_guard,gi_ms,guard_gi_ms,"
       << csv_measure_columns() << "\n";
   const GiSettings gi_settings{.samples = 32};
-  const int g = s.height / 10, gw = s.width + 2 * g, gh = s.height + 2 * g;
-  GiFrame guard(gpu, gw, gh);
-  GiSettings guard_settings = gi_settings;
-  guard_settings.max_screen_radius = gi_settings.max_screen_radius * float(s.height) / float(gh);  // the same disk in pixels
+  GiFrame guard(gpu, s.width, s.height, guard_band_pixels(0.1, s.height));  // the program's --guard-band 0.1
   for (float offset : {-0.6f, -0.4f, -0.2f, 0.f, 0.1f, 0.2f, 0.3f, 0.4f, 0.5f}) {
     FrameCamera cam = start;
     cam.position = glm::vec3(offset, 1.9f, 0.2f);
@@ -156,16 +202,7 @@ void pan(const Settings& s, const std::string& timer) {
     const ImageF screen = cached_ray_traced_indirect(scene, frame.lights(), cam, s.width, s.height,
                                                      {.samples = samples, .screen_limited = true});
     const ImageF gi = frame.indirect(cam, GiMode::Ssgi, gi_settings);
-    FrameCamera wide = cam;
-    const float tan_half = std::tan(cam.yfov * 0.5f) * float(gh) / float(s.height);
-    wide.yfov = 2.f * std::atan(tan_half);
-    wide.aspect = float(gw) / float(gh);
-    wide.projection = glm::perspective(wide.yfov, wide.aspect, cam.znear, cam.zfar);
-    const ImageF wide_gi = guard.indirect(wide, GiMode::Ssgi, guard_settings);
-    ImageF guarded = ImageF::blank(s.width, s.height, 4);
-    for (int y = 0; y < s.height; ++y)
-      for (int x = 0; x < s.width; ++x)
-        for (int c = 0; c < 4; ++c) guarded.at(x, y, c) = wide_gi.at(x + g, y + g, c);
+    const ImageF guarded = guard.indirect(cam, GiMode::Ssgi, gi_settings);
     double red[4] = {0, 0, 0, 0};
     long floor = 0, wall = 0;
     for (int y = 0; y < s.height; ++y)
@@ -180,7 +217,7 @@ void pan(const Settings& s, const std::string& timer) {
         for (const ImageF* img : {&truth, &screen, static_cast<const ImageF*>(&gi), static_cast<const ImageF*>(&guarded)}) red[k++] += img->at(x, y, 0) - img->at(x, y, 1) / 0.93f;
       }
     const PassMeasurement t = frame.time(cam, GiMode::Ssgi, gi_settings, s.frames);
-    const PassMeasurement tg = guard.time(wide, GiMode::Ssgi, guard_settings, s.frames);
+    const PassMeasurement tg = guard.time(cam, GiMode::Ssgi, gi_settings, s.frames);
     csv << offset << ',' << wall << ',' << floor;
     for (double r : red) csv << ',' << (floor ? r / double(floor) : 0.0);
     csv << ',' << gi_errors(gi, truth).captured << ',' << gi_errors(screen, truth).captured << ','
@@ -202,14 +239,14 @@ int main(int argc, char** argv) {
         .integer("--truth-samples", s.truth_samples).text("--only", s.only);
   }, [&] {
     if (s.truth_samples < 1) throw UsageError("--truth-samples must be at least 1");
-    if (!s.only.empty() && s.only != "cornell" && s.only != "atrium" && s.only != "pan")
-      throw UsageError("--only must be cornell, atrium or pan (got '" + s.only + "')");
+    if (!s.only.empty() && s.only != "cornell" && s.only != "atrium" && s.only != "pan" && s.only != "fixes")
+      throw UsageError("--only must be cornell, atrium, pan or fixes (got '" + s.only + "')");
     std::filesystem::create_directories(s.out);
     auto context = Context::create({.headless = true, .width = s.width, .height = s.height});
     s.renderer = context->renderer();
     const std::string timer = (context->is_software() ? "llvmpipe CPU time: " : "GPU time: ") + context->renderer();
     std::cout << timer << '\n';
-    if (s.only != "pan") {
+    if (s.only != "pan" && s.only != "fixes") {
       const std::string path = csv_name(s, "08_ssgi");
       std::ofstream csv(path);
       csv << "# " << timer << ", " << s.width << "x" << s.height << ", truth " << s.truth_samples
@@ -224,5 +261,6 @@ int main(int argc, char** argv) {
       std::cout << "wrote " << path << '\n';
     }
     if (s.only.empty() || s.only == "pan") pan(s, timer);
+    if (s.only != "pan") fixes(s, timer);
   });
 }

@@ -9,6 +9,10 @@
 
 #include "chapters/08_ssgi/gi_math.h"
 #include "chapters/08_ssgi/gi_truth.h"
+#include "chapters/08_ssgi/guard_band.h"
+#include "common/error.h"
+
+#include <glm/gtc/matrix_transform.hpp>
 
 using namespace lp;
 using namespace lp::ch08;
@@ -162,4 +166,43 @@ TEST(GiErrors, CapturedIsTheEnergyRatio) {
   EXPECT_NEAR(e.captured, 0.5, 1e-6);
   EXPECT_NEAR(e.mean_abs, 0.1, 1e-6);
   EXPECT_NEAR(e.relative, 0.5, 1e-6);
+}
+
+// --guard-band: below 1 a fraction of the screen's height, from 1 on pixels (rounded), bounded.
+TEST(GuardBand, OptionIsAFractionBelowOneAndPixelsFromOne) {
+  EXPECT_EQ(guard_band_pixels(0.0, 180), 0);
+  EXPECT_EQ(guard_band_pixels(0.1, 180), 18);
+  EXPECT_EQ(guard_band_pixels(0.25, 90), 23);  // 22.5 rounds up
+  EXPECT_EQ(guard_band_pixels(1.0, 180), 1);
+  EXPECT_EQ(guard_band_pixels(24.4, 180), 24);
+  EXPECT_EQ(guard_band_pixels(kMaxGuardBand, 180), kMaxGuardBand);
+  EXPECT_THROW(guard_band_pixels(kMaxGuardBand + 1, 180), Error);
+  EXPECT_THROW(guard_band_pixels(-1.0, 180), Error);
+  EXPECT_THROW(guard_band_pixels(std::nan(""), 180), Error);
+}
+
+// The wide camera keeps every screen pixel's ray: a point the screen's camera projects to the
+// centre of pixel (x, y) projects to the centre of (x + g, y + g) of the wide frame, to float
+// rounding (1e-3 pixel).
+TEST(GuardBand, WideCameraKeepsEveryScreenPixelsRay) {
+  const int w = 320, h = 180, g = 18;
+  FrameCamera cam;
+  cam.yfov = 0.6864f;
+  cam.aspect = float(w) / h;
+  cam.projection = glm::perspective(cam.yfov, cam.aspect, 0.05f, 20.f);
+  cam.view = glm::lookAt(glm::vec3(0.3f, 1.f, 3.f), glm::vec3(0.f, 0.8f, 0.f), glm::vec3(0, 1, 0));
+  const GuardBand band{g};
+  const FrameCamera wide = band.widen(cam, w, h);
+  const glm::mat4 to_world = glm::inverse(cam.projection * cam.view);
+  for (glm::vec2 px : {glm::vec2(0.5f, 0.5f), glm::vec2(319.5f, 179.5f), glm::vec2(100.5f, 40.5f), glm::vec2(160.f, 90.f)}) {
+    const glm::vec4 ndc((px.x / w) * 2.f - 1.f, (px.y / h) * 2.f - 1.f, 0.3f, 1.f);
+    glm::vec4 world = to_world * ndc;
+    world /= world.w;
+    const glm::vec4 clip = wide.projection * wide.view * world;
+    const glm::vec2 at((clip.x / clip.w * 0.5f + 0.5f) * band.width(w), (clip.y / clip.w * 0.5f + 0.5f) * band.height(h));
+    EXPECT_NEAR(at.x, px.x + g, 1e-3f);
+    EXPECT_NEAR(at.y, px.y + g, 1e-3f);
+  }
+  EXPECT_NEAR(std::tan(wide.yfov / 2.f), std::tan(cam.yfov / 2.f) * float(h + 2 * g) / h, 1e-6f);
+  EXPECT_EQ(GuardBand{0}.widen(cam, w, h).projection, cam.projection);  // no band: the screen's camera
 }

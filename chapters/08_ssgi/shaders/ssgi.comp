@@ -24,6 +24,11 @@ uniform int u_bounce;                       // 1: the emitters' light includes u
 uniform int u_indirect_on, u_ao_on;
 uniform int u_gather;                       // 0 the source's disk (no visibility), 1 slices with a visibility bitmask
 uniform float u_thickness;                  // bitmask: the depth each sample is taken to have, world units
+uniform int u_back_faces;                   // 1: the disk gather also reads the back-face layer (back_faces.h)
+layout(binding = 11) uniform sampler2D u_back_depth;   // the nearest back face: window depth (sky: none)
+layout(binding = 12) uniform sampler2D u_back_normal;  // its own normal (facing away from the camera), encoded
+layout(binding = 13) uniform sampler2D u_back_albedo;
+layout(binding = 14) uniform sampler2D u_back_light;   // its direct diffuse light L1
 
 const float PI = 3.14159265358979;
 
@@ -69,6 +74,26 @@ float sample_area(float share, float zr, vec3 e, vec3 ne) {
   float ze = view_depth(e);
   return share * (ze / zr) * (ze / zr) / max(abs(dot(ne, normalize(gb_eye.xyz - e))), 0.2);
 }
+
+// [back-faces-glsl]
+// The back-face layer's emitter at the sample's pixel sp: the nearest surface there that faces
+// away from the camera (behind what the front layer shows, or where nothing faces the camera),
+// sending its albedo x L1 through the same disk transfer, its sample standing for the same
+// share of the disk. It needs no test against the front layer: the transfer's cosines already
+// keep a back face from lighting a receiver it faces away from.
+void back_face_emitter(ivec2 sp, Surface s, float zr, float share, inout vec3 indirect, inout float transfer) {
+  float depth = texelFetch(u_back_depth, sp, 0).r;
+  if (sky_depth(depth)) return;  // no back face at this pixel
+  vec3 e = world_at(sp, depth);
+  vec3 v = e - s.position;
+  float d2 = dot(v, v);
+  if (d2 > u_gi_radius * u_gi_radius || d2 <= 0.0) return;
+  vec3 ne = decode_normal(texelFetch(u_back_normal, sp, 0));
+  float f = disk_transfer(s.position, s.normal, e, ne, sample_area(share, zr, e, ne));
+  indirect += texelFetch(u_back_albedo, sp, 0).rgb * texelFetch(u_back_light, sp, 0).rgb * f;
+  transfer += f;
+}
+// [/back-faces-glsl]
 
 // [bitmask-glsl]
 // Beyond the source: the wide disk's light gathered along slices with a visibility bitmask
@@ -172,6 +197,7 @@ void main() {
       float radius = wide == 1 ? u_gi_radius : u_ao_radius;
       ivec2 sp = pixel + ivec2(round(u * (wide == 1 ? gi_px : ao_px)));
       if (sp == pixel || any(lessThan(sp, ivec2(0))) || any(greaterThanEqual(sp, ivec2(gb_size.xy)))) continue;
+      if (wide == 1 && u_back_faces != 0) back_face_emitter(sp, s, zr, gi_share, indirect, transfer);
       float depth = texelFetch(gb_depth, sp, 0).r;
       if (sky_depth(depth)) continue;  // the sky sends nothing and hides nothing
       vec3 e = world_at(sp, depth);
