@@ -75,7 +75,7 @@ void WholeFrame::build(const WholeFrameSettings& s) {
     frame.add_stage(*neon_);
   }
   if (ao || indirect) {
-    gi_ = std::make_unique<ch08::GiStage>();
+    gi_ = std::make_unique<ch08::GiStage>(source_->scene_gpu());
     frame.add_stage(*gi_);
   }
   if (glass) {
