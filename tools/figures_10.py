@@ -1,8 +1,18 @@
 #!/usr/bin/env python3
-"""Chapter 10's plots, from the CSVs 10_frame_sweep writes (book/figures/), through tools/plot.py.
+"""Chapter 10's plots, from the CSVs 10_frame_sweep writes (book/figures/), through tools/plot.py,
+and the whole frame's figures.
 
-    python3 tools/figures_10.py [FIGURES_DIR]      (default book/figures)
+    python3 tools/figures_10.py [FIGURES_DIR]                   the plots (SVG), the budget's too
+    python3 tools/figures_10.py --png BUILD_DIR [FIGURES_DIR]   the closing strip (PNG) too
+    python3 tools/figures_10.py --budget CSV BENCH.json...      the frame budget from `10_frame --bench`
+                                                                 JSON (one per scene and culling) as a CSV
+
+The budget's JSONs come from the GPU machine (`10_frame --bench --mode whole --size 1920x1080
+--scene ... --clustered 0|1`); the CSV names the renderer and size of each.
 """
+import csv
+import json
+import subprocess
 import sys
 from pathlib import Path
 
@@ -31,5 +41,102 @@ def main(d: Path):
              "panes in the stack (log scale)", "ms per frame", xlog=True)
 
 
+# The source's closing comparison (seed 002, section 10), on the atrium in sunlight (chapter 05's
+# sun x 25): each step adds a
+# stage of the whole frame; every image goes through chapter 05's tonemapping.
+STRIP = [
+    ("10_strip_1_direct.png", ["--shadows", "0", "--ao", "0", "--indirect", "0"]),
+    ("10_strip_2_shadows.png", ["--ao", "0", "--indirect", "0"]),
+    ("10_strip_3_ao.png", ["--indirect", "0"]),
+    ("10_strip_4_indirect.png", []),
+    ("10_strip_5_bloom.png", ["--bloom", "before"]),
+]
+
+
+def strip(build: Path, d: Path):
+    exe = build / "chapters" / "10_frame" / "10_frame"
+    for name, args in STRIP:
+        subprocess.run([str(exe), "--headless", "--mode", "whole", "--scene", "assets/atrium/atrium.gltf", "--view", "aisle", "--sun", "25",
+                        "--size", "480x270", "--out", str(d / name)] + args, check=True)
+
+
+def budget_csv(out: Path, jsons):
+    """One row per (scene, culling, pass) of `10_frame --bench` JSONs."""
+    with open(out, "w", newline="") as f:
+        w = csv.writer(f)
+        first = json.load(open(jsons[0]))
+        f.write(f"# the whole frame's passes (10_frame --bench --mode whole), GPU time: {first['renderer']}, "
+                f"{first['width']}x{first['height']}\n")
+        w.writerow(["scene", "culling", "order", "pass", "ms", "total_ms", "renderer", "width", "height", "frames"])
+        for path in jsons:
+            b = json.load(open(path))
+            scene = Path(b["scene"]).stem
+            culling = "clustered" if float(b["knobs"].get("clustered", 1)) else "stencil"
+            for i, p in enumerate(b["passes"]):
+                w.writerow([scene, culling, i, p["name"], f"{p['mean_ms']:.6g}", f"{b['total_ms']:.6g}", b["renderer"],
+                            b["width"], b["height"], b["frames"]])
+
+
+def esc(t):
+    return t.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+
+
+def budget_plot(d: Path, csv_path: Path, out: Path):
+    """Stacked horizontal bars: one per scene and culling, a segment per pass (left to right in frame order)."""
+    rows = [r for r in csv.DictReader(l for l in open(csv_path) if not l.startswith("#"))]
+    note = open(csv_path).readline().lstrip("# ").strip()
+    bars = []
+    for r in rows:
+        key = (r["scene"], r["culling"])
+        if not bars or bars[-1][0] != key:
+            bars.append((key, []))
+        bars[-1][1].append((r["pass"], float(r["ms"])))
+    names = []
+    for _, parts in bars:
+        for n, _ in parts:
+            stage = n.split(":")[0]
+            if stage not in names:
+                names.append(stage)
+    colours = ["#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f", "#edc948", "#b07aa1", "#ff9da7", "#9c755f",
+               "#bab0ac", "#1f77b4", "#8c564b"]
+    width, left, top, bar_h, gap = 900, 190, 50, 26, 14
+    longest = max(sum(ms for _, ms in parts) for _, parts in bars)
+    scale = (width - left - 30) / longest
+    height = top + len(bars) * (bar_h + gap) + 30 + 18 * ((len(names) + 3) // 4)
+    svg = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" font-family="sans-serif" font-size="12">',
+           f'<text x="10" y="20" font-size="15">The frame budget: GPU time per pass</text>',
+           f'<text x="10" y="38" fill="#555">{esc(note)}</text>']
+    for i, ((scene, culling), parts) in enumerate(bars):
+        y = top + i * (bar_h + gap)
+        svg.append(f'<text x="{left - 6}" y="{y + bar_h * 0.65}" text-anchor="end">{esc(scene)}, {esc(culling)}</text>')
+        x = left
+        for n, ms in parts:
+            w = ms * scale
+            c = colours[names.index(n.split(":")[0]) % len(colours)]
+            svg.append(f'<rect x="{x:.2f}" y="{y}" width="{max(w, 0.5):.2f}" height="{bar_h}" fill="{c}"><title>{esc(n)}: {ms:.3f} ms</title></rect>')
+            x += w
+        svg.append(f'<text x="{x + 4:.1f}" y="{y + bar_h * 0.65}">{sum(ms for _, ms in parts):.2f} ms</text>')
+    y0 = top + len(bars) * (bar_h + gap) + 10
+    for k, n in enumerate(names):
+        x, y = 10 + (k % 4) * 220, y0 + (k // 4) * 18
+        svg.append(f'<rect x="{x}" y="{y}" width="12" height="12" fill="{colours[k % len(colours)]}"/>')
+        svg.append(f'<text x="{x + 16}" y="{y + 10}">{esc(n)}</text>')
+    svg.append("</svg>")
+    out.write_text("\n".join(svg) + "\n")
+    print(f"wrote {out}")
+
+
 if __name__ == "__main__":
-    main(Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parent.parent / "book" / "figures")
+    args = sys.argv[1:]
+    if args[:1] == ["--budget"]:
+        budget_csv(Path(args[1]), args[2:])
+        sys.exit(0)
+    png = None
+    if args[:1] == ["--png"]:
+        png, args = Path(args[1]), args[2:]
+    figures = Path(args[0]) if args else Path(__file__).resolve().parent.parent / "book" / "figures"
+    main(figures)
+    if (figures / "10_budget_h200.csv").exists():
+        budget_plot(figures, figures / "10_budget_h200.csv", figures / "10_budget_h200.svg")
+    if png:
+        strip(png, figures)
