@@ -98,6 +98,18 @@ std::vector<glm::vec2> poisson_disk(int n, unsigned long long seed, float* spaci
   return points;
 }
 
+float pcss_search_radius(float receiver_depth, float angular_radius) {
+  return std::max(receiver_depth, 0.f) * std::tan(angular_radius);
+}
+
+float pcss_filter_radius(float receiver_depth, float blocker_depth, float angular_radius) {
+  return std::max(receiver_depth - blocker_depth, 0.f) * std::tan(angular_radius);
+}
+
+float point_light_penumbra(float light_width, float receiver_distance, float blocker_distance) {
+  return light_width * (receiver_distance - blocker_distance) / blocker_distance;
+}
+
 float chebyshev_upper_bound(glm::vec2 moments, float depth, float min_variance) {
   if (depth <= moments.x) return 1.f;
   const float variance = std::max(moments.y - moments.x * moments.x, min_variance);

@@ -1,6 +1,7 @@
 #include "chapters/06_shadows/shadow_stage.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "common/error.h"
 #include "common/scene_gpu.h"
@@ -164,9 +165,14 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
   // 3. What the visibility hook reads.
   if (settings_.poisson_taps < 0 || settings_.poisson_taps > kMaxPoissonTaps)
     throw Error("shadow stage: poisson_taps must be between 0 and " + std::to_string(kMaxPoissonTaps));
-  if (settings_.poisson_taps != poisson_taps_) {
-    poisson_ = settings_.poisson_taps > 0 ? poisson_disk(settings_.poisson_taps, 0x504fu) : std::vector<glm::vec2>{};
-    poisson_taps_ = settings_.poisson_taps;
+  const bool pcss = settings_.method == ShadowMethod::Pcss;
+  const int taps = pcss && settings_.poisson_taps == 0 ? kPcssDefaultTaps : settings_.poisson_taps;
+  if (pcss && !(settings_.sun_angular_radius >= 0.f && settings_.sun_angular_radius < 1.f))
+    throw Error("shadow stage: sun_angular_radius must be in [0, 1) radians (got " +
+                std::to_string(settings_.sun_angular_radius) + ")");
+  if (taps != poisson_taps_) {
+    poisson_ = taps > 0 ? poisson_disk(taps, 0x504fu) : std::vector<glm::vec2>{};
+    poisson_taps_ = taps;
   }
   ShadowBlock block{frustum_.view_projection(),
                           glm::vec4(frustum_.texel_world(n), frustum_.depth_range(), float(n), float(settings_.kernel / 2)),
@@ -174,7 +180,7 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
                                     settings_.min_variance),
                           glm::vec4(settings_.c, settings_.p_min, float(poisson_taps_), 0),
                           frustum_.view,
-                          glm::vec4(frustum_.box_max - frustum_.box_min, 0),
+                          glm::vec4(frustum_.box_max - frustum_.box_min, std::tan(settings_.sun_angular_radius)),
                           {}};
   for (std::size_t i = 0; i < poisson_.size(); ++i) {
     glm::vec4& slot = block.poisson[i / 2];
@@ -303,11 +309,14 @@ void ShadowStage::draw_volumes(ch03::DeferredFrame& frame, PassMetrics* metrics)
 
 bool ShadowStage::composite(ch03::DeferredFrame& frame, PassMetrics* metrics) {
   if (picture_ == ShadowPicture::None) return false;
+  if (picture_ == ShadowPicture::Penumbra && settings_.method != ShadowMethod::Pcss)
+    throw Error("shadow stage: the penumbra picture is PCSS's (method pcss), not " + kMethodNames[int(settings_.method)] + "'s");
   auto pass = timed(metrics, picture_ == ShadowPicture::Map ? "composite: the sun's depth map"
                                                                   : "composite: the sun's visibility alone");
   std::vector<std::string> defines = frame.view().defines;
   for (const auto& d : frame.view().hooks.defines()) defines.push_back(d);
   if (picture_ == ShadowPicture::Map) defines.push_back("SHOW_MAP 1");
+  if (picture_ == ShadowPicture::Penumbra) defines.push_back("SHOW_PENUMBRA 1");
   const ShaderProgram& p = program("02_gbuffer/shaders/fullscreen.vert", "06_shadows/shaders/show_visibility.frag", defines);
   glDisable(GL_DEPTH_TEST), glDisable(GL_BLEND), glDisable(GL_CULL_FACE), glDisable(GL_STENCIL_TEST);
   p.use();

@@ -21,8 +21,10 @@
 namespace lp::ch06 {
 
 // Volumes: no map; the sun's shadow volumes counted in the stencil (z-fail), shadow_volumes.h.
-enum class ShadowMethod { Hard, Pcf, PcfHardware, Vsm, Esm, Volumes };
-inline const std::vector<std::string> kMethodNames = {"hard", "pcf", "pcf-hardware", "vsm", "esm", "volumes"};
+// Pcss: the sun as a disk (sun_angular_radius), PCF over the penumbra a blocker search
+// estimates (shadow_math.h [pcss]).
+enum class ShadowMethod { Hard, Pcf, PcfHardware, Vsm, Esm, Volumes, Pcss };
+inline const std::vector<std::string> kMethodNames = {"hard", "pcf", "pcf-hardware", "vsm", "esm", "volumes", "pcss"};
 ShadowMethod method_from_name(const std::string& name);  // throws Error for an unknown one
 
 struct ShadowSettings {
@@ -30,7 +32,9 @@ struct ShadowSettings {
   int map_size = 1024;
   int kernel = 3;               // PCF's k x k grid; VSM's and ESM's box filter width (odd)
   int poisson_taps = 0;         // PCF: 0 for the k x k grid, or this many taps of a Poisson disk k texels
-                                // across, rotated per pixel (shadow_math.h [poisson]); <= kMaxPoissonTaps
+                                // across, rotated per pixel (shadow_math.h [poisson]); <= kMaxPoissonTaps.
+                                // PCSS: the taps of its search and of its filter (0: kPcssDefaultTaps)
+  float sun_angular_radius = kSunAngularRadius;  // PCSS: the sun's disk, radians (the soft truth's)
   float constant_bias = 0.5f;   // texels (shadow_math.h [bias])
   float slope_bias = 1.f;       // texels per unit tan(theta)
   float normal_offset = 1.f;    // texels
@@ -49,8 +53,9 @@ struct VolumeStats {
   std::uint64_t fragments = 0;  // rasterised by the volumes, every one (count_volume_fragments); else 0
 };
 
-// What composite() draws instead of the image.
-enum class ShadowPicture { None, Visibility, Map };
+// What composite() draws instead of the image. Penumbra (method Pcss): the filter's radius in
+// metres, unclamped (0 where the search finds no blocker; blue where the sun does not reach).
+enum class ShadowPicture { None, Visibility, Map, Penumbra };
 
 class ShadowStage : public ch03::FrameStage {
  public:

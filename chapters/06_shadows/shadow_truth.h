@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "chapters/06_shadows/shadow_math.h"
 #include "common/camera.h"
 #include "common/image.h"
 #include "common/raytrace.h"
@@ -18,7 +19,7 @@
 namespace lp::ch06 {
 
 struct TruthSettings {
-  float angular_radius = 0.02f;  // radians, the soft truth's sun disk
+  float angular_radius = kSunAngularRadius;  // radians, the soft truth's sun disk (PCSS's light, shadow_math.h)
   int samples = 64;              // the soft truth's rays per pixel (a square number is stratified exactly)
   std::uint64_t seed = 6;
 };

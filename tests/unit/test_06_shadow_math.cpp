@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -232,6 +233,70 @@ TEST(ShadowMath, PoissonDiskIsSpreadAndInTheDisk) {
   EXPECT_THROW(poisson_disk(0, 7), Error);
   EXPECT_THROW(poisson_disk(kMaxPoissonTaps + 1, 7), Error);
 }
+
+// [pcss-tests]
+// PCSS's penumbra for the sun (shadow_math.h [pcss]) is Fernando's point-light formula with the
+// light moved to infinity: a light of width w = 2 L tan(theta) at distance L from the receiver
+// (the sun's angular size seen from it), a blocker delta in front of the receiver, gives
+// w delta / (L - delta) = 2 delta tan(theta) (1 + delta / (L - delta)): twice the filter radius,
+// and the excess delta / (L - delta) vanishes as L grows.
+TEST(ShadowMath, PcssPenumbraIsThePointLightsAtInfinity) {
+  const float theta = kSunAngularRadius, receiver = 20.f, delta = 2.f;
+  const float r = pcss_filter_radius(receiver, receiver - delta, theta);
+  EXPECT_FLOAT_EQ(r, delta * std::tan(theta));
+  for (double L : {10.0, 100.0, 1e3, 1e5}) {
+    const float w = float(2 * L * std::tan(double(theta)));
+    const float penumbra = point_light_penumbra(w, float(L), float(L - delta));  // distances from the light
+    EXPECT_NEAR(penumbra / (2 * r), 1 + delta / (L - delta), 1e-5) << L;
+  }
+  EXPECT_NEAR(point_light_penumbra(float(2e5 * std::tan(double(theta))), 1e5f, 1e5f - delta), 2 * r, 2 * r * 1e-4f);
+  EXPECT_EQ(pcss_filter_radius(receiver, receiver + 1.f, theta), 0.f);  // a "blocker" behind: no penumbra
+  EXPECT_FLOAT_EQ(pcss_search_radius(receiver, theta), receiver * std::tan(theta));
+}
+
+// PCSS over a straight edge: a half-plane blocker (x > 0) delta above a floor, 20 m from the
+// map's near plane. The filter is the disk of radius R = delta tan(theta) around the lookup, so
+// the visibility leaves 1 where the first tap crosses the edge (x0 = -R max t.x over the taps t)
+// and reaches 0 where the last does (x0 = -R min t.x): the penumbra is R (max t.x - min t.x)
+// wide, proportional to delta (contact hardening), up to the scan's step. Outside it: 1 on the
+// lit side, beyond the search radius with no blocker found at all, and 0 under the blocker.
+TEST(ShadowMath, PcssPenumbraOverAnEdgeGrowsWithTheBlockersDistance) {
+  const float theta = kSunAngularRadius, floor = 20.f;
+  const std::vector<glm::vec2> disk = poisson_disk(kPcssDefaultTaps, 0x504fu);
+  float lo = 1, hi = -1;
+  for (const glm::vec2& t : disk) lo = std::min(lo, t.x), hi = std::max(hi, t.x);
+  for (float delta : {0.25f, 1.f, 4.f}) {
+    auto depth_at = [&](glm::vec2 p) { return p.x > 0.f ? floor - delta : floor; };
+    const float R = delta * std::tan(theta), step = R / 1000.f;
+    float first_dark = 0, last_lit = 0;
+    bool found_dark = false;
+    for (float x = -1.5f * R; x <= 1.5f * R; x += step) {
+      const PcssResult r = pcss(depth_at, {x, 0.f}, floor, theta, disk, 0.f);
+      if (r.visibility < 1.f && !found_dark) first_dark = x, found_dark = true;
+      if (r.visibility > 0.f) last_lit = x;
+      if (r.blockers > 0) {
+        EXPECT_EQ(r.blocker_depth, floor - delta);
+        EXPECT_FLOAT_EQ(r.filter_radius, R);
+      }
+    }
+    const float width = last_lit - first_dark;
+    std::printf("delta %.2f m: penumbra %.4f m wide (R (max - min) = %.4f m)\n", delta, width, R * (hi - lo));
+    EXPECT_NEAR(first_dark, -R * hi, 2 * step) << delta;
+    EXPECT_NEAR(last_lit, -R * lo, 2 * step) << delta;
+    EXPECT_GT(width, R) << delta;  // the taps span more than the disk's radius
+    // The search: beyond d_r tan(theta) on the lit side nothing can hide the sun, and nothing is found.
+    const float search = pcss_search_radius(floor, theta);
+    EXPECT_EQ(pcss(depth_at, {-1.01f * search, 0.f}, floor, theta, disk, 0.f).blockers, 0);
+    const PcssResult near_edge = pcss(depth_at, {-0.5f * search, 0.f}, floor, theta, disk, 0.f);
+    EXPECT_GT(near_edge.blockers, 0);           // found, within the search ...
+    EXPECT_EQ(near_edge.visibility, 1.f);       // ... but farther than the penumbra: lit
+    EXPECT_EQ(pcss(depth_at, {2 * R, 0.f}, floor, theta, disk, 0.f).visibility, 0.f);
+  }
+  // At contact the filter shrinks to the least radius asked for.
+  auto touching = [&](glm::vec2 p) { return p.x > 0.f ? floor - 1e-4f : floor; };
+  EXPECT_EQ(pcss(touching, {-0.001f, 0.f}, floor, theta, disk, 0.01f).filter_radius, 0.01f);
+}
+// [/pcss-tests]
 
 // Shadow volumes' edge table and silhouettes (shadow_volumes.h), on meshes small enough to
 // count by hand.

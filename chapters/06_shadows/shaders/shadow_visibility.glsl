@@ -8,6 +8,7 @@
 #define SHADOW_PCF_HARDWARE 2
 #define SHADOW_VSM 3
 #define SHADOW_ESM 4
+#define SHADOW_PCSS 5
 
 layout(std140, binding = 8) uniform ShadowBlock {
   mat4 sh_matrix;   // world to the light's clip space (orthographic)
@@ -15,7 +16,7 @@ layout(std140, binding = 8) uniform ShadowBlock {
   vec4 sh_bias;     // x: constant (texels), y: slope-scaled (texels), z: normal offset (texels), w: VSM min variance
   vec4 sh_filter;   // x: ESM's c, y: VSM's p_min, z: PCF's Poisson taps (0: the grid)
   mat4 sh_view;     // world to the light's view space (looking down -z)
-  vec4 sh_extent;   // x, y: the box's width and height in metres
+  vec4 sh_extent;   // x, y: the box's width and height in metres; w: PCSS's tan(sun's angular radius)
   vec4 sh_poisson[32];  // PCF's Poisson disk in the unit disk, two taps a vec4
 };
 layout(binding = 8) uniform sampler2D sh_depth;
@@ -49,6 +50,23 @@ vec2 receiver_plane_gradient(Surface s) {
 }
 // [/receiver-plane-glsl]
 
+// [poisson-glsl]
+// The rotated Poisson disk's taps (shadow_math.h [poisson]): the turn, an angle that
+// interleaved gradient noise (Jimenez 2014) draws from the pixel's position, and tap i in the
+// unit disk.
+mat2 poisson_turn() {
+  float angle = 6.2831853 * fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
+  return mat2(cos(angle), sin(angle), -sin(angle), cos(angle));
+}
+vec2 poisson_tap(int i) {
+  vec4 pair = sh_poisson[i / 2];
+  return (i & 1) == 0 ? pair.xy : pair.zw;
+}
+// [/poisson-glsl]
+
+// PCSS's filter radius in metres at the last lookup (show_visibility.frag's penumbra picture).
+float sh_pcss_radius = 0.0;
+
 float directional_visibility(int index, GpuLight light, Surface s) {
   if (index != 0) return 1.0;
   vec3 to_light = -light.direction_range.xyz;
@@ -68,14 +86,11 @@ float directional_visibility(int index, GpuLight light, Surface s) {
   vec2 g = receiver_plane_gradient(s);
   int taps = int(sh_filter.z);
   if (taps > 0) {
-    // Or `taps` comparisons on a Poisson disk k texels across, turned by an angle that
-    // interleaved gradient noise (Jimenez 2014) draws from the pixel's position.
-    float angle = 6.2831853 * fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
-    mat2 turn = mat2(cos(angle), sin(angle), -sin(angle), cos(angle));
+    // Or `taps` comparisons on a Poisson disk k texels across, turned per pixel.
+    mat2 turn = poisson_turn();
     float scale = (float(r) + 0.5) * texel;
     for (int i = 0; i < taps; ++i) {
-      vec4 pair = sh_poisson[i / 2];
-      vec2 o = turn * ((i & 1) == 0 ? pair.xy : pair.zw) * scale;
+      vec2 o = turn * poisson_tap(i) * scale;
       lit += q.z + dot(g, o) <= texture(sh_depth, q.xy + o).r ? 1.0 : 0.0;
     }
     return lit / float(taps);
@@ -114,6 +129,36 @@ float directional_visibility(int index, GpuLight light, Surface s) {
   float l = texture(sh_moments, q.xy).x;  // log of the filtered exp(c z)
   return clamp(exp(min(l - sh_filter.x * q.z, 0.0)), 0.0, 1.0);
   // [/esm-glsl]
+#elif SHADOW_METHOD == SHADOW_PCSS
+  // [pcss-glsl]
+  // shadow_math.h's pcss(): depths in window units (q.z: the receiver's) times the box's depth
+  // range sh_map.y are metres from the near plane; a radius in metres is sh_extent.xy apart in
+  // the map's (u, v). Every tap compares with the receiver's plane there, as PCF's do.
+  float tan_size = sh_extent.w;
+  vec2 g = receiver_plane_gradient(s);
+  mat2 turn = poisson_turn();
+  int taps = int(sh_filter.z);
+  // 1. The blocker search: whatever can hide part of the sun lies within d_r tan(theta).
+  vec2 search = max(q.z * sh_map.y * tan_size, sh_map.x) / sh_extent.xy;
+  float blockers = 0.0, sum = 0.0;
+  for (int i = 0; i < taps; ++i) {
+    vec2 o = turn * poisson_tap(i) * search;
+    float z = texture(sh_depth, q.xy + o).r;
+    if (z < q.z + dot(g, o)) sum += z, blockers += 1.0;
+  }
+  if (blockers == 0.0) return 1.0;  // nothing between the receiver and any of the sun
+  // 2. The penumbra: the sun's disk on the blockers' mean depth, (d_r - d_b) tan(theta) across
+  // (half a texel at least: below it the map cannot tell).
+  float radius = max((q.z - sum / blockers) * sh_map.y * tan_size, 0.5 * sh_map.x);
+  sh_pcss_radius = radius;
+  // 3. PCF over that disk.
+  float lit = 0.0;
+  for (int i = 0; i < taps; ++i) {
+    vec2 o = turn * poisson_tap(i) * (radius / sh_extent.xy);
+    lit += q.z + dot(g, o) <= texture(sh_depth, q.xy + o).r ? 1.0 : 0.0;
+  }
+  return lit / float(taps);
+  // [/pcss-glsl]
 #else
 #error SHADOW_METHOD names no method
 #endif

@@ -19,5 +19,10 @@ void main() {
   Surface s = decode_gbuffer(ivec2(gl_FragCoord.xy));
   GpuLight sun = GpuLight(vec4(0.0), vec4(u_sun_direction, 0.0), vec4(1.0), vec4(0.0));
   if (s.is_sky || dot(s.normal, -u_sun_direction) <= 0.0) { out_colour = vec4(0.1, 0.15, 0.4, 1.0); return; }
-  out_colour = vec4(vec3(directional_visibility(0, sun, s)), 1.0);
+  float v = directional_visibility(0, sun, s);
+#ifdef SHOW_PENUMBRA
+  out_colour = vec4(vec3(sh_pcss_radius), 1.0);  // PCSS's filter radius, metres (a float target reads it)
+  return;
+#endif
+  out_colour = vec4(vec3(v), 1.0);
 }
