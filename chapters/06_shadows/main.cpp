@@ -99,8 +99,8 @@ const CliSpec kCli{
                           {"result", "visibility", "map", "truth", "soft-truth", "error"})}};
 
 // [references]
-// The atrium in sunlight: every method from above, the hard and filtered methods in the
-// aisle among the columns, and the visibility term alone.
+// The atrium in sunlight: every method from above, the hard and filtered methods and PCSS in
+// the aisle among the columns, and the visibility term alone.
 // The lit views see the atrium's tiled floor minified into the distance, where OpenGL leaves
 // the mip level to the implementation: on an NVIDIA H200 0.7 to 1.1 % of these views' pixels
 // differ from the llvmpipe references by more than 3 steps, all on the floor's grout lines
@@ -113,6 +113,7 @@ std::vector<Shot> atrium_shots() {
   for (const std::string& m : kMethodNames) shots.push_back({"overview", m, {}, {}, kTexturedFloor});
   shots.push_back({"aisle", "hard", {}, {}, kTexturedFloor});
   shots.push_back({"aisle", "vsm", {}, {}, kTexturedFloor});
+  shots.push_back({"aisle", "pcss", {}, {}, kTexturedFloor});  // contact hardening: the column bases' sharp shadows
   shots.push_back({"corner", "pcf", {{"show", kVisibility}}});
   shots.push_back({"overview", "hard", {{"show", kMap}}});
   return shots;
