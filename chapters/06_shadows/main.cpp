@@ -130,7 +130,15 @@ int main(int argc, char** argv) {
     ch03::DeferredFrame frame(app.scene_gpu());
     float sun_scale = -1.f;  // the lights are built on the first frame, and again when --sun changes
     ShadowStage shadows(app.scene_gpu(), sun);
-    frame.add_stage(shadows);
+    // [marked-lights]
+    // The lights the scene marks (shadow_stage.h [casts-shadows]): the sun casts unless marked
+    // not to, and then the frame is chapter 03's; a marked light this chapter has no map for is
+    // named, and keeps chapter 03's path.
+    const bool sun_casts = casts_shadows(app.scene(), std::size_t(&sun - app.scene().lights.data()));
+    if (sun_casts) frame.add_stage(shadows);
+    else std::cerr << "06_shadows: the sun '" << sun.name << "' is marked casts_shadows: false: no shadows (chapter 03's frame)\n";
+    for (const std::string& note : unshadowed_casters(app.scene())) std::cerr << "06_shadows: " << note << '\n';
+    // [/marked-lights]
     GLint max_size = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
 
@@ -177,6 +185,9 @@ int main(int argc, char** argv) {
                                     .fit_to_view = f.knob_int("fit") != 0,
                                     .moment_bits = moment_bits};
       const int show = f.knob_int("show");
+      if (!sun_casts && show != kResult)
+        throw Error(knob_text(kCli, "show", f.knob("show")) + " shows the sun's shadows, and the scene marks the sun '" +
+                    sun.name + "' casts_shadows: false");
       shadows.set(settings, show == kVisibility ? ShadowPicture::Visibility
                             : show == kMap      ? ShadowPicture::Map
                                                 : ShadowPicture::None);

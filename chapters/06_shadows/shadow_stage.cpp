@@ -37,6 +37,32 @@ const Light& find_sun(const Scene& scene) {
   throw Error("the scene has no directional light (the sun) to cast shadows");
 }
 
+bool casts_shadows(const Scene& scene, std::size_t light) {
+  const Light& l = scene.lights.at(light);
+  if (l.casts_shadows) return *l.casts_shadows;
+  if (l.type != LightType::Directional) return false;
+  for (std::size_t i = 0; i < light; ++i)
+    if (scene.lights[i].type == LightType::Directional) return false;  // a sun came before it
+  return true;
+}
+
+std::vector<std::string> unshadowed_casters(const Scene& scene) {
+  std::vector<std::string> out;
+  bool sun_seen = false;
+  for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+    const Light& l = scene.lights[i];
+    const bool first_directional = l.type == LightType::Directional && !sun_seen;
+    sun_seen = sun_seen || l.type == LightType::Directional;
+    if (!casts_shadows(scene, i) || first_directional) continue;
+    out.push_back("light '" + l.name + "' is marked casts_shadows, but " +
+                  (l.type == LightType::Directional ? std::string("only the first directional light (the sun) has a map here")
+                   : l.type == LightType::Point     ? std::string("a point light's cube map is an exercise of this chapter")
+                                                    : std::string("a spot light's perspective map is an exercise of this chapter")) +
+                  ": it keeps chapter 03's path (no shadow)");
+  }
+  return out;
+}
+
 ShadowStage::ShadowStage(const SceneGpu& scene, const Light& sun) : scene_(scene), sun_(sun) {
   glSamplerParameteri(nearest_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glSamplerParameteri(nearest_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);

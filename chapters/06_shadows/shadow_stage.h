@@ -111,4 +111,17 @@ class ShadowStage : public ch03::FrameStage {
 // The first directional light of the scene (the sun), or an Error naming the scene's lights.
 const Light& find_sun(const Scene& scene);
 
+// [casts-shadows]
+// Which lights cast shadows in this chapter. A light marked in the scene (the light node's
+// extras {"lightpass": {"casts_shadows": true | false}}, Light::casts_shadows; the format is in
+// book/appendix-scenes.md) does as it says; an unmarked one casts if it is the sun (the first
+// directional light) and not otherwise. A light that does not cast keeps chapter 03's path:
+// visibility 1, no map, no pass.
+bool casts_shadows(const Scene& scene, std::size_t light);
+// The lights marked to cast that this chapter cannot shadow (the sun's map is the only one:
+// another directional light, a point light's cube map and a spot light's perspective map are
+// the exercises), each named with why: for the program to say so.
+std::vector<std::string> unshadowed_casters(const Scene& scene);
+// [/casts-shadows]
+
 }  // namespace lp::ch06

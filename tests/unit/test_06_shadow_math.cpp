@@ -12,6 +12,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "chapters/06_shadows/shadow_math.h"
+#include "chapters/06_shadows/shadow_stage.h"
 #include "chapters/06_shadows/shadow_truth.h"
 #include "chapters/06_shadows/shadow_volumes.h"
 #include "common/error.h"
@@ -378,3 +379,37 @@ TEST(ShadowVolumes, ANonManifoldEdgeGetsItsNetCount) {
   EXPECT_EQ(c.cap_triangles, 3u);
   EXPECT_EQ(c.side_quads, 3u + 6u);  // 3 on the shared edge, and each triangle's two own edges
 }
+
+// [marked-lights-tests]
+// Which lights cast (shadow_stage.h [casts-shadows]): unmarked, only the sun (the first
+// directional light, wherever it is in the list); a mark overrides, either way; and a marked
+// light the chapter has no map for is named, with why, the sun never.
+TEST(ShadowLights, TheSunCastsUnlessMarkedAndOtherLightsOnlyWhenMarked) {
+  auto light = [](LightType type, const char* name) {
+    Light l;
+    l.type = type, l.name = name;
+    return l;
+  };
+  Scene s;
+  s.lights = {light(LightType::Point, "lamp"), light(LightType::Directional, "sun"), light(LightType::Directional, "moon"),
+              light(LightType::Spot, "torch")};
+  EXPECT_FALSE(casts_shadows(s, 0));
+  EXPECT_TRUE(casts_shadows(s, 1));
+  EXPECT_FALSE(casts_shadows(s, 2));
+  EXPECT_FALSE(casts_shadows(s, 3));
+  EXPECT_TRUE(unshadowed_casters(s).empty());
+  s.lights[1].casts_shadows = false;
+  EXPECT_FALSE(casts_shadows(s, 1));
+  for (std::size_t i : {0u, 2u, 3u}) s.lights[i].casts_shadows = true;
+  s.lights[1].casts_shadows = true;
+  for (std::size_t i = 0; i < 4; ++i) EXPECT_TRUE(casts_shadows(s, i)) << i;
+  const std::vector<std::string> notes = unshadowed_casters(s);
+  ASSERT_EQ(notes.size(), 3u);
+  EXPECT_NE(notes[0].find("light 'lamp'"), std::string::npos) << notes[0];
+  EXPECT_NE(notes[0].find("cube map"), std::string::npos) << notes[0];
+  EXPECT_NE(notes[1].find("light 'moon'"), std::string::npos) << notes[1];
+  EXPECT_NE(notes[1].find("only the first directional light"), std::string::npos) << notes[1];
+  EXPECT_NE(notes[2].find("light 'torch'"), std::string::npos) << notes[2];
+  EXPECT_NE(notes[2].find("spot light"), std::string::npos) << notes[2];
+}
+// [/marked-lights-tests]

@@ -696,3 +696,38 @@ TEST_F(ShadowsGl, PcssPenumbraIsNarrowNearContactAndWideFarFromIt) {
   EXPECT_LT(median, 2.0);
 }
 // [/pcss-gl]
+
+// [unmarked-lights-gl]
+// The atrium marks no light (its sun casts by default, its eight point lights do not cast:
+// shadow_stage.h [casts-shadows]), so the point lights keep chapter 03's path. With the sun
+// turned off (intensity 0: its term is 0 whatever its visibility), the frame with the shadow
+// stage, in every method, is chapter 03's frame without any stage, byte for byte: the stage
+// changes nothing of a light that does not cast.
+TEST_F(ShadowsGl, UnmarkedLocalLightsKeepChapter03sPixels) {
+  for (const Light& l : world->scene.lights) ASSERT_FALSE(l.casts_shadows.has_value()) << l.name;
+  std::vector<Light> no_sun = world->scene.lights;
+  std::size_t local = 0;
+  for (Light& l : no_sun) l.type == LightType::Directional ? void(l.intensity = 0.f) : void(++local);
+  ASSERT_GT(local, std::size_t(0));
+  const FrameCamera cam = world->camera("overview");
+  ch03::DeferredFrame plain(world->gpu);
+  ch03::use_lights(plain, world->scene, no_sun, false);
+  OutputTarget a(kW, kH), b(kW, kH);
+  plain.render(cam, {a.framebuffer(), kW, kH});
+  const ImageRGBA8 chapter03 = a.read();
+  std::size_t lit = 0;
+  for (std::size_t i = 0; i < chapter03.pixels.size(); i += 4) lit += chapter03.pixels[i] + chapter03.pixels[i + 1] > 20;
+  ASSERT_GT(lit, std::size_t(kW * kH / 4));  // the point lights light the view: there are pixels to keep
+  ch03::use_lights(world->frame, world->scene, no_sun, false);
+  for (ShadowMethod m : {ShadowMethod::Hard, ShadowMethod::Pcf, ShadowMethod::Vsm, ShadowMethod::Esm, ShadowMethod::Pcss,
+                         ShadowMethod::Volumes}) {
+    world->stage.set({.method = m});
+    world->frame.render(cam, {b.framebuffer(), kW, kH});
+    const ImageRGBA8 with = b.read();
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < with.pixels.size(); ++i) differ += with.pixels[i] != chapter03.pixels[i];
+    EXPECT_EQ(differ, 0u) << kMethodNames[int(m)];
+  }
+  ch03::use_lights(world->frame, world->scene, world->scene.lights, false);  // the suite's lights back
+}
+// [/unmarked-lights-gl]
