@@ -4,7 +4,8 @@
 // k x k comparisons (pcf), the hardware's comparison sampler (pcf-hardware), Chebyshev's bound
 // on filtered moments (vsm), filtered exp(c z) in log space (esm), or PCF over the penumbra a
 // blocker search finds for the sun as a disk (pcss); or with no map, by the sun's shadow volumes
-// counted in the stencil (volumes). Only the sun casts; the
+// counted in the stencil (volumes). The sun casts, and a spot light the scene marks (a
+// perspective map, hard or PCF); the
 // local lights keep chapter 03's path (visibility 1). The ray-traced truth that the tests
 // and the sweep measure against is shadow_truth.h.
 #include <algorithm>

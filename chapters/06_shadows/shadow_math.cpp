@@ -67,6 +67,27 @@ LightFrustum fit_light_frustum(glm::vec3 direction, glm::vec3 scene_min, glm::ve
   return f;
 }
 
+SpotFrustum fit_spot_frustum(glm::vec3 position, glm::vec3 direction, float outer_cone, float range, glm::vec3 scene_min,
+                             glm::vec3 scene_max) {
+  if (!(outer_cone > 0.f && outer_cone <= kMaxSpotCone))
+    throw Error("fit_spot_frustum: the cone must be in (0, " + std::to_string(kMaxSpotCone) + "] radians (got " +
+                std::to_string(outer_cone) + ")");
+  direction = glm::normalize(direction);
+  SpotFrustum f;
+  const glm::vec3 up = std::abs(direction.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+  f.view = glm::lookAt(position, position + direction, up);
+  float far = 0.f;
+  for (int i = 0; i < 8; ++i) {
+    const glm::vec3 c(i & 1 ? scene_max.x : scene_min.x, i & 2 ? scene_max.y : scene_min.y, i & 4 ? scene_max.z : scene_min.z);
+    far = std::max(far, glm::distance(c, position));
+  }
+  if (range > 0.f) far = std::min(far, range);
+  f.far = std::max(far, 2.f * f.near);
+  f.tan_cone = std::tan(outer_cone);
+  f.projection = glm::perspective(2.f * outer_cone, 1.f, f.near, f.far);
+  return f;
+}
+
 glm::vec2 receiver_plane_gradient(const LightFrustum& f, glm::vec3 world_normal) {
   const glm::vec3 n = glm::mat3(f.view) * world_normal;
   const float nz = std::max(n.z, 0.05f);

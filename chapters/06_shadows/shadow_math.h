@@ -43,6 +43,24 @@ LightFrustum fit_light_frustum(glm::vec3 direction, glm::vec3 scene_min, glm::ve
                                const glm::mat4* inverse_camera_view_projection = nullptr);
 // [/light-frustum]
 
+// [spot-frustum]
+// A spot light's perspective frustum: from its position along its direction, a square field of
+// view of twice its outer cone (the cone is the circle inscribed in it), near plane 5 cm, far
+// plane at the farthest corner of the scene's bounds, or its range when that is nearer. A
+// perspective map's texel grows with the distance d from the light: 2 d tan(cone) / N.
+// Cones up to kMaxSpotCone: wider ones need a cube map (a perspective map's texels stretch
+// without bound as its field of view nears 180 degrees).
+inline constexpr float kMaxSpotCone = 1.2f;  // radians, 69 degrees: a 137-degree field of view
+struct SpotFrustum {
+  glm::mat4 view{1}, projection{1};
+  float near = 0.05f, far = 1.f, tan_cone = 1.f;
+  glm::mat4 view_projection() const { return projection * view; }
+  float texel_world(float distance, int map_size) const { return 2.f * distance * tan_cone / float(map_size); }
+};
+SpotFrustum fit_spot_frustum(glm::vec3 position, glm::vec3 direction, float outer_cone, float range, glm::vec3 scene_min,
+                             glm::vec3 scene_max);
+// [/spot-frustum]
+
 // [receiver-plane]
 // Receiver-plane depth bias for PCF: the receiver's window depth as a plane over the map's
 // (u, v), its gradient from the normal in light view space (n_x, n_y, n_z), n_z > 0 facing the

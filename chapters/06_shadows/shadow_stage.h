@@ -9,6 +9,7 @@
 //   shadows.set({.method = ShadowMethod::Pcf, .kernel = 3});
 //   frame.render(camera, output, &metrics);
 #include <map>
+#include <optional>
 #include <string>
 
 #include "chapters/02_gbuffer/deferred.h"
@@ -55,16 +56,20 @@ struct VolumeStats {
 
 // What composite() draws instead of the image. Penumbra (method Pcss): the filter's radius in
 // metres, unclamped (0 where the search finds no blocker; blue where the sun does not reach).
-enum class ShadowPicture { None, Visibility, Map, Penumbra };
+// SpotVisibility: the marked spot light's visibility alone (blue where the spot does not reach).
+enum class ShadowPicture { None, Visibility, Map, Penumbra, SpotVisibility };
 
 class ShadowStage : public ch03::FrameStage {
  public:
-  // `sun`: the directional light that casts; the scene's bounds give the casters.
+  // `sun`: the directional light that casts; the scene's bounds give the casters. The first spot
+  // light the scene marks to cast (casts_shadows below), if any, gets a perspective map too.
   ShadowStage(const SceneGpu& scene, const Light& sun);
   void reload_shaders();
   void set(const ShadowSettings& settings, ShadowPicture picture = ShadowPicture::None);
   const ShadowSettings& settings() const { return settings_; }
   const LightFrustum& frustum() const { return frustum_; }
+  const std::optional<Light>& spot() const { return spot_; }          // the spot light with a map
+  const SpotFrustum& spot_frustum() const { return spot_frustum_; }
   // Bytes the method keeps per frame: the depth map, and the moments with their filter target.
   std::size_t allocated_bytes() const;
   const VolumeStats& volume_stats() const { return volume_stats_; }
@@ -82,6 +87,11 @@ class ShadowStage : public ch03::FrameStage {
   ShadowSettings settings_;
   ShadowPicture picture_ = ShadowPicture::None;
   LightFrustum frustum_;
+  std::optional<Light> spot_;
+  SpotFrustum spot_frustum_;
+  gl::Texture spot_depth_{GL_TEXTURE_2D};
+  gl::Framebuffer spot_fbo_;
+  int spot_size_ = 0;
   int allocated_size_ = 0;
   bool allocated_filtered_ = false;
   int allocated_bits_ = 32;
@@ -115,13 +125,19 @@ const Light& find_sun(const Scene& scene);
 // Which lights cast shadows in this chapter. A light marked in the scene (the light node's
 // extras {"lightpass": {"casts_shadows": true | false}}, Light::casts_shadows; the format is in
 // book/appendix-scenes.md) does as it says; an unmarked one casts if it is the sun (the first
-// directional light) and not otherwise. A light that does not cast keeps chapter 03's path:
-// visibility 1, no map, no pass.
+// directional light) and not otherwise. The sun gets its orthographic map, the first marked
+// spot light (of at most kMaxSpotCone) a perspective one (looked up hard with the method hard,
+// with PCF on the k x k grid with every other map method; with volumes it casts nothing). A
+// light that does not cast keeps chapter 03's path: visibility 1, no map, no pass.
 bool casts_shadows(const Scene& scene, std::size_t light);
-// The lights marked to cast that this chapter cannot shadow (the sun's map is the only one:
-// another directional light, a point light's cube map and a spot light's perspective map are
-// the exercises), each named with why: for the program to say so.
+// The lights marked to cast that this chapter cannot shadow (the sun's map and one spot light's
+// perspective map: another directional light, a point light's cube map, a second spot light
+// or one wider than kMaxSpotCone are the exercises), each named with why: for the program to
+// say so.
 std::vector<std::string> unshadowed_casters(const Scene& scene);
+// The spot light that gets a map: the first spot marked to cast with a cone of at most
+// kMaxSpotCone; its index in scene.lights, or -1.
+int shadowed_spot(const Scene& scene);
 // [/casts-shadows]
 
 }  // namespace lp::ch06

@@ -32,6 +32,13 @@ ImageF shadow_truth(const Scene& scene, const RayScene& rays, const FrameCamera&
 ImageF cached_shadow_truth(const Scene& scene, const RayScene& rays, const FrameCamera& camera, int width, int height,
                            glm::vec3 sun_direction, const TruthSettings& settings = {});
 
+// [spot-truth]
+// A spot light's hard shadows: one occlusion ray per pixel from the surface point toward the
+// light's position. Channels as shadow_truth's: 0 visibility, 1 the same (a point light has no
+// penumbra), 2 the mask: a surface facing the light, inside its outer cone (and its range).
+ImageF spot_shadow_truth(const RayScene& rays, const FrameCamera& camera, int width, int height, const Light& spot);
+// [/spot-truth]
+
 // [shadow-error]
 // A method's visibility (one channel, top row first) against a truth channel over the mask.
 struct VisibilityError {

@@ -380,10 +380,42 @@ TEST(ShadowVolumes, ANonManifoldEdgeGetsItsNetCount) {
   EXPECT_EQ(c.side_quads, 3u + 6u);  // 3 on the shared edge, and each triangle's two own edges
 }
 
+// [spot-frustum-tests]
+// A spot light's perspective frustum (shadow_math.h [spot-frustum]) holds its cone: points in
+// directions within the outer cone, between the near plane and the farthest corner of the
+// scene's bounds, project inside the map and its depth range; a texel at distance d is
+// 2 d tan(cone) / N; a cone wider than kMaxSpotCone is refused.
+TEST(ShadowMath, SpotFrustumHoldsTheSpotsCone) {
+  const glm::vec3 lo(-8, 0, -12), hi(8, 7, 12), at(1, 3, 1.5f);
+  const glm::vec3 axis = glm::normalize(glm::vec3(3.5f, -3.f, 0.f));
+  const float cone = 0.8f;
+  const SpotFrustum f = fit_spot_frustum(at, axis, cone, 0.f, lo, hi);
+  EXPECT_NEAR(f.far, glm::distance(at, glm::vec3(-8, 7, -12)), 1e-4f);  // the farthest corner
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  for (int i = 0; i < 10000; ++i) {
+    // a direction within the cone (sample_cone), at a distance along it whose depth is inside [near, far]
+    const glm::vec3 d = sample_cone(axis, cone, u(rng), u(rng));
+    const float depth = f.near * 1.01f + u(rng) * (f.far * 0.99f - f.near * 1.01f);
+    const glm::vec3 p = at + d * (depth / glm::dot(d, axis));
+    const glm::vec4 c = f.view_projection() * glm::vec4(p, 1.f);
+    ASSERT_GT(c.w, 0.f);
+    ASSERT_LE(std::abs(c.x / c.w), 1.f + 1e-5f) << i;
+    ASSERT_LE(std::abs(c.y / c.w), 1.f + 1e-5f) << i;
+    ASSERT_LE(std::abs(c.z / c.w), 1.f + 1e-5f) << i;
+    ASSERT_NEAR(c.w, depth, 1e-3f * depth);  // clip w is the linear depth the hook compares
+  }
+  EXPECT_FLOAT_EQ(f.texel_world(5.f, 1024), 2.f * 5.f * std::tan(cone) / 1024.f);
+  EXPECT_LT(fit_spot_frustum(at, axis, cone, 4.f, lo, hi).far, 4.f + 1e-6f);  // a range nearer than the bounds
+  EXPECT_THROW(fit_spot_frustum(at, axis, kMaxSpotCone + 0.01f, 0.f, lo, hi), Error);
+}
+// [/spot-frustum-tests]
+
 // [marked-lights-tests]
 // Which lights cast (shadow_stage.h [casts-shadows]): unmarked, only the sun (the first
-// directional light, wherever it is in the list); a mark overrides, either way; and a marked
-// light the chapter has no map for is named, with why, the sun never.
+// directional light, wherever it is in the list); a mark overrides, either way; the first
+// marked spot of at most kMaxSpotCone gets a map; and a marked light the chapter has no map
+// for is named, with why, the sun and that spot never.
 TEST(ShadowLights, TheSunCastsUnlessMarkedAndOtherLightsOnlyWhenMarked) {
   auto light = [](LightType type, const char* name) {
     Light l;
@@ -392,24 +424,31 @@ TEST(ShadowLights, TheSunCastsUnlessMarkedAndOtherLightsOnlyWhenMarked) {
   };
   Scene s;
   s.lights = {light(LightType::Point, "lamp"), light(LightType::Directional, "sun"), light(LightType::Directional, "moon"),
-              light(LightType::Spot, "torch")};
+              light(LightType::Spot, "torch"), light(LightType::Spot, "flood"), light(LightType::Spot, "second")};
+  s.lights[4].outer_cone = kMaxSpotCone + 0.1f;
   EXPECT_FALSE(casts_shadows(s, 0));
   EXPECT_TRUE(casts_shadows(s, 1));
   EXPECT_FALSE(casts_shadows(s, 2));
   EXPECT_FALSE(casts_shadows(s, 3));
   EXPECT_TRUE(unshadowed_casters(s).empty());
+  EXPECT_EQ(shadowed_spot(s), -1);
   s.lights[1].casts_shadows = false;
   EXPECT_FALSE(casts_shadows(s, 1));
-  for (std::size_t i : {0u, 2u, 3u}) s.lights[i].casts_shadows = true;
+  s.lights[4].casts_shadows = true;
+  EXPECT_EQ(shadowed_spot(s), -1);  // the only marked spot is too wide for a perspective map
+  for (std::size_t i : {0u, 2u, 3u, 5u}) s.lights[i].casts_shadows = true;
   s.lights[1].casts_shadows = true;
-  for (std::size_t i = 0; i < 4; ++i) EXPECT_TRUE(casts_shadows(s, i)) << i;
+  for (std::size_t i = 0; i < s.lights.size(); ++i) EXPECT_TRUE(casts_shadows(s, i)) << i;
+  EXPECT_EQ(shadowed_spot(s), 3);
   const std::vector<std::string> notes = unshadowed_casters(s);
-  ASSERT_EQ(notes.size(), 3u);
+  ASSERT_EQ(notes.size(), 4u);
   EXPECT_NE(notes[0].find("light 'lamp'"), std::string::npos) << notes[0];
   EXPECT_NE(notes[0].find("cube map"), std::string::npos) << notes[0];
   EXPECT_NE(notes[1].find("light 'moon'"), std::string::npos) << notes[1];
   EXPECT_NE(notes[1].find("only the first directional light"), std::string::npos) << notes[1];
-  EXPECT_NE(notes[2].find("light 'torch'"), std::string::npos) << notes[2];
-  EXPECT_NE(notes[2].find("spot light"), std::string::npos) << notes[2];
+  EXPECT_NE(notes[2].find("light 'flood'"), std::string::npos) << notes[2];
+  EXPECT_NE(notes[2].find("wider than a perspective map covers"), std::string::npos) << notes[2];
+  EXPECT_NE(notes[3].find("light 'second'"), std::string::npos) << notes[3];
+  EXPECT_NE(notes[3].find("only the first marked spot light"), std::string::npos) << notes[3];
 }
 // [/marked-lights-tests]

@@ -731,3 +731,92 @@ TEST_F(ShadowsGl, UnmarkedLocalLightsKeepChapter03sPixels) {
   ch03::use_lights(world->frame, world->scene, world->scene.lights, false);  // the suite's lights back
 }
 // [/unmarked-lights-gl]
+
+// [spot-gl]
+// A spot light marked to cast (shadow_stage.h [casts-shadows]) gets a perspective map
+// (shadow_math.h [spot-frustum]). The atrium with one added: 3 m up in the aisle, aimed past the
+// right-hand columns r3 and r4 at the floor beyond them, a 0.8 rad cone. Its visibility alone
+// (ShadowPicture::SpotVisibility) against one ray per pixel toward the light (spot_shadow_truth),
+// outside a band of the map's reach at the farthest receiver: half a texel, plus the biases
+// (the slope part at the steepest receiver in the cone, tan(theta) capped at kMaxSlope as the
+// hook caps it), plus the kernel's r texels (its taps compare with the receiver's plane), each
+// w(d) = 2 d tan(cone) / N at the largest distance d of a receiver in the cone, over the
+// smallest pixel footprint in view; the map 2048^2. Allowed outside it, for hard and PCF 3x3:
+// none.
+namespace {
+void add_marked_spot(Scene& s) {
+  Light spot;
+  spot.name = "test_spot";
+  spot.type = LightType::Spot;
+  spot.intensity = 40.f;
+  spot.position = {1.f, 3.f, 1.5f};
+  spot.direction = glm::normalize(glm::vec3(3.5f, -3.f, 0.f));
+  spot.outer_cone = 0.8f, spot.inner_cone = 0.7f;
+  spot.casts_shadows = true;
+  s.lights.push_back(spot);
+}
+}  // namespace
+
+TEST(ShadowsGlSpot, MarkedSpotLightMatchesItsRayTracedShadowsOutsideTheBand) {
+  World w(std::nullopt, add_marked_spot);
+  ASSERT_TRUE(w.stage.spot().has_value());
+  EXPECT_TRUE(unshadowed_casters(w.scene).empty());
+  const Light& spot = *w.stage.spot();
+  const FrameCamera cam = w.camera("overview");
+  const ImageF truth = spot_shadow_truth(w.rays, cam, kW, kH, spot);
+  const auto hits = primary_hits(w.rays, cam, kW, kH);
+  float nearest = 1e30f, farthest = 0.f, steepest = 0.f;
+  std::size_t masked = 0, dark = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const auto& h = hits[std::size_t(y) * kW + x];
+      if (h) nearest = std::min(nearest, h->t);
+      if (truth.at(x, y, 2) < 0.5f) continue;
+      ++masked, dark += truth.at(x, y, 0) < 0.5f;
+      farthest = std::max(farthest, glm::distance(h->position, spot.position));
+      const float c = std::clamp(std::abs(glm::dot(glm::normalize(spot.position - h->position), h->shading_normal)), 1e-4f, 1.f);
+      steepest = std::max(steepest, std::min(std::sqrt(1.f - c * c) / c, kMaxSlope));
+    }
+  std::printf("spot: %zu pixels in its cone, %zu of them shadowed; receivers up to %.2f m away, tan(theta) up to %.2f\n",
+              masked, dark, farthest, steepest);
+  ASSERT_GT(masked, std::size_t(kW * kH / 20));
+  ASSERT_GT(dark, masked / 20);  // the columns' shadows are there to get right
+  ASSERT_LT(dark, masked - masked / 20);
+  const float footprint = nearest * 2.f * std::tan(cam.yfov / 2.f) / float(kH);
+  for (const ShadowSettings& s : {ShadowSettings{.method = ShadowMethod::Hard, .map_size = 2048},
+                                  ShadowSettings{.method = ShadowMethod::Pcf, .map_size = 2048}}) {
+    const int r = s.method == ShadowMethod::Hard ? 0 : s.kernel / 2;
+    ColourTarget target(kW, kH, GL_RGBA32F);
+    w.stage.set(s, ShadowPicture::SpotVisibility);
+    w.frame.render(cam, {target.framebuffer(), kW, kH});
+    ASSERT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+    const ImageF v = target.read();
+    const float texels = 0.5f + s.constant_bias + s.slope_bias * steepest + s.normal_offset + float(r);
+    const int band = int(std::ceil(texels * w.stage.spot_frustum().texel_world(farthest, s.map_size) / footprint));
+    auto edges = hard_edge_pixels(truth, band);
+    exclude_raster_mask(v, edges);
+    const VisibilityError e = visibility_error(v, truth, 0, &edges);
+    std::printf("spot, %s: band %d pixels; ", kMethodNames[int(s.method)].c_str(), band);
+    print("outside the band", e);
+    std::size_t shadowed_compared = 0;
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x)
+        shadowed_compared += truth.at(x, y, 2) > 0.5f && truth.at(x, y, 0) < 0.5f && !edges[std::size_t(y) * kW + x];
+    std::printf("  %zu of the compared pixels in shadow\n", shadowed_compared);
+    lp::test::book_row("06_spot", {{"method", kMethodNames[int(s.method)]}},
+                       {{"cone_pixels", double(masked)}, {"band", double(band)}, {"compared", double(e.pixels)},
+                        {"compared_in_shadow", double(shadowed_compared)}, {"wrong_pct", 100 * e.wrong},
+                        {"mean_abs", e.mean_abs}});
+    EXPECT_LE(band, 8);
+    // The band leaves enough of the cone to compare, lit and shadowed (the columns' shadows are
+    // narrow: about a quarter of the cone's pixels remain).
+    ASSERT_GT(e.pixels, std::size_t(1000));
+    ASSERT_GT(shadowed_compared, std::size_t(100));
+    EXPECT_EQ(e.wrong, 0.0) << kMethodNames[int(s.method)];
+    // Nor do the kernel's taps shadow the lit receivers outside the band: each compares with the
+    // receiver's plane at its own texel (with the centre's depth instead, a receiver tilted
+    // against the light shadows itself in the taps on its far side).
+    EXPECT_LT(e.mean_abs, 1e-3) << kMethodNames[int(s.method)];
+  }
+}
+// [/spot-gl]

@@ -1,8 +1,8 @@
 // Chapter 06's visibility hook (chapter 03's FRAME_VISIBILITY, deferred_frame.h): the sun
 // looked up in its shadow map by the method the define SHADOW_METHOD names (the small files
 // visibility_*.glsl define it and include this one). The C++ twins are in shadow_math.h.
-// Only the first directional light has a map; the other directional lights and every local
-// light keep visibility 1 (point and spot shadows are exercises of the chapter).
+// Only the first directional light has a map, and the first spot light the scene marks to cast
+// (shadow_stage.h [casts-shadows]) a perspective one; the other lights keep visibility 1.
 #define SHADOW_HARD 0
 #define SHADOW_PCF 1
 #define SHADOW_PCF_HARDWARE 2
@@ -18,10 +18,15 @@ layout(std140, binding = 8) uniform ShadowBlock {
   mat4 sh_view;     // world to the light's view space (looking down -z)
   vec4 sh_extent;   // x, y: the box's width and height in metres; w: PCSS's tan(sun's angular radius)
   vec4 sh_poisson[32];  // PCF's Poisson disk in the unit disk, two taps a vec4
+  mat4 sh_spot_matrix;  // world to the spot light's clip space (perspective)
+  mat4 sh_spot_view;    // world to the spot light's view space (looking down -z)
+  vec4 sh_spot;         // xyz: the spot's position, w: 1 when a spot has a map
+  vec4 sh_spot_map;     // x: near, y: far (metres), z: tan(cone), w: map size
 };
 layout(binding = 8) uniform sampler2D sh_depth;
 layout(binding = 9) uniform sampler2DShadow sh_depth_compare;
 layout(binding = 10) uniform sampler2D sh_moments;
+layout(binding = 13) uniform sampler2D sh_spot_depth;
 
 // [bias-glsl]
 // shadow_math.h's slope_scaled_bias and normal_offset; the bias in window-depth units
@@ -164,4 +169,48 @@ float directional_visibility(int index, GpuLight light, Surface s) {
 #endif
 }
 
-float local_visibility(int index, GpuLight light, Surface s) { return 1.0; }
+// [spot-glsl]
+// The marked spot light (found by its position: the light order is chapter 03's) in its
+// perspective map. Distances are linear, metres along the spot's axis (clip w); a texel there
+// is w(d) = 2 d tan(cone) / N wide, and the biases are shadow_math.h's [bias] in units of it:
+// the normal offset, the constant and the slope-scaled parts. Hard: one comparison; every
+// other map method: PCF on a k x k grid, each tap compared with the receiver's plane where the
+// light's ray through that texel meets it (the perspective form of the receiver-plane bias:
+// in the light's view space the ray through the map's (u, v) is t (x tan, y tan, -1), x and y
+// in [-1, 1], and it meets the plane n . (X - p) = 0 at t = n . p / n . ray, its depth t).
+float local_visibility(int index, GpuLight light, Surface s) {
+  if (sh_spot.w == 0.0 || light.position_type.w != LIGHT_SPOT || distance(light.position_type.xyz, sh_spot.xyz) > 1e-4) return 1.0;
+  vec3 to_light = normalize(sh_spot.xyz - s.position);
+  float cos_theta = dot(s.normal, to_light);
+  if (cos_theta <= 0.0) return 1.0;  // faces away: the light adds nothing anyway
+  cos_theta = clamp(cos_theta, 1e-4, 1.0);
+  float sin_theta = sqrt(1.0 - cos_theta * cos_theta);
+  float tan_theta = min(sin_theta / cos_theta, 10.0);
+  float d = (sh_spot_matrix * vec4(s.position, 1.0)).w;
+  float texel = 2.0 * d * sh_spot_map.z / sh_spot_map.w;
+  vec4 clip = sh_spot_matrix * vec4(s.position + s.normal * (sh_bias.z * texel * sin_theta), 1.0);
+  if (clip.w <= sh_spot_map.x) return 1.0;
+  vec3 window = clip.xyz / clip.w * 0.5 + 0.5;
+  if (any(lessThan(window.xy, vec2(0.0))) || any(greaterThan(window.xy, vec2(1.0))) || window.z > 1.0) return 1.0;
+#if SHADOW_METHOD == SHADOW_HARD
+  int r = 0;
+#else
+  int r = int(sh_map.w);
+#endif
+  float bias = texel * (sh_bias.x + sh_bias.y * tan_theta);
+  vec3 p_view = (sh_spot_view * vec4(s.position + s.normal * (sh_bias.z * texel * sin_theta), 1.0)).xyz;
+  vec3 n_view = mat3(sh_spot_view) * s.normal;
+  float n = sh_spot_map.x, f = sh_spot_map.y, lit = 0.0;
+  for (int y = -r; y <= r; ++y)
+    for (int x = -r; x <= r; ++x) {
+      vec2 uv = window.xy + vec2(x, y) / sh_spot_map.w;
+      vec3 ray = vec3((2.0 * uv - 1.0) * sh_spot_map.z, -1.0);
+      float across = dot(n_view, ray);
+      float receiver = (r == 0 || abs(across) < 1e-4 ? clip.w : dot(n_view, p_view) / across) - bias;
+      float z = 2.0 * texture(sh_spot_depth, uv).r - 1.0;
+      float stored = 2.0 * n * f / (f + n - z * (f - n));  // the map's depth, linear
+      lit += receiver <= stored ? 1.0 : 0.0;
+    }
+  return lit / float((2 * r + 1) * (2 * r + 1));
+}
+// [/spot-glsl]
