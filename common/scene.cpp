@@ -633,7 +633,7 @@ class Loader {
       s_.node_extras.push_back({.name = name, .world = world, .lightpass_json = *extras_json_[node_index]});
     }
     if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end() && it->second.Has("light"))
-      add_light(it->second.Get("light").GetNumberAsInt(), name, world);
+      add_light(it->second.Get("light").GetNumberAsInt(), name, world, node);
     for (int child : node.children) visit(child, world, depth + 1);
   }
 
@@ -830,7 +830,7 @@ class Loader {
     s_.cameras.push_back(cam);
   }
 
-  void add_light(int index, const std::string& name, const glm::mat4& world) {
+  void add_light(int index, const std::string& name, const glm::mat4& world, const tinygltf::Node& node) {
     if (index < 0 || index >= static_cast<int>(m_.lights.size()))
       throw Error(file() + ": node '" + name + "' uses light " + std::to_string(index) + ", which does not exist");
     ++lights_declared_;
@@ -845,6 +845,13 @@ class Loader {
     l.position = glm::vec3(world[3]);
     glm::vec3 forward = -glm::vec3(world[2]);
     l.direction = glm::length(forward) > 0 ? glm::normalize(forward) : glm::vec3(NAN);
+    // Whether it casts shadows: the node's extras.lightpass.casts_shadows, a boolean, when given.
+    if (node.extras.Has("lightpass") && node.extras.Get("lightpass").Has("casts_shadows")) {
+      const auto& casts = node.extras.Get("lightpass").Get("casts_shadows");
+      if (!casts.IsBool())
+        throw Error(file() + ": node '" + name + "': extras.lightpass.casts_shadows must be true or false");
+      l.casts_shadows = casts.Get<bool>();
+    }
     if (gl.type == "directional") l.type = LightType::Directional;
     else if (gl.type == "point") l.type = LightType::Point;
     else if (gl.type == "spot") {

@@ -4,6 +4,7 @@
 // named cameras. CPU side only (the ground-truth renderers read it too); scene_gpu.h uploads it.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,10 @@ struct Light {
   glm::vec3 direction{0, 0, -1};  // world space, the way the light shines
   float range = 0;            // 0: unbounded
   float inner_cone = 0, outer_cone = 0.7853982f;  // radians
+  // The light node's extras {"lightpass": {"casts_shadows": true | false}}; unset where the file
+  // does not say, and a chapter's default applies (chapter 06: only the sun, the first
+  // directional light, casts).
+  std::optional<bool> casts_shadows;
 };
 
 struct Camera {

@@ -6,7 +6,7 @@ lightpass_gtests(06_shadows gl lightpass_06_shadows unit/test_06_shadows_gl.cpp)
 # The program: reference images per method (tests/reference/06_shadows/, made on llvmpipe
 # with --check --update-references), what a headless run reports, and bad input.
 set(P06 $<TARGET_FILE:06_shadows>)
-foreach(mode hard pcf pcf-hardware vsm esm volumes)
+foreach(mode hard pcf pcf-hardware vsm esm volumes pcss)
   lightpass_program_test(06_shadows.reference.${mode} 0 "references match" ${P06} --check --mode ${mode} --out ${CHECK_OUT}/06_shadows)
 endforeach()
 lightpass_program_test(06_shadows.headless_reports_the_map 0 "sun shadows, pcf: map 512x512 \\(1024 KiB\\), [0-9.]+ cm per texel"
@@ -18,6 +18,7 @@ lightpass_program_test(06_shadows.bad_map_too_large 2 "--map must be between" ${
 lightpass_program_test(06_shadows.bad_pmin 2 "--pmin must be between" ${P06} --pmin 1)
 lightpass_program_test(06_shadows.bad_moments 2 "--moments must be 16 or 32, not 20" ${P06} --headless --size 16x16 --moments 20)
 lightpass_program_test(06_shadows.bad_taps 2 "--taps must be between 0 and 64, got 65" ${P06} --taps 65)
+lightpass_program_test(06_shadows.bad_sun_size 2 "--sun-size must be between 0 and 0.2, got 0.5" ${P06} --sun-size 0.5)
 lightpass_program_test(06_shadows.bad_sun 2 "--sun must be between 0 and 1000, got -1" ${P06} --sun -1)
 lightpass_program_test(06_shadows.bad_mode 2 "unknown mode 'stencil'" ${P06} --mode stencil)
 lightpass_program_test(06_shadows.scene_without_sun 1 "no directional light" ${P06} --headless --size 16x16 --scene tests/data/minimal.gltf)

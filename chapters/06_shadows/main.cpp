@@ -2,7 +2,10 @@
 // map from an orthographic frustum fitted to what the view needs, and the frame's light
 // shaders look each pixel up in it by the method the mode names: one comparison (hard),
 // k x k comparisons (pcf), the hardware's comparison sampler (pcf-hardware), Chebyshev's bound
-// on filtered moments (vsm), or filtered exp(c z) in log space (esm). Only the sun casts; the
+// on filtered moments (vsm), filtered exp(c z) in log space (esm), or PCF over the penumbra a
+// blocker search finds for the sun as a disk (pcss); or with no map, by the sun's shadow volumes
+// counted in the stencil (volumes). The sun casts, and a spot light the scene marks (a
+// perspective map, hard or PCF); the
 // local lights keep chapter 03's path (visibility 1). The ray-traced truth that the tests
 // and the sweep measure against is shadow_truth.h.
 #include <algorithm>
@@ -69,13 +72,15 @@ std::vector<Light> scaled_lights(const std::vector<Light>& lights, float sun) {
 const CliSpec kCli{
     .program = "06_shadows",
     .summary = "Shadows from the sun in the deferred frame: a depth map from a fitted orthographic frustum, looked up "
-               "with one comparison, PCF, the hardware comparison sampler, VSM or ESM.",
+               "with one comparison, PCF, the hardware comparison sampler, VSM, ESM or PCSS; or shadow volumes.",
     .default_scene = "assets/atrium/atrium.gltf",
-    .modes = {"pcf", "hard", "pcf-hardware", "vsm", "esm", "volumes"},  // the chapter's recommendation first
+    .modes = {"pcf", "hard", "pcf-hardware", "vsm", "esm", "volumes", "pcss"},  // the chapter's recommendation first
     .knobs = {{"map", "shadow map width and height in texels (8192: 1.3 GiB with vsm or esm)", 1024, 16, 8192, true},
               {"kernel", "pcf: the k x k grid; vsm, esm: the box filter's width (odd)", 3, 1, 31, true},
               {"taps", "pcf: 0 for the k x k grid, or this many taps of a Poisson disk k texels across, rotated per "
-                       "pixel", 0, 0, 64, true},
+                       "pixel; pcss: the taps of its blocker search and of its filter (0: 32)", 0, 0, 64, true},
+              {"sun-size", "the sun's angular radius in radians: pcss's light and the soft truth's disk (the real sun: "
+                           "0.0047)", kSunAngularRadius, 0, 0.2, false},
               {"bias", "constant depth bias, in texels of the map", 0.5, 0, 100, false},
               {"slope", "slope-scaled bias, in texels per unit tan(theta)", 1, 0, 100, false},
               {"normal", "normal offset, in texels", 1, 0, 100, false},
@@ -88,14 +93,15 @@ const CliSpec kCli{
               {"sun", "multiplies directional lights (the atrium's sun: its 0.4 lux beside eight point lights shows "
                       "the shadows only faintly at 1)", kSunScale, 0, 1000, false},
               choice_knob("show", "the image; the sun's visibility alone (blue: sky or facing away); the depth map "
-                                  "itself (near black, far white); the ray-traced hard or soft truth (ray traced on the CPU: "
+                                  "itself (near black, far white); the ray-traced hard or soft truth (the sun as a disk of "
+                                  "--sun-size; ray traced on the CPU: "
                                   "seconds per view); |visibility - truth| as a heat map (hard truth for hard, "
                                   "soft for the others; red = 1)",
                           {"result", "visibility", "map", "truth", "soft-truth", "error"})}};
 
 // [references]
-// The atrium in sunlight: every method from above, the hard and filtered methods in the
-// aisle among the columns, and the visibility term alone.
+// The atrium in sunlight: every method from above, the hard and filtered methods and PCSS in
+// the aisle among the columns, and the visibility term alone.
 // The lit views see the atrium's tiled floor minified into the distance, where OpenGL leaves
 // the mip level to the implementation: on an NVIDIA H200 0.7 to 1.1 % of these views' pixels
 // differ from the llvmpipe references by more than 3 steps, all on the floor's grout lines
@@ -108,6 +114,7 @@ std::vector<Shot> atrium_shots() {
   for (const std::string& m : kMethodNames) shots.push_back({"overview", m, {}, {}, kTexturedFloor});
   shots.push_back({"aisle", "hard", {}, {}, kTexturedFloor});
   shots.push_back({"aisle", "vsm", {}, {}, kTexturedFloor});
+  shots.push_back({"aisle", "pcss", {}, {}, kTexturedFloor});  // contact hardening: the column bases' sharp shadows
   shots.push_back({"corner", "pcf", {{"show", kVisibility}}});
   shots.push_back({"overview", "hard", {{"show", kMap}}});
   return shots;
@@ -124,7 +131,15 @@ int main(int argc, char** argv) {
     ch03::DeferredFrame frame(app.scene_gpu());
     float sun_scale = -1.f;  // the lights are built on the first frame, and again when --sun changes
     ShadowStage shadows(app.scene_gpu(), sun);
-    frame.add_stage(shadows);
+    // [marked-lights]
+    // The lights the scene marks (shadow_stage.h [casts-shadows]): the sun casts unless marked
+    // not to, and then the frame is chapter 03's; a marked light this chapter has no map for is
+    // named, and keeps chapter 03's path.
+    const bool sun_casts = casts_shadows(app.scene(), std::size_t(&sun - app.scene().lights.data()));
+    if (sun_casts) frame.add_stage(shadows);
+    else std::cerr << "06_shadows: the sun '" << sun.name << "' is marked casts_shadows: false: no shadows (chapter 03's frame)\n";
+    for (const std::string& note : unshadowed_casters(app.scene())) std::cerr << "06_shadows: " << note << '\n';
+    // [/marked-lights]
     GLint max_size = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
 
@@ -132,6 +147,7 @@ int main(int argc, char** argv) {
     std::unique_ptr<RayScene> rays;  // the truth's, made when a truth is first shown
     ImageF truth;
     glm::mat4 truth_camera{0};
+    float truth_sun_size = -1.f;
     while (app.next_frame()) {
       const Frame& f = app.frame();
       const auto start = std::chrono::steady_clock::now();
@@ -161,6 +177,7 @@ int main(int argc, char** argv) {
                                     .map_size = f.knob_int("map"),
                                     .kernel = kernel,
                                     .poisson_taps = f.knob_int("taps"),
+                                    .sun_angular_radius = float(f.knob("sun-size")),
                                     .constant_bias = float(f.knob("bias")),
                                     .slope_bias = float(f.knob("slope")),
                                     .normal_offset = float(f.knob("normal")),
@@ -169,6 +186,9 @@ int main(int argc, char** argv) {
                                     .fit_to_view = f.knob_int("fit") != 0,
                                     .moment_bits = moment_bits};
       const int show = f.knob_int("show");
+      if (!sun_casts && show != kResult)
+        throw Error(knob_text(kCli, "show", f.knob("show")) + " shows the sun's shadows, and the scene marks the sun '" +
+                    sun.name + "' casts_shadows: false");
       shadows.set(settings, show == kVisibility ? ShadowPicture::Visibility
                             : show == kMap      ? ShadowPicture::Map
                                                 : ShadowPicture::None);
@@ -179,11 +199,14 @@ int main(int argc, char** argv) {
         // The truth for this camera and size: traced once per view (cached on disk headless).
         if (!rays) rays = std::make_unique<RayScene>(app.scene());
         const glm::mat4 key = f.camera.projection * f.camera.view;
-        if (truth.width != f.width || truth.height != f.height || key != truth_camera) {
+        const TruthSettings disk{.angular_radius = settings.sun_angular_radius};
+        if (truth.width != f.width || truth.height != f.height || key != truth_camera ||
+            disk.angular_radius != truth_sun_size) {
           truth = app.options().headless
-                      ? cached_shadow_truth(app.scene(), *rays, f.camera, f.width, f.height, sun.direction)
-                      : shadow_truth(app.scene(), *rays, f.camera, f.width, f.height, sun.direction);
+                      ? cached_shadow_truth(app.scene(), *rays, f.camera, f.width, f.height, sun.direction, disk)
+                      : shadow_truth(app.scene(), *rays, f.camera, f.width, f.height, sun.direction, disk);
           truth_camera = key;
+          truth_sun_size = disk.angular_radius;
         }
         if (show == kError) {
           ColourTarget visibility(f.width, f.height, GL_RGBA32F);

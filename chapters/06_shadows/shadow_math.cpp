@@ -67,6 +67,27 @@ LightFrustum fit_light_frustum(glm::vec3 direction, glm::vec3 scene_min, glm::ve
   return f;
 }
 
+SpotFrustum fit_spot_frustum(glm::vec3 position, glm::vec3 direction, float outer_cone, float range, glm::vec3 scene_min,
+                             glm::vec3 scene_max) {
+  if (!(outer_cone > 0.f && outer_cone <= kMaxSpotCone))
+    throw Error("fit_spot_frustum: the cone must be in (0, " + std::to_string(kMaxSpotCone) + "] radians (got " +
+                std::to_string(outer_cone) + ")");
+  direction = glm::normalize(direction);
+  SpotFrustum f;
+  const glm::vec3 up = std::abs(direction.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+  f.view = glm::lookAt(position, position + direction, up);
+  float far = 0.f;
+  for (int i = 0; i < 8; ++i) {
+    const glm::vec3 c(i & 1 ? scene_max.x : scene_min.x, i & 2 ? scene_max.y : scene_min.y, i & 4 ? scene_max.z : scene_min.z);
+    far = std::max(far, glm::distance(c, position));
+  }
+  if (range > 0.f) far = std::min(far, range);
+  f.far = std::max(far, 2.f * f.near);
+  f.tan_cone = std::tan(outer_cone);
+  f.projection = glm::perspective(2.f * outer_cone, 1.f, f.near, f.far);
+  return f;
+}
+
 glm::vec2 receiver_plane_gradient(const LightFrustum& f, glm::vec3 world_normal) {
   const glm::vec3 n = glm::mat3(f.view) * world_normal;
   const float nz = std::max(n.z, 0.05f);
@@ -96,6 +117,18 @@ std::vector<glm::vec2> poisson_disk(int n, unsigned long long seed, float* spaci
   }
   if (spacing) *spacing = r;
   return points;
+}
+
+float pcss_search_radius(float receiver_depth, float angular_radius) {
+  return std::max(receiver_depth, 0.f) * std::tan(angular_radius);
+}
+
+float pcss_filter_radius(float receiver_depth, float blocker_depth, float angular_radius) {
+  return std::max(receiver_depth - blocker_depth, 0.f) * std::tan(angular_radius);
+}
+
+float point_light_penumbra(float light_width, float receiver_distance, float blocker_distance) {
+  return light_width * (receiver_distance - blocker_distance) / blocker_distance;
 }
 
 float chebyshev_upper_bound(glm::vec2 moments, float depth, float min_variance) {

@@ -3,6 +3,7 @@
 // shaders/shadow_filter.frag (the unit tests hold these, the image tests the GLSL): the
 // bias, the light's orthographic frustum, Chebyshev's bound for variance shadow maps with
 // the P_min light-bleeding reduction, and exponential shadow maps filtered in log space.
+#include <algorithm>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -42,6 +43,24 @@ LightFrustum fit_light_frustum(glm::vec3 direction, glm::vec3 scene_min, glm::ve
                                const glm::mat4* inverse_camera_view_projection = nullptr);
 // [/light-frustum]
 
+// [spot-frustum]
+// A spot light's perspective frustum: from its position along its direction, a square field of
+// view of twice its outer cone (the cone is the circle inscribed in it), near plane 5 cm, far
+// plane at the farthest corner of the scene's bounds, or its range when that is nearer. A
+// perspective map's texel grows with the distance d from the light: 2 d tan(cone) / N.
+// Cones up to kMaxSpotCone: wider ones need a cube map (a perspective map's texels stretch
+// without bound as its field of view nears 180 degrees).
+inline constexpr float kMaxSpotCone = 1.2f;  // radians, 69 degrees: a 137-degree field of view
+struct SpotFrustum {
+  glm::mat4 view{1}, projection{1};
+  float near = 0.05f, far = 1.f, tan_cone = 1.f;
+  glm::mat4 view_projection() const { return projection * view; }
+  float texel_world(float distance, int map_size) const { return 2.f * distance * tan_cone / float(map_size); }
+};
+SpotFrustum fit_spot_frustum(glm::vec3 position, glm::vec3 direction, float outer_cone, float range, glm::vec3 scene_min,
+                             glm::vec3 scene_max);
+// [/spot-frustum]
+
 // [receiver-plane]
 // Receiver-plane depth bias for PCF: the receiver's window depth as a plane over the map's
 // (u, v), its gradient from the normal in light view space (n_x, n_y, n_z), n_z > 0 facing the
@@ -60,6 +79,53 @@ glm::vec2 receiver_plane_gradient(const LightFrustum& frustum, glm::vec3 world_n
 inline constexpr int kMaxPoissonTaps = 64;
 std::vector<glm::vec2> poisson_disk(int n, unsigned long long seed, float* spacing = nullptr);
 // [/poisson]
+
+// [pcss]
+// Percentage-closer soft shadows (Fernando 2005) for the sun as a disk of directions of angular
+// radius theta (kSunAngularRadius: the soft truth's sun, shadow_truth.h; --sun-size). Depths d
+// are metres along the light from the map's near plane (window depth times the box's depth).
+// Seen from a receiver at d_r, the sun's disk projected back onto a plane of blockers at d_b is
+// a disk of radius (d_r - d_b) tan(theta) around the lookup: the fraction of it the blockers
+// leave open is the fraction of the sun the receiver sees. So:
+//  1. search: the blockers that can hide any of the sun lie within (d_r - d_near) tan(theta)
+//     of the lookup, d_near the map's near plane (d = 0); their mean depth is d_b;
+//  2. penumbra: the filter's radius is (d_r - d_b) tan(theta), zero at contact, growing with
+//     the distance from the blocker (the full penumbra across an edge is twice that);
+//  3. PCF over a disk of that radius (the rotated Poisson taps of [poisson]).
+// A point light of width w at distance d_b from the blocker gives Fernando's
+// w (d_r - d_b) / d_b instead: the sun is that light moved to infinity with w / d_b fixed at its
+// angular diameter 2 tan(theta) (point_light_penumbra tends to 2 pcss_filter_radius).
+inline constexpr float kSunAngularRadius = 0.02f;  // radians (the real sun: 0.0047)
+inline constexpr int kPcssDefaultTaps = 32;        // taps of the search and of the filter when --taps is 0
+float pcss_search_radius(float receiver_depth, float angular_radius);                      // metres
+float pcss_filter_radius(float receiver_depth, float blocker_depth, float angular_radius);  // metres, >= 0
+float point_light_penumbra(float light_width, float receiver_distance, float blocker_distance);  // full width
+// The whole estimate on a depth field (metres from the near plane at a lateral position in
+// metres): the GLSL's steps without the bias, the map's texels or the per-pixel turn. 1 where
+// the search finds no blocker; the filter radius is at least `min_radius`.
+struct PcssResult {
+  float visibility = 1, blocker_depth = 0, filter_radius = 0;
+  int blockers = 0;
+};
+template <class DepthAt>
+PcssResult pcss(DepthAt depth_at, glm::vec2 position, float receiver_depth, float angular_radius,
+                const std::vector<glm::vec2>& disk, float min_radius) {
+  PcssResult r;
+  const float search = pcss_search_radius(receiver_depth, angular_radius);
+  float sum = 0;
+  for (const glm::vec2& t : disk) {
+    const float z = depth_at(position + t * search);
+    if (z < receiver_depth) sum += z, ++r.blockers;
+  }
+  if (r.blockers == 0) return r;
+  r.blocker_depth = sum / float(r.blockers);
+  r.filter_radius = std::max(pcss_filter_radius(receiver_depth, r.blocker_depth, angular_radius), min_radius);
+  int lit = 0;
+  for (const glm::vec2& t : disk) lit += receiver_depth <= depth_at(position + t * r.filter_radius);
+  r.visibility = float(lit) / float(disk.size());
+  return r;
+}
+// [/pcss]
 
 // [chebyshev]
 // Variance shadow maps store the moments M1 = E[z], M2 = E[z^2] of the depths z under the

@@ -1,6 +1,7 @@
 #include "chapters/06_shadows/shadow_stage.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "common/error.h"
 #include "common/scene_gpu.h"
@@ -15,6 +16,10 @@ struct ShadowBlock {
   glm::mat4 view;
   glm::vec4 extent;
   glm::vec4 poisson[kMaxPoissonTaps / 2];  // two taps a vec4 (x, y, z, w: tap 2i, tap 2i + 1)
+  glm::mat4 spot_matrix;
+  glm::mat4 spot_view;
+  glm::vec4 spot;      // xyz: the spot's position, w: 1 when a spot has a map
+  glm::vec4 spot_map;  // x: near, y: far, z: tan(cone), w: map size
 };
 constexpr GLuint kBlockBinding = 8;
 constexpr GLuint kDepthUnit = ch03::DeferredFrame::kFirstStageUnit;  // 8: sampler2D, nearest
@@ -22,6 +27,7 @@ constexpr GLuint kCompareUnit = kDepthUnit + 1;                      // 9: sampl
 constexpr GLuint kMomentsUnit = kDepthUnit + 2;                      // 10: VSM / ESM, linear
 constexpr GLuint kFilterInputUnit = kDepthUnit + 3;                  // 11: the pre-filter's input
 constexpr GLuint kVolumeUnit = kDepthUnit + 4;                       // 12: the volumes' visibility
+constexpr GLuint kSpotUnit = kDepthUnit + 5;                         // 13: the spot's depth map, nearest
 }  // namespace
 
 ShadowMethod method_from_name(const std::string& name) {
@@ -36,7 +42,44 @@ const Light& find_sun(const Scene& scene) {
   throw Error("the scene has no directional light (the sun) to cast shadows");
 }
 
+bool casts_shadows(const Scene& scene, std::size_t light) {
+  const Light& l = scene.lights.at(light);
+  if (l.casts_shadows) return *l.casts_shadows;
+  if (l.type != LightType::Directional) return false;
+  for (std::size_t i = 0; i < light; ++i)
+    if (scene.lights[i].type == LightType::Directional) return false;  // a sun came before it
+  return true;
+}
+
+int shadowed_spot(const Scene& scene) {
+  for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+    const Light& l = scene.lights[i];
+    if (l.type == LightType::Spot && casts_shadows(scene, i) && l.outer_cone <= kMaxSpotCone) return int(i);
+  }
+  return -1;
+}
+
+std::vector<std::string> unshadowed_casters(const Scene& scene) {
+  std::vector<std::string> out;
+  bool sun_seen = false;
+  const int spot = shadowed_spot(scene);
+  for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+    const Light& l = scene.lights[i];
+    const bool first_directional = l.type == LightType::Directional && !sun_seen;
+    sun_seen = sun_seen || l.type == LightType::Directional;
+    if (!casts_shadows(scene, i) || first_directional || int(i) == spot) continue;
+    std::string why = l.type == LightType::Directional ? "only the first directional light (the sun) has a map here"
+                      : l.type == LightType::Point     ? "a point light's cube map is an exercise of this chapter"
+                      : l.outer_cone > kMaxSpotCone    ? "its cone is wider than a perspective map covers (" +
+                                                          std::to_string(kMaxSpotCone) + " rad): a cube map's, an exercise"
+                                                       : "only the first marked spot light has a map here";
+    out.push_back("light '" + l.name + "' is marked casts_shadows, but " + why + ": it keeps chapter 03's path (no shadow)");
+  }
+  return out;
+}
+
 ShadowStage::ShadowStage(const SceneGpu& scene, const Light& sun) : scene_(scene), sun_(sun) {
+  if (const int spot = shadowed_spot(scene.scene()); spot >= 0) spot_ = scene.scene().lights[std::size_t(spot)];
   glSamplerParameteri(nearest_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glSamplerParameteri(nearest_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glSamplerParameteri(compare_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
@@ -110,7 +153,8 @@ std::size_t ShadowStage::allocated_bytes() const {
   if (settings_.method == ShadowMethod::Volumes)  // the visibility bytes and the volumes' vertices
     return std::size_t(volume_width_) * std::size_t(volume_height_) + volume_buffer_bytes_;
   const std::size_t texels = std::size_t(allocated_size_) * std::size_t(allocated_size_);
-  return texels * (4 + (allocated_filtered_ ? 2 * 2 * std::size_t(allocated_bits_ / 8) : 0));
+  const std::size_t spot = std::size_t(spot_size_) * std::size_t(spot_size_) * 4;  // the spot's depth map, if any
+  return texels * (4 + (allocated_filtered_ ? 2 * 2 * std::size_t(allocated_bits_ / 8) : 0)) + spot;
 }
 
 // [shadow-stage]
@@ -136,6 +180,26 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
     glClear(GL_DEPTH_BUFFER_BIT);
     p.use();
     p.set("u_light_view_projection", frustum_.view_projection());
+    scene_.draw([&](const Instance& inst, const Material&) { p.set("u_model", inst.model); });
+  }
+  if (spot_) {
+    // 1b. The marked spot light's perspective map: the same depth pass from its frustum.
+    auto pass = timed(metrics, "shadow map: depth from the spot light");
+    if (spot_size_ != n) {
+      spot_depth_ = gl::make_texture_2d(GL_DEPTH_COMPONENT32F, n, n);
+      spot_fbo_ = gl::Framebuffer();
+      glNamedFramebufferTexture(spot_fbo_.id(), GL_DEPTH_ATTACHMENT, spot_depth_.id(), 0);
+      glNamedFramebufferDrawBuffer(spot_fbo_.id(), GL_NONE);
+      spot_size_ = n;
+    }
+    spot_frustum_ = fit_spot_frustum(spot_->position, spot_->direction, spot_->outer_cone, spot_->range,
+                                     scene.bounds_min, scene.bounds_max);
+    const ShaderProgram& p = program("06_shadows/shaders/shadow_depth.vert", "06_shadows/shaders/shadow_depth.frag", {});
+    glBindFramebuffer(GL_FRAMEBUFFER, spot_fbo_.id());
+    glViewport(0, 0, n, n);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    p.use();
+    p.set("u_light_view_projection", spot_frustum_.view_projection());
     scene_.draw([&](const Instance& inst, const Material&) { p.set("u_model", inst.model); });
   }
   if (allocated_filtered_) {
@@ -164,9 +228,14 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
   // 3. What the visibility hook reads.
   if (settings_.poisson_taps < 0 || settings_.poisson_taps > kMaxPoissonTaps)
     throw Error("shadow stage: poisson_taps must be between 0 and " + std::to_string(kMaxPoissonTaps));
-  if (settings_.poisson_taps != poisson_taps_) {
-    poisson_ = settings_.poisson_taps > 0 ? poisson_disk(settings_.poisson_taps, 0x504fu) : std::vector<glm::vec2>{};
-    poisson_taps_ = settings_.poisson_taps;
+  const bool pcss = settings_.method == ShadowMethod::Pcss;
+  const int taps = pcss && settings_.poisson_taps == 0 ? kPcssDefaultTaps : settings_.poisson_taps;
+  if (pcss && !(settings_.sun_angular_radius >= 0.f && settings_.sun_angular_radius < 1.f))
+    throw Error("shadow stage: sun_angular_radius must be in [0, 1) radians (got " +
+                std::to_string(settings_.sun_angular_radius) + ")");
+  if (taps != poisson_taps_) {
+    poisson_ = taps > 0 ? poisson_disk(taps, 0x504fu) : std::vector<glm::vec2>{};
+    poisson_taps_ = taps;
   }
   ShadowBlock block{frustum_.view_projection(),
                           glm::vec4(frustum_.texel_world(n), frustum_.depth_range(), float(n), float(settings_.kernel / 2)),
@@ -174,8 +243,12 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
                                     settings_.min_variance),
                           glm::vec4(settings_.c, settings_.p_min, float(poisson_taps_), 0),
                           frustum_.view,
-                          glm::vec4(frustum_.box_max - frustum_.box_min, 0),
-                          {}};
+                          glm::vec4(frustum_.box_max - frustum_.box_min, std::tan(settings_.sun_angular_radius)),
+                          {},
+                          spot_frustum_.view_projection(),
+                          spot_frustum_.view,
+                          glm::vec4(spot_ ? spot_->position : glm::vec3(0), spot_ ? 1.f : 0.f),
+                          glm::vec4(spot_frustum_.near, spot_frustum_.far, spot_frustum_.tan_cone, float(n))};
   for (std::size_t i = 0; i < poisson_.size(); ++i) {
     glm::vec4& slot = block.poisson[i / 2];
     slot[int(i % 2) * 2] = poisson_[i].x;
@@ -189,6 +262,8 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
   glBindSampler(kCompareUnit, compare_.id());
   glBindTextureUnit(kMomentsUnit, allocated_filtered_ ? moments_.id() : depth_.id());
   glBindSampler(kMomentsUnit, linear_.id());
+  glBindTextureUnit(kSpotUnit, spot_ ? spot_depth_.id() : depth_.id());
+  glBindSampler(kSpotUnit, nearest_.id());
 }
 // [/shadow-stage]
 
@@ -303,16 +378,28 @@ void ShadowStage::draw_volumes(ch03::DeferredFrame& frame, PassMetrics* metrics)
 
 bool ShadowStage::composite(ch03::DeferredFrame& frame, PassMetrics* metrics) {
   if (picture_ == ShadowPicture::None) return false;
+  if (picture_ == ShadowPicture::Penumbra && settings_.method != ShadowMethod::Pcss)
+    throw Error("shadow stage: the penumbra picture is PCSS's (method pcss), not " + kMethodNames[int(settings_.method)] + "'s");
   auto pass = timed(metrics, picture_ == ShadowPicture::Map ? "composite: the sun's depth map"
                                                                   : "composite: the sun's visibility alone");
   std::vector<std::string> defines = frame.view().defines;
   for (const auto& d : frame.view().hooks.defines()) defines.push_back(d);
   if (picture_ == ShadowPicture::Map) defines.push_back("SHOW_MAP 1");
+  if (picture_ == ShadowPicture::Penumbra) defines.push_back("SHOW_PENUMBRA 1");
+  if (picture_ == ShadowPicture::SpotVisibility) {
+    if (!spot_ || settings_.method == ShadowMethod::Volumes)
+      throw Error("shadow stage: the spot's visibility needs a spot light marked to cast and a map method");
+    defines.push_back("SHOW_SPOT 1");
+  }
   const ShaderProgram& p = program("02_gbuffer/shaders/fullscreen.vert", "06_shadows/shaders/show_visibility.frag", defines);
   glDisable(GL_DEPTH_TEST), glDisable(GL_BLEND), glDisable(GL_CULL_FACE), glDisable(GL_STENCIL_TEST);
   p.use();
   p.set("u_sun_direction", glm::normalize(sun_.direction));
   p.set("u_output_size", glm::vec2(frame.output().width, frame.output().height));
+  if (picture_ == ShadowPicture::SpotVisibility) {
+    p.set("u_spot_direction", glm::normalize(spot_->direction));
+    p.set("u_spot_cos_cone", std::cos(spot_->outer_cone));
+  }
   full_screen_.draw();
   glEnable(GL_DEPTH_TEST);
   return true;

@@ -9,6 +9,7 @@
 //   shadows.set({.method = ShadowMethod::Pcf, .kernel = 3});
 //   frame.render(camera, output, &metrics);
 #include <map>
+#include <optional>
 #include <string>
 
 #include "chapters/02_gbuffer/deferred.h"
@@ -21,8 +22,10 @@
 namespace lp::ch06 {
 
 // Volumes: no map; the sun's shadow volumes counted in the stencil (z-fail), shadow_volumes.h.
-enum class ShadowMethod { Hard, Pcf, PcfHardware, Vsm, Esm, Volumes };
-inline const std::vector<std::string> kMethodNames = {"hard", "pcf", "pcf-hardware", "vsm", "esm", "volumes"};
+// Pcss: the sun as a disk (sun_angular_radius), PCF over the penumbra a blocker search
+// estimates (shadow_math.h [pcss]).
+enum class ShadowMethod { Hard, Pcf, PcfHardware, Vsm, Esm, Volumes, Pcss };
+inline const std::vector<std::string> kMethodNames = {"hard", "pcf", "pcf-hardware", "vsm", "esm", "volumes", "pcss"};
 ShadowMethod method_from_name(const std::string& name);  // throws Error for an unknown one
 
 struct ShadowSettings {
@@ -30,7 +33,9 @@ struct ShadowSettings {
   int map_size = 1024;
   int kernel = 3;               // PCF's k x k grid; VSM's and ESM's box filter width (odd)
   int poisson_taps = 0;         // PCF: 0 for the k x k grid, or this many taps of a Poisson disk k texels
-                                // across, rotated per pixel (shadow_math.h [poisson]); <= kMaxPoissonTaps
+                                // across, rotated per pixel (shadow_math.h [poisson]); <= kMaxPoissonTaps.
+                                // PCSS: the taps of its search and of its filter (0: kPcssDefaultTaps)
+  float sun_angular_radius = kSunAngularRadius;  // PCSS: the sun's disk, radians (the soft truth's)
   float constant_bias = 0.5f;   // texels (shadow_math.h [bias])
   float slope_bias = 1.f;       // texels per unit tan(theta)
   float normal_offset = 1.f;    // texels
@@ -49,17 +54,22 @@ struct VolumeStats {
   std::uint64_t fragments = 0;  // rasterised by the volumes, every one (count_volume_fragments); else 0
 };
 
-// What composite() draws instead of the image.
-enum class ShadowPicture { None, Visibility, Map };
+// What composite() draws instead of the image. Penumbra (method Pcss): the filter's radius in
+// metres, unclamped (0 where the search finds no blocker; blue where the sun does not reach).
+// SpotVisibility: the marked spot light's visibility alone (blue where the spot does not reach).
+enum class ShadowPicture { None, Visibility, Map, Penumbra, SpotVisibility };
 
 class ShadowStage : public ch03::FrameStage {
  public:
-  // `sun`: the directional light that casts; the scene's bounds give the casters.
+  // `sun`: the directional light that casts; the scene's bounds give the casters. The first spot
+  // light the scene marks to cast (casts_shadows below), if any, gets a perspective map too.
   ShadowStage(const SceneGpu& scene, const Light& sun);
   void reload_shaders();
   void set(const ShadowSettings& settings, ShadowPicture picture = ShadowPicture::None);
   const ShadowSettings& settings() const { return settings_; }
   const LightFrustum& frustum() const { return frustum_; }
+  const std::optional<Light>& spot() const { return spot_; }          // the spot light with a map
+  const SpotFrustum& spot_frustum() const { return spot_frustum_; }
   // Bytes the method keeps per frame: the depth map, and the moments with their filter target.
   std::size_t allocated_bytes() const;
   const VolumeStats& volume_stats() const { return volume_stats_; }
@@ -77,6 +87,11 @@ class ShadowStage : public ch03::FrameStage {
   ShadowSettings settings_;
   ShadowPicture picture_ = ShadowPicture::None;
   LightFrustum frustum_;
+  std::optional<Light> spot_;
+  SpotFrustum spot_frustum_;
+  gl::Texture spot_depth_{GL_TEXTURE_2D};
+  gl::Framebuffer spot_fbo_;
+  int spot_size_ = 0;
   int allocated_size_ = 0;
   bool allocated_filtered_ = false;
   int allocated_bits_ = 32;
@@ -105,5 +120,24 @@ class ShadowStage : public ch03::FrameStage {
 
 // The first directional light of the scene (the sun), or an Error naming the scene's lights.
 const Light& find_sun(const Scene& scene);
+
+// [casts-shadows]
+// Which lights cast shadows in this chapter. A light marked in the scene (the light node's
+// extras {"lightpass": {"casts_shadows": true | false}}, Light::casts_shadows; the format is in
+// book/appendix-scenes.md) does as it says; an unmarked one casts if it is the sun (the first
+// directional light) and not otherwise. The sun gets its orthographic map, the first marked
+// spot light (of at most kMaxSpotCone) a perspective one (looked up hard with the method hard,
+// with PCF on the k x k grid with every other map method; with volumes it casts nothing). A
+// light that does not cast keeps chapter 03's path: visibility 1, no map, no pass.
+bool casts_shadows(const Scene& scene, std::size_t light);
+// The lights marked to cast that this chapter cannot shadow (the sun's map and one spot light's
+// perspective map: another directional light, a point light's cube map, a second spot light
+// or one wider than kMaxSpotCone are the exercises), each named with why: for the program to
+// say so.
+std::vector<std::string> unshadowed_casters(const Scene& scene);
+// The spot light that gets a map: the first spot marked to cast with a cone of at most
+// kMaxSpotCone; its index in scene.lights, or -1.
+int shadowed_spot(const Scene& scene);
+// [/casts-shadows]
 
 }  // namespace lp::ch06

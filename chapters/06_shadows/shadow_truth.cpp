@@ -41,6 +41,23 @@ ImageF shadow_truth(const Scene&, const RayScene& rays, const FrameCamera& camer
 }
 // [/truth]
 
+ImageF spot_shadow_truth(const RayScene& rays, const FrameCamera& camera, int width, int height, const Light& spot) {
+  const std::vector<std::optional<SurfacePoint>> points = surface_points(primary_hits(rays, camera, width, height));
+  const glm::vec3 axis = glm::normalize(spot.direction);
+  const float cos_cone = std::cos(spot.outer_cone);
+  return trace_image(width, height, 3, 0, [&](int x, int y, Pcg32&, float* out) {
+    const auto& point = points[std::size_t(y) * std::size_t(width) + std::size_t(x)];
+    if (!point) return;
+    const glm::vec3 to_light = spot.position - point->position;
+    const float distance = glm::length(to_light);
+    if (distance <= 0.f || glm::dot(point->normal, to_light) <= 0.f) return;  // facing away
+    if (glm::dot(-to_light / distance, axis) < cos_cone) return;              // outside the cone
+    if (spot.range > 0.f && distance > spot.range) return;
+    out[2] = 1.f;
+    out[0] = out[1] = rays.occluded(point->ray_towards(spot.position)) ? 0.f : 1.f;
+  });
+}
+
 ImageF cached_shadow_truth(const Scene& scene, const RayScene& rays, const FrameCamera& camera, int width, int height,
                            glm::vec3 sun_direction, const TruthSettings& settings) {
   char text[256];

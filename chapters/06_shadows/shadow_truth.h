@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "chapters/06_shadows/shadow_math.h"
 #include "common/camera.h"
 #include "common/image.h"
 #include "common/raytrace.h"
@@ -18,7 +19,7 @@
 namespace lp::ch06 {
 
 struct TruthSettings {
-  float angular_radius = 0.02f;  // radians, the soft truth's sun disk
+  float angular_radius = kSunAngularRadius;  // radians, the soft truth's sun disk (PCSS's light, shadow_math.h)
   int samples = 64;              // the soft truth's rays per pixel (a square number is stratified exactly)
   std::uint64_t seed = 6;
 };
@@ -30,6 +31,13 @@ ImageF shadow_truth(const Scene& scene, const RayScene& rays, const FrameCamera&
 // The same, through the on-disk cache (common/raytrace.h's cached_image).
 ImageF cached_shadow_truth(const Scene& scene, const RayScene& rays, const FrameCamera& camera, int width, int height,
                            glm::vec3 sun_direction, const TruthSettings& settings = {});
+
+// [spot-truth]
+// A spot light's hard shadows: one occlusion ray per pixel from the surface point toward the
+// light's position. Channels as shadow_truth's: 0 visibility, 1 the same (a point light has no
+// penumbra), 2 the mask: a surface facing the light, inside its outer cone (and its range).
+ImageF spot_shadow_truth(const RayScene& rays, const FrameCamera& camera, int width, int height, const Light& spot);
+// [/spot-truth]
 
 // [shadow-error]
 // A method's visibility (one channel, top row first) against a truth channel over the mask.

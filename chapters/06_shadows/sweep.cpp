@@ -5,10 +5,13 @@
 // 06_shadows_llvmpipe.csv on llvmpipe (CPU times); every row names the renderer, the size
 // and the frames measured.
 //
-//   06_shadows_sweep [--out DIR] [--size WxH] [--frames N] [--truth-samples N] [--only main|pcf|moments]
+//   06_shadows_sweep [--out DIR] [--size WxH] [--frames N] [--truth-samples N]
+//                    [--only main|pcf|moments|volumes|pcss]
 //   -> DIR/06_shadows.csv, and 06_shadows_moments.csv: VSM and ESM with the filtered map in
 //      RG32F and in RG16F (..._llvmpipe.csv on llvmpipe); --only pcf: the main CSV's PCF rows
-//      alone (the grid and the Poisson disk) into 06_shadows_pcf.csv
+//      alone (the grid and the Poisson disk) into 06_shadows_pcf.csv; 06_shadows_pcss.csv:
+//      PCSS against the fixed PCF kernels on three views, and at three sun sizes (each against
+//      the soft truth of its own sun)
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -62,6 +65,9 @@ std::vector<Variant> variants() {
   for (int k : {3, 5, 7}) v.push_back({"kernel " + std::to_string(k), {.method = ShadowMethod::Esm, .kernel = k}});
   for (float c : {40.f, 300.f, 1000.f}) v.push_back({"c " + std::to_string(int(c)), {.method = ShadowMethod::Esm, .c = c}});
   v.push_back({"map 2048 kernel 5", {.method = ShadowMethod::Esm, .map_size = 2048, .kernel = 5}});
+  // PCSS for the soft truth's sun: the taps of its search and of its filter
+  for (int taps : {16, 32, 64}) v.push_back({"taps " + std::to_string(taps), {.method = ShadowMethod::Pcss, .poisson_taps = taps}});
+  v.push_back({"map 2048 taps 32", {.method = ShadowMethod::Pcss, .map_size = 2048, .poisson_taps = 32}});
   return v;
 }
 
@@ -102,8 +108,9 @@ int main(int argc, char** argv) {
     args.text("--out", s.out).size("--size", s.width, s.height).integer("--frames", s.frames)
         .integer("--truth-samples", s.truth_samples).text("--only", s.only);
   }, [&] {
-    if (!s.only.empty() && s.only != "main" && s.only != "pcf" && s.only != "moments" && s.only != "volumes")
-      throw UsageError("--only must be main, pcf, moments or volumes, not '" + s.only + "'");
+    if (!s.only.empty() && s.only != "main" && s.only != "pcf" && s.only != "moments" && s.only != "volumes" &&
+        s.only != "pcss")
+      throw UsageError("--only must be main, pcf, moments, volumes or pcss, not '" + s.only + "'");
     std::filesystem::create_directories(s.out);
     auto context = Context::create({.headless = true, .width = s.width, .height = s.height});
     const std::string renderer = context->renderer();
@@ -147,7 +154,7 @@ int main(int argc, char** argv) {
         const VisibilityError hard = visibility_error(vis, truth, 0), soft = visibility_error(vis, truth, 1);
         // The book's pictures: each method at its defaults, on the overview.
         const std::string name = kMethodNames[int(v.shadow.method)];
-        if (!pcf_only && view == "overview" && (v.setting == "kernel 3" || v.setting == "map 1024")) {
+        if (!pcf_only && view == "overview" && (v.setting == "kernel 3" || v.setting == "map 1024" || v.setting == "taps 32")) {
           save_png(s.out + "/06_overview_" + name + "_visibility.png", visibility_picture(vis, 0, truth));
           const int against = v.shadow.method == ShadowMethod::Hard ? 0 : 1;
           save_png(s.out + "/06_overview_" + name + "_error.png", error_picture(vis, truth, against));
@@ -264,5 +271,78 @@ int main(int argc, char** argv) {
       std::cout << "wrote " << file << '\n';
     }
     // [/volumes-rows]
+    // [pcss-rows]
+    // PCSS against every fixed PCF kernel, on the views of the GL test PcssBeatsEveryFixed...:
+    // the depth pass and the global pass that does the lookups (PCSS has no pre-filter), the
+    // frame, and the error against the soft truth; then PCSS and PCF 3x3 at three sun sizes,
+    // each against the soft truth of that sun (--sun-size: one knob for both).
+    if (s.only.empty() || s.only == "pcss") {
+      const std::string file = s.out + (software ? "/06_shadows_pcss_llvmpipe.csv" : "/06_shadows_pcss.csv");
+      std::ofstream csv(file);
+      csv << "# " << (software ? "llvmpipe CPU time: " : "GPU time: ") << renderer << ", " << s.width << "x" << s.height
+          << ", atrium; soft truth: the sun as a disk of sun_size rad, " << s.truth_samples << " rays per pixel\n"
+          << "view,method,setting,map,kernel,taps,sun_size,bytes,depth_ms,global_ms,frame_ms,soft_mean,soft_p99,"
+             "hard_wrong_pct,"
+          << csv_measure_columns() << "\n";
+      struct Row { std::string setting; ShadowSettings shadow; };
+      std::vector<Row> rows;
+      for (int k : {1, 3, 5, 7}) rows.push_back({"kernel " + std::to_string(k), {.method = ShadowMethod::Pcf, .kernel = k}});
+      for (auto [taps, k] : {std::pair{16, 5}, std::pair{32, 7}})
+        rows.push_back({"poisson " + std::to_string(taps) + " kernel " + std::to_string(k),
+                        {.method = ShadowMethod::Pcf, .kernel = k, .poisson_taps = taps}});
+      for (int taps : {16, 32, 64}) rows.push_back({"taps " + std::to_string(taps), {.method = ShadowMethod::Pcss, .poisson_taps = taps}});
+      for (float size : {0.01f, 0.04f}) {
+        const std::string label = "sun " + std::to_string(size).substr(0, 4);
+        rows.push_back({label + " kernel 3", {.method = ShadowMethod::Pcf, .kernel = 3, .sun_angular_radius = size}});
+        rows.push_back({label + " taps 32", {.method = ShadowMethod::Pcss, .poisson_taps = 32, .sun_angular_radius = size}});
+      }
+      // The filter's radius as grey, white = 12 cm (the arches' penumbra radius: 5.7 m x tan 0.02 rad is 11 cm).
+      auto radius_picture = [](const ImageF& r, const ImageF& truth) {
+        ImageF scaled = r;
+        for (float& v : scaled.data) v = std::min(v / 0.12f, 1.f);
+        return visibility_picture(scaled, 0, truth);
+      };
+      for (const std::string view : {"overview", "aisle", "corner"}) {
+        const FrameCamera camera = frame_camera(scene.camera(view), float(s.width) / s.height);
+        for (const Row& r : rows) {
+          const ShadowSettings& x = r.shadow;
+          const ImageF truth = cached_shadow_truth(scene, rays, camera, s.width, s.height, sun.direction,
+                                                   {.angular_radius = x.sun_angular_radius, .samples = s.truth_samples});
+          stage.set(x, ShadowPicture::Visibility);
+          frame.render(camera, {visibility.framebuffer(), s.width, s.height});
+          const ImageF vis = visibility.read();
+          const VisibilityError hard = visibility_error(vis, truth, 0), soft = visibility_error(vis, truth, 1);
+          const bool pictured = view != "corner" && x.sun_angular_radius == kSunAngularRadius &&
+                                (r.setting == "taps 32" || r.setting == "kernel 3");
+          if (pictured) {
+            const std::string name = "/06_" + view + "_" + kMethodNames[int(x.method)];
+            save_png(s.out + name + "_visibility.png", visibility_picture(vis, 0, truth));
+            save_png(s.out + name + "_error.png", error_picture(vis, truth, 1));
+            if (view != "overview" && x.method == ShadowMethod::Pcf)
+              save_png(s.out + "/06_" + view + "_truth_soft.png", visibility_picture(truth, 1, truth));
+            if (x.method == ShadowMethod::Pcss) {
+              stage.set(x, ShadowPicture::Penumbra);
+              frame.render(camera, {visibility.framebuffer(), s.width, s.height});
+              save_png(s.out + name + "_penumbra.png", radius_picture(visibility.read(), truth));
+            }
+          }
+          stage.set(x);
+          PassMetrics metrics;
+          const Measurement m = measure(metrics, [&] { frame.render(camera, {image.framebuffer(), s.width, s.height}, &metrics); },
+                                        {.frames = s.frames});
+          csv << view << ',' << kMethodNames[int(x.method)] << ',' << r.setting << ',' << x.map_size << ',' << x.kernel << ','
+              << (x.method == ShadowMethod::Pcss && x.poisson_taps == 0 ? kPcssDefaultTaps : x.poisson_taps) << ','
+              << x.sun_angular_radius << ',' << stage.allocated_bytes() << ','
+              << pass_ms(m, "shadow map: depth from the sun") << ','
+              << pass_ms(m, "global: ambient + directional (chapter 03)") << ',' << m.total_ms() << ',' << soft.mean_abs << ','
+              << soft.p99 << ',' << 100 * hard.wrong << ',' << csv_measure_values(renderer, s.width, s.height, m.frames) << "\n";
+          std::cout << view << ' ' << kMethodNames[int(x.method)] << ' ' << r.setting << ": frame " << m.total_ms()
+                    << " ms, global " << pass_ms(m, "global: ambient + directional (chapter 03)") << " ms, soft mean "
+                    << soft.mean_abs << std::endl;
+        }
+      }
+      std::cout << "wrote " << file << '\n';
+    }
+    // [/pcss-rows]
   });
 }

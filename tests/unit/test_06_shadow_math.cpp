@@ -6,11 +6,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "chapters/06_shadows/shadow_math.h"
+#include "chapters/06_shadows/shadow_stage.h"
 #include "chapters/06_shadows/shadow_truth.h"
 #include "chapters/06_shadows/shadow_volumes.h"
 #include "common/error.h"
@@ -233,6 +235,70 @@ TEST(ShadowMath, PoissonDiskIsSpreadAndInTheDisk) {
   EXPECT_THROW(poisson_disk(kMaxPoissonTaps + 1, 7), Error);
 }
 
+// [pcss-tests]
+// PCSS's penumbra for the sun (shadow_math.h [pcss]) is Fernando's point-light formula with the
+// light moved to infinity: a light of width w = 2 L tan(theta) at distance L from the receiver
+// (the sun's angular size seen from it), a blocker delta in front of the receiver, gives
+// w delta / (L - delta) = 2 delta tan(theta) (1 + delta / (L - delta)): twice the filter radius,
+// and the excess delta / (L - delta) vanishes as L grows.
+TEST(ShadowMath, PcssPenumbraIsThePointLightsAtInfinity) {
+  const float theta = kSunAngularRadius, receiver = 20.f, delta = 2.f;
+  const float r = pcss_filter_radius(receiver, receiver - delta, theta);
+  EXPECT_FLOAT_EQ(r, delta * std::tan(theta));
+  for (double L : {10.0, 100.0, 1e3, 1e5}) {
+    const float w = float(2 * L * std::tan(double(theta)));
+    const float penumbra = point_light_penumbra(w, float(L), float(L - delta));  // distances from the light
+    EXPECT_NEAR(penumbra / (2 * r), 1 + delta / (L - delta), 1e-5) << L;
+  }
+  EXPECT_NEAR(point_light_penumbra(float(2e5 * std::tan(double(theta))), 1e5f, 1e5f - delta), 2 * r, 2 * r * 1e-4f);
+  EXPECT_EQ(pcss_filter_radius(receiver, receiver + 1.f, theta), 0.f);  // a "blocker" behind: no penumbra
+  EXPECT_FLOAT_EQ(pcss_search_radius(receiver, theta), receiver * std::tan(theta));
+}
+
+// PCSS over a straight edge: a half-plane blocker (x > 0) delta above a floor, 20 m from the
+// map's near plane. The filter is the disk of radius R = delta tan(theta) around the lookup, so
+// the visibility leaves 1 where the first tap crosses the edge (x0 = -R max t.x over the taps t)
+// and reaches 0 where the last does (x0 = -R min t.x): the penumbra is R (max t.x - min t.x)
+// wide, proportional to delta (contact hardening), up to the scan's step. Outside it: 1 on the
+// lit side, beyond the search radius with no blocker found at all, and 0 under the blocker.
+TEST(ShadowMath, PcssPenumbraOverAnEdgeGrowsWithTheBlockersDistance) {
+  const float theta = kSunAngularRadius, floor = 20.f;
+  const std::vector<glm::vec2> disk = poisson_disk(kPcssDefaultTaps, 0x504fu);
+  float lo = 1, hi = -1;
+  for (const glm::vec2& t : disk) lo = std::min(lo, t.x), hi = std::max(hi, t.x);
+  for (float delta : {0.25f, 1.f, 4.f}) {
+    auto depth_at = [&](glm::vec2 p) { return p.x > 0.f ? floor - delta : floor; };
+    const float R = delta * std::tan(theta), step = R / 1000.f;
+    float first_dark = 0, last_lit = 0;
+    bool found_dark = false;
+    for (float x = -1.5f * R; x <= 1.5f * R; x += step) {
+      const PcssResult r = pcss(depth_at, {x, 0.f}, floor, theta, disk, 0.f);
+      if (r.visibility < 1.f && !found_dark) first_dark = x, found_dark = true;
+      if (r.visibility > 0.f) last_lit = x;
+      if (r.blockers > 0) {
+        EXPECT_EQ(r.blocker_depth, floor - delta);
+        EXPECT_FLOAT_EQ(r.filter_radius, R);
+      }
+    }
+    const float width = last_lit - first_dark;
+    std::printf("delta %.2f m: penumbra %.4f m wide (R (max - min) = %.4f m)\n", delta, width, R * (hi - lo));
+    EXPECT_NEAR(first_dark, -R * hi, 2 * step) << delta;
+    EXPECT_NEAR(last_lit, -R * lo, 2 * step) << delta;
+    EXPECT_GT(width, R) << delta;  // the taps span more than the disk's radius
+    // The search: beyond d_r tan(theta) on the lit side nothing can hide the sun, and nothing is found.
+    const float search = pcss_search_radius(floor, theta);
+    EXPECT_EQ(pcss(depth_at, {-1.01f * search, 0.f}, floor, theta, disk, 0.f).blockers, 0);
+    const PcssResult near_edge = pcss(depth_at, {-0.5f * search, 0.f}, floor, theta, disk, 0.f);
+    EXPECT_GT(near_edge.blockers, 0);           // found, within the search ...
+    EXPECT_EQ(near_edge.visibility, 1.f);       // ... but farther than the penumbra: lit
+    EXPECT_EQ(pcss(depth_at, {2 * R, 0.f}, floor, theta, disk, 0.f).visibility, 0.f);
+  }
+  // At contact the filter shrinks to the least radius asked for.
+  auto touching = [&](glm::vec2 p) { return p.x > 0.f ? floor - 1e-4f : floor; };
+  EXPECT_EQ(pcss(touching, {-0.001f, 0.f}, floor, theta, disk, 0.01f).filter_radius, 0.01f);
+}
+// [/pcss-tests]
+
 // Shadow volumes' edge table and silhouettes (shadow_volumes.h), on meshes small enough to
 // count by hand.
 namespace {
@@ -313,3 +379,76 @@ TEST(ShadowVolumes, ANonManifoldEdgeGetsItsNetCount) {
   EXPECT_EQ(c.cap_triangles, 3u);
   EXPECT_EQ(c.side_quads, 3u + 6u);  // 3 on the shared edge, and each triangle's two own edges
 }
+
+// [spot-frustum-tests]
+// A spot light's perspective frustum (shadow_math.h [spot-frustum]) holds its cone: points in
+// directions within the outer cone, between the near plane and the farthest corner of the
+// scene's bounds, project inside the map and its depth range; a texel at distance d is
+// 2 d tan(cone) / N; a cone wider than kMaxSpotCone is refused.
+TEST(ShadowMath, SpotFrustumHoldsTheSpotsCone) {
+  const glm::vec3 lo(-8, 0, -12), hi(8, 7, 12), at(1, 3, 1.5f);
+  const glm::vec3 axis = glm::normalize(glm::vec3(3.5f, -3.f, 0.f));
+  const float cone = 0.8f;
+  const SpotFrustum f = fit_spot_frustum(at, axis, cone, 0.f, lo, hi);
+  EXPECT_NEAR(f.far, glm::distance(at, glm::vec3(-8, 7, -12)), 1e-4f);  // the farthest corner
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  for (int i = 0; i < 10000; ++i) {
+    // a direction within the cone (sample_cone), at a distance along it whose depth is inside [near, far]
+    const glm::vec3 d = sample_cone(axis, cone, u(rng), u(rng));
+    const float depth = f.near * 1.01f + u(rng) * (f.far * 0.99f - f.near * 1.01f);
+    const glm::vec3 p = at + d * (depth / glm::dot(d, axis));
+    const glm::vec4 c = f.view_projection() * glm::vec4(p, 1.f);
+    ASSERT_GT(c.w, 0.f);
+    ASSERT_LE(std::abs(c.x / c.w), 1.f + 1e-5f) << i;
+    ASSERT_LE(std::abs(c.y / c.w), 1.f + 1e-5f) << i;
+    ASSERT_LE(std::abs(c.z / c.w), 1.f + 1e-5f) << i;
+    ASSERT_NEAR(c.w, depth, 1e-3f * depth);  // clip w is the linear depth the hook compares
+  }
+  EXPECT_FLOAT_EQ(f.texel_world(5.f, 1024), 2.f * 5.f * std::tan(cone) / 1024.f);
+  EXPECT_LT(fit_spot_frustum(at, axis, cone, 4.f, lo, hi).far, 4.f + 1e-6f);  // a range nearer than the bounds
+  EXPECT_THROW(fit_spot_frustum(at, axis, kMaxSpotCone + 0.01f, 0.f, lo, hi), Error);
+}
+// [/spot-frustum-tests]
+
+// [marked-lights-tests]
+// Which lights cast (shadow_stage.h [casts-shadows]): unmarked, only the sun (the first
+// directional light, wherever it is in the list); a mark overrides, either way; the first
+// marked spot of at most kMaxSpotCone gets a map; and a marked light the chapter has no map
+// for is named, with why, the sun and that spot never.
+TEST(ShadowLights, TheSunCastsUnlessMarkedAndOtherLightsOnlyWhenMarked) {
+  auto light = [](LightType type, const char* name) {
+    Light l;
+    l.type = type, l.name = name;
+    return l;
+  };
+  Scene s;
+  s.lights = {light(LightType::Point, "lamp"), light(LightType::Directional, "sun"), light(LightType::Directional, "moon"),
+              light(LightType::Spot, "torch"), light(LightType::Spot, "flood"), light(LightType::Spot, "second")};
+  s.lights[4].outer_cone = kMaxSpotCone + 0.1f;
+  EXPECT_FALSE(casts_shadows(s, 0));
+  EXPECT_TRUE(casts_shadows(s, 1));
+  EXPECT_FALSE(casts_shadows(s, 2));
+  EXPECT_FALSE(casts_shadows(s, 3));
+  EXPECT_TRUE(unshadowed_casters(s).empty());
+  EXPECT_EQ(shadowed_spot(s), -1);
+  s.lights[1].casts_shadows = false;
+  EXPECT_FALSE(casts_shadows(s, 1));
+  s.lights[4].casts_shadows = true;
+  EXPECT_EQ(shadowed_spot(s), -1);  // the only marked spot is too wide for a perspective map
+  for (std::size_t i : {0u, 2u, 3u, 5u}) s.lights[i].casts_shadows = true;
+  s.lights[1].casts_shadows = true;
+  for (std::size_t i = 0; i < s.lights.size(); ++i) EXPECT_TRUE(casts_shadows(s, i)) << i;
+  EXPECT_EQ(shadowed_spot(s), 3);
+  const std::vector<std::string> notes = unshadowed_casters(s);
+  ASSERT_EQ(notes.size(), 4u);
+  EXPECT_NE(notes[0].find("light 'lamp'"), std::string::npos) << notes[0];
+  EXPECT_NE(notes[0].find("cube map"), std::string::npos) << notes[0];
+  EXPECT_NE(notes[1].find("light 'moon'"), std::string::npos) << notes[1];
+  EXPECT_NE(notes[1].find("only the first directional light"), std::string::npos) << notes[1];
+  EXPECT_NE(notes[2].find("light 'flood'"), std::string::npos) << notes[2];
+  EXPECT_NE(notes[2].find("wider than a perspective map covers"), std::string::npos) << notes[2];
+  EXPECT_NE(notes[3].find("light 'second'"), std::string::npos) << notes[3];
+  EXPECT_NE(notes[3].find("only the first marked spot light"), std::string::npos) << notes[3];
+}
+// [/marked-lights-tests]

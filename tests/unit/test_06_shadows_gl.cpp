@@ -16,6 +16,7 @@
 #include "chapters/06_shadows/shadow_truth.h"
 #include "common/paths.h"
 #include "common/target.h"
+#include "tests/unit/book_data.h"
 #include "tests/unit/gl_environment.h"
 
 using namespace lp;
@@ -601,3 +602,221 @@ TEST(ShadowsGlVolumeFill, FragmentsGrowWithTheCasters) {
   EXPECT_GT(fragments[1], fragments[0] + fragments[0] / 2);
 }
 // [/volumes-tests]
+
+// [pcss-gl]
+// PCSS (shadow_math.h [pcss]) against the soft truth, whose sun is PCSS's light (both
+// kSunAngularRadius). The atrium is where contact hardening matters: the columns stand on the
+// floor (blockers 0 m above their shadows at the base) and the arches and capitals cast from
+// up to 5.7 m, so the true penumbra's radius runs from 0 to 5.7 m x tan(0.02) = 11 cm, 0 to 4
+// texels of the 1024^2 map. A fixed kernel fits one blocker distance; PCSS's filter follows
+// it. Claim: on each view PCSS's mean error is below that of every fixed PCF kernel (the grid
+// at k = 1, 3, 5, 7 and the rotated disk at 16 taps over 5 texels and 32 over 7), since those
+// are what a PCSS that ignored the blocker's distance would be.
+TEST_F(ShadowsGl, PcssBeatsEveryFixedPcfKernelAgainstTheSoftTruth) {
+  const std::vector<ShadowSettings> fixed = {
+      {.method = ShadowMethod::Pcf, .kernel = 1}, {.method = ShadowMethod::Pcf, .kernel = 3},
+      {.method = ShadowMethod::Pcf, .kernel = 5}, {.method = ShadowMethod::Pcf, .kernel = 7},
+      {.method = ShadowMethod::Pcf, .kernel = 5, .poisson_taps = 16}, {.method = ShadowMethod::Pcf, .kernel = 7, .poisson_taps = 32}};
+  for (const char* view : {"overview", "aisle", "corner"}) {
+    const FrameCamera cam = world->camera(view);
+    const ImageF truth = world->truth(cam);
+    const VisibilityError pcss = visibility_error(world->visibility(cam, {.method = ShadowMethod::Pcss}), truth, 1);
+    double best = 1e9;
+    int best_kernel = 0, best_taps = 0;
+    for (const ShadowSettings& s : fixed) {
+      const double e = visibility_error(world->visibility(cam, s), truth, 1).mean_abs;
+      std::printf("%s: pcf kernel %d taps %d mean |error| %.4f\n", view, s.kernel, s.poisson_taps, e);
+      if (e < best) best = e, best_kernel = s.kernel, best_taps = s.poisson_taps;
+    }
+    std::printf("%s: pcss mean |error| %.4f, p99 %.3f; the best fixed kernel %.4f\n", view, pcss.mean_abs, pcss.p99, best);
+    lp::test::book_row("06_pcss", {{"view", view}},
+                       {{"pcss_mean", pcss.mean_abs}, {"best_pcf_mean", best}, {"best_pcf_kernel", double(best_kernel)},
+                        {"best_pcf_taps", double(best_taps)}});
+    EXPECT_LT(pcss.mean_abs, best) << view;
+  }
+}
+
+// Contact hardening, seen in the filter itself (ShadowPicture::Penumbra: PCSS's filter radius
+// in metres per pixel) against the ray tracer's distance from each penumbra pixel (soft truth
+// in (0.02, 0.98)) to what hides the sun from it: the mean hit distance of 16 rays over the
+// sun's disk, delta. The true filter radius is delta tan(theta). Claims, over the three views:
+// the pixels near a contact (delta < 0.5 m) get a filter under half as wide on average as those
+// far from their blocker (delta > 2 m; their true radii differ by 4x and more, the near ones
+// raised to PCSS's floor of half a texel, 1.4 cm); and far from contact, where that floor does
+// not reach, the median of radius / (delta tan(theta)) lies within a factor of 2 of 1 (the
+// blocker search averages every depth it finds, nearer ones with farther ones: the estimate's
+// known bias, not its noise). A PCSS that ignored the blocker's distance has one radius for
+// both sets, and fails the first.
+TEST_F(ShadowsGl, PcssPenumbraIsNarrowNearContactAndWideFarFromIt) {
+  const float tan_theta = std::tan(kSunAngularRadius);
+  std::vector<double> near_r, far_r, far_ratio;
+  for (const char* view : {"overview", "aisle", "corner"}) {
+    const FrameCamera cam = world->camera(view);
+    const ImageF truth = world->truth(cam);
+    ColourTarget target(kW, kH, GL_RGBA32F);
+    world->stage.set({.method = ShadowMethod::Pcss}, ShadowPicture::Penumbra);
+    world->frame.render(cam, {target.framebuffer(), kW, kH});
+    ASSERT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+    const ImageF radius = target.read();
+    const auto points = surface_points(primary_hits(world->rays, cam, kW, kH));
+    const glm::vec3 to_sun = -glm::normalize(world->sun());
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        const float soft = truth.at(x, y, 1);
+        const auto& p = points[std::size_t(y) * kW + x];
+        if (truth.at(x, y, 2) < 0.5f || soft <= 0.02f || soft >= 0.98f || !p) continue;
+        double sum = 0;
+        int hits = 0;
+        for (int i = 0; i < 16; ++i) {
+          const glm::vec3 d = sample_cone(to_sun, kSunAngularRadius, (float(i % 4) + 0.5f) / 4.f, (float(i / 4) + 0.5f) / 4.f);
+          if (const auto h = world->rays.intersect(p->ray(d, 1e30f))) sum += h->t, ++hits;
+        }
+        if (hits == 0) continue;
+        const double delta = sum / hits, r = radius.at(x, y, 0);
+        if (delta < 0.5) near_r.push_back(r);
+        if (delta > 2.0) far_r.push_back(r), far_ratio.push_back(r / (delta * tan_theta));
+      }
+  }
+  auto mean = [](const std::vector<double>& v) {
+    double s = 0;
+    for (double x : v) s += x;
+    return v.empty() ? 0.0 : s / double(v.size());
+  };
+  std::sort(far_ratio.begin(), far_ratio.end());
+  const double median = far_ratio.empty() ? 0 : far_ratio[far_ratio.size() / 2];
+  std::printf("pcss filter radius: near contact %.4f m (%zu pixels), far from it %.4f m (%zu); far: median radius / "
+              "(delta tan theta) %.3f\n", mean(near_r), near_r.size(), mean(far_r), far_r.size(), median);
+  lp::test::book_row("06_pcss_penumbra", {{"views", "overview aisle corner"}},
+                     {{"near_pixels", double(near_r.size())}, {"near_radius", mean(near_r)},
+                      {"far_pixels", double(far_r.size())}, {"far_radius", mean(far_r)}, {"far_median_ratio", median}});
+  ASSERT_GT(near_r.size(), std::size_t(100));
+  ASSERT_GT(far_r.size(), std::size_t(100));
+  EXPECT_LT(mean(near_r), 0.5 * mean(far_r));
+  EXPECT_GT(median, 0.5);
+  EXPECT_LT(median, 2.0);
+}
+// [/pcss-gl]
+
+// [unmarked-lights-gl]
+// The atrium marks no light (its sun casts by default, its eight point lights do not cast:
+// shadow_stage.h [casts-shadows]), so the point lights keep chapter 03's path. With the sun
+// turned off (intensity 0: its term is 0 whatever its visibility), the frame with the shadow
+// stage, in every method, is chapter 03's frame without any stage, byte for byte: the stage
+// changes nothing of a light that does not cast.
+TEST_F(ShadowsGl, UnmarkedLocalLightsKeepChapter03sPixels) {
+  for (const Light& l : world->scene.lights) ASSERT_FALSE(l.casts_shadows.has_value()) << l.name;
+  std::vector<Light> no_sun = world->scene.lights;
+  std::size_t local = 0;
+  for (Light& l : no_sun) l.type == LightType::Directional ? void(l.intensity = 0.f) : void(++local);
+  ASSERT_GT(local, std::size_t(0));
+  const FrameCamera cam = world->camera("overview");
+  ch03::DeferredFrame plain(world->gpu);
+  ch03::use_lights(plain, world->scene, no_sun, false);
+  OutputTarget a(kW, kH), b(kW, kH);
+  plain.render(cam, {a.framebuffer(), kW, kH});
+  const ImageRGBA8 chapter03 = a.read();
+  std::size_t lit = 0;
+  for (std::size_t i = 0; i < chapter03.pixels.size(); i += 4) lit += chapter03.pixels[i] + chapter03.pixels[i + 1] > 20;
+  ASSERT_GT(lit, std::size_t(kW * kH / 4));  // the point lights light the view: there are pixels to keep
+  ch03::use_lights(world->frame, world->scene, no_sun, false);
+  for (ShadowMethod m : {ShadowMethod::Hard, ShadowMethod::Pcf, ShadowMethod::Vsm, ShadowMethod::Esm, ShadowMethod::Pcss,
+                         ShadowMethod::Volumes}) {
+    world->stage.set({.method = m});
+    world->frame.render(cam, {b.framebuffer(), kW, kH});
+    const ImageRGBA8 with = b.read();
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < with.pixels.size(); ++i) differ += with.pixels[i] != chapter03.pixels[i];
+    EXPECT_EQ(differ, 0u) << kMethodNames[int(m)];
+  }
+  ch03::use_lights(world->frame, world->scene, world->scene.lights, false);  // the suite's lights back
+}
+// [/unmarked-lights-gl]
+
+// [spot-gl]
+// A spot light marked to cast (shadow_stage.h [casts-shadows]) gets a perspective map
+// (shadow_math.h [spot-frustum]). The atrium with one added: 3 m up in the aisle, aimed past the
+// right-hand columns r3 and r4 at the floor beyond them, a 0.8 rad cone. Its visibility alone
+// (ShadowPicture::SpotVisibility) against one ray per pixel toward the light (spot_shadow_truth),
+// outside a band of the map's reach at the farthest receiver: half a texel, plus the biases
+// (the slope part at the steepest receiver in the cone, tan(theta) capped at kMaxSlope as the
+// hook caps it), plus the kernel's r texels (its taps compare with the receiver's plane), each
+// w(d) = 2 d tan(cone) / N at the largest distance d of a receiver in the cone, over the
+// smallest pixel footprint in view; the map 2048^2. Allowed outside it, for hard and PCF 3x3:
+// none.
+namespace {
+void add_marked_spot(Scene& s) {
+  Light spot;
+  spot.name = "test_spot";
+  spot.type = LightType::Spot;
+  spot.intensity = 40.f;
+  spot.position = {1.f, 3.f, 1.5f};
+  spot.direction = glm::normalize(glm::vec3(3.5f, -3.f, 0.f));
+  spot.outer_cone = 0.8f, spot.inner_cone = 0.7f;
+  spot.casts_shadows = true;
+  s.lights.push_back(spot);
+}
+}  // namespace
+
+TEST(ShadowsGlSpot, MarkedSpotLightMatchesItsRayTracedShadowsOutsideTheBand) {
+  World w(std::nullopt, add_marked_spot);
+  ASSERT_TRUE(w.stage.spot().has_value());
+  EXPECT_TRUE(unshadowed_casters(w.scene).empty());
+  const Light& spot = *w.stage.spot();
+  const FrameCamera cam = w.camera("overview");
+  const ImageF truth = spot_shadow_truth(w.rays, cam, kW, kH, spot);
+  const auto hits = primary_hits(w.rays, cam, kW, kH);
+  float nearest = 1e30f, farthest = 0.f, steepest = 0.f;
+  std::size_t masked = 0, dark = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const auto& h = hits[std::size_t(y) * kW + x];
+      if (h) nearest = std::min(nearest, h->t);
+      if (truth.at(x, y, 2) < 0.5f) continue;
+      ++masked, dark += truth.at(x, y, 0) < 0.5f;
+      farthest = std::max(farthest, glm::distance(h->position, spot.position));
+      const float c = std::clamp(std::abs(glm::dot(glm::normalize(spot.position - h->position), h->shading_normal)), 1e-4f, 1.f);
+      steepest = std::max(steepest, std::min(std::sqrt(1.f - c * c) / c, kMaxSlope));
+    }
+  std::printf("spot: %zu pixels in its cone, %zu of them shadowed; receivers up to %.2f m away, tan(theta) up to %.2f\n",
+              masked, dark, farthest, steepest);
+  ASSERT_GT(masked, std::size_t(kW * kH / 20));
+  ASSERT_GT(dark, masked / 20);  // the columns' shadows are there to get right
+  ASSERT_LT(dark, masked - masked / 20);
+  const float footprint = nearest * 2.f * std::tan(cam.yfov / 2.f) / float(kH);
+  for (const ShadowSettings& s : {ShadowSettings{.method = ShadowMethod::Hard, .map_size = 2048},
+                                  ShadowSettings{.method = ShadowMethod::Pcf, .map_size = 2048}}) {
+    const int r = s.method == ShadowMethod::Hard ? 0 : s.kernel / 2;
+    ColourTarget target(kW, kH, GL_RGBA32F);
+    w.stage.set(s, ShadowPicture::SpotVisibility);
+    w.frame.render(cam, {target.framebuffer(), kW, kH});
+    ASSERT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+    const ImageF v = target.read();
+    const float texels = 0.5f + s.constant_bias + s.slope_bias * steepest + s.normal_offset + float(r);
+    const int band = int(std::ceil(texels * w.stage.spot_frustum().texel_world(farthest, s.map_size) / footprint));
+    auto edges = hard_edge_pixels(truth, band);
+    exclude_raster_mask(v, edges);
+    const VisibilityError e = visibility_error(v, truth, 0, &edges);
+    std::printf("spot, %s: band %d pixels; ", kMethodNames[int(s.method)].c_str(), band);
+    print("outside the band", e);
+    std::size_t shadowed_compared = 0;
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x)
+        shadowed_compared += truth.at(x, y, 2) > 0.5f && truth.at(x, y, 0) < 0.5f && !edges[std::size_t(y) * kW + x];
+    std::printf("  %zu of the compared pixels in shadow\n", shadowed_compared);
+    lp::test::book_row("06_spot", {{"method", kMethodNames[int(s.method)]}},
+                       {{"cone_pixels", double(masked)}, {"band", double(band)}, {"compared", double(e.pixels)},
+                        {"compared_in_shadow", double(shadowed_compared)}, {"wrong_pct", 100 * e.wrong},
+                        {"mean_abs", e.mean_abs}});
+    EXPECT_LE(band, 8);
+    // The band leaves enough of the cone to compare, lit and shadowed (the columns' shadows are
+    // narrow: about a quarter of the cone's pixels remain).
+    ASSERT_GT(e.pixels, std::size_t(1000));
+    ASSERT_GT(shadowed_compared, std::size_t(100));
+    EXPECT_EQ(e.wrong, 0.0) << kMethodNames[int(s.method)];
+    // Nor do the kernel's taps shadow the lit receivers outside the band: each compares with the
+    // receiver's plane at its own texel (with the centre's depth instead, a receiver tilted
+    // against the light shadows itself in the taps on its far side).
+    EXPECT_LT(e.mean_abs, 1e-3) << kMethodNames[int(s.method)];
+  }
+}
+// [/spot-gl]

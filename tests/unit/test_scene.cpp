@@ -461,3 +461,27 @@ TEST(Scene, VertexAndIndexLimitsAreCheckedBeforeAllocating) {
   EXPECT_TRUE(contains(error("strip_fan.gltf", {.max_indices = 10}), "mesh 'fan' primitive 0: the scene would hold more than"))
       << error("strip_fan.gltf", {.max_indices = 10});
 }
+
+// A light node's extras.lightpass.casts_shadows: true or false where the file says so (the
+// light's casts_shadows), unset where it does not (a chapter's default applies: book/
+// appendix-scenes.md), and anything but a boolean refused with the node named.
+TEST(Scene, ALightNodeMarksWhetherTheLightCastsShadows) {
+  auto dir = std::filesystem::temp_directory_path() / "lightpass_casts_shadows";
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy_file(from_root("tests/data/minimal.bin"), dir / "minimal.bin", std::filesystem::copy_options::overwrite_existing);
+  auto with = [&](const nlohmann::json* mark) {
+    nlohmann::json doc = nlohmann::json::parse(std::ifstream(from_root("tests/data/minimal.gltf")));
+    doc["buffers"][0]["uri"] = "minimal.bin";
+    for (auto& node : doc["nodes"])
+      if (node.contains("extensions") && mark) node["extras"]["lightpass"]["casts_shadows"] = *mark;
+    std::ofstream(dir / "marked.gltf") << doc.dump();
+    return dir / "marked.gltf";
+  };
+  EXPECT_FALSE(load_scene(with(nullptr)).lights.at(0).casts_shadows.has_value());
+  const nlohmann::json yes = true, no = false, text = "yes";
+  EXPECT_EQ(load_scene(with(&yes)).lights.at(0).casts_shadows, std::optional<bool>(true));
+  EXPECT_EQ(load_scene(with(&no)).lights.at(0).casts_shadows, std::optional<bool>(false));
+  const std::string e = load_error(with(&text));
+  EXPECT_TRUE(contains(e, "node 'light': extras.lightpass.casts_shadows must be true or false")) << e;
+  std::filesystem::remove_all(dir);
+}

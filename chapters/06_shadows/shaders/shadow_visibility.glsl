@@ -1,14 +1,15 @@
 // Chapter 06's visibility hook (chapter 03's FRAME_VISIBILITY, deferred_frame.h): the sun
 // looked up in its shadow map by the method the define SHADOW_METHOD names (the small files
 // visibility_*.glsl define it and include this one). The C++ twins are in shadow_math.h.
-// Only the first directional light has a map; the other directional lights and every local
-// light keep visibility 1 (point and spot shadows are exercises of the chapter).
+// Only the first directional light has a map, and the first spot light the scene marks to cast
+// (shadow_stage.h [casts-shadows]) a perspective one; the other lights keep visibility 1.
 #include "03_light_volumes/shaders/hooks/frame_pixel.glsl"
 #define SHADOW_HARD 0
 #define SHADOW_PCF 1
 #define SHADOW_PCF_HARDWARE 2
 #define SHADOW_VSM 3
 #define SHADOW_ESM 4
+#define SHADOW_PCSS 5
 
 layout(std140, binding = 8) uniform ShadowBlock {
   mat4 sh_matrix;   // world to the light's clip space (orthographic)
@@ -16,12 +17,17 @@ layout(std140, binding = 8) uniform ShadowBlock {
   vec4 sh_bias;     // x: constant (texels), y: slope-scaled (texels), z: normal offset (texels), w: VSM min variance
   vec4 sh_filter;   // x: ESM's c, y: VSM's p_min, z: PCF's Poisson taps (0: the grid)
   mat4 sh_view;     // world to the light's view space (looking down -z)
-  vec4 sh_extent;   // x, y: the box's width and height in metres
+  vec4 sh_extent;   // x, y: the box's width and height in metres; w: PCSS's tan(sun's angular radius)
   vec4 sh_poisson[32];  // PCF's Poisson disk in the unit disk, two taps a vec4
+  mat4 sh_spot_matrix;  // world to the spot light's clip space (perspective)
+  mat4 sh_spot_view;    // world to the spot light's view space (looking down -z)
+  vec4 sh_spot;         // xyz: the spot's position, w: 1 when a spot has a map
+  vec4 sh_spot_map;     // x: near, y: far (metres), z: tan(cone), w: map size
 };
 layout(binding = 8) uniform sampler2D sh_depth;
 layout(binding = 9) uniform sampler2DShadow sh_depth_compare;
 layout(binding = 10) uniform sampler2D sh_moments;
+layout(binding = 13) uniform sampler2D sh_spot_depth;
 
 // [bias-glsl]
 // shadow_math.h's slope_scaled_bias and normal_offset; the bias in window-depth units
@@ -50,6 +56,23 @@ vec2 receiver_plane_gradient(Surface s) {
 }
 // [/receiver-plane-glsl]
 
+// [poisson-glsl]
+// The rotated Poisson disk's taps (shadow_math.h [poisson]): the turn, an angle that
+// interleaved gradient noise (Jimenez 2014) draws from the pixel's position, and tap i in the
+// unit disk.
+mat2 poisson_turn() {
+  float angle = 6.2831853 * fract(52.9829189 * fract(dot(frame_pixel(), vec2(0.06711056, 0.00583715))));
+  return mat2(cos(angle), sin(angle), -sin(angle), cos(angle));
+}
+vec2 poisson_tap(int i) {
+  vec4 pair = sh_poisson[i / 2];
+  return (i & 1) == 0 ? pair.xy : pair.zw;
+}
+// [/poisson-glsl]
+
+// PCSS's filter radius in metres at the last lookup (show_visibility.frag's penumbra picture).
+float sh_pcss_radius = 0.0;
+
 float directional_visibility(int index, GpuLight light, Surface s) {
   if (index != 0) return 1.0;
   vec3 to_light = -light.direction_range.xyz;
@@ -69,14 +92,11 @@ float directional_visibility(int index, GpuLight light, Surface s) {
   vec2 g = receiver_plane_gradient(s);
   int taps = int(sh_filter.z);
   if (taps > 0) {
-    // Or `taps` comparisons on a Poisson disk k texels across, turned by an angle that
-    // interleaved gradient noise (Jimenez 2014) draws from the pixel's position.
-    float angle = 6.2831853 * fract(52.9829189 * fract(dot(frame_pixel(), vec2(0.06711056, 0.00583715))));
-    mat2 turn = mat2(cos(angle), sin(angle), -sin(angle), cos(angle));
+    // Or `taps` comparisons on a Poisson disk k texels across, turned per pixel.
+    mat2 turn = poisson_turn();
     float scale = (float(r) + 0.5) * texel;
     for (int i = 0; i < taps; ++i) {
-      vec4 pair = sh_poisson[i / 2];
-      vec2 o = turn * ((i & 1) == 0 ? pair.xy : pair.zw) * scale;
+      vec2 o = turn * poisson_tap(i) * scale;
       lit += q.z + dot(g, o) <= texture(sh_depth, q.xy + o).r ? 1.0 : 0.0;
     }
     return lit / float(taps);
@@ -115,9 +135,83 @@ float directional_visibility(int index, GpuLight light, Surface s) {
   float l = texture(sh_moments, q.xy).x;  // log of the filtered exp(c z)
   return clamp(exp(min(l - sh_filter.x * q.z, 0.0)), 0.0, 1.0);
   // [/esm-glsl]
+#elif SHADOW_METHOD == SHADOW_PCSS
+  // [pcss-glsl]
+  // shadow_math.h's pcss(): depths in window units (q.z: the receiver's) times the box's depth
+  // range sh_map.y are metres from the near plane; a radius in metres is sh_extent.xy apart in
+  // the map's (u, v). Every tap compares with the receiver's plane there, as PCF's do.
+  float tan_size = sh_extent.w;
+  vec2 g = receiver_plane_gradient(s);
+  mat2 turn = poisson_turn();
+  int taps = int(sh_filter.z);
+  // 1. The blocker search: whatever can hide part of the sun lies within d_r tan(theta).
+  vec2 search = max(q.z * sh_map.y * tan_size, sh_map.x) / sh_extent.xy;
+  float blockers = 0.0, sum = 0.0;
+  for (int i = 0; i < taps; ++i) {
+    vec2 o = turn * poisson_tap(i) * search;
+    float z = texture(sh_depth, q.xy + o).r;
+    if (z < q.z + dot(g, o)) sum += z, blockers += 1.0;
+  }
+  if (blockers == 0.0) return 1.0;  // nothing between the receiver and any of the sun
+  // 2. The penumbra: the sun's disk on the blockers' mean depth, (d_r - d_b) tan(theta) across
+  // (half a texel at least: below it the map cannot tell).
+  float radius = max((q.z - sum / blockers) * sh_map.y * tan_size, 0.5 * sh_map.x);
+  sh_pcss_radius = radius;
+  // 3. PCF over that disk.
+  float lit = 0.0;
+  for (int i = 0; i < taps; ++i) {
+    vec2 o = turn * poisson_tap(i) * (radius / sh_extent.xy);
+    lit += q.z + dot(g, o) <= texture(sh_depth, q.xy + o).r ? 1.0 : 0.0;
+  }
+  return lit / float(taps);
+  // [/pcss-glsl]
 #else
 #error SHADOW_METHOD names no method
 #endif
 }
 
-float local_visibility(int index, GpuLight light, Surface s) { return 1.0; }
+// [spot-glsl]
+// The marked spot light (found by its position: the light order is chapter 03's) in its
+// perspective map. Distances are linear, metres along the spot's axis (clip w); a texel there
+// is w(d) = 2 d tan(cone) / N wide, and the biases are shadow_math.h's [bias] in units of it:
+// the normal offset, the constant and the slope-scaled parts. Hard: one comparison; every
+// other map method: PCF on a k x k grid, each tap compared with the receiver's plane where the
+// light's ray through that texel meets it (the perspective form of the receiver-plane bias:
+// in the light's view space the ray through the map's (u, v) is t (x tan, y tan, -1), x and y
+// in [-1, 1], and it meets the plane n . (X - p) = 0 at t = n . p / n . ray, its depth t).
+float local_visibility(int index, GpuLight light, Surface s) {
+  if (sh_spot.w == 0.0 || light.position_type.w != LIGHT_SPOT || distance(light.position_type.xyz, sh_spot.xyz) > 1e-4) return 1.0;
+  vec3 to_light = normalize(sh_spot.xyz - s.position);
+  float cos_theta = dot(s.normal, to_light);
+  if (cos_theta <= 0.0) return 1.0;  // faces away: the light adds nothing anyway
+  cos_theta = clamp(cos_theta, 1e-4, 1.0);
+  float sin_theta = sqrt(1.0 - cos_theta * cos_theta);
+  float tan_theta = min(sin_theta / cos_theta, 10.0);
+  float d = (sh_spot_matrix * vec4(s.position, 1.0)).w;
+  float texel = 2.0 * d * sh_spot_map.z / sh_spot_map.w;
+  vec4 clip = sh_spot_matrix * vec4(s.position + s.normal * (sh_bias.z * texel * sin_theta), 1.0);
+  if (clip.w <= sh_spot_map.x) return 1.0;
+  vec3 window = clip.xyz / clip.w * 0.5 + 0.5;
+  if (any(lessThan(window.xy, vec2(0.0))) || any(greaterThan(window.xy, vec2(1.0))) || window.z > 1.0) return 1.0;
+#if SHADOW_METHOD == SHADOW_HARD
+  int r = 0;
+#else
+  int r = int(sh_map.w);
+#endif
+  float bias = texel * (sh_bias.x + sh_bias.y * tan_theta);
+  vec3 p_view = (sh_spot_view * vec4(s.position + s.normal * (sh_bias.z * texel * sin_theta), 1.0)).xyz;
+  vec3 n_view = mat3(sh_spot_view) * s.normal;
+  float n = sh_spot_map.x, f = sh_spot_map.y, lit = 0.0;
+  for (int y = -r; y <= r; ++y)
+    for (int x = -r; x <= r; ++x) {
+      vec2 uv = window.xy + vec2(x, y) / sh_spot_map.w;
+      vec3 ray = vec3((2.0 * uv - 1.0) * sh_spot_map.z, -1.0);
+      float across = dot(n_view, ray);
+      float receiver = (r == 0 || abs(across) < 1e-4 ? clip.w : dot(n_view, p_view) / across) - bias;
+      float z = 2.0 * texture(sh_spot_depth, uv).r - 1.0;
+      float stored = 2.0 * n * f / (f + n - z * (f - n));  // the map's depth, linear
+      lit += receiver <= stored ? 1.0 : 0.0;
+    }
+  return lit / float((2 * r + 1) * (2 * r + 1));
+}
+// [/spot-glsl]

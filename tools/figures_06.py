@@ -1,0 +1,38 @@
+#!/usr/bin/env python3
+"""Chapter 06's plots, from the CSVs 06_shadows_sweep writes (book/figures/), through tools/plot.py.
+
+    python3 tools/figures_06.py [FIGURES_DIR]      (default book/figures)
+
+PCSS against the fixed PCF kernels: the error against the soft truth (the sun as a disk of
+0.02 rad, PCSS's light) against the time of the global pass that does the lookups, one plot per
+renderer whose 06_shadows_pcss CSV is there (llvmpipe's, and the H200's once the GPU run made it).
+"""
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from plot import Series, plot, read_csv  # noqa: E402
+
+
+def pcss_pareto(d: Path, csv_name: str, where: str, out: str):
+    if not (d / csv_name).exists():
+        return
+    notes, rows = read_csv(d / csv_name)
+    rows = [r for r in rows if r["view"] == "overview" and abs(float(r["sun_size"]) - 0.02) < 1e-6]
+    groups = (("PCF grid", lambda r: r["method"] == "pcf" and r["taps"] == "0"),
+              ("PCF Poisson", lambda r: r["method"] == "pcf" and r["taps"] != "0"),
+              ("PCSS", lambda r: r["method"] == "pcss"))
+    series = [Series(label, [(float(r["global_ms"]), float(r["soft_mean"]), r["setting"]) for r in rows if keep(r)],
+                     in_order=True) for label, keep in groups]
+    plot(d / out, f"Soft shadows: error against time, atrium overview ({where})", notes[0] if notes else "",
+         [s for s in series if s.points], "ms per frame, the global pass with the lookups (log scale)",
+         "mean |visibility - soft truth|", xlog=True)
+
+
+def main(d: Path):
+    pcss_pareto(d, "06_shadows_pcss_llvmpipe.csv", "llvmpipe", "06_pcss_pareto_llvmpipe.svg")
+    pcss_pareto(d, "06_shadows_pcss_h200.csv", "NVIDIA H200", "06_pcss_pareto_h200.svg")
+
+
+if __name__ == "__main__":
+    main(Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parent.parent / "book" / "figures")
