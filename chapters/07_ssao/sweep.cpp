@@ -177,14 +177,19 @@ struct Knob {
   float AoSettings::*field;
   std::vector<float> grid;
 };
+// The order matters to a descent: the slab first (what the depth buffer cannot say), then the
+// reach and the power, which otherwise stand in for it (a longer reach also finds the box
+// beside the wall, and darkens everything else). Reach first, the disk's descent stopped at
+// reach 2, power 2, no slab: 0.101 on the training view with 32 samples, where slab first
+// reaches 0.088.
 std::vector<Knob> knobs(AoMethod m) {
-  std::vector<Knob> k = {{"reach", &AoSettings::reach, {0.8f, 1.f, 1.25f, 1.5f, 2.f}},
-                         {"power", &AoSettings::power, {0.8f, 1.f, 1.25f, 1.6f, 2.f}}};
+  std::vector<Knob> k;
+  if (m != AoMethod::Classic) k.push_back({"thickness", &AoSettings::thickness, {0.f, 0.5f, 0.75f, 1.f, 1.5f, 2.f}});
+  k.push_back({"reach", &AoSettings::reach, {0.8f, 1.f, 1.25f, 1.5f, 2.f}});
+  k.push_back({"power", &AoSettings::power, {0.8f, 1.f, 1.25f, 1.6f, 2.f}});
   if (m == AoMethod::Classic) {
     k.push_back({"bias", &AoSettings::bias, {0.005f, 0.02f, 0.05f, 0.1f}});
     k.push_back({"blur_depth", &AoSettings::blur_depth, {0.02f, 0.05f, 0.1f}});
-  } else {
-    k.push_back({"thickness", &AoSettings::thickness, {0.f, 0.5f, 0.75f, 1.f, 1.5f, 2.f}});
   }
   if (m == AoMethod::Gtao) k.push_back({"falloff", &AoSettings::falloff, {0.05f, 0.3f, 0.6f}});
   return k;
