@@ -78,7 +78,7 @@ void Ssao::compute(const ch02::GBuffer& gbuffer, const FrameCamera& camera, cons
 
   // The blur: the classic algorithm's noise tile is 4x4, so a 4x4 box removes it where the
   // neighbours are the same surface.
-  blurred_used_ = s.blur && (!disk || s.noise);  // the disk's spiral, unturned, leaves no noise to blur
+  blurred_used_ = s.blur;
   if (blurred_used_) {
     const ShaderProgram& b = program("blur", "07_ssao/shaders/blur.comp", gbuffer, {});
     b.set("u_view", camera.view);

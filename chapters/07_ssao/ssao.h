@@ -34,7 +34,7 @@ struct AoSettings {
   bool noise = true;             // reflect the kernel about the 4x4 tile's vectors, per pixel (the
                                  // disk: turn its spiral by the tile's angle; GTAO: jitter its slices)
   bool energy_minimised = true;  // the spring-relaxed kernel instead of the random one
-  bool blur = true;              // the bilateral 4x4 blur (the disk's only when its spiral turns)
+  bool blur = true;              // the bilateral 4x4 blur (every method; the source's disk has none)
   float blur_depth = 0.05f;      // a neighbour counts within 5 % of the centre's view depth ...
   float blur_normal = 0.8f;      // ... and within acos(0.8) = 37 degrees of its normal
   int scale = 1;                 // 1 full, 2 half, 4 quarter resolution
