@@ -108,7 +108,7 @@ void sweep_scene(const Settings& s, std::ofstream& csv, const std::string& file,
     std::cout << "  " << v.name << " " << v.ao.samples << ": " << t.mean_ms << " ms, mean abs " << e.mean_abs
               << ", mean sq " << e.mean_sq << ", signed " << e.mean_signed << std::endl;
     // the book's pictures: the default classic and disk settings
-    if ((v.name == "classic" || v.name == "classic-no-noise" || v.name == "classic-no-blur") && v.ao.samples == 16 ||
+    if (((v.name == "classic" || v.name == "classic-no-noise" || v.name == "classic-no-blur") && v.ao.samples == 16) ||
         ((v.name == "disk" || v.name == "disk-spiral") && v.ao.samples == 32) || (v.name == "gtao" && v.ao.samples == 32)) {
       const std::string name = s.out + "/07_" + stem + "_" + v.name + "_" + std::to_string(v.ao.samples);
       save_png(name + ".png", grey(ao));
