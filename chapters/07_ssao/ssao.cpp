@@ -1,6 +1,7 @@
 #include "chapters/07_ssao/ssao.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "chapters/07_ssao/ao_math.h"
 #include "common/error.h"
@@ -42,6 +43,8 @@ void Ssao::compute(const ch02::GBuffer& gbuffer, const FrameCamera& camera, cons
   if (s.samples < 1 || s.samples > kMaxSamples)
     throw Error("ssao: samples must be between 1 and " + std::to_string(kMaxSamples) + " (got " +
                 std::to_string(s.samples) + ")");
+  if (!(s.reach > 0.f) || !(s.power > 0.f) || !(s.falloff > 0.f) || s.falloff > 1.f || std::isnan(s.thickness))
+    throw Error("ssao: reach and power must be positive, falloff in (0, 1] and thickness a number");
   if (!(s.radius > 0.f)) throw Error("ssao: the radius must be positive (got " + std::to_string(s.radius) + ")");
   if (s.scale != 1 && s.scale != 2 && s.scale != 4) throw Error("ssao: scale must be 1, 2 or 4");
   const int w = (gbuffer.width() + s.scale - 1) / s.scale, h = (gbuffer.height() + s.scale - 1) / s.scale;
@@ -55,11 +58,14 @@ void Ssao::compute(const ch02::GBuffer& gbuffer, const FrameCamera& camera, cons
   const ShaderProgram& p = program(kMethodNames[int(s.method)], "07_ssao/shaders/ssao.comp", gbuffer,
                                    {disk ? "AO_DISK 1" : gtao ? "AO_GTAO 1" : "AO_CLASSIC 1", s.tutorial_bug ? "AO_TUTORIAL_BUG 1" : "AO_NO_BUG 1",
                                     disk && s.bunnell_term ? "AO_BUNNELL 1" : "AO_FORM_FACTOR 1"});
-  if (!disk) upload_kernel(p, s);  // the kernel (classic) and the noise tile (classic, GTAO)
+  upload_kernel(p, s);  // the kernel (classic) and the noise tile (every method)
   p.set("u_view", camera.view);
   p.set("u_projection", camera.projection);
   p.set("u_samples", s.samples);
-  p.set("u_radius", s.radius);
+  p.set("u_radius", s.radius * s.reach);
+  p.set("u_power", s.power);
+  p.set("u_falloff", s.falloff);
+  p.set("u_thickness", thickness_of(s));
   p.set("u_scale", s.scale);
   p.set("u_noise_on", s.noise ? 1 : 0);
   p.set("u_bias", s.bias);
@@ -72,7 +78,7 @@ void Ssao::compute(const ch02::GBuffer& gbuffer, const FrameCamera& camera, cons
 
   // The blur: the classic algorithm's noise tile is 4x4, so a 4x4 box removes it where the
   // neighbours are the same surface.
-  blurred_used_ = s.blur && !disk;
+  blurred_used_ = s.blur;
   if (blurred_used_) {
     const ShaderProgram& b = program("blur", "07_ssao/shaders/blur.comp", gbuffer, {});
     b.set("u_view", camera.view);

@@ -31,9 +31,10 @@ struct AoSettings {
   int samples = 16;        // kernel points (classic) or disk samples (disk); 1..kMaxSamples
   float radius = 0.5f;     // R, world units: the ray length of the AO integral
   // classic
-  bool noise = true;             // reflect the kernel about the 4x4 tile's vectors, per pixel
+  bool noise = true;             // reflect the kernel about the 4x4 tile's vectors, per pixel (the
+                                 // disk: turn its spiral by the tile's angle; GTAO: jitter its slices)
   bool energy_minimised = true;  // the spring-relaxed kernel instead of the random one
-  bool blur = true;              // the bilateral 4x4 blur (classic and GTAO: the disk has no noise)
+  bool blur = true;              // the bilateral 4x4 blur (every method; the source's disk has none)
   float blur_depth = 0.05f;      // a neighbour counts within 5 % of the centre's view depth ...
   float blur_normal = 0.8f;      // ... and within acos(0.8) = 37 degrees of its normal
   int scale = 1;                 // 1 full, 2 half, 4 quarter resolution
@@ -48,12 +49,35 @@ struct AoSettings {
   // disk: each sample's occlusion, the disk form factor (cosine-weighted, as the AO integral
   // is) or Bunnell's term as his code has it (a share of solid angle); ao_math.h
   bool bunnell_term = false;
+  // The free parameters the sweep tunes against the truth (as XeGTAO tunes its RadiusMultiplier,
+  // FalloffRange and FinalValuePower against its ray-traced reference); the defaults are the
+  // untuned method, the source's parameters. reach: the method's own radius is reach x R (the
+  // truth's R does not change); power: A is raised to it at the end; falloff (GTAO): occluders
+  // fade out over the last falloff x R of the reach.
+  float reach = 1.f;
+  float power = 1.f;
+  float falloff = 0.05f;
+  // GTAO and the disk: what lies behind each depth sample, a slab this thick (x the reach) along
+  // its view ray (0: nothing behind the surface the depth buffer holds, as the source and
+  // XeGTAO have it). Negative: the method's own, kDiskThickness or kGtaoThickness below.
+  // ssao.comp [thickness].
+  float thickness = -1.f;
   // The tutorial bug, for the test that catches it: the kernel turned into world space and
   // added to the view-space position.
   bool tutorial_bug = false;
 };
 inline constexpr int kMaxSamples = 128;
+// The slabs' thicknesses, chosen on the tuning sweep's TRAINING view of the Cornell box (not the
+// book's view the tests measure): the thinnest on the grid 0, R / 4, ..., R, 1.5 R, 2 R within 1 % of the
+// least mean |A - truth| there (32 samples). Disk: 0.1316 with no slab, 0.1019 at R, 0.1016 at
+// 1.5 R; GTAO: 0.1028, 0.0804 at 0.75 R, 0.0802 at R.
+inline constexpr float kDiskThickness = 1.f, kGtaoThickness = 0.75f;
 // [/settings]
+// The thickness a method uses (AoSettings::thickness, its negative resolved).
+inline float thickness_of(const AoSettings& s) {
+  if (s.thickness >= 0.f) return s.thickness;
+  return s.method == AoMethod::Disk ? kDiskThickness : s.method == AoMethod::Gtao ? kGtaoThickness : 0.f;
+}
 
 class Ssao {
  public:

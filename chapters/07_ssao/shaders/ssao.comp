@@ -10,7 +10,10 @@ layout(r32f, binding = 0) uniform writeonly image2D u_out;
 
 uniform mat4 u_view, u_projection;
 uniform int u_samples;
-uniform float u_radius;             // R, world units
+uniform float u_radius;             // the method's radius, world units: R x AoSettings::reach
+uniform float u_power;              // A is raised to it at the end (1: untuned)
+uniform float u_falloff;            // GTAO: occluders fade over the last u_falloff x radius
+uniform float u_thickness;          // GTAO, disk: each depth sample a slab this thick (x radius) behind it
 uniform int u_scale;                // 1, 2 or 4: AO texel (x, y) stands for G-buffer pixel scale * (x, y) + scale / 2
 uniform int u_noise_on;
 uniform float u_bias;               // x R
@@ -92,9 +95,15 @@ float disk_ao(ivec2 pixel, Surface s) {
   // each sample stands for an equal share of the disk: area pi R^2 / N at the receiver's depth
   float share = PI * world_radius * world_radius / float(u_samples);
   float occlusion = 0.0;
+  // The spiral turned per pixel by the 4x4 noise tile's angle (u_noise_on): the same spiral at
+  // every pixel puts its samples on the same offsets everywhere, and where a sample crosses an
+  // edge it does so along a whole line of pixels (bands); turned, the tile's 16 spirals
+  // interleave and the 4x4 blur averages them.
+  vec3 noise = u_noise[(pixel.x & 3) + 4 * (pixel.y & 3)].xyz;
+  float turn = u_noise_on != 0 ? atan(noise.y, noise.x) : 0.0;
   for (int i = 0; i < u_samples; ++i) {
     float rr = sqrt((float(i) + 0.5) / float(u_samples));
-    float a = 2.39996323 * float(i);
+    float a = 2.39996323 * float(i) + turn;
     ivec2 sp = pixel + ivec2(round(rr * radius_px * vec2(cos(a), sin(a))));
     if (sp == pixel || any(lessThan(sp, ivec2(0))) || any(greaterThanEqual(sp, ivec2(gb_size.xy)))) continue;
     float depth = texelFetch(gb_depth, sp, 0).r;
@@ -102,6 +111,14 @@ float disk_ao(ivec2 pixel, Surface s) {
     vec3 e = world_at(sp, depth);
     vec3 v = e - s.position;
     float d2 = dot(v, v);
+    if (u_thickness > 0.0 && d2 > u_radius * u_radius) {
+      // the slab behind the sample (ssao.comp [thickness]): its point nearest the receiver,
+      // at most u_thickness x the radius behind the front the depth buffer holds
+      vec3 away = normalize(e - gb_eye.xyz);
+      e += clamp(-dot(v, away), 0.0, u_thickness * u_radius) * away;
+      v = e - s.position;
+      d2 = dot(v, v);
+    }
     if (d2 > u_radius * u_radius || d2 <= 0.0) continue;  // beyond the rays' length R
     vec3 ne = decode_normal(texelFetch(gb_normal, sp, 0));
     float ze = view_depth(e);
@@ -130,8 +147,20 @@ float disk_ao(ivec2 pixel, Surface s) {
 // u_samples / 16 slices (at least 1), the slices' angle and the steps' offset jittered by the
 // 4x4 noise tile (the blur removes the pattern). Unlike XeGTAO, whose falloff starts at 0.385 R
 // (it made the Cornell box's error 0.14), occluders count fully to 0.95 R and not at all beyond
-// R: the truth's rays end at R.
+// R: the truth's rays end at R (u_falloff = 0.05, untuned; the sweep tunes it).
 float acos_clamped(float x) { return acos(clamp(x, -1.0, 1.0)); }
+// The horizon cosine one occluder point q gives the receiver p: its elevation toward the view
+// vector, blended toward the slice's lowest value `low` by the falloff's weight.
+float gtao_horizon(vec3 p, vec3 q, vec3 normal, vec3 view_vec, float low, float falloff_mul, float falloff_add) {
+  vec3 delta = q - p;
+  float dist = length(delta);
+  if (dist <= 0.0) return low;
+  float weight = clamp(dist * falloff_mul + falloff_add, 0.0, 1.0);
+  // as the classic bias: a point less than bias x R above the tangent plane is the surface
+  // itself, its depth rounded (D24 far from the camera), not an occluder
+  if (dot(delta, normal) < u_bias * u_radius) weight = 0.0;
+  return mix(low, dot(delta / dist, view_vec), weight);
+}
 float gtao_ao(ivec2 pixel, Surface s) {
   const int steps = 8;
   int slices = max(1, u_samples / (2 * steps));
@@ -143,7 +172,7 @@ float gtao_ao(ivec2 pixel, Surface s) {
   float radius_px = min(u_radius * scale_px, u_max_screen_radius * gb_size.y);
   if (radius_px < 1.0) return 1.0;
   // the falloff: full weight to 0.95 R, none at R
-  float falloff_range = 0.05 * u_radius, falloff_from = u_radius - falloff_range;
+  float falloff_range = u_falloff * u_radius, falloff_from = u_radius - falloff_range;
   float falloff_mul = -1.0 / falloff_range, falloff_add = falloff_from / falloff_range + 1.0;
   vec3 noise = u_noise[(pixel.x & 3) + 4 * (pixel.y & 3)].xyz;  // a unit vector: its angle jitters
   float jitter_angle = u_noise_on != 0 ? (atan(noise.y, noise.x) / (2.0 * PI) + 0.5) : 0.5;
@@ -173,16 +202,26 @@ float gtao_ao(ivec2 pixel, Surface s) {
         float depth = texelFetch(gb_depth, sp, 0).r;
         if (sky_depth(depth)) continue;
         vec3 q = (u_view * vec4(world_at(sp, depth), 1.0)).xyz;
-        vec3 delta = q - p;
-        float dist = length(delta);
-        if (dist <= 0.0) continue;
-        float weight = clamp(dist * falloff_mul + falloff_add, 0.0, 1.0);
-        // as the classic bias: a point less than bias x R above the tangent plane is the surface
-        // itself, its depth rounded (D24 far from the camera), not an occluder
-        if (dot(delta, normal) < u_bias * u_radius) weight = 0.0;
-        float c = dot(delta / dist, view_vec);
-        if (side == 0) horizon0 = max(horizon0, mix(low0, c, weight));
-        else horizon1 = max(horizon1, mix(low1, c, weight));
+        float h = gtao_horizon(p, q, normal, view_vec, side == 0 ? low0 : low1, falloff_mul, falloff_add);
+        // [thickness]
+        // The depth buffer holds only each surface's front. A thickness T (u_thickness x the
+        // radius) says what lies behind it: the sample stands for a slab from q to T farther
+        // along its view ray. When q is beyond the reach but the slab is not (the tall box's
+        // front is 0.9 m before the back wall, its back 0.25 m), the slab's highest point within
+        // full weight is where its ray enters the sphere of radius falloff_from about p (along
+        // the ray the elevation seen from p only falls, so that point is the highest).
+        vec3 d = normalize(q);                       // the view ray through q, away from the camera
+        vec3 m = q - p;
+        float r = u_radius - falloff_range, b = dot(m, d), c0 = dot(m, m) - r * r;
+        float disc = b * b - c0;
+        if (u_thickness > 0.0 && c0 > 0.0 && disc >= 0.0) {
+          float t_in = -b - sqrt(disc);
+          if (t_in >= 0.0 && t_in <= u_thickness * u_radius)
+            h = max(h, gtao_horizon(p, q + t_in * d, normal, view_vec, side == 0 ? low0 : low1, falloff_mul, falloff_add));
+        }
+        // [/thickness]
+        if (side == 0) horizon0 = max(horizon0, h);
+        else horizon1 = max(horizon1, h);
       }
     }
     float h0 = -acos_clamped(horizon1), h1 = acos_clamped(horizon0);  // the - side, the + side
@@ -216,5 +255,6 @@ void main() {
     ao = disk_ao(pixel, s);
 #endif
   }
+  if (u_power != 1.0) ao = pow(ao, u_power);
   imageStore(u_out, q, vec4(ao));
 }

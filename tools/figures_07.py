@@ -1,0 +1,49 @@
+#!/usr/bin/env python3
+"""Chapter 07's plots, from the CSVs 07_ssao_sweep writes (book/figures/), through tools/plot.py.
+
+    python3 tools/figures_07.py [FIGURES_DIR]      (default book/figures)
+
+The Pareto plots: each method's mean |A - truth| on the test view against its AO pass's time,
+untuned (the source's parameters, solid) and tuned on another view (dashed), a point per
+sample count, joined in the order of the sample counts and labelled with them (the tuned
+parameters are in the CSV and the book's table). One plot per scene from the llvmpipe CSV, and
+from the H200's when it is there.
+"""
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from plot import Series, plot, read_csv  # noqa: E402
+
+METHODS = ("classic", "disk", "gtao")
+def pareto(d: Path, csv_name: str, where: str, suffix: str):
+    path = d / csv_name
+    if not path.exists():
+        return
+    notes, rows = read_csv(path)
+    for scene in sorted({r["scene"] for r in rows}):
+        mine = [r for r in rows if r["scene"] == scene]
+        series = []
+        for m in METHODS:
+            for tuning in ("untuned", "tuned"):
+                pts = [(float(r["ao_ms"]), float(r["mean_abs"]), r["samples"])
+                       for r in mine if r["method"] == m and r["tuning"] == tuning]
+                if pts:
+                    series.append(Series(f"{m}, {tuning}", pts, dashed=tuning == "tuned", in_order=True,
+                                         colour=("#1f77b4", "#d62728", "#2ca02c")[METHODS.index(m)]))
+        if not series:
+            continue
+        train, test = mine[0]["train_view"], mine[0]["test_view"]
+        plot(d / f"07_pareto_{scene}{suffix}.svg",
+             f"AO: error against time, {scene} ({where}): tuned on the '{train}' view, measured on '{test}'",
+             notes[0] if notes else "", series, "ms, the AO pass and its blur (log scale)",
+             "mean |A - truth| on the test view", xlog=True, width=900, height=480)
+
+
+def main(d: Path):
+    pareto(d, "07_ssao_tuned_llvmpipe.csv", "llvmpipe", "")
+    pareto(d, "07_ssao_tuned_h200.csv", "NVIDIA H200", "_h200")
+
+
+if __name__ == "__main__":
+    main(Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parent.parent / "book" / "figures")
