@@ -20,3 +20,7 @@ lightpass_image_test(10_frame.scene_without_glass_renders_as_chapter_03 "0 trans
 # The sweep's options (the sweep itself runs on the GPU machine through tools/device-measure).
 lightpass_program_test(10_frame.sweep_unknown_option 2 "unknown option '--fast'" $<TARGET_FILE:10_frame_sweep> --fast)
 lightpass_program_test(10_frame.sweep_bad_layers 2 "--layers must be between 1 and 128" $<TARGET_FILE:10_frame_sweep> --layers 0)
+
+# MSAA with deferred shading (chapters/10_frame/msaa.h): the cross-checks, the edges of a scene
+# known to the pixel, the exact fragment count and the tonemap order at a bright edge.
+lightpass_gtests(10_msaa gl lightpass_10_frame unit/test_10_msaa_gl.cpp)
