@@ -86,6 +86,11 @@ void MsaaFrame::resize(int width, int height, int samples) {
   glNamedFramebufferTexture(radiance_fbo_.id(), GL_DEPTH_STENCIL_ATTACHMENT, stencil_.id(), 0);
   if (glCheckNamedFramebufferStatus(radiance_fbo_.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw Error("the MSAA light target (" + std::to_string(samples) + " samples) is incomplete on this driver");
+  GLint made = 1;  // a renderer may make more samples than asked for: the shaders read exactly N
+  if (samples > 1) glGetTextureLevelParameteriv(radiance_.id(), 0, GL_TEXTURE_SAMPLES, &made);
+  if (made != samples)
+    throw Error("MSAA: asked for " + std::to_string(samples) + " samples per pixel, this renderer made " +
+                std::to_string(made) + "; use " + std::to_string(made));
   if (programs_samples_ != samples) programs_.reset();
 }
 
@@ -96,7 +101,7 @@ std::size_t MsaaFrame::allocated_bytes() const {
   return (gbuffer_->bytes_per_pixel() + 8 + 4) * pixels * samples;  // + RGBA16F light + D24S8
 }
 
-// [render]
+
 void MsaaFrame::render(const FrameCamera& camera, const ch03::FrameOutput& output, const MsaaSettings& s,
                        PassMetrics* metrics) {
   resize(output.width, output.height, s.samples);
@@ -179,7 +184,6 @@ void MsaaFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outpu
     auto pass = timed(metrics, "msaa: light per pixel (stencil 0)");
     glStencilFunc(GL_EQUAL, 0, 0xFF);
     p.per_pixel.use();
-    p.per_pixel.set("u_first_sample_position", positions[0]);
     counted(1, [&] { fullscreen(empty_); });
   }
   {
@@ -221,6 +225,6 @@ void MsaaFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outpu
              .counted = counting};
   // [/counts]
 }
-// [/render]
+
 
 }  // namespace lp::ch10

@@ -42,11 +42,13 @@ struct MsaaSettings {
   MsaaShading shading = MsaaShading::EdgesPerSample;
   ResolveOrder order = ResolveOrder::TonemapFirst;
   MsaaShow show = MsaaShow::Image;
-  // An edge: some sample's distance to the eye differs from sample 0's by more than this
-  // fraction of it (a plane seen at 85 degrees from its normal changes by 0.5-1 % across a
-  // pixel at 320x180 to 1920x1080: it stays unmarked), or its normal turns by more than
-  // normal_degrees, or one sample is sky and another is not.
-  float depth_threshold = 0.02f;
+  // An edge: some sample lies off sample 0's plane (or sample 0 off its plane) by more than
+  // depth_threshold times sample 0's distance to the eye (a step of 1 cm at 1 m), or its
+  // normal turns by more than normal_degrees, or its emissive colour differs (another
+  // material: a window in its wall), or one sample is sky and another is not. The
+  // plane, not the depth: a floor at a grazing angle changes depth by several per cent
+  // across a pixel, yet all its samples lie in one plane.
+  float depth_threshold = 0.01f;
   float normal_degrees = 30.f;
   bool mark_every_pixel = false;  // the cross-check: every pixel shaded per sample
   // Chapter 05's curves (hdr_math.glsl: 0 clamp, 1 Reinhard, 2 extended, 3 ACES) at a fixed

@@ -5,7 +5,7 @@
 // fragment tests here: with them the stencil would be written before the discard.
 #include "02_gbuffer/shaders/gbuffer.glsl"
 
-uniform float u_depth_threshold;  // relative difference of the distance to the eye
+uniform float u_depth_threshold;  // distance off the plane, relative to the distance to the eye
 uniform float u_cos_normal;       // cos of the largest angle between normals
 uniform bool u_mark_all;          // the cross-check: every pixel is an edge
 uniform vec2 u_sample_positions[MSAA_SAMPLES];  // within the pixel, glGetMultisamplefv
@@ -18,10 +18,18 @@ void main() {
   bool edge = u_mark_all;
   for (int i = 1; i < MSAA_SAMPLES && !edge; ++i) {
     Surface s = decode_gbuffer_sample(pixel, i, vec2(pixel) + u_sample_positions[i]);
-    if (s.is_sky != first.is_sky) edge = true;  // geometry against the sky
-    else if (!s.is_sky)
-      edge = abs(distance(gb_eye.xyz, s.position) - first_distance) > u_depth_threshold * first_distance ||
-             dot(s.normal, first.normal) < u_cos_normal;
+    if (s.is_sky != first.is_sky) {
+      edge = true;  // geometry against the sky
+    } else if (!s.is_sky) {
+      // Off each other's plane (not merely at another depth: a floor seen at a grazing angle
+      // changes depth fast across a pixel, yet its samples lie in one plane), or turned.
+      vec3 d = s.position - first.position;
+      float off_plane = max(abs(dot(first.normal, d)), abs(dot(s.normal, d)));
+      // Or another emissive material (a palette code per material: exact): a lit window in
+      // the plane of its wall is an edge that neither depth nor normal sees.
+      edge = off_plane > u_depth_threshold * first_distance || dot(s.normal, first.normal) < u_cos_normal ||
+             s.emissive != first.emissive;
+    }
   }
   if (!edge) discard;
   // [/edge-test]
