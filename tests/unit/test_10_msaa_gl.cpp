@@ -210,3 +210,29 @@ TEST(MsaaGl, ResolvingBeforeTonemappingBrightensABrightEdge) {
     }
   }
 }
+
+// A window size or sample count change mid-run: every buffer follows (G-buffer, light,
+// stencil, programs). Back at the first size and count, the image and the counts are the
+// first ones bit for bit, and the small frame in between marks its own edge column.
+TEST(MsaaGl, SizeAndSampleChangesRebuildEveryBuffer) {
+  constexpr int w = 160, h = 90;
+  Scene s = quads_scene(glm::vec3(0));
+  add_quad(s, 0, 100.5f, 200.f);
+  World world(std::move(s), w, h);
+  const ImageRGBA8 first = world.render(pixel_camera(w, h), {.samples = 4});
+  const MsaaCounts n = world.msaa.counts();
+  OutputTarget small(w / 2, h / 2);
+  world.msaa.render(pixel_camera(w, h), {small.framebuffer(), w / 2, h / 2}, {.samples = 4});
+  EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+  EXPECT_EQ(world.msaa.counts().pixels, std::uint64_t(w / 2 * (h / 2)));
+  // The edge x = 100.5 lies at 50.25 in the half-size frame: the sample 0.125 into column 50
+  // is left of it, the other three right: that column, and only it, is marked.
+  EXPECT_EQ(world.msaa.counts().marked, std::uint64_t(h / 2));
+  world.render(pixel_camera(w, h), {.samples = 1});
+  EXPECT_EQ(world.msaa.counts().marked, 0u);
+  const ImageRGBA8 again = world.render(pixel_camera(w, h), {.samples = 4});
+  EXPECT_EQ(world.msaa.counts().marked, n.marked);
+  EXPECT_EQ(world.msaa.counts().per_pixel, n.per_pixel);
+  const CompareResult r = compare(again, first, {.threshold = 0, .max_failing_fraction = 0});
+  EXPECT_TRUE(r.passed) << r.summary();
+}
