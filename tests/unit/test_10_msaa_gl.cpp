@@ -236,3 +236,30 @@ TEST(MsaaGl, SizeAndSampleChangesRebuildEveryBuffer) {
   const CompareResult r = compare(again, first, {.threshold = 0, .max_failing_fraction = 0});
   EXPECT_TRUE(r.passed) << r.summary();
 }
+
+// Thin geometry: a quad 0.2 pixels wide, x = 60.55 .. 60.75, between the pixel centre of
+// column 60 and its sample at 0.875. With one sample it covers no sample at all and is not
+// drawn; with 4 it covers the sample at 0.625 alone: column 60 is marked, lit per sample, and
+// shows a quarter of the quad; every other pixel stays sky.
+TEST(MsaaGl, ThinGeometryIsCaughtBySamplesTheCentreMisses) {
+  constexpr int w = 160, h = 90, column = 60;
+  Scene s = quads_scene(glm::vec3(1));
+  add_quad(s, 0, 60.55f, 60.75f);
+  World world(std::move(s), w, h);
+  const ImageRGBA8 one = world.render(pixel_camera(w, h), {.samples = 1});
+  const ImageRGBA8 four = world.render(pixel_camera(w, h), {.samples = 4});
+  EXPECT_EQ(world.msaa.counts().marked, std::uint64_t(h));
+  EXPECT_EQ(world.msaa.counts().per_sample, 4u * h);
+  const std::uint8_t* sky = one.at(0, 0);
+  int lit_in_column = 0, off_sky = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_EQ(one.at(x, y)[c], sky[c]) << "one sample drew the thin quad at " << x << ", " << y;
+        if (x != column && four.at(x, y)[c] != sky[c]) ++off_sky;
+      }
+      if (x == column && four.at(x, y)[0] > sky[0] + 50) ++lit_in_column;
+    }
+  EXPECT_EQ(lit_in_column, h);
+  EXPECT_EQ(off_sky, 0);
+}
