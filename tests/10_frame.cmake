@@ -42,3 +42,14 @@ lightpass_program_test(10_frame.whole_bench_times_every_stage 0
 lightpass_program_test(10_frame.whole_says_what_it_does_not_run 0
   "not run  neon tubes [(]chapter 04[)] [(]no neon tubes[)]"
   ${P10} --headless --mode whole --size 64x36 --scene assets/atrium/atrium.gltf --out ${CMAKE_BINARY_DIR}/out/10_whole_atrium.png)
+# MSAA with deferred shading (chapters/10_frame/msaa.h): the cross-checks, the edges of a scene
+# known to the pixel, the exact fragment count and the tonemap order at a bright edge.
+lightpass_gtests(10_msaa gl lightpass_10_frame unit/test_10_msaa_gl.cpp)
+# The program with --msaa 4: the street is chapter 03's frame except at its edges, where the
+# samples are averaged (a mean difference of a few steps over the image, and more than none).
+lightpass_image_test(10_frame.msaa_4_is_chapter_03s_street_with_resolved_edges "MSAA 4 samples" ${CMAKE_BINARY_DIR}/out/10_msaa.png
+  --near ${CMAKE_SOURCE_DIR}/tests/reference/03_light_volumes/street_level_stencil.png 4
+  --differs-from ${CMAKE_SOURCE_DIR}/tests/reference/03_light_volumes/street_level_stencil.png 0.5
+  RUN ${P10} --headless --size 320x180 --scene assets/street/street.gltf --view street_level --msaa 4 --out ${CMAKE_BINARY_DIR}/out/10_msaa.png)
+lightpass_program_test(10_frame.msaa_bad_samples 2 "msaa" ${P10} --msaa 3)
+lightpass_program_test(10_frame.sweep_bad_part 2 "--part must be all, transparency or msaa" $<TARGET_FILE:10_frame_sweep> --part everything)

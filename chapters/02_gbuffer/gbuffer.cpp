@@ -11,7 +11,12 @@ namespace lp::ch02 {
 
 namespace {
 
-gl::Texture make_target(GLenum format, int w, int h) {
+gl::Texture make_target(GLenum format, int w, int h, int samples = 1) {
+  if (samples > 1) {  // a multisampled texture has no sampler state: texelFetch only
+    gl::Texture t(GL_TEXTURE_2D_MULTISAMPLE);
+    glTextureStorage2DMultisample(t.id(), samples, format, w, h, GL_TRUE);
+    return t;
+  }
   gl::Texture t = gl::make_texture_2d(format, w, h);
   glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
@@ -23,17 +28,18 @@ gl::Texture make_target(GLenum format, int w, int h) {
 }  // namespace
 
 // [gbuffer-targets]
-GBuffer::GBuffer(int width, int height, const Layout& layout)
-    : width_(width), height_(height), layout_(layout),
-      albedo_(make_target(layout.colour_format, width, height)),
-      specular_(make_target(layout.colour_format, width, height)),
-      normal_(make_target(normal_format(layout.normal), width, height)),
-      depth_stencil_(make_target(depth_format(layout.depth), width, height)),
-      extra_(layout.depth_target      ? make_target(GL_R32F, width, height)
-             : layout.stored_position ? make_target(GL_RGBA32F, width, height)
+GBuffer::GBuffer(int width, int height, const Layout& layout, int samples)
+    : width_(width), height_(height), layout_(layout), samples_(samples),
+      albedo_(make_target(layout.colour_format, width, height, samples)),
+      specular_(make_target(layout.colour_format, width, height, samples)),
+      normal_(make_target(normal_format(layout.normal), width, height, samples)),
+      depth_stencil_(make_target(depth_format(layout.depth), width, height, samples)),
+      extra_(layout.depth_target      ? make_target(GL_R32F, width, height, samples)
+             : layout.stored_position ? make_target(GL_RGBA32F, width, height, samples)
                                       : gl::Texture(GL_TEXTURE_2D)),
       frame_(gl::make_buffer(nullptr, sizeof(GBufferFrame), GL_DYNAMIC_STORAGE_BIT)) {
   if (width <= 0 || height <= 0) throw Error("a G-buffer needs at least one pixel");
+  if (samples < 1) throw Error("a G-buffer needs at least one sample per pixel (asked for " + std::to_string(samples) + ")");
   // Sampling the depth-stencil texture returns depth (not stencil).
   glTextureParameteri(depth_stencil_.id(), GL_DEPTH_STENCIL_TEXTURE_MODE, GL_DEPTH_COMPONENT);
   GLuint fbo = fbo_.id();
@@ -50,7 +56,7 @@ GBuffer::GBuffer(int width, int height, const Layout& layout)
   glNamedFramebufferTexture(fbo, GL_DEPTH_STENCIL_ATTACHMENT, depth_stencil_.id(), 0);
   if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw Error("the G-buffer framebuffer (layout " + layout.name + ", " + std::to_string(width) + "x" +
-                std::to_string(height) + ") is incomplete on this driver");
+                std::to_string(height) + ", " + std::to_string(samples) + " samples) is incomplete on this driver");
   set_frame(FrameCamera{}, {});
 }
 // [/gbuffer-targets]
@@ -86,9 +92,10 @@ void GBuffer::bind_textures(GLuint first_unit) const {
 }
 
 // [gbuffer-defines]
-std::vector<std::string> gbuffer_defines(const Layout& layout, GLuint first_unit) {
+std::vector<std::string> gbuffer_defines(const Layout& layout, GLuint first_unit, int samples) {
   std::vector<std::string> d = {"GBUFFER_FIRST_UNIT " + std::to_string(first_unit),
                                 "GBUFFER_FRAME_BINDING " + std::to_string(GBuffer::kFrameBinding)};
+  if (samples > 1) d.push_back("GBUFFER_SAMPLES " + std::to_string(samples));  // chapter 10's MSAA
   switch (layout.normal) {
     case NormalEncoding::Float: d.push_back("GBUFFER_NORMAL_FLOAT 1"); break;
     case NormalEncoding::Xyz10: d.push_back("GBUFFER_NORMAL_XYZ 10"); break;
@@ -106,7 +113,7 @@ std::vector<std::string> gbuffer_defines(const Layout& layout, GLuint first_unit
 }
 // [/gbuffer-defines]
 
-std::vector<std::string> GBuffer::shader_defines(GLuint first_unit) const { return gbuffer_defines(layout_, first_unit); }
+std::vector<std::string> GBuffer::shader_defines(GLuint first_unit) const { return gbuffer_defines(layout_, first_unit, samples_); }
 
 void GBuffer::set_frame(const FrameCamera& camera, const std::vector<glm::vec3>& palette) {
   camera_ = camera_for(layout_.depth, camera);

@@ -62,17 +62,20 @@ struct GBufferFrame {
 
 // The #defines gbuffer.glsl (and the geometry pass) need for a layout, e.g.
 // {"GBUFFER_FIRST_UNIT 0", "GBUFFER_NORMAL_OCT 16", ...}.
-std::vector<std::string> gbuffer_defines(const Layout& layout, GLuint first_unit = 0);
+std::vector<std::string> gbuffer_defines(const Layout& layout, GLuint first_unit = 0, int samples = 1);
 
 class GBuffer {
  public:
   static constexpr GLuint kFrameBinding = 7;  // layout(std140, binding = 7) uniform GBufferFrame
   static constexpr int kUnits = 5;            // texture units used from first_unit on
 
-  GBuffer(int width, int height, const Layout& layout = our_layout());
+  // `samples` > 1: every target multisampled (GL_TEXTURE_2D_MULTISAMPLE, chapter 10's MSAA),
+  // and shader_defines() adds GBUFFER_SAMPLES so gbuffer.glsl reads them as sampler2DMS.
+  GBuffer(int width, int height, const Layout& layout = our_layout(), int samples = 1);
 
   int width() const { return width_; }
   int height() const { return height_; }
+  int samples() const { return samples_; }
   const Layout& layout() const { return layout_; }
   std::size_t bytes_per_pixel() const { return ch02::bytes_per_pixel(layout_); }
 
@@ -104,6 +107,7 @@ class GBuffer {
  private:
   int width_, height_;
   Layout layout_;
+  int samples_;
   gl::Framebuffer fbo_;
   gl::Texture albedo_, specular_, normal_, depth_stencil_, extra_;
   gl::Buffer frame_;

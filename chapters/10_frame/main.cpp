@@ -3,7 +3,9 @@
 // image with a forward pass lit by the same lights: sorted back to front, or weighted blended
 // order-independent transparency (WBOIT), or the exact per-pixel order composited on the CPU
 // (the ground truth). `--show` draws WBOIT's two targets, or a method's error against the
-// exact order. The whole frame (shadows, AO, HDR, ...) and MSAA are assembled here later.
+// exact order. `--msaa 4` draws the opaque frame with MSAA instead (msaa.h: edges marked in the
+// stencil, lit per sample there only; `--msaa-view` shows the edges or the wrong resolve
+// order). `--mode whole` draws the whole frame instead: every stage of the book (whole_frame.h).
 #include <chrono>
 #include <memory>
 #include <iostream>
@@ -12,6 +14,7 @@
 
 #include "chapters/03_light_volumes/deferred_frame.h"
 #include "chapters/03_light_volumes/light_radius.h"
+#include "chapters/10_frame/msaa.h"
 #include "chapters/10_frame/transparency.h"
 #include "chapters/10_frame/whole_frame.h"
 #include "common/app.h"
@@ -47,7 +50,13 @@ const CliSpec kCli{
               {"sun", "whole: multiplies directional lights (chapter 05)", 1, 0, 1000},
               {"glow", "whole: multiplies emissive surfaces (chapter 05)", 8, 0, 10000},
               choice_knob("bloom", "whole: chapter 05's bloom: off, after tonemapping, or before (energy-conserving)",
-                          {"off", "after", "before"})}};
+                          {"off", "after", "before"}),
+              choice_knob("msaa", "samples per pixel: 1 is the frame above; 2 or 4 draw the opaque frame with MSAA "
+                                  "(deferred: lit per sample only on the edges; no glass yet)",
+                          {"1", "2", "4"}),
+              choice_knob("msaa-view", "with --msaa 2 or 4: the image, the edges marked for per-sample light (red), "
+                                       "or the samples resolved before the tonemap (wrong on bright edges)",
+                          {"image", "edges", "resolve-first"})}};
 
 // The error views draw |method - exact| as a heat map whose first level (one 8-bit step,
 // colour value 64) is most of what they show: half-float and 8-bit rounding of each layer
@@ -106,6 +115,8 @@ int main(int argc, char** argv) {
     TransparencyStage glass(frame, app.scene_gpu());
     frame.add_stage(glass);
     std::unique_ptr<WholeFrame> whole;  // --mode whole: made when first asked for
+    MsaaFrame msaa(app.scene_gpu());  // --msaa 2 or 4: the same lights
+    msaa.set_lights(frame.volumes().lights());
 
     while (app.next_frame()) {
       const Frame& f = app.frame();
@@ -113,8 +124,20 @@ int main(int argc, char** argv) {
       if (f.reload_shaders) {
         frame.reload_shaders();
         glass.reload_shaders();
+        msaa.reload_shaders();
       }
       const ch03::FrameOutput output{f.target, f.width, f.height};
+      if (const int samples = std::stoi(f.choice("msaa")); samples > 1) {
+        const std::string& view = f.choice("msaa-view");
+        msaa.render(f.camera, output,
+                    {.samples = samples, .order = view == "resolve-first" ? ResolveOrder::ResolveFirst : ResolveOrder::TonemapFirst,
+                     .show = view == "edges" ? MsaaShow::Edges : MsaaShow::Image},
+                    &app.metrics());
+        app.metrics().set_allocation("MSAA G-buffer + light + stencil, all samples", msaa.allocated_bytes());
+        if (std::ostream& out = app.report())
+          out << "MSAA " << samples << " samples (deferred, per sample on the edges; glass not drawn), " << view << '\n';
+        continue;
+      }
       const std::string& which = f.choice("transparency");
       if (f.mode == "whole") {
         // The whole frame: every chapter's stage in one deferred frame (whole_frame.cpp).

@@ -5,16 +5,25 @@
 // per-pixel order, in 8-bit steps over the pixels with glass. Writes
 // book/figures/10_transparency_llvmpipe.csv (or 10_transparency.csv on a GPU), each row naming
 // the renderer, size and frames.
+//
+// Then MSAA with deferred shading (msaa.h), on the street: no MSAA, 4 samples lit per sample
+// on the edges only, 4 samples lit per sample everywhere, and the edges with the wrong resolve
+// order, each against a supersampled ground truth (the frame at 4x the width and height, one
+// sample, each pixel's display value averaged over its 4x4 block): error in 8-bit steps,
+// fragments shaded, edges marked, and the time of the MSAA passes. Writes 10_msaa_llvmpipe.csv
+// (or 10_msaa.csv), and on llvmpipe the book's pictures of the edges and of the resolve order.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "chapters/03_light_volumes/deferred_frame.h"
 #include "chapters/03_light_volumes/light_radius.h"
+#include "chapters/10_frame/msaa.h"
 #include "chapters/10_frame/transparency.h"
 #include "common/context.h"
 #include "common/error.h"
@@ -34,6 +43,8 @@ struct Settings {
   int frames = 10;
   int max_layers = 64;
   std::string renderer;
+  std::string part = "all";                     // all, transparency, msaa
+  int msaa_width = 0, msaa_height = 0;          // 0: 1920x1080 on a GPU, 320x180 on llvmpipe
 };
 
 // [stack]
@@ -118,29 +129,150 @@ void sweep(const Settings& s, std::ofstream& csv) {
   }
 }
 
+
+// [msaa-truth]
+// The ground truth: the frame at `factor` times the width and height, one sample per pixel,
+// its linear display values (after the tonemap) averaged over each factor x factor block.
+ImageRGBA8 supersampled(ch10::MsaaFrame& msaa, const FrameCamera& camera, int w, int h, int factor) {
+  const int W = w * factor, H = h * factor;
+  gl::Texture colour = gl::make_texture_2d(GL_RGBA32F, W, H);
+  gl::Framebuffer fbo;
+  glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, colour.id(), 0);
+  msaa.render(camera, {fbo.id(), W, H}, {.samples = 1});
+  std::vector<float> big(std::size_t(W) * std::size_t(H) * 4);
+  glGetTextureImage(colour.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(big.size() * sizeof(float)), big.data());
+  ImageF mean = ImageF::blank(w, h, 3);
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x)
+      for (int c = 0; c < 3; ++c)
+        mean.at(x / factor, h - 1 - y / factor, c) += big[(std::size_t(y) * W + x) * 4 + c] / float(factor * factor);
+  return to_srgb8(mean);
+}
+// [/msaa-truth]
+
+// A picture for the book: `image` cropped around (cx, cy) and enlarged `zoom` times.
+ImageRGBA8 zoomed(const ImageRGBA8& image, int cx, int cy, int w, int h, int zoom) {
+  ImageRGBA8 out = ImageRGBA8::blank(w * zoom, h * zoom);
+  const int x0 = std::clamp(cx - w / 2, 0, image.width - w), y0 = std::clamp(cy - h / 2, 0, image.height - h);
+  for (int y = 0; y < h * zoom; ++y)
+    for (int x = 0; x < w * zoom; ++x)
+      std::copy_n(image.at(x0 + x / zoom, y0 + y / zoom), 4, out.at(x, y));
+  return out;
+}
+
+ImageRGBA8 side_by_side(const std::vector<ImageRGBA8>& images, int gap) {
+  int w = -gap;
+  for (const auto& i : images) w += i.width + gap;
+  ImageRGBA8 out = ImageRGBA8::blank(w, images[0].height);
+  for (auto& p : out.pixels) p = 255;
+  int x0 = 0;
+  for (const auto& i : images) {
+    for (int y = 0; y < i.height; ++y)
+      for (int x = 0; x < i.width; ++x) std::copy_n(i.at(x, y), 4, out.at(x0 + x, y));
+    x0 += i.width + gap;
+  }
+  return out;
+}
+
+void sweep_msaa(const Settings& s, bool software) {
+  const int w = s.msaa_width ? s.msaa_width : software ? 320 : 1920;
+  const int h = s.msaa_height ? s.msaa_height : software ? 180 : 1080;
+  const std::string path = s.out + (software ? "/10_msaa_llvmpipe.csv" : "/10_msaa.csv");
+  std::ofstream csv(path);
+  csv << "# " << (software ? "llvmpipe CPU time: " : "GPU time: ") << s.renderer << ", " << w << "x" << h
+      << "; the street (street_level); ms: the MSAA frame's passes, mean and fastest of " << s.frames << " frames\n"
+      << "# error: against the frame at 4x the width and height (16 samples per pixel, display values box-filtered), "
+         "in 8-bit steps over all pixels\n"
+      << "# shaded: fragment shader invocations of the light passes (exact, GL_SAMPLES_PASSED); marked: edge pixels\n"
+      << "mode,samples,marked,marked_percent,shaded,shaded_per_pixel,ms,min_ms,error_mean,error_p99,error_max,psnr_db,"
+      << csv_measure_columns() << "\n";
+  Scene scene = load_scene(from_root("assets/street/street.gltf"));
+  SceneGpu gpu(scene);
+  ch03::DeferredFrame frame(gpu);
+  ch03::use_lights(frame, scene, scene.lights, false);
+  ch10::MsaaFrame msaa(gpu);
+  msaa.set_lights(frame.volumes().lights());
+  const FrameCamera camera = frame_camera(scene.camera("street_level"), float(w) / h);
+  const ImageRGBA8 truth = supersampled(msaa, camera, w, h, 4);
+  OutputTarget target(w, h);
+  const ch03::FrameOutput output{target.framebuffer(), w, h};
+  struct Mode {
+    const char* name;
+    ch10::MsaaSettings settings;
+  };
+  const std::vector<Mode> modes = {
+      {"no_msaa", {.samples = 1}},
+      {"edges_per_sample", {.samples = 4}},
+      {"per_sample_everywhere", {.samples = 4, .shading = ch10::MsaaShading::PerSampleEverywhere}},
+      {"edges_resolve_first", {.samples = 4, .order = ch10::ResolveOrder::ResolveFirst}}};
+  std::map<std::string, ImageRGBA8> images;
+  for (const Mode& mode : modes) {
+    msaa.render(camera, output, mode.settings);  // counts (no metrics), then the image
+    const ch10::MsaaCounts n = msaa.counts();
+    images[mode.name] = target.read();
+    const CompareResult e = compare(images[mode.name], truth);
+    PassMetrics metrics;
+    const Measurement m = measure(metrics, [&] { msaa.render(camera, output, mode.settings, &metrics); }, {.frames = s.frames});
+    double ms = 0, min_ms = 0;
+    for (const PassMeasurement& p : m.passes)
+      if (p.name.rfind("msaa:", 0) == 0) ms += p.mean_ms, min_ms += p.min_ms;
+    csv << mode.name << ',' << mode.settings.samples << ',' << n.marked << ',' << 100.0 * n.marked_fraction() << ','
+        << n.shaded() << ',' << double(n.shaded()) / double(n.pixels) << ',' << ms << ',' << min_ms << ',' << e.mean_error
+        << ',' << e.p99_error << ',' << e.max_error << ',' << e.psnr_db << ','
+        << csv_measure_values(s.renderer, w, h, m.frames) << '\n';
+    std::cout << "  msaa " << mode.name << ": " << n.marked << " marked, " << n.shaded() << " shaded, " << ms
+              << " ms, error mean " << e.mean_error << " p99 " << e.p99_error << std::endl;
+  }
+  std::cout << "wrote " << path << '\n';
+  if (!software) return;
+  // The pictures (llvmpipe's, committed with the book): the edges, and the resolve orders
+  // where they differ most, enlarged next to the ground truth.
+  msaa.render(camera, output, {.samples = 4, .show = ch10::MsaaShow::Edges});
+  save_png(s.out + "/10_msaa_edges.png", target.read());
+  const ImageRGBA8& right = images["edges_per_sample"];
+  const ImageRGBA8& wrong = images["edges_resolve_first"];
+  int best = -1, bx = 0, by = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      int d = 0;
+      for (int c = 0; c < 3; ++c) d += std::abs(int(right.at(x, y)[c]) - int(wrong.at(x, y)[c]));
+      if (d > best) best = d, bx = x, by = y;
+    }
+  save_png(s.out + "/10_msaa_order.png",
+           side_by_side({zoomed(images["no_msaa"], bx, by, 24, 16, 8), zoomed(right, bx, by, 24, 16, 8),
+                         zoomed(wrong, bx, by, 24, 16, 8), zoomed(truth, bx, by, 24, 16, 8)}, 8));
+  std::cout << "wrote 10_msaa_edges.png, 10_msaa_order.png (around pixel " << bx << ", " << by << ")\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   Settings s;
   return run_sweep(argc, argv, "10_frame_sweep", [&](SweepArgs& args) {
-    args.text("--out", s.out).size("--size", s.width, s.height).integer("--frames", s.frames).integer("--layers", s.max_layers);
+    args.text("--out", s.out).size("--size", s.width, s.height).integer("--frames", s.frames).integer("--layers", s.max_layers)
+        .text("--part", s.part).size("--msaa-size", s.msaa_width, s.msaa_height);
   }, [&] {
     if (s.frames < 1) throw UsageError("--frames must be at least 1");
     if (s.max_layers < 1 || s.max_layers > 128) throw UsageError("--layers must be between 1 and 128");
+    if (s.part != "all" && s.part != "transparency" && s.part != "msaa")
+      throw UsageError("--part must be all, transparency or msaa (got '" + s.part + "')");
     std::filesystem::create_directories(s.out);
     auto context = Context::create({.headless = true, .width = s.width, .height = s.height});
     s.renderer = context->renderer();
     const std::string timer = (context->is_software() ? "llvmpipe CPU time: " : "GPU time: ") + context->renderer();
     std::cout << timer << '\n';
-    const std::string path = s.out + (context->is_software() ? "/10_transparency_llvmpipe.csv" : "/10_transparency.csv");
-    std::ofstream csv(path);
-    csv << "# " << timer << ", " << s.width << "x" << s.height << "; the glass scene's panes replaced by a stack of N\n"
-        << "# ms: the method's passes (sorted: one; wboit: accumulate + composite), mean and fastest of " << s.frames
-        << " frames; fragments: what they shaded and composited\n"
-        << "# errors against the exact per-pixel order, in 8-bit steps, over the pixels with glass\n"
-        << "layers,deepest,method,ms,min_ms,fragments,glass_pixels,error_mean,error_p99,error_max,"
-        << csv_measure_columns() << "\n";
-    sweep(s, csv);
-    std::cout << "wrote " << path << '\n';
+    if (s.part != "msaa") {
+      const std::string path = s.out + (context->is_software() ? "/10_transparency_llvmpipe.csv" : "/10_transparency.csv");
+      std::ofstream csv(path);
+      csv << "# " << timer << ", " << s.width << "x" << s.height << "; the glass scene's panes replaced by a stack of N\n"
+          << "# ms: the method's passes (sorted: one; wboit: accumulate + composite), mean and fastest of " << s.frames
+          << " frames; fragments: what they shaded and composited\n"
+          << "# errors against the exact per-pixel order, in 8-bit steps, over the pixels with glass\n"
+          << "layers,deepest,method,ms,min_ms,fragments,glass_pixels,error_mean,error_p99,error_max,"
+          << csv_measure_columns() << "\n";
+      sweep(s, csv);
+      std::cout << "wrote " << path << '\n';
+    }
+    if (s.part != "transparency") sweep_msaa(s, context->is_software());
   });
 }

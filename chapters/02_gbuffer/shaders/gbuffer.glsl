@@ -9,12 +9,21 @@
 #error "gbuffer.glsl needs the defines of GBuffer::shader_defines()"
 #endif
 
-layout(binding = GBUFFER_FIRST_UNIT + 0) uniform sampler2D gb_albedo;    // rgb albedo, a emissive code
-layout(binding = GBUFFER_FIRST_UNIT + 1) uniform sampler2D gb_specular;  // rgb colour, a exponent code
-layout(binding = GBUFFER_FIRST_UNIT + 2) uniform sampler2D gb_normal;
-layout(binding = GBUFFER_FIRST_UNIT + 3) uniform sampler2D gb_depth;     // window depth
+// Chapter 10's MSAA: with GBUFFER_SAMPLES every target is multisampled and each sample is
+// read apart (decode_gbuffer_sample); single-sampled, the sample index is 0.
+#ifdef GBUFFER_SAMPLES
+#define GB_SAMPLER sampler2DMS
+#define GB_FETCH(t, pixel, sample) texelFetch(t, pixel, sample)
+#else
+#define GB_SAMPLER sampler2D
+#define GB_FETCH(t, pixel, sample) texelFetch(t, pixel, 0)
+#endif
+layout(binding = GBUFFER_FIRST_UNIT + 0) uniform GB_SAMPLER gb_albedo;    // rgb albedo, a emissive code
+layout(binding = GBUFFER_FIRST_UNIT + 1) uniform GB_SAMPLER gb_specular;  // rgb colour, a exponent code
+layout(binding = GBUFFER_FIRST_UNIT + 2) uniform GB_SAMPLER gb_normal;
+layout(binding = GBUFFER_FIRST_UNIT + 3) uniform GB_SAMPLER gb_depth;     // window depth
 #ifdef GBUFFER_STORED_POSITION
-layout(binding = GBUFFER_FIRST_UNIT + 4) uniform sampler2D gb_position;  // the float reference only
+layout(binding = GBUFFER_FIRST_UNIT + 4) uniform GB_SAMPLER gb_position;  // the float reference only
 #endif
 
 // [frame-block-glsl]
@@ -68,12 +77,14 @@ vec3 decode_normal(vec4 stored) {
 }
 
 // [decode-gbuffer]
-Surface decode_gbuffer(ivec2 pixel) {
+// One sample of a pixel; `at` is where in the window it lies (the pixel centre, or a sample's
+// own position: vec2(pixel) + gl_SamplePosition).
+Surface decode_gbuffer_sample(ivec2 pixel, int sample_index, vec2 at) {
   Surface s;
-  vec4 albedo = texelFetch(gb_albedo, pixel, 0);
-  vec4 specular = texelFetch(gb_specular, pixel, 0);
-  vec4 normal = texelFetch(gb_normal, pixel, 0);
-  s.depth = texelFetch(gb_depth, pixel, 0).r;
+  vec4 albedo = GB_FETCH(gb_albedo, pixel, sample_index);
+  vec4 specular = GB_FETCH(gb_specular, pixel, sample_index);
+  vec4 normal = GB_FETCH(gb_normal, pixel, sample_index);
+  s.depth = GB_FETCH(gb_depth, pixel, sample_index).r;
   // [sky-test]
 #ifdef GBUFFER_CONTROL_BITS
   s.is_sky = normal.a < 0.5;  // the control value: 0 where the clear left it, 1 under geometry
@@ -81,9 +92,9 @@ Surface decode_gbuffer(ivec2 pixel) {
   s.is_sky = s.depth == gb_depth_info.z;  // the depth buffer still holds its clear value
 #endif
   // [/sky-test]
-  s.position = reconstruct_position(vec2(pixel) + 0.5, s.is_sky ? gb_depth_info.z : s.depth);
+  s.position = reconstruct_position(at, s.is_sky ? gb_depth_info.z : s.depth);
 #ifdef GBUFFER_STORED_POSITION
-  if (!s.is_sky) s.position = texelFetch(gb_position, pixel, 0).xyz;
+  if (!s.is_sky) s.position = GB_FETCH(gb_position, pixel, sample_index).xyz;
 #endif
   if (s.is_sky) {  // defined values, never NaN: nothing here is lit
     s.normal = vec3(0.0);
@@ -106,6 +117,9 @@ Surface decode_gbuffer(ivec2 pixel) {
 #endif
   return s;
 }
+
+// The pixel: its (first) sample, at its centre.
+Surface decode_gbuffer(ivec2 pixel) { return decode_gbuffer_sample(pixel, 0, vec2(pixel) + 0.5); }
 
 Surface decode_gbuffer(vec2 uv) {
   return decode_gbuffer(ivec2(clamp(floor(uv * gb_size.xy), vec2(0.0), gb_size.xy - 1.0)));

@@ -1,0 +1,230 @@
+#include "chapters/10_frame/msaa.h"
+
+#include <cmath>
+#include <vector>
+
+#include "chapters/01_forward/ground_truth.h"
+#include "common/error.h"
+
+namespace lp::ch10 {
+
+namespace {
+
+constexpr GLuint kDirectionalBinding = 0, kLocalBinding = 1;
+
+struct LocalLight {  // mirrors msaa_light.glsl
+  ch01::GpuLight light;
+  glm::vec4 cut;
+};
+static_assert(sizeof(LocalLight) == 80);
+
+gl::Texture make_target(GLenum format, int w, int h, int samples) {
+  if (samples > 1) {
+    gl::Texture t(GL_TEXTURE_2D_MULTISAMPLE);
+    glTextureStorage2DMultisample(t.id(), samples, format, w, h, GL_TRUE);
+    return t;
+  }
+  return gl::make_texture_2d(format, w, h);
+}
+
+// Where each sample lies within its pixel (0..1), as the rasteriser places them.
+std::vector<glm::vec2> query_sample_positions(GLuint framebuffer, int samples) {
+  std::vector<glm::vec2> p(std::size_t(samples), glm::vec2(0.5f));
+  if (samples == 1) return p;
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+  for (int i = 0; i < samples; ++i) glGetMultisamplefv(GL_SAMPLE_POSITION, GLuint(i), &p[std::size_t(i)].x);
+  return p;
+}
+
+// Fragments the frame's passes run: a full-screen triangle, no depth test, no culling.
+void fullscreen(const gl::VertexArray& empty) {
+  glBindVertexArray(empty.id());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+}  // namespace
+
+MsaaFrame::MsaaFrame(const SceneGpu& scene)
+    : scene_(scene), geometry_(scene), ambient_(scene.scene().ambient), background_(ch01::kBackground) {}
+
+void MsaaFrame::reload_shaders() {
+  geometry_.reload_shaders();
+  programs_.reset();
+}
+
+void MsaaFrame::set_lights(const ch03::LightSet& lights) {
+  std::vector<ch01::GpuLight> directional = lights.directional;
+  std::vector<LocalLight> local;  // chapter 03's light order: points, cones, wide spots
+  for (const auto& p : lights.points) local.push_back({ch03::unpack(p), glm::vec4(p.position_radius.w, 0, 0, 0)});
+  for (const auto& s : lights.cones) local.push_back({ch03::unpack(s), glm::vec4(s.position_radius.w, 0, 0, 0)});
+  for (const auto& s : lights.wide_spots) local.push_back({ch03::unpack(s), glm::vec4(s.position_radius.w, 0, 0, 0)});
+  directional_count_ = int(directional.size());
+  local_count_ = int(local.size());
+  if (directional.empty()) directional.resize(1);  // a buffer of no bytes cannot be bound
+  if (local.empty()) local.resize(1);
+  directional_ = gl::make_buffer(directional.data(), directional.size() * sizeof(ch01::GpuLight));
+  local_ = gl::make_buffer(local.data(), local.size() * sizeof(LocalLight));
+}
+
+void MsaaFrame::resize(int width, int height, int samples) {
+  if (width <= 0 || height <= 0)
+    throw Error("the MSAA frame needs at least one pixel (asked for " + std::to_string(width) + "x" +
+                std::to_string(height) + ")");
+  GLint max_samples = 0;
+  glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+  if (samples != 1 && samples != 2 && samples != 4 && samples != 8)
+    throw Error("MSAA: " + std::to_string(samples) + " samples per pixel: use 1, 2, 4 or 8");
+  if (samples > max_samples)
+    throw Error("MSAA: " + std::to_string(samples) + " samples per pixel, but this renderer has at most " +
+                std::to_string(max_samples));
+  if (gbuffer_ && gbuffer_->width() == width && gbuffer_->height() == height && gbuffer_->samples() == samples) return;
+  gbuffer_ = std::make_unique<ch02::GBuffer>(width, height, ch02::our_layout(), samples);
+  radiance_ = make_target(GL_RGBA16F, width, height, samples);
+  stencil_ = make_target(GL_DEPTH24_STENCIL8, width, height, samples);
+  radiance_fbo_ = gl::Framebuffer();
+  glNamedFramebufferTexture(radiance_fbo_.id(), GL_COLOR_ATTACHMENT0, radiance_.id(), 0);
+  glNamedFramebufferTexture(radiance_fbo_.id(), GL_DEPTH_STENCIL_ATTACHMENT, stencil_.id(), 0);
+  if (glCheckNamedFramebufferStatus(radiance_fbo_.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw Error("the MSAA light target (" + std::to_string(samples) + " samples) is incomplete on this driver");
+  GLint made = 1;  // a renderer may make more samples than asked for: the shaders read exactly N
+  if (samples > 1) glGetTextureLevelParameteriv(radiance_.id(), 0, GL_TEXTURE_SAMPLES, &made);
+  if (made != samples)
+    throw Error("MSAA: asked for " + std::to_string(samples) + " samples per pixel, this renderer made " +
+                std::to_string(made) + "; use " + std::to_string(made));
+  if (programs_samples_ != samples) programs_.reset();
+}
+
+std::size_t MsaaFrame::allocated_bytes() const {
+  if (!gbuffer_) return 0;
+  const std::size_t samples = std::size_t(gbuffer_->samples());
+  const std::size_t pixels = std::size_t(gbuffer_->width()) * std::size_t(gbuffer_->height());
+  return (gbuffer_->bytes_per_pixel() + 8 + 4) * pixels * samples;  // + RGBA16F light + D24S8
+}
+
+
+void MsaaFrame::render(const FrameCamera& camera, const ch03::FrameOutput& output, const MsaaSettings& s,
+                       PassMetrics* metrics) {
+  resize(output.width, output.height, s.samples);
+  if (!programs_) {
+    std::vector<std::string> d = gbuffer_->shader_defines(0);
+    for (const std::string& x : ch03::ShaderHooks{}.defines()) d.push_back(x);
+    d.push_back("MSAA_SAMPLES " + std::to_string(s.samples));
+    const ShaderStage vs{GL_VERTEX_SHADER, "02_gbuffer/shaders/fullscreen.vert"};
+    auto per_sample = d;
+    per_sample.push_back("PER_SAMPLE 1");
+    programs_ = std::make_unique<Programs>(Programs{
+        ShaderProgram({vs, {GL_FRAGMENT_SHADER, "10_frame/shaders/msaa_edges.frag"}}, d),
+        ShaderProgram({vs, {GL_FRAGMENT_SHADER, "10_frame/shaders/msaa_shade.frag"}}, d),
+        ShaderProgram({vs, {GL_FRAGMENT_SHADER, "10_frame/shaders/msaa_shade.frag"}}, per_sample),
+        ShaderProgram({vs, {GL_FRAGMENT_SHADER, "10_frame/shaders/msaa_resolve.frag"}}, d),
+        ShaderProgram({vs, {GL_FRAGMENT_SHADER, "10_frame/shaders/msaa_mark.frag"}}, d)});
+    programs_samples_ = s.samples;
+  }
+  Programs& p = *programs_;
+  positions_ = query_sample_positions(radiance_fbo_.id(), s.samples);
+  const std::vector<glm::vec2>& positions = positions_;
+  // Exact counts (no metrics: their occlusion queries and ours cannot both be active).
+  const bool counting = metrics == nullptr;
+  std::uint64_t samples_passed[3] = {0, 0, 0};  // edges, per pixel, per sample
+  auto counted = [&](int which, auto&& draw) {
+    if (!counting) return draw();
+    gl::Query q(GL_SAMPLES_PASSED);
+    glBeginQuery(GL_SAMPLES_PASSED, q.id());
+    draw();
+    glEndQuery(GL_SAMPLES_PASSED);
+    samples_passed[which] = query_result_u64(q.id());
+  };
+
+  // 1. The surfaces: chapter 02's geometry pass into N samples per pixel.
+  {
+    auto pass = timed(metrics, "msaa: G-buffer (chapter 02, " + std::to_string(s.samples) + " samples)");
+    geometry_.draw(*gbuffer_, camera);
+  }
+  gbuffer_->bind_textures(0);
+  glBindFramebuffer(GL_FRAMEBUFFER, radiance_fbo_.id());
+  glViewport(0, 0, output.width, output.height);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_BLEND);
+  glDisable(GL_FRAMEBUFFER_SRGB);
+  glEnable(GL_STENCIL_TEST);
+  glStencilMask(0xFF);
+  const GLint zero = 0;
+  glClearNamedFramebufferiv(radiance_fbo_.id(), GL_STENCIL, 0, &zero);
+
+  // 2. The edges: 1 in the stencil where the pixel's samples differ.
+  const bool everywhere = s.shading == MsaaShading::PerSampleEverywhere;
+  if (!everywhere) {
+    auto pass = timed(metrics, "msaa: mark edges");
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glStencilFunc(GL_ALWAYS, 1, 0xFF);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    p.edges.use();
+    p.edges.set("u_depth_threshold", s.depth_threshold);
+    p.edges.set("u_cos_normal", std::cos(glm::radians(s.normal_degrees)));
+    p.edges.set("u_mark_all", int(s.mark_every_pixel));
+    glProgramUniform2fv(p.edges.id(), glGetUniformLocation(p.edges.id(), "u_sample_positions"), s.samples,
+                        &positions[0].x);
+    counted(0, [&] { fullscreen(empty_); });
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  }
+
+  // 3. The light: once per pixel where the stencil is 0, once per sample where it is 1
+  //    (per sample everywhere: the stencil is not looked at).
+  glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDirectionalBinding, directional_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLocalBinding, local_.id());
+  for (ShaderProgram* program : {&p.per_pixel, &p.per_sample}) {
+    program->set("u_directional_count", directional_count_);
+    program->set("u_local_count", local_count_);
+    program->set("u_ambient", ambient_);
+    program->set("u_background", background_);
+  }
+  if (!everywhere) {
+    auto pass = timed(metrics, "msaa: light per pixel (stencil 0)");
+    glStencilFunc(GL_EQUAL, 0, 0xFF);
+    p.per_pixel.use();
+    counted(1, [&] { fullscreen(empty_); });
+  }
+  {
+    auto pass = timed(metrics, everywhere ? "msaa: light per sample everywhere" : "msaa: light per sample (stencil 1)");
+    if (everywhere) glDisable(GL_STENCIL_TEST);
+    glStencilFunc(GL_EQUAL, 1, 0xFF);
+    p.per_sample.use();
+    counted(2, [&] { fullscreen(empty_); });
+  }
+  if (s.show == MsaaShow::Edges && !everywhere) {  // the picture: marked pixels red
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_EQUAL, 1, 0xFF);
+    p.mark.use();
+    fullscreen(empty_);
+  }
+  glDisable(GL_STENCIL_TEST);
+
+  // 4. The resolve into the output: tonemap each sample, then average (or the wrong order).
+  {
+    auto pass = timed(metrics, "msaa: tonemap + resolve");
+    output.bind();
+    glBindTextureUnit(0, radiance_.id());
+    p.resolve.use();
+    p.resolve.set("u_operator", s.tonemap_operator);
+    p.resolve.set("u_exposure", s.exposure);
+    p.resolve.set("u_white", s.white);
+    p.resolve.set("u_resolve_first", int(s.order == ResolveOrder::ResolveFirst));
+    fullscreen(empty_);
+  }
+  glEnable(GL_DEPTH_TEST);
+
+  // [counts]
+  // A fragment of a full-screen pass covers every sample of its pixel, and the edge stencil
+  // is the same for all of them: the per-pixel passes pass N samples per fragment, the
+  // per-sample pass one per invocation (early fragment tests: passed = shaded).
+  const auto n = std::uint64_t(s.samples);
+  counts_ = {.pixels = std::uint64_t(output.width) * std::uint64_t(output.height),
+             .marked = samples_passed[0] / n, .per_pixel = samples_passed[1] / n, .per_sample = samples_passed[2],
+             .counted = counting};
+  // [/counts]
+}
+
+
+}  // namespace lp::ch10

@@ -1,0 +1,117 @@
+#pragma once
+// Chapter 10's MSAA with deferred shading (the source's chapter 4): a multisampled G-buffer
+// (chapter 02's, N samples), the pixels whose samples differ marked in the stencil, light
+// computed once per pixel where they do not and once per sample where they do (two
+// stencil-tested passes), and each sample tonemapped before the samples are averaged (the
+// source's chapter 5: the tonemapping curve is not linear, so resolving first is wrong).
+//
+//   MsaaFrame msaa(scene_gpu);
+//   msaa.set_lights(ch03::build_light_set(...));          // chapter 03's lights and cuts
+//   msaa.render(camera, {output_fbo, w, h}, {.samples = 4}, &metrics);
+//   MsaaCounts n = msaa.counts();                         // exact: marked, shaded
+//
+// Every light is summed in one full-screen shader per pass (chapter 01's lighting, chapter
+// 03's cut and local_light()), not drawn as volumes: per sample, a volume would cost its
+// stencil marking N times over. With 1 sample nothing is marked and the frame is chapter 03's.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "chapters/02_gbuffer/gbuffer.h"
+#include "chapters/03_light_volumes/deferred_frame.h"
+#include "chapters/03_light_volumes/light_instances.h"
+#include "common/camera.h"
+#include "common/gl.h"
+#include "common/metrics.h"
+#include "common/scene_gpu.h"
+#include "common/shader.h"
+
+namespace lp::ch10 {
+
+// Where the light is computed: per sample only on the marked pixels (the point), or per
+// sample everywhere (what it saves against).
+enum class MsaaShading { EdgesPerSample, PerSampleEverywhere };
+// The order of the last two steps: each sample tonemapped, then averaged (right), or the
+// samples' radiance averaged, then tonemapped (what the source warns against).
+enum class ResolveOrder { TonemapFirst, ResolveFirst };
+enum class MsaaShow { Image, Edges };  // Edges: the marked pixels drawn red over the image
+
+// [settings]
+struct MsaaSettings {
+  int samples = 4;  // 1, 2 or 4 (llvmpipe has 4 at most)
+  MsaaShading shading = MsaaShading::EdgesPerSample;
+  ResolveOrder order = ResolveOrder::TonemapFirst;
+  MsaaShow show = MsaaShow::Image;
+  // An edge: some sample lies off sample 0's plane (or sample 0 off its plane) by more than
+  // depth_threshold times sample 0's distance to the eye (a step of 1 cm at 1 m), or its
+  // normal turns by more than normal_degrees, or its emissive colour differs (another
+  // material: a window in its wall), or one sample is sky and another is not. The
+  // plane, not the depth: a floor at a grazing angle changes depth by several per cent
+  // across a pixel, yet all its samples lie in one plane.
+  float depth_threshold = 0.01f;
+  float normal_degrees = 30.f;
+  bool mark_every_pixel = false;  // the cross-check: every pixel shaded per sample
+  // Chapter 05's curves (hdr_math.glsl: 0 clamp, 1 Reinhard, 2 extended, 3 ACES) at a fixed
+  // exposure. Clamp at exposure 1 is what chapter 03's sRGB8 output does to light above 1.
+  int tonemap_operator = 0;
+  float exposure = 1.f;
+  float white = 4.f;  // the extended Reinhard's white point
+};
+// [/settings]
+
+// Exact counts of the last render() made without metrics, from GL_SAMPLES_PASSED (64-bit).
+// (Not chapter 03's atomic counters: on llvmpipe, in a multisampled pass with early stencil
+// tests, their atomics also ran for fragments the stencil had rejected, 0.7 % more than the
+// samples that passed on the edge test scene.)
+struct MsaaCounts {
+  std::uint64_t pixels = 0;      // width x height
+  std::uint64_t marked = 0;      // pixels the edge pass marked
+  std::uint64_t per_pixel = 0;   // invocations of the per-pixel light pass
+  std::uint64_t per_sample = 0;  // invocations of the per-sample light pass
+  bool counted = false;          // false after a render() with metrics: the counts are zero
+  std::uint64_t shaded() const { return per_pixel + per_sample; }
+  double marked_fraction() const { return pixels ? double(marked) / double(pixels) : 0.0; }
+};
+
+class MsaaFrame {
+ public:
+  explicit MsaaFrame(const SceneGpu& scene);
+  void reload_shaders();
+  // Chapter 03's lights with their cuts (build_light_set), as its frame lights them.
+  void set_lights(const ch03::LightSet& lights);
+  void set_ambient(const glm::vec3& ambient) { ambient_ = ambient; }
+  void set_background(const glm::vec3& background) { background_ = background; }
+
+  // The frame into `output` (an sRGB8 target: the resolve writes linear display values; or a
+  // float target, which keeps them unencoded). Each pass timed in `metrics`.
+  void render(const FrameCamera& camera, const ch03::FrameOutput& output, const MsaaSettings& settings,
+              PassMetrics* metrics = nullptr);
+
+  const MsaaCounts& counts() const { return counts_; }
+  // Where the rasteriser put each sample within its pixel (0..1) in the last render().
+  const std::vector<glm::vec2>& sample_positions() const { return positions_; }
+  const ch02::GBuffer& gbuffer() const { return *gbuffer_; }
+  std::size_t allocated_bytes() const;  // G-buffer + radiance + its depth-stencil, all samples
+
+ private:
+  void resize(int width, int height, int samples);
+
+  const SceneGpu& scene_;
+  ch02::GeometryPass geometry_;
+  std::unique_ptr<ch02::GBuffer> gbuffer_;
+  gl::Texture radiance_{GL_TEXTURE_2D}, stencil_{GL_TEXTURE_2D};  // N samples: RGBA16F light, D24S8 for the edge mask
+  gl::Framebuffer radiance_fbo_;
+  gl::VertexArray empty_;
+  gl::Buffer directional_, local_;
+  int directional_count_ = 0, local_count_ = 0;
+  struct Programs {
+    ShaderProgram edges, per_pixel, per_sample, resolve, mark;
+  };
+  std::unique_ptr<Programs> programs_;
+  int programs_samples_ = 0;
+  MsaaCounts counts_;
+  std::vector<glm::vec2> positions_;
+  glm::vec3 ambient_{0}, background_;
+};
+
+}  // namespace lp::ch10

@@ -1,0 +1,265 @@
+// Chapter 10's MSAA with deferred shading on the GPU: the cross-checks (every pixel marked is
+// per-sample shading everywhere; one sample is chapter 03's frame), the edges found on a scene
+// whose edges are known to the pixel, the exact count of fragments shaded, and the sign of
+// the error of resolving before tonemapping at a bright edge.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "chapters/03_light_volumes/deferred_frame.h"
+#include "chapters/03_light_volumes/light_radius.h"
+#include "chapters/10_frame/msaa.h"
+#include "common/paths.h"
+#include "common/target.h"
+#include "tests/unit/book_data.h"
+#include "tests/unit/gl_environment.h"
+
+using namespace lp;
+using namespace lp::ch10;
+using lp::test::book_row;
+
+namespace {
+
+constexpr int kW = 320, kH = 180;
+
+// A scene on the GPU, chapter 03's frame and the MSAA frame with the same lights.
+struct World {
+  World(Scene s, int w = kW, int h = kH) : scene(std::move(s)), gpu(scene), frame(gpu), msaa(gpu), target(w, h), w(w), h(h) {
+    ch03::use_lights(frame, scene, scene.lights, false);
+    msaa.set_lights(frame.volumes().lights());
+  }
+  ImageRGBA8 render(const FrameCamera& camera, const MsaaSettings& s) {
+    msaa.render(camera, {target.framebuffer(), w, h}, s);
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+    return target.read();
+  }
+  Scene scene;
+  SceneGpu gpu;
+  ch03::DeferredFrame frame;
+  MsaaFrame msaa;
+  OutputTarget target;
+  int w, h;
+};
+
+Scene street() { return load_scene(from_root("assets/street/street.gltf")); }
+FrameCamera street_camera(const Scene& s) { return frame_camera(s.camera("street_level"), float(kW) / kH); }
+
+// [known-scene]
+// Quads facing the camera under an orthographic camera whose world units are pixels
+// (x 0..w, y 0..h), seen from 1000 units away: an edge placed at x = k + 0.5 runs through
+// the centres of column k, one at an integer x between two columns.
+void add_quad(Scene& s, int material, float x0, float x1, float tilt_degrees = 0) {
+  const auto first_vertex = static_cast<std::uint32_t>(s.vertices.size());
+  for (glm::vec2 c : {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)})
+    s.vertices.push_back(Vertex{glm::vec3(c.x, c.y, 0), glm::vec3(0, 0, 1), c, glm::vec4(1, 0, 0, 1)});
+  const auto first_index = static_cast<std::uint32_t>(s.indices.size());
+  for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) s.indices.push_back(first_vertex + i);
+  s.meshes.push_back(Mesh{"quad", {Primitive{first_index, 6, material}}});
+  // Hinged at x0 and turned about the vertical axis, its far end still at x1 on screen.
+  const float t = glm::radians(tilt_degrees), width = (x1 - x0) / std::cos(t);
+  glm::mat4 m = glm::translate(glm::mat4(1), glm::vec3(x0, -50, 0));
+  m = glm::rotate(m, t, glm::vec3(0, 1, 0));
+  m = glm::scale(m, glm::vec3(width, 300, 1));
+  s.instances.push_back(Instance{"quad " + std::to_string(s.instances.size()), int(s.meshes.size()) - 1, m, {}});
+}
+
+FrameCamera pixel_camera(int w, int h) {
+  FrameCamera c;
+  c.position = glm::vec3(0, 0, 1000);
+  c.view = glm::lookAt(c.position, glm::vec3(0, 0, 0), glm::vec3(0, 1, 0));
+  c.projection = glm::ortho(0.f, float(w), 0.f, float(h), 900.f, 1100.f);
+  c.znear = 900, c.zfar = 1100, c.aspect = float(w) / float(h);
+  return c;
+}
+// [/known-scene]
+
+Scene quads_scene(glm::vec3 emissive) {
+  Scene s;
+  s.path = "quads (test)";
+  s.materials = {Material{.name = "flat", .base_color = glm::vec4(0.5f, 0.5f, 0.5f, 1), .emissive = emissive}};
+  s.ambient = glm::vec3(0.5f);
+  return s;
+}
+
+}  // namespace
+
+// Marking every pixel runs the per-sample pass on all of them: the image is per-sample shading
+// everywhere bit for bit (the same shader on the same samples), and the counts say so.
+TEST(MsaaGl, EveryPixelMarkedEqualsPerSampleShadingEverywhere) {
+  World world(street());
+  const FrameCamera camera = street_camera(world.scene);
+  const ImageRGBA8 everywhere = world.render(camera, {.samples = 4, .shading = MsaaShading::PerSampleEverywhere});
+  const MsaaCounts e = world.msaa.counts();
+  const ImageRGBA8 all_marked = world.render(camera, {.samples = 4, .mark_every_pixel = true});
+  const MsaaCounts m = world.msaa.counts();
+  EXPECT_EQ(e.per_sample, 4u * e.pixels);
+  EXPECT_EQ(m.marked, m.pixels);
+  EXPECT_EQ(m.per_pixel, 0u);
+  EXPECT_EQ(m.per_sample, 4u * m.pixels);
+  const CompareResult r = compare(all_marked, everywhere, {.threshold = 0, .max_failing_fraction = 0});
+  EXPECT_TRUE(r.passed) << r.summary();
+  EXPECT_EQ(r.max_error, 0) << r.summary();
+}
+
+// One sample: nothing can differ within a pixel, nothing is marked, and the frame is chapter
+// 03's (clamp at exposure 1 is what its sRGB8 output does). Chapter 03 sums its lights in
+// RGBA16F (a relative 2^-11 per addition, far below an 8-bit step at any level of the sRGB
+// curve) and ends each local light in its volume, which may miss a fragment within the last
+// 1 % of the cut by at most the cut threshold, one 8-bit step: so at most 2 steps anywhere.
+TEST(MsaaGl, OneSampleEqualsChapter03sFrame) {
+  World world(street());
+  const FrameCamera camera = street_camera(world.scene);
+  world.frame.render(camera, {world.target.framebuffer(), kW, kH});
+  const ImageRGBA8 chapter03 = world.target.read();
+  const ImageRGBA8 one = world.render(camera, {.samples = 1});
+  const MsaaCounts n = world.msaa.counts();
+  EXPECT_EQ(n.marked, 0u);
+  EXPECT_EQ(n.per_pixel, n.pixels);
+  EXPECT_EQ(n.per_sample, 0u);
+  const CompareResult r = compare(one, chapter03, {.threshold = 2, .max_failing_fraction = 0});
+  EXPECT_TRUE(r.passed) << r.summary();
+  book_row("10_msaa_one_sample", {{"scene", "street"}, {"view", "street_level"}, {"size", "320x180"}},
+           {{"mean_error", r.mean_error}, {"max_error", r.max_error}, {"differing_pixels", double(r.failing_pixels)}});
+}
+
+// The known scene: a flat quad whose right edge (x = 60.5) meets a quad turned 45 degrees
+// away about that line (same depth there: only the normals differ), which ends at x = 90 (a
+// column boundary: no pixel is split); sky; a flat quad from x = 100.5. Exactly columns 60
+// (normals) and 100 (sky against geometry) hold samples on both sides of their centre, with
+// the standard 4-sample pattern (two samples left of the centre, two right; checked): 2 x h
+// pixels marked. Within the turned quad the distance changes by 0.04 % across a pixel, far
+// under the 2 % threshold.
+TEST(MsaaGl, MarkedEdgeFractionOnAKnownScene) {
+  constexpr int w = 160, h = 90;
+  Scene s = quads_scene(glm::vec3(0));
+  add_quad(s, 0, -20.f, 60.5f);
+  add_quad(s, 0, 60.5f, 90.f, 45.f);
+  add_quad(s, 0, 100.5f, 200.f);
+  World world(std::move(s), w, h);
+  world.render(pixel_camera(w, h), {.samples = 4});
+  int left = 0, right = 0;
+  for (glm::vec2 p : world.msaa.sample_positions()) (p.x < 0.5f ? left : right)++;
+  ASSERT_EQ(left, 2) << "not the standard 4-sample pattern: the expected edges would differ";
+  ASSERT_EQ(right, 2);
+  const MsaaCounts n = world.msaa.counts();
+  EXPECT_EQ(n.marked, std::uint64_t(2 * h));
+  EXPECT_DOUBLE_EQ(n.marked_fraction(), 2.0 / w);
+  // Without the normal test (a threshold above any turn) only the sky edge is left.
+  world.render(pixel_camera(w, h), {.samples = 4, .normal_degrees = 180.f});
+  EXPECT_EQ(world.msaa.counts().marked, std::uint64_t(h));
+}
+
+// Every pixel not marked is shaded once, every marked one once per sample: exactly
+// pixels - marked + 4 marked, against 4 pixels for per-sample shading everywhere.
+TEST(MsaaGl, ShadedFragmentsArePerPixelPlusFourPerMarkedPixel) {
+  World world(street());
+  const FrameCamera camera = street_camera(world.scene);
+  world.render(camera, {.samples = 4});
+  const MsaaCounts n = world.msaa.counts();
+  EXPECT_GT(n.marked, 0u);
+  EXPECT_LT(n.marked, n.pixels / 4);  // edges, not the whole image
+  EXPECT_EQ(n.per_pixel, n.pixels - n.marked);
+  EXPECT_EQ(n.per_sample, 4u * n.marked);
+  EXPECT_EQ(n.shaded(), n.pixels + 3u * n.marked);
+  world.render(camera, {.samples = 4, .shading = MsaaShading::PerSampleEverywhere});
+  const MsaaCounts e = world.msaa.counts();
+  EXPECT_EQ(e.shaded(), 4u * e.pixels);
+  book_row("10_msaa_counts", {{"scene", "street"}, {"view", "street_level"}, {"size", "320x180"}, {"samples", "4"}},
+           {{"pixels", double(n.pixels)}, {"marked", double(n.marked)}, {"marked_percent", 100.0 * n.marked_fraction()},
+            {"shaded_edges", double(n.shaded())}, {"shaded_everywhere", double(e.shaded())},
+            {"saved_percent", 100.0 * (1.0 - double(n.shaded()) / double(e.shaded()))}});
+}
+
+// A bright surface (emissive 8) against the dark sky, its edge through the centres of column
+// 100. The curves here are concave, so averaging before the curve can only raise a pixel
+// (Jensen: T(mean) >= mean(T)); at the edge, with 2 of 4 samples bright, tonemap-first gives
+// (T(8) + T(sky)) / 2 and resolve-first T((8 + sky) / 2): with clamp 0.51 against 1, so the
+// wrong order draws the edge as bright as the surface (it is aliased again). Away from edges
+// the samples are equal and both orders agree bit for bit.
+TEST(MsaaGl, ResolvingBeforeTonemappingBrightensABrightEdge) {
+  constexpr int w = 160, h = 90, column = 100;
+  Scene s = quads_scene(glm::vec3(8));
+  add_quad(s, 0, 100.5f, 200.f);
+  World world(std::move(s), w, h);
+  for (int op : {0, 1}) {  // clamp, Reinhard
+    SCOPED_TRACE(op == 0 ? "clamp" : "Reinhard");
+    const ImageRGBA8 right = world.render(pixel_camera(w, h), {.samples = 4, .tonemap_operator = op});
+    const ImageRGBA8 wrong =
+        world.render(pixel_camera(w, h), {.samples = 4, .order = ResolveOrder::ResolveFirst, .tonemap_operator = op});
+    int brighter_at_edge = 0, elsewhere_differ = 0, darker = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < 3; ++c) {
+          const int r = right.pixels[(std::size_t(y) * w + x) * 4 + c], e = wrong.pixels[(std::size_t(y) * w + x) * 4 + c];
+          if (e < r) ++darker;
+          if (x == column && e > r) ++brighter_at_edge;
+          if (x != column && e != r) ++elsewhere_differ;
+        }
+    EXPECT_EQ(darker, 0);
+    EXPECT_EQ(brighter_at_edge, 3 * h);
+    EXPECT_EQ(elsewhere_differ, 0);
+    const std::size_t edge = (std::size_t(h / 2) * w + column) * 4;
+    if (op == 0) {  // clamp: 255 against the sRGB code of (1 + 0.02) / 2 = 0.51, 189 (+-1 for rounding)
+      EXPECT_EQ(int(wrong.pixels[edge]), 255);
+      EXPECT_NEAR(int(right.pixels[edge]), 189, 1);
+      book_row("10_msaa_bright_edge", {{"operator", "clamp"}},
+               {{"tonemap_first", double(right.pixels[edge])}, {"resolve_first", double(wrong.pixels[edge])}});
+    }
+  }
+}
+
+// A window size or sample count change mid-run: every buffer follows (G-buffer, light,
+// stencil, programs). Back at the first size and count, the image and the counts are the
+// first ones bit for bit, and the small frame in between marks its own edge column.
+TEST(MsaaGl, SizeAndSampleChangesRebuildEveryBuffer) {
+  constexpr int w = 160, h = 90;
+  Scene s = quads_scene(glm::vec3(0));
+  add_quad(s, 0, 100.5f, 200.f);
+  World world(std::move(s), w, h);
+  const ImageRGBA8 first = world.render(pixel_camera(w, h), {.samples = 4});
+  const MsaaCounts n = world.msaa.counts();
+  OutputTarget small(w / 2, h / 2);
+  world.msaa.render(pixel_camera(w, h), {small.framebuffer(), w / 2, h / 2}, {.samples = 4});
+  EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+  EXPECT_EQ(world.msaa.counts().pixels, std::uint64_t(w / 2 * (h / 2)));
+  // The edge x = 100.5 lies at 50.25 in the half-size frame: the sample 0.125 into column 50
+  // is left of it, the other three right: that column, and only it, is marked.
+  EXPECT_EQ(world.msaa.counts().marked, std::uint64_t(h / 2));
+  world.render(pixel_camera(w, h), {.samples = 1});
+  EXPECT_EQ(world.msaa.counts().marked, 0u);
+  const ImageRGBA8 again = world.render(pixel_camera(w, h), {.samples = 4});
+  EXPECT_EQ(world.msaa.counts().marked, n.marked);
+  EXPECT_EQ(world.msaa.counts().per_pixel, n.per_pixel);
+  const CompareResult r = compare(again, first, {.threshold = 0, .max_failing_fraction = 0});
+  EXPECT_TRUE(r.passed) << r.summary();
+}
+
+// Thin geometry: a quad 0.2 pixels wide, x = 60.55 .. 60.75, between the pixel centre of
+// column 60 and its sample at 0.875. With one sample it covers no sample at all and is not
+// drawn; with 4 it covers the sample at 0.625 alone: column 60 is marked, lit per sample, and
+// shows a quarter of the quad; every other pixel stays sky.
+TEST(MsaaGl, ThinGeometryIsCaughtBySamplesTheCentreMisses) {
+  constexpr int w = 160, h = 90, column = 60;
+  Scene s = quads_scene(glm::vec3(1));
+  add_quad(s, 0, 60.55f, 60.75f);
+  World world(std::move(s), w, h);
+  const ImageRGBA8 one = world.render(pixel_camera(w, h), {.samples = 1});
+  const ImageRGBA8 four = world.render(pixel_camera(w, h), {.samples = 4});
+  EXPECT_EQ(world.msaa.counts().marked, std::uint64_t(h));
+  EXPECT_EQ(world.msaa.counts().per_sample, 4u * h);
+  const std::uint8_t* sky = one.at(0, 0);
+  int lit_in_column = 0, off_sky = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_EQ(one.at(x, y)[c], sky[c]) << "one sample drew the thin quad at " << x << ", " << y;
+        if (x != column && four.at(x, y)[c] != sky[c]) ++off_sky;
+      }
+      if (x == column && four.at(x, y)[0] > sky[0] + 50) ++lit_in_column;
+    }
+  EXPECT_EQ(lit_in_column, h);
+  EXPECT_EQ(off_sky, 0);
+}
