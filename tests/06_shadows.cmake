@@ -16,6 +16,7 @@ lightpass_program_test(06_shadows.bad_kernel_even 2 "--kernel must be odd" ${P06
 lightpass_program_test(06_shadows.bad_map_zero 2 "--map must be between" ${P06} --map 0)
 lightpass_program_test(06_shadows.bad_map_too_large 2 "--map must be between" ${P06} --map 100000)
 lightpass_program_test(06_shadows.bad_pmin 2 "--pmin must be between" ${P06} --pmin 1)
+lightpass_program_test(06_shadows.bad_c 2 "--c must be between" ${P06} --c 0)
 lightpass_program_test(06_shadows.bad_moments 2 "--moments must be 16 or 32, not 20" ${P06} --headless --size 16x16 --moments 20)
 lightpass_program_test(06_shadows.bad_taps 2 "--taps must be between 0 and 64, got 65" ${P06} --taps 65)
 lightpass_program_test(06_shadows.bad_sun_size 2 "--sun-size must be between 0 and 0.2, got 0.5" ${P06} --sun-size 0.5)

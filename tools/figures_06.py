@@ -29,7 +29,29 @@ def pcss_pareto(d: Path, csv_name: str, where: str, out: str):
          "mean |visibility - soft truth|", xlog=True)
 
 
+def method_pareto(d: Path, csv_name: str, where: str, suffix: str):
+    """Every method x setting of the main sweep on the overview: the shadow's whole cost (depth
+    pass + pre-filter + the global pass with the lookups) against the error, one plot per truth."""
+    if not (d / csv_name).exists():
+        return
+    notes, rows = read_csv(d / csv_name)
+    rows = [r for r in rows if r["view"] == "overview"]
+    methods = []
+    for r in rows:
+        if r["method"] not in methods:
+            methods.append(r["method"])
+    cost = lambda r: float(r["depth_ms"]) + float(r["filter_ms"]) + float(r["global_ms"])  # noqa: E731
+    for truth, col, label in (("hard", "hard_mean", "mean |visibility - hard truth|"),
+                              ("soft", "soft_mean", "mean |visibility - soft truth|")):
+        series = [Series(m, [(cost(r), float(r[col]), r["setting"]) for r in rows if r["method"] == m], line=False)
+                  for m in methods]
+        plot(d / f"06_pareto_{truth}{suffix}.svg", f"Shadows: error against the {truth} truth and time ({where})",
+             notes[0] if notes else "", [s for s in series if s.points],
+             "ms per frame: depth pass + pre-filter + lookups (log scale)", label, xlog=True, ylog=True)
+
+
 def main(d: Path):
+    method_pareto(d, "06_shadows_1080p_h200.csv", "NVIDIA H200, 1920x1080", "_1080p_h200")
     pcss_pareto(d, "06_shadows_pcss_llvmpipe.csv", "llvmpipe", "06_pcss_pareto_llvmpipe.svg")
     pcss_pareto(d, "06_shadows_pcss_h200.csv", "NVIDIA H200", "06_pcss_pareto_h200.svg")
 

@@ -40,7 +40,25 @@ def pareto(d: Path, csv_name: str, where: str, suffix: str):
              "mean |A - truth| on the test view", xlog=True, width=900, height=480)
 
 
+def wall(d: Path, csv_name: str, where: str, suffix: str):
+    """The source's complaint: frame time as the camera nears a wall. The AO pass's time against
+    the camera's distance (as a fraction of the view's), one line per method."""
+    if not (d / csv_name).exists():
+        return
+    notes, rows = read_csv(d / csv_name)
+    methods = []
+    for r in rows:
+        if r["method"] not in methods:
+            methods.append(r["method"])
+    series = [Series(m, sorted((float(r["distance_fraction"]), float(r["ao_ms"])) for r in rows if r["method"] == m))
+              for m in methods]
+    plot(d / f"07_wall{suffix}.svg", f"AO time as the camera nears a wall ({where})", notes[0] if notes else "",
+         series, "distance to the wall, fraction of the view's (log scale)", "ms, the AO pass", xlog=True)
+
+
 def main(d: Path):
+    wall(d, "07_ssao_wall_llvmpipe.csv", "llvmpipe", "_llvmpipe")
+    wall(d, "07_ssao_wall_h200.csv", "NVIDIA H200", "_h200")
     pareto(d, "07_ssao_tuned_llvmpipe.csv", "llvmpipe", "")
     pareto(d, "07_ssao_tuned_h200.csv", "NVIDIA H200", "_h200")
 
