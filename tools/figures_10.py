@@ -3,7 +3,8 @@
 and the whole frame's figures.
 
     python3 tools/figures_10.py [FIGURES_DIR]                   the plots (SVG), the budget's too
-    python3 tools/figures_10.py --png BUILD_DIR [FIGURES_DIR]   the closing strip (PNG) too
+    python3 tools/figures_10.py --png BUILD_DIR [FIGURES_DIR]   the closing strip (PNG) and the whole frame's
+                                                                 plan on three scenes (10_passes.csv) too
     python3 tools/figures_10.py --budget CSV BENCH.json...      the frame budget from `10_frame --bench`
                                                                  JSON (one per scene and culling) as a CSV
 
@@ -12,6 +13,7 @@ The budget's JSONs come from the GPU machine (`10_frame --bench --mode whole --s
 """
 import csv
 import json
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -51,6 +53,83 @@ STRIP = [
     ("10_strip_4_indirect.png", []),
     ("10_strip_5_bloom.png", ["--bloom", "before"]),
 ]
+
+
+# The pass diagrams: what the whole frame runs on each scene, as the program prints it.
+DIAGRAMS = [("10_passes_street_neon.svg", "assets/street_neon/street_neon.gltf"),
+            ("10_passes_atrium.svg", "assets/atrium/atrium.gltf"),
+            ("10_passes_glass.svg", "assets/glass/glass.gltf")]
+
+
+def parse_plan(text):
+    """The program's plan lines: '  runs     STAGE  [reads A + B; writes C]' or
+    '  not run  STAGE (WHY)  [reads ...; writes ...]'."""
+    stages = []
+    for line in text.splitlines():
+        m = re.match(r"^  (runs|not run)\s+(.*)  \[reads (.*); writes (.*)\]$", line)
+        if m:
+            stage, why = m.group(2), ""
+            if m.group(1) == "not run":  # the last parenthesis is the reason
+                w = re.match(r"^(.*) \(([^()]*)\)$", stage)
+                stage, why = (w.group(1), w.group(2)) if w else (stage, "")
+            stages.append({"runs": m.group(1) == "runs", "stage": stage, "why": why,
+                           "reads": [b.strip() for b in m.group(3).split("+")], "writes": m.group(4).strip()})
+    return stages
+
+
+def diagram(stages, title, out: Path):
+    """One row per pass in frame order: what it reads on the left, the pass, what it writes on
+    the right; passes the scene does not need are grey, with the reason."""
+    row, width = 34, 1000
+    svg = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{60 + row * len(stages)}" '
+           f'font-family="sans-serif" font-size="12">',
+           f'<text x="10" y="22" font-size="15">{esc(title)}</text>',
+           '<defs><marker id="a" viewBox="0 0 10 10" refX="9" refY="5" markerWidth="6" markerHeight="6" orient="auto">'
+           '<path d="M0,0 L10,5 L0,10 z" fill="#555"/></marker></defs>']
+    for i, st in enumerate(stages):
+        y = 40 + i * row
+        fill, ink = ("#dbe7f3", "#000") if st["runs"] else ("#eeeeee", "#999")
+        svg.append(f'<text x="230" y="{y + 17}" text-anchor="end" fill="{ink}">{esc(" + ".join(st["reads"]))}</text>')
+        svg.append(f'<line x1="235" y1="{y + 13}" x2="268" y2="{y + 13}" stroke="#555" marker-end="url(#a)"/>')
+        svg.append(f'<rect x="270" y="{y}" width="460" height="26" rx="4" fill="{fill}" stroke="{ink}"/>')
+        label = st["stage"] + ("" if st["runs"] else f" — not run: {st['why']}")
+        svg.append(f'<text x="278" y="{y + 17}" fill="{ink}">{esc(label)}</text>')
+        svg.append(f'<line x1="730" y1="{y + 13}" x2="763" y2="{y + 13}" stroke="#555" marker-end="url(#a)"/>')
+        svg.append(f'<text x="768" y="{y + 17}" fill="{ink}">{esc(st["writes"])}</text>')
+    svg.append("</svg>")
+    out.write_text("\n".join(svg) + "\n")
+    print(f"wrote {out}")
+
+
+def diagrams(build: Path, d: Path):
+    """Runs the program on each scene and keeps its plan in 10_passes.csv (the diagrams' data)."""
+    exe = build / "chapters" / "10_frame" / "10_frame"
+    with open(d / "10_passes.csv", "w", newline="") as f:
+        f.write("# the whole frame's plan as `10_frame --headless --mode whole --scene SCENE` prints it\n")
+        w = csv.writer(f)
+        w.writerow(["scene", "order", "runs", "stage", "why", "reads", "writes"])
+        for name, scene in DIAGRAMS:
+            r = subprocess.run([str(exe), "--headless", "--mode", "whole", "--scene", scene, "--size", "64x36", "--out",
+                                str(Path("/tmp") / (name + ".png"))], check=True, capture_output=True, text=True)
+            stages = parse_plan(r.stdout + r.stderr)
+            if not stages:
+                raise SystemExit(f"{exe} printed no plan for {scene}")
+            for i, st in enumerate(stages):
+                w.writerow([Path(scene).stem, i, int(st["runs"]), st["stage"], st["why"], " + ".join(st["reads"]), st["writes"]])
+
+
+def diagrams_from_csv(d: Path):
+    path = d / "10_passes.csv"
+    if not path.exists():
+        return
+    rows = list(csv.DictReader(l for l in open(path) if not l.startswith("#")))
+    for name, scene in DIAGRAMS:
+        stem = Path(scene).stem
+        stages = [{"runs": r["runs"] == "1", "stage": r["stage"], "why": r["why"],
+                   "reads": [b.strip() for b in r["reads"].split("+")], "writes": r["writes"]}
+                  for r in rows if r["scene"] == stem]
+        if stages:
+            diagram(stages, f"The whole frame's passes on {stem} (./run 10 --mode whole)", d / name)
 
 
 def strip(build: Path, d: Path):
@@ -101,7 +180,7 @@ def budget_plot(d: Path, csv_path: Path, out: Path):
                "#bab0ac", "#1f77b4", "#8c564b"]
     width, left, top, bar_h, gap = 900, 190, 50, 26, 14
     longest = max(sum(ms for _, ms in parts) for _, parts in bars)
-    scale = (width - left - 30) / longest
+    scale = (width - left - 80) / longest
     height = top + len(bars) * (bar_h + gap) + 30 + 18 * ((len(names) + 3) // 4)
     svg = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" font-family="sans-serif" font-size="12">',
            f'<text x="10" y="20" font-size="15">The frame budget: GPU time per pass</text>',
@@ -136,6 +215,9 @@ if __name__ == "__main__":
         png, args = Path(args[1]), args[2:]
     figures = Path(args[0]) if args else Path(__file__).resolve().parent.parent / "book" / "figures"
     main(figures)
+    if png:
+        diagrams(png, figures)
+    diagrams_from_csv(figures)
     if (figures / "10_budget_h200.csv").exists():
         budget_plot(figures, figures / "10_budget_h200.csv", figures / "10_budget_h200.svg")
     if png:

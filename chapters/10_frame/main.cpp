@@ -155,7 +155,8 @@ int main(int argc, char** argv) {
         if (std::ostream& out = app.report()) {
           out << "the whole frame:\n";
           for (const PlannedStage& st : whole->plan(s))
-            out << "  " << (st.runs ? "runs     " : "not run  ") << st.stage << (st.runs ? "" : " (" + st.why + ")") << '\n';
+            out << "  " << (st.runs ? "runs     " : "not run  ") << st.stage << (st.runs ? "" : " (" + st.why + ")")
+                << "  [reads " << st.reads << "; writes " << st.writes << "]\n";
         }
         app.panel([&] {
           for (const PlannedStage& st : whole->plan(s)) ImGui::Text("%s %s", st.runs ? "[x]" : "[ ]", st.stage.c_str());

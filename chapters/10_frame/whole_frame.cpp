@@ -28,17 +28,23 @@ std::vector<PlannedStage> WholeFrame::plan(const WholeFrameSettings& s) const {
     return !wanted ? std::string("switched off") : !possible ? lacking : std::string();
   };
   std::vector<PlannedStage> p;
-  p.push_back({"G-buffer (chapter 02)", true, ""});
-  p.push_back({"shadow map of the sun (chapter 06)", s.shadows && has_sun_, off(s.shadows, has_sun_, "no directional light")});
-  p.push_back({"global light: ambient + directional (chapter 03)", true, ""});
-  p.push_back({s.clustered ? "local lights: clusters (chapter 09)" : "local lights: stencil volumes (chapter 03)", true, ""});
-  p.push_back({"neon tubes (chapter 04)", s.neon && !neon_lights_.empty(), off(s.neon, !neon_lights_.empty(), "no neon tubes")});
-  p.push_back({"ambient occlusion (chapters 07, 08)", s.ao && ambient, off(s.ao, ambient, "no ambient light")});
-  p.push_back({"indirect light, one bounce (chapter 08)", s.indirect, off(s.indirect, true, "")});
-  p.push_back({"composite into float radiance (chapter 03)", true, ""});
   const bool glass = s.transparency != Method::Off;
-  p.push_back({"glass (chapter 10)", glass && has_glass_, off(glass, has_glass_, "no alphaMode BLEND material")});
-  p.push_back({"log-average, adaptation, bloom, tonemap (chapter 05)", true, ""});
+  p.push_back({"G-buffer (chapter 02)", true, "", "scene", "G-buffer"});
+  p.push_back({"shadow map of the sun (chapter 06)", s.shadows && has_sun_, off(s.shadows, has_sun_, "no directional light"),
+               "scene", "shadow map"});
+  p.push_back({"global light: ambient + directional (chapter 03)", true, "", "G-buffer + shadow map", "light buffer"});
+  p.push_back({s.clustered ? "local lights: clusters (chapter 09)" : "local lights: stencil volumes (chapter 03)", true, "",
+               s.clustered ? "G-buffer + light lists" : "G-buffer + stencil", "light buffer"});
+  p.push_back({"neon tubes (chapter 04)", s.neon && !neon_lights_.empty(), off(s.neon, !neon_lights_.empty(), "no neon tubes"),
+               "G-buffer + stencil", "light buffer"});
+  p.push_back({"ambient occlusion (chapters 07, 08)", s.ao && ambient, off(s.ao, ambient, "no ambient light"), "G-buffer",
+               "light buffer"});
+  p.push_back({"indirect light, one bounce (chapter 08)", s.indirect, off(s.indirect, true, ""), "G-buffer + light buffer",
+               "light buffer"});
+  p.push_back({"composite into float radiance (chapter 03)", true, "", "G-buffer + light buffer", "radiance RGBA16F"});
+  p.push_back({"glass (chapter 10)", glass && has_glass_, off(glass, has_glass_, "no alphaMode BLEND material"),
+               "light lists + shadow map + depth", "radiance RGBA16F"});
+  p.push_back({"log-average, adaptation, bloom, tonemap (chapter 05)", true, "", "radiance RGBA16F", "sRGB8 output"});
   return p;
 }
 // [/plan]

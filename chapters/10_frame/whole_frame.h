@@ -49,7 +49,9 @@ struct WholeFrameSettings {
 struct PlannedStage {
   std::string stage;
   bool runs = false;
-  std::string why;  // what the scene lacks, or which setting turned it off
+  std::string why;     // what the scene lacks, or which setting turned it off
+  std::string reads;   // the buffers it reads, "+"-separated (the pass diagram, tools/figures_10.py)
+  std::string writes;  // the buffers it writes
 };
 
 class WholeFrame {
