@@ -164,4 +164,18 @@ float esm_visibility_log(float log_filtered, float c, float depth) {
   return std::clamp(std::exp(std::min(log_filtered - c * depth, 0.f)), 0.f, 1.f);
 }
 
+// [sphere-in-view]
+bool sphere_in_view(const glm::vec3& centre, float radius, const glm::mat4& view_projection) {
+  const glm::mat4 m = glm::transpose(view_projection);  // rows of the matrix as columns
+  const glm::vec4 p(centre, 1.f);
+  for (int axis = 0; axis < 3; ++axis)
+    for (float side : {1.f, -1.f}) {
+      const glm::vec4 plane = m[3] + side * m[axis];  // w + x >= 0, w - x >= 0, ...
+      const float length = glm::length(glm::vec3(plane));
+      if (length > 0.f && glm::dot(plane, p) / length < -radius) return false;
+    }
+  return true;
+}
+// [/sphere-in-view]
+
 }  // namespace lp::ch06

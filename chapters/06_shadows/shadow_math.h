@@ -157,4 +157,9 @@ float esm_visibility_direct(float filtered, float c, float depth);
 float esm_visibility_log(float log_filtered, float c, float depth);
 // [/esm]
 
+// Does the sphere (centre, radius) reach into the view frustum of `view_projection` (OpenGL
+// clip space)? Conservative: the six planes only (Gribb and Hartmann), so a sphere near a
+// corner may pass that reaches nothing; a sphere that reaches the view always passes.
+bool sphere_in_view(const glm::vec3& centre, float radius, const glm::mat4& view_projection);
+
 }  // namespace lp::ch06

@@ -182,7 +182,11 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
     p.set("u_light_view_projection", frustum_.view_projection());
     scene_.draw([&](const Instance& inst, const Material&) { p.set("u_model", inst.model); });
   }
-  if (spot_) {
+  // Only what the scene needs: no map for a spot whose reach lies off screen (an unbounded
+  // spot, range 0, always has one).
+  spot_mapped_ = spot_ && (!(spot_->range > 0.f) ||
+                           sphere_in_view(spot_->position, spot_->range, frame.camera().projection * frame.camera().view));
+  if (spot_mapped_) {
     // 1b. The marked spot light's perspective map: the same depth pass from its frustum.
     auto pass = timed(metrics, "shadow map: depth from the spot light");
     if (spot_size_ != n) {
@@ -247,7 +251,7 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
                           {},
                           spot_frustum_.view_projection(),
                           spot_frustum_.view,
-                          glm::vec4(spot_ ? spot_->position : glm::vec3(0), spot_ ? 1.f : 0.f),
+                          glm::vec4(spot_ ? spot_->position : glm::vec3(0), spot_mapped_ ? 1.f : 0.f),
                           glm::vec4(spot_frustum_.near, spot_frustum_.far, spot_frustum_.tan_cone, float(n))};
   for (std::size_t i = 0; i < poisson_.size(); ++i) {
     glm::vec4& slot = block.poisson[i / 2];
@@ -262,7 +266,7 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
   glBindSampler(kCompareUnit, compare_.id());
   glBindTextureUnit(kMomentsUnit, allocated_filtered_ ? moments_.id() : depth_.id());
   glBindSampler(kMomentsUnit, linear_.id());
-  glBindTextureUnit(kSpotUnit, spot_ ? spot_depth_.id() : depth_.id());
+  glBindTextureUnit(kSpotUnit, spot_mapped_ ? spot_depth_.id() : depth_.id());
   glBindSampler(kSpotUnit, nearest_.id());
 }
 // [/shadow-stage]

@@ -70,6 +70,9 @@ class ShadowStage : public ch03::FrameStage {
   const LightFrustum& frustum() const { return frustum_; }
   const std::optional<Light>& spot() const { return spot_; }          // the spot light with a map
   const SpotFrustum& spot_frustum() const { return spot_frustum_; }
+  // Whether the last frame drew the spot's map: not when the sphere its range reaches lies
+  // outside the view (its light reaches no pixel on screen, so no map is needed).
+  bool spot_mapped() const { return spot_mapped_; }
   // Bytes the method keeps per frame: the depth map, and the moments with their filter target.
   std::size_t allocated_bytes() const;
   const VolumeStats& volume_stats() const { return volume_stats_; }
@@ -88,6 +91,7 @@ class ShadowStage : public ch03::FrameStage {
   ShadowPicture picture_ = ShadowPicture::None;
   LightFrustum frustum_;
   std::optional<Light> spot_;
+  bool spot_mapped_ = false;
   SpotFrustum spot_frustum_;
   gl::Texture spot_depth_{GL_TEXTURE_2D};
   gl::Framebuffer spot_fbo_;

@@ -452,3 +452,17 @@ TEST(ShadowLights, TheSunCastsUnlessMarkedAndOtherLightsOnlyWhenMarked) {
   EXPECT_NE(notes[3].find("only the first marked spot light"), std::string::npos) << notes[3];
 }
 // [/marked-lights-tests]
+
+// The view test that decides whether a spot needs its map: a sphere in front of the camera
+// is in view, one behind it or beside the frustum is not, one straddling a plane is.
+TEST(ShadowMath, SphereInViewAgainstTheFrustumsPlanes) {
+  const glm::mat4 proj = glm::perspective(1.0f, 16.f / 9.f, 0.1f, 100.f);
+  const glm::mat4 view = glm::lookAt(glm::vec3(0), glm::vec3(0, 0, -1), glm::vec3(0, 1, 0));
+  const glm::mat4 vp = proj * view;
+  EXPECT_TRUE(sphere_in_view({0, 0, -10}, 1.f, vp));
+  EXPECT_FALSE(sphere_in_view({0, 0, 10}, 1.f, vp));   // behind the eye
+  EXPECT_TRUE(sphere_in_view({0, 0, 0.5f}, 1.f, vp));  // around the eye, reaching the near plane
+  EXPECT_FALSE(sphere_in_view({30, 0, -10}, 1.f, vp));  // far beside the frustum
+  EXPECT_TRUE(sphere_in_view({30, 0, -10}, 30.f, vp));  // large enough to reach in
+  EXPECT_FALSE(sphere_in_view({0, 0, -200}, 50.f, vp));  // beyond the far plane
+}

@@ -820,3 +820,38 @@ TEST(ShadowsGlSpot, MarkedSpotLightMatchesItsRayTracedShadowsOutsideTheBand) {
   }
 }
 // [/spot-gl]
+
+// Only what the scene needs: a marked spot whose reach (its glTF range) lies off screen gets no
+// map, and the image is the one the unmarked spot gives (its light reaches no pixel on screen).
+TEST(ShadowsGlSpot, NoMapForASpotWhoseReachIsOffScreen) {
+  auto bounded = [](Scene& s) {
+    add_marked_spot(s);
+    s.lights.back().range = 3.f;
+  };
+  auto unmarked = [](Scene& s) {
+    add_marked_spot(s);
+    s.lights.back().range = 3.f;
+    s.lights.back().casts_shadows = false;
+  };
+  World marked(std::nullopt, bounded), plain(std::nullopt, unmarked);
+  ASSERT_TRUE(marked.stage.spot().has_value());
+  ASSERT_FALSE(plain.stage.spot().has_value());
+  const Light& spot = *marked.stage.spot();
+  ColourTarget target(kW, kH, GL_RGBA32F);
+  // In view: the overview sees the spot's cone.
+  FrameCamera cam = marked.camera("overview");
+  marked.frame.render(cam, {target.framebuffer(), kW, kH});
+  EXPECT_TRUE(marked.stage.spot_mapped());
+  // Turned away: 10 m from the spot, looking further away from it (its 3 m sphere behind the eye).
+  FrameCamera away = cam;
+  const glm::vec3 back = glm::normalize(glm::vec3(cam.position - spot.position) * glm::vec3(1, 0, 1));
+  away.position = spot.position + 10.f * back;
+  away.view = glm::lookAt(away.position, away.position + back, glm::vec3(0, 1, 0));
+  ASSERT_FALSE(sphere_in_view(spot.position, 3.f, away.projection * away.view));
+  marked.frame.render(away, {target.framebuffer(), kW, kH});
+  EXPECT_FALSE(marked.stage.spot_mapped());
+  const ImageF a = target.read();
+  plain.frame.render(away, {target.framebuffer(), kW, kH});
+  const ImageF b = target.read();
+  EXPECT_EQ(a.data, b.data);
+}
