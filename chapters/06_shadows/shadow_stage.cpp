@@ -167,7 +167,8 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
   frustum_ = fit_light_frustum(sun_.direction, scene.bounds_min, scene.bounds_max,
                                settings_.fit_to_view ? &inverse_view_projection : nullptr);
   {
-    // 1. Depth from the light: every triangle, both sides (no culling), depth only.
+    // 1. Depth from the light: every opaque triangle, both sides (no culling), depth only (glass,
+    //    alphaMode BLEND, casts no shadow: a map of depths cannot hold what it lets through).
     auto pass = timed(metrics, "shadow map: depth from the sun");
     const ShaderProgram& p = program("06_shadows/shaders/shadow_depth.vert", "06_shadows/shaders/shadow_depth.frag", {});
     glBindFramebuffer(GL_FRAMEBUFFER, depth_fbo_.id());
@@ -180,7 +181,7 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
     glClear(GL_DEPTH_BUFFER_BIT);
     p.use();
     p.set("u_light_view_projection", frustum_.view_projection());
-    scene_.draw([&](const Instance& inst, const Material&) { p.set("u_model", inst.model); });
+    scene_.draw([&](const Instance& inst, const Material&) { p.set("u_model", inst.model); }, SceneGpu::Primitives::Opaque);
   }
   // Only what the scene needs: no map for a spot whose reach lies off screen (an unbounded
   // spot, range 0, always has one).
@@ -204,7 +205,7 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
     glClear(GL_DEPTH_BUFFER_BIT);
     p.use();
     p.set("u_light_view_projection", spot_frustum_.view_projection());
-    scene_.draw([&](const Instance& inst, const Material&) { p.set("u_model", inst.model); });
+    scene_.draw([&](const Instance& inst, const Material&) { p.set("u_model", inst.model); }, SceneGpu::Primitives::Opaque);
   }
   if (allocated_filtered_) {
     // 2. VSM / ESM: what the method filters, pre-filtered by a separable box.
