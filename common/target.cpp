@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <string>
+#include <vector>
 
 #include "common/error.h"
 
@@ -61,6 +62,23 @@ void ColourTarget::bind() const {
 }
 
 ImageF ColourTarget::read() const { return read_texture(colour_.id(), width_, height_); }
+
+void PictureTexture::upload(const ImageF& picture) {
+  if (picture.width != width_ || picture.height != height_) {
+    texture_ = gl::make_texture_2d(channels_ == 1 ? GL_R32F : GL_RGBA32F, picture.width, picture.height);
+    width_ = picture.width;
+    height_ = picture.height;
+  }
+  ImageF up = picture;
+  flip_vertically(up);  // OpenGL's rows start at the bottom
+  const std::size_t pixels = std::size_t(up.width) * std::size_t(up.height), from = std::size_t(up.channels);
+  std::vector<float> texels(pixels * std::size_t(channels_), 1.f);
+  for (std::size_t i = 0; i < pixels; ++i)
+    for (int c = 0; c < std::min(channels_, 3); ++c)
+      texels[i * std::size_t(channels_) + std::size_t(c)] = up.data[i * from + std::size_t(std::min(c, up.channels - 1))];
+  glTextureSubImage2D(texture_.id(), 0, 0, 0, up.width, up.height, channels_ == 1 ? GL_RED : GL_RGBA, GL_FLOAT,
+                      texels.data());
+}
 
 ImageF read_texture(GLuint texture, int w, int h) {
   ImageF img = ImageF::blank(w, h, 4);

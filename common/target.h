@@ -51,4 +51,20 @@ class ColourTarget {
 // A colour texture read back as RGBA floats, top row first.
 ImageF read_texture(GLuint texture, int width, int height);
 
+// A CPU picture (a ray-traced truth, an error map; rows top first) uploaded into a float
+// texture for a pass to draw: one channel (GL_R32F, the picture's first channel) or four
+// (GL_RGBA32F: its channels, the last repeated into those it lacks, alpha 1). The texture
+// follows the picture's size.
+class PictureTexture {
+ public:
+  explicit PictureTexture(int channels) : channels_(channels == 1 ? 1 : 4) {}
+  void upload(const ImageF& picture);
+  GLuint id() const { return texture_.id(); }
+
+ private:
+  int channels_;
+  int width_ = 0, height_ = 0;
+  gl::Texture texture_{GL_TEXTURE_2D};
+};
+
 }  // namespace lp

@@ -19,16 +19,7 @@ void AoStage::set(const AoSettings& settings, AoShow show, glm::vec3 ambient) {
 }
 
 void AoStage::set_picture(const ImageF& picture, float heat_full_scale) {
-  if (picture.width != picture_w_ || picture.height != picture_h_) {
-    picture_ = gl::make_texture_2d(GL_R32F, picture.width, picture.height);
-    picture_w_ = picture.width;
-    picture_h_ = picture.height;
-  }
-  ImageF up = picture;
-  flip_vertically(up);  // OpenGL's rows start at the bottom
-  std::vector<float> grey(std::size_t(up.width) * up.height);
-  for (std::size_t i = 0; i < grey.size(); ++i) grey[i] = up.data[i * std::size_t(up.channels)];
-  glTextureSubImage2D(picture_.id(), 0, 0, 0, up.width, up.height, GL_RED, GL_FLOAT, grey.data());
+  picture_.upload(picture);
   heat_ = heat_full_scale;
 }
 

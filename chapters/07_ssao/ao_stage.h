@@ -9,6 +9,7 @@
 //   frame.render(camera, output, &metrics);
 #include "chapters/03_light_volumes/deferred_frame.h"
 #include "chapters/07_ssao/ssao.h"
+#include "common/target.h"
 
 namespace lp::ch07 {
 
@@ -40,8 +41,7 @@ class AoStage : public ch03::FrameStage {
   AoShow show_ = AoShow::Image;
   bool needed_ = true, ran_ = false;
   gl::Texture white_;
-  gl::Texture picture_{GL_TEXTURE_2D};
-  int picture_w_ = 0, picture_h_ = 0;
+  PictureTexture picture_{1};  // set_picture()'s, one channel
   float heat_ = 0.f;  // A = 1: what the hook reads when no AO pass runs
   std::unique_ptr<ShaderProgram> show_program_;
   gl::VertexArray vao_;

@@ -20,17 +20,7 @@ void GiStage::set(GiMode mode, const GiSettings& settings, GiShow show, glm::vec
 }
 
 void GiStage::set_picture(const ImageF& picture, float heat_full_scale) {
-  if (picture.width != picture_w_ || picture.height != picture_h_) {
-    picture_ = gl::make_texture_2d(GL_RGBA32F, picture.width, picture.height);
-    picture_w_ = picture.width;
-    picture_h_ = picture.height;
-  }
-  ImageF up = picture;
-  flip_vertically(up);  // OpenGL's rows start at the bottom
-  std::vector<float> rgba(std::size_t(up.width) * up.height * 4, 1.f);
-  for (std::size_t i = 0; i < std::size_t(up.width) * up.height; ++i)
-    for (int c = 0; c < 3; ++c) rgba[i * 4 + c] = up.data[i * std::size_t(up.channels) + std::size_t(std::min(c, up.channels - 1))];
-  glTextureSubImage2D(picture_.id(), 0, 0, 0, up.width, up.height, GL_RGBA, GL_FLOAT, rgba.data());
+  picture_.upload(picture);
   heat_ = heat_full_scale;
 }
 

@@ -15,6 +15,7 @@
 
 #include "chapters/03_light_volumes/deferred_frame.h"
 #include "chapters/08_ssgi/ssgi.h"
+#include "common/target.h"
 
 namespace lp::ch08 {
 
@@ -64,8 +65,7 @@ class GiStage : public ch03::FrameStage {
   glm::vec3 ambient_{0};
   float exposure_ = 1.f, heat_ = 0.f;
   bool ran_ = false;
-  gl::Texture picture_{GL_TEXTURE_2D};
-  int picture_w_ = 0, picture_h_ = 0;
+  PictureTexture picture_{4};  // set_picture()'s, rgb
   std::unique_ptr<ShaderProgram> add_program_, show_program_;
   gl::VertexArray vao_;
 };
