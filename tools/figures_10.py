@@ -19,7 +19,7 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from plot import Series, plot, read_csv  # noqa: E402
+from plot import Series, esc, plot, read_csv  # noqa: E402
 
 METHODS = ("sorted", "wboit")
 
@@ -154,10 +154,6 @@ def budget_csv(out: Path, jsons):
             for i, p in enumerate(b["passes"]):
                 w.writerow([scene, culling, i, p["name"], f"{p['mean_ms']:.6g}", f"{b['total_ms']:.6g}", b["renderer"],
                             b["width"], b["height"], b["frames"]])
-
-
-def esc(t):
-    return t.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
 
 
 def budget_plot(d: Path, csv_path: Path, out: Path):

@@ -58,10 +58,7 @@ void ClusteredForward::set_settings(ClusterSettings s) {
   lists_.set_settings(s);
 }
 
-void ClusteredForward::set_metrics(PassMetrics* metrics) {
-  metrics_ = metrics;
-  lists_.set_metrics(metrics);
-}
+void ClusteredForward::set_metrics(PassMetrics* metrics) { metrics_ = metrics; }
 
 void ClusteredForward::reload_shaders() {
   programs_.clear();
@@ -77,8 +74,8 @@ std::vector<std::string> ClusteredForward::pass_names() {
 void ClusteredForward::draw(const ch03::LightBuffer& light, const ch03::SurfaceView& view,
                             ch03::LightVolumes::Output output) {
   const int w = light.width(), h = light.height();
-  // 1. The lists of every cluster (ClusteredLights' assignment; no depth bounds are needed).
-  lists_.set_metrics(nullptr);
+  // 1. The lists of every cluster (ClusteredLights' assignment; no depth bounds are needed),
+  //    timed here as one pass (lists_ has no metrics of its own: scopes do not nest).
   {
     auto pass = timed(metrics_, pass_names()[0]);
     lists_.build_lists(w, h, view);

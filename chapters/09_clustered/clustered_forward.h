@@ -39,7 +39,7 @@ class ClusteredForward : public ch03::LocalLightPass {
   std::string name() const override { return "clustered-forward"; }
   void draw(const ch03::LightBuffer& light, const ch03::SurfaceView& view, ch03::LightVolumes::Output output) override;
   bool times_own_passes() const override { return true; }
-  void set_metrics(PassMetrics* metrics) override;
+  void set_metrics(PassMetrics* metrics) override;  // this pass's; the lists' stay unset
   // "local lights: clustered-forward: assign", "...: depth pre-pass", "...: shade".
   static std::vector<std::string> pass_names();
 

@@ -61,7 +61,8 @@ std::string WholeFrame::key(const WholeFrameSettings& s) const {
 // light, the glass after the composite.
 void WholeFrame::build(const WholeFrameSettings& s) {
   const std::vector<PlannedStage> p = plan(s);
-  const bool shadows = p[1].runs, neon = p[4].runs, ao = p[5].runs, indirect = p[6].runs, glass = p[8].runs;
+  const bool shadows = p[kShadowMap].runs, neon = p[kNeon].runs, ao = p[kAo].runs, indirect = p[kIndirect].runs,
+             glass = p[kGlass].runs;
   glass_.reset();
   gi_.reset();
   shadows_.reset();
@@ -129,8 +130,8 @@ void WholeFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outp
   if (shadows_) shadows_->set(ch06::ShadowSettings{});
   if (gi_) {
     ch08::GiSettings g;
-    g.ao = p[5].runs;
-    g.indirect = p[6].runs;
+    g.ao = p[kAo].runs;
+    g.indirect = p[kIndirect].runs;
     gi_->set(g.indirect ? ch08::GiMode::Ssgi : ch08::GiMode::Ssao, g, ch08::GiShow::Image, source_->scene().ambient);
   }
   if (glass_) glass_->set({.method = s.transparency});

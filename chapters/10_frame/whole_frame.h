@@ -45,6 +45,10 @@ struct WholeFrameSettings {
 };
 // [/whole-settings]
 
+// The plan's lines, in frame order: plan() pushes one per step in this order, so
+// plan()[kShadowMap] is the shadow map's line.
+enum PlanStep { kGBufferStep, kShadowMap, kGlobalLight, kLocalLights, kNeon, kAo, kIndirect, kComposite, kGlass, kHdr };
+
 // One line of the plan: a stage, whether it runs this frame, and why not.
 struct PlannedStage {
   std::string stage;
