@@ -1,6 +1,6 @@
 // scenegen: writes the lightpass scenes (glTF 2.0) and the loader test inputs, deterministically.
 //
-//   scenegen OUT_DIR                    writes OUT_DIR/{forward,atrium,street,cornell,neon,street_neon,glass}/
+//   scenegen OUT_DIR                    writes OUT_DIR/{forward,atrium,street,cornell,neon,street_neon,street_shop,glass}/
 //   scenegen --test-data DIR            writes the loader test inputs into DIR
 //   scenegen --verify DIR               loads every .gltf under DIR with tinygltf and checks it
 //   scenegen --verify-test-data DIR     checks the test inputs fail/load as documented
@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
       scenegen::write_cornell(a);
       scenegen::write_neon(a);
       scenegen::write_street_neon(a);
+      scenegen::write_street_shop(a);
       scenegen::write_glass(a);
       return 0;
     }

@@ -59,6 +59,14 @@ Material matte(std::string name, glm::vec3 color, float roughness, float specula
   return m;
 }
 
+// Tinted glass (chapter 10): alphaMode BLEND, alpha = the share of light the surface takes.
+Material glass_material(std::string name, glm::vec3 color, float alpha, float roughness) {
+  Material m = matte(std::move(name), color, roughness, 0.5f);
+  m.base_color.a = alpha;
+  m.alpha_mode = "BLEND";
+  return m;
+}
+
 Material emitter(std::string name, glm::vec3 base, glm::vec3 emissive) {
   Material m = matte(std::move(name), base, 0.6f, 0.2f);
   m.emissive = emissive;
@@ -472,14 +480,16 @@ void write_neon(const fs::path& out) {
 // one is always on a wall. Heights between the first and second rows of windows (their panes
 // span y 1.0-2.5 and 4.2-5.7). Intensities give capsules of 11-16 m (one 8-bit step): from
 // the pavement a view stands inside some and outside others.
-void write_street_neon(const fs::path& out) {
-  const fs::path dir = fresh_dir(out, "street_neon");
-  GltfBuilder b("street_neon");
-  build_street(b, [](GltfBuilder& c) {
-    c.add_camera("neon_signs", {0.5f, 1.8f, 52.0f}, {-0.5f, 2.7f, 26.0f}, 0.9f, 0.05f, 200.0f);
-    c.add_camera("inside_sign", {-5.4f, 1.75f, 42.5f}, {-7.6f, 3.0f, 36.5f}, 0.9f, 0.05f, 200.0f);
-    c.add_camera("above_signs", {1.5f, 34.0f, 64.0f}, {-0.5f, 0.0f, 19.0f}, 0.9f, 0.5f, 300.0f);
-  });
+namespace {
+// The neon street's cameras, added before the street's own.
+void add_sign_cameras(GltfBuilder& c) {
+  c.add_camera("neon_signs", {0.5f, 1.8f, 52.0f}, {-0.5f, 2.7f, 26.0f}, 0.9f, 0.05f, 200.0f);
+  c.add_camera("inside_sign", {-5.4f, 1.75f, 42.5f}, {-7.6f, 3.0f, 36.5f}, 0.9f, 0.05f, 200.0f);
+  c.add_camera("above_signs", {1.5f, 34.0f, 64.0f}, {-0.5f, 0.0f, 19.0f}, 0.9f, 0.5f, 300.0f);
+}
+
+// The six signs on the facades.
+void add_signs(GltfBuilder& b) {
   const float left = -7.88f, right = 7.88f;  // 12 cm in front of the facades
   const glm::vec3 along_street(0, 0, 1);
   auto tube = [](float length, float radius, glm::vec3 color, float intensity, bool caps) {
@@ -499,6 +509,72 @@ void write_street_neon(const fs::path& out) {
   add_neon(b, "sign_amber", {right, 3.35f, 16.0f}, along_street, kUp, amber);
   add_neon(b, "sign_violet", {left, 3.3f, 10.75f}, {0.0f, 1.2f, 1.5f}, {1, 0, 0}, tube(1.9f, 0.025f, {0.6f, 0.3f, 1.0f}, 0.5f, true));
   add_neon(b, "sign_red", {right, 3.35f, -5.0f}, along_street, kUp, tube(3.0f, 0.03f, {1.0f, 0.1f, 0.08f}, 1.0f, true));
+}
+}  // namespace
+
+void write_street_neon(const fs::path& out) {
+  const fs::path dir = fresh_dir(out, "street_neon");
+  GltfBuilder b("street_neon");
+  build_street(b, add_sign_cameras);
+  add_signs(b);
+  b.write(dir);
+}
+
+// ---------------------------------------------------------------------------------------------
+// street_shop: chapter 10's whole frame. The neon street exactly as write_street_neon makes it,
+// with two shop windows on the pavements: glass display cases (alphaMode BLEND, each pane one
+// face towards the street and the sky) standing out 0.9 m from a facade, a lamp inside each,
+// and glass bottles on a plinth and a shelf. The cases stand in front of the facades' first
+// row of windows (y 1.0-2.5), so a lit window glows through two layers of glass.
+void write_street_shop(const fs::path& out) {
+  const fs::path dir = fresh_dir(out, "street_shop");
+  GltfBuilder b("street_shop");
+  build_street(b, [](GltfBuilder& c) {
+    c.add_camera("shops", {1.0f, 2.2f, 50.0f}, {0.0f, 1.6f, 30.0f}, 0.9f, 0.05f, 200.0f);
+    c.add_camera("shop_window", {-4.6f, 1.65f, 37.2f}, {-7.5f, 1.2f, 32.0f}, 0.9f, 0.05f, 200.0f);
+    add_sign_cameras(c);
+  });
+  add_signs(b);
+
+  auto glass = [&](const char* name, glm::vec3 color, float alpha) { return b.add_material(glass_material(name, color, alpha, 0.1f)); };
+  const int pane = glass("shop_glass", {0.85f, 0.95f, 0.95f}, 0.15f);
+  const int bottle_mats[3] = {glass("bottle_green", {0.15f, 0.6f, 0.2f}, 0.55f),
+                              glass("bottle_amber", {0.85f, 0.45f, 0.08f}, 0.6f),
+                              glass("bottle_clear", {0.8f, 0.9f, 0.95f}, 0.3f)};
+  const int wood = b.add_material(matte("shop_wood", {0.35f, 0.2f, 0.1f}, 0.6f, 0.2f));
+
+  Mesh bottle = make_cylinder(0.07f, 0.26f, 16);
+  bottle.append(make_uv_sphere(0.07f, 16, 8), place({0.0f, 0.26f, 0.0f}));
+  bottle.append(make_cylinder(0.025f, 0.12f, 10), place({0.0f, 0.31f, 0.0f}));
+  int bottle_mesh[3];
+  for (int i = 0; i < 3; ++i) bottle_mesh[i] = b.add_mesh(std::string("bottle_") + std::to_string(i), bottle, bottle_mats[i]);
+
+  RectMeshes rects(b);
+  // side: -1 the left facade (x = -8), +1 the right (x = +8); the case spans z0 .. z0 + length.
+  auto shop = [&](const std::string& name, float side, float z0, float length, glm::vec3 lamp) {
+    const float depth = 0.9f, y0 = 0.15f, y1 = 2.6f;  // on the pavement (top at 0.15 m)
+    const float face = side * (8.0f - depth), mid = side * (8.0f - depth / 2.0f), zc = z0 + length / 2.0f;
+    const glm::vec3 out_n(-side, 0, 0), along(0, 0, side);  // towards the street; "right" seen from it
+    rects.node(name + "_front", {face, (y0 + y1) / 2.0f, zc}, out_n, along, length, y1 - y0, pane);
+    rects.node(name + "_top", {mid, y1, zc}, kUp, {1, 0, 0}, depth, length, pane);
+    rects.node(name + "_end_a", {mid, (y0 + y1) / 2.0f, z0}, {0, 0, -1}, {-1, 0, 0}, depth, y1 - y0, pane);
+    rects.node(name + "_end_b", {mid, (y0 + y1) / 2.0f, z0 + length}, {0, 0, 1}, {1, 0, 0}, depth, y1 - y0, pane);
+    // The plinth stops 5 cm behind the front pane (a shared plane would z-fight with the glass).
+    b.add_mesh_node(name + "_plinth", b.add_mesh(name + "_plinth", make_box({depth - 0.05f, 0.4f, length - 0.1f}), wood),
+                    {side * (8.0f - (depth - 0.05f) / 2.0f), y0 + 0.2f, zc});
+    b.add_mesh_node(name + "_shelf", b.add_mesh(name + "_shelf", make_box({depth * 0.6f, 0.04f, length}), wood),
+                    {side * (8.0f - depth * 0.3f), 1.3f, zc});
+    const int per_row = static_cast<int>(length / 0.45f);
+    for (int row = 0; row < 2; ++row)
+      for (int i = 0; i < per_row; ++i) {
+        const float z = z0 + (static_cast<float>(i) + 0.5f) * length / static_cast<float>(per_row);
+        const float y = row == 0 ? y0 + 0.4f : 1.32f, x = side * (8.0f - (row == 0 ? 0.55f : 0.3f));
+        b.add_mesh_node(name + "_bottle_" + std::to_string(row) + padded(i, 2), bottle_mesh[(i + row) % 3], {x, y, z});
+      }
+    b.add_point_light(name + "_lamp", lamp, {1.0f, 0.8f, 0.55f}, 0.35f, std::sqrt(0.35f / 0.015f));
+  };
+  shop("shop_l", -1.0f, 30.0f, 4.0f, {-7.55f, 2.35f, 32.0f});
+  shop("shop_r", 1.0f, 38.5f, 3.5f, {7.55f, 2.35f, 40.25f});
   b.write(dir);
 }
 
@@ -532,12 +608,7 @@ void write_glass(const fs::path& out) {
   rects.node("wall", {0.0f, 2.0f, -3.0f}, {0, 0, 1}, {1, 0, 0}, 10.0f, 4.0f, wall_mat);
   b.add_mesh_node("box", b.add_mesh("box", make_box({0.8f, 0.8f, 0.8f}), box_mat), {-0.4f, 0.4f, -1.9f});
 
-  auto glass = [&](const char* name, glm::vec3 color, float alpha) {
-    Material m = matte(name, color, 0.15f, 0.5f);
-    m.base_color.a = alpha;
-    m.alpha_mode = "BLEND";
-    return b.add_material(m);
-  };
+  auto glass = [&](const char* name, glm::vec3 color, float alpha) { return b.add_material(glass_material(name, color, alpha, 0.15f)); };
   const int blue = glass("glass_blue", {0.15f, 0.35f, 0.9f}, 0.35f);
   const int amber = glass("glass_amber", {0.95f, 0.6f, 0.1f}, 0.5f);
   const int green = glass("glass_green", {0.2f, 0.8f, 0.3f}, 0.6f);

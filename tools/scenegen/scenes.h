@@ -14,6 +14,7 @@ void write_street(const std::filesystem::path& out_dir);
 void write_cornell(const std::filesystem::path& out_dir);
 void write_neon(const std::filesystem::path& out_dir);   // chapter 04
 void write_street_neon(const std::filesystem::path& out_dir);  // chapter 04: the street with neon signs
+void write_street_shop(const std::filesystem::path& out_dir);  // chapter 10: the neon street with shop windows
 void write_glass(const std::filesystem::path& out_dir);  // chapter 10: glass panes (alphaMode BLEND) before lit walls
 
 // Small broken / edge-case glTF files for the loader's tests, written into dir.
