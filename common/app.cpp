@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <utility>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -207,6 +208,7 @@ bool App::next_frame() {
     metrics_.throw_if_error();
     context_->swap_and_poll();
   }
+  if (!scene_request_.empty()) return false;  // the body ends; switch_scene() loads the scene
   started_ = true;
   panel_drawn_ = false;
   int w = 0, h = 0;
@@ -256,6 +258,15 @@ void App::panel(const std::function<void()>& chapter_controls) {
       if (ImGui::Selectable(m.c_str(), m == frame_.mode)) { frame_.mode = m; metrics_.reset(); }
     ImGui::EndCombo();
   }
+  // The chapter's scenes (those with references), when it has more than one.
+  std::vector<std::string> scenes = chapter_.reference_scenes();
+  if (std::find(scenes.begin(), scenes.end(), options_.scene) == scenes.end()) scenes.insert(scenes.begin(), options_.scene);
+  if (scenes.size() > 1 && ImGui::BeginCombo("scene", options_.scene.c_str())) {
+    for (const auto& s : scenes)
+      if (ImGui::Selectable(s.c_str(), s == options_.scene) && s != options_.scene) scene_request_ = s;
+    ImGui::EndCombo();
+  }
+  if (!scene_error_.empty()) ImGui::TextWrapped("%s", scene_error_.c_str());
   if (ImGui::BeginCombo("view", view_.c_str())) {
     for (const auto& c : scene_->cameras)
       if (ImGui::Selectable(c.name.c_str(), c.name == view_)) {
@@ -443,6 +454,33 @@ int App::finish() {
   return 0;
 }
 
+bool App::switch_scene() {
+  if (scene_request_.empty()) return false;
+  const std::string path = std::exchange(scene_request_, {});
+  started_ = false;  // the last frame was presented; the next one starts afresh
+  try {
+    auto scene = std::make_unique<Scene>(load_scene(resolve_input(path)));
+    for (const auto& w : scene->warnings) std::cerr << "warning: " << w << '\n';
+    // The chapter's objects (which held the old scene's buffers) ended with its body.
+    scene_gpu_.reset();
+    scene_ = std::move(scene);
+    scene_gpu_ = std::make_unique<SceneGpu>(*scene_);
+  } catch (const Error& e) {
+    scene_error_ = "could not load " + path + ": " + e.what();
+    std::cerr << chapter_.cli.program << ": " << scene_error_ << " (kept " << options_.scene << ")\n";
+    return true;
+  }
+  scene_error_.clear();
+  options_.scene = path;
+  view_ = scene_->cameras.front().name;
+  glm::vec3 extent = scene_->bounds_max - scene_->bounds_min;
+  fly_ = FlyCamera(scene_->camera(view_), std::max(0.5f, glm::length(extent) * 0.1f));
+  frame_.index = 0;  // a new shot: state that builds up over frames starts again
+  metrics_.clear();
+  target_.reset();
+  return true;
+}
+
 int run_chapter(int argc, const char* const* argv, const Chapter& chapter, const std::function<void(App&)>& body) {
   Options options;
   try {
@@ -474,7 +512,8 @@ int run_chapter(int argc, const char* const* argv, const Chapter& chapter, const
       return 0;
     }
     App app(chapter, options);
-    body(app);
+    do body(app);  // again after the reader picks another scene in the window's panel
+    while (app.switch_scene());
     return app.finish();
   } catch (const UsageError& e) {
     // A chapter's own checks of its options (those only it can make: against the GL's

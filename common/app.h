@@ -102,6 +102,10 @@ class App {
   void panel(const std::function<void()>& chapter_controls = {});
   // Writes what the run produced and returns the exit code.
   int finish();
+  // Window only: the reader picked another of the chapter's scenes in the panel, so
+  // next_frame() returned false. Loads it (a scene that fails to load is reported and the
+  // current one kept) and returns true: run the chapter's body again. False otherwise.
+  bool switch_scene();
 
  private:
   struct Job;  // one image to render headless (a shot, or the default view)
@@ -125,6 +129,7 @@ class App {
   int failures_ = 0, missing_ = 0;
   double last_time_ = 0;
   std::string view_;
+  std::string scene_request_, scene_error_;  // the panel's scene choice; why it did not load
   std::string last_mode_;
   bool view_changed_ = false;
   std::unique_ptr<OutputTarget> target_;

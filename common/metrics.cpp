@@ -139,6 +139,13 @@ void PassMetrics::reset() {
   for (auto& s : stats_) s = Stats{.name = s.name};
 }
 
+void PassMetrics::clear() {
+  wait_all();
+  passes_.clear();
+  stats_.clear();
+  allocations_.clear();
+}
+
 void PassMetrics::count(const std::string& pass, const std::string& what, std::uint64_t value) {
   auto it = std::find_if(stats_.begin(), stats_.end(), [&](const Stats& s) { return s.name == pass; });
   if (it == stats_.end()) throw Error("internal: a count for pass '" + pass + "', which was never measured");

@@ -66,6 +66,7 @@ class PassMetrics {
   void end_frame();  // gathers results that are ready; never waits
   void wait_all();   // gathers everything still in flight (end of a benchmark or a test)
   void reset();      // forget the statistics (e.g. after warm-up frames)
+  void clear();      // forget every pass and allocation too (a new scene: new stages)
 
   // An exact count the chapter made itself inside pass `pass` (measured this frame or
   // before), reported with the pass's statistics under `what` (replacing an earlier value).
