@@ -5,18 +5,24 @@ lightpass_gtests(10_frame gl lightpass_10_frame unit/test_10_transparency_gl.cpp
 # The program: its references (tests/reference/10_frame/, made on llvmpipe and looked at), what
 # a headless run says, and bad input.
 set(P10 $<TARGET_FILE:10_frame>)
-lightpass_program_test(10_frame.reference 0 "15 of 15 references match" ${P10} --check --out ${CHECK_OUT}/10_frame)
+set(GLASS assets/glass/glass.gltf)
+# The default: the whole frame on the street with its shop windows, every stage on and each
+# stage off in turn; the same in the atrium; and the glass room's transparency (--mode frame).
+lightpass_program_test(10_frame.reference.street_shop 0 "8 of 8 references match" ${P10} --check --out ${CHECK_OUT}/10_frame)
+lightpass_program_test(10_frame.reference.atrium 0 "5 of 5 references match"
+  ${P10} --check --scene assets/atrium/atrium.gltf --out ${CHECK_OUT}/10_frame_atrium)
+lightpass_program_test(10_frame.reference.glass 0 "15 of 15 references match" ${P10} --check --scene ${GLASS} --out ${CHECK_OUT}/10_frame_glass)
 lightpass_program_test(10_frame.headless_says_what_it_drew 0
   "7 transparent surfaces, wboit: frame took .* ms.*exact order: [1-9][0-9]* fragments"
-  ${P10} --headless --size 160x90 --transparency wboit --show error --out ${CMAKE_BINARY_DIR}/out/10_headless.png)
+  ${P10} --headless --mode frame --scene ${GLASS} --size 160x90 --transparency wboit --show error --out ${CMAKE_BINARY_DIR}/out/10_headless.png)
 lightpass_program_test(10_frame.bench_prints_the_wboit_passes 0 "\"name\":\"transparency: WBOIT composite\""
-  ${P10} --bench --frames 2 --size 160x90 --transparency wboit)
+  ${P10} --bench --mode frame --scene ${GLASS} --frames 2 --size 160x90 --transparency wboit)
 lightpass_program_test(10_frame.bad_transparency 2 "transparency" ${P10} --transparency painter)
 # A scene without glass is chapter 03's frame, bit for bit up to its reference's tolerance: the
 # stage draws nothing (chapter 03's stencil reference of the street).
 lightpass_image_test(10_frame.scene_without_glass_renders_as_chapter_03 "0 transparent surfaces" ${CMAKE_BINARY_DIR}/out/10_street.png
   --matches ${CMAKE_SOURCE_DIR}/tests/reference/03_light_volumes/street_level_stencil.png
-  RUN ${P10} --headless --size 320x180 --scene assets/street/street.gltf --view street_level --out ${CMAKE_BINARY_DIR}/out/10_street.png)
+  RUN ${P10} --headless --mode frame --size 320x180 --scene assets/street/street.gltf --view street_level --out ${CMAKE_BINARY_DIR}/out/10_street.png)
 # The sweep's options (the sweep itself runs on the GPU machine through tools/device-measure).
 lightpass_program_test(10_frame.sweep_unknown_option 2 "unknown option '--fast'" $<TARGET_FILE:10_frame_sweep> --fast)
 lightpass_program_test(10_frame.sweep_bad_layers 2 "--layers must be between 1 and 128" $<TARGET_FILE:10_frame_sweep> --layers 0)
@@ -27,13 +33,13 @@ lightpass_program_test(10_frame.sweep_bad_layers 2 "--layers must be between 1 a
 lightpass_image_test(10_frame.whole_with_every_stage_off_is_chapter_05s_street "not run  shadow map" ${CMAKE_BINARY_DIR}/out/10_whole_off.png
   --matches ${CMAKE_SOURCE_DIR}/tests/reference/05_hdr/street_level_reinhard.png
   RUN ${P10} --headless --mode whole --size 320x180 --scene assets/street/street.gltf --view street_level --shadows 0
-      --clustered 0 --ao 0 --indirect 0 --transparency off --out ${CMAKE_BINARY_DIR}/out/10_whole_off.png)
+      --clustered 0 --ao 0 --indirect 0 --transparency off --bloom off --out ${CMAKE_BINARY_DIR}/out/10_whole_off.png)
 # Chapter 09's clusters instead of the volumes: the same image within chapter 09's cross-check (a
 # step here and there; chapter 05's reference tolerance).
 lightpass_image_test(10_frame.whole_with_clusters_is_chapter_05s_street "runs     local lights: clusters" ${CMAKE_BINARY_DIR}/out/10_whole_clusters.png
   --matches ${CMAKE_SOURCE_DIR}/tests/reference/05_hdr/street_level_reinhard.png
   RUN ${P10} --headless --mode whole --size 320x180 --scene assets/street/street.gltf --view street_level --shadows 0
-      --ao 0 --indirect 0 --transparency off --out ${CMAKE_BINARY_DIR}/out/10_whole_clusters.png)
+      --ao 0 --indirect 0 --transparency off --bloom off --out ${CMAKE_BINARY_DIR}/out/10_whole_clusters.png)
 # Every stage the neon street needs runs, each timed as its chapter names it (the frame budget).
 lightpass_program_test(10_frame.whole_bench_times_every_stage 0
   "shadow map: depth from the sun.*local lights: clustered: shade.*neon: .*ssgi: .*hdr: tonemap"
@@ -42,6 +48,11 @@ lightpass_program_test(10_frame.whole_bench_times_every_stage 0
 lightpass_program_test(10_frame.whole_says_what_it_does_not_run 0
   "not run  neon tubes [(]chapter 04[)] [(]no neon tubes[)]"
   ${P10} --headless --mode whole --size 64x36 --scene assets/atrium/atrium.gltf --out ${CMAKE_BINARY_DIR}/out/10_whole_atrium.png)
+# The window path under a virtual X display: a smoke test (the panel covers the left half, so the
+# lit fraction says that the window drew; the references check the frame).
+lightpass_image_test(10_frame.window_smoke_screenshot "window screenshot, 640x360" ${CMAKE_BINARY_DIR}/out/10_window.png
+  --size 640x360 --background ${BACKGROUND_SRGB8} --lit 0.3 1
+  RUN xvfb-run -a -s "-screen 0 640x360x24" ${P10} --size 640x360 --frames 3 --out ${CMAKE_BINARY_DIR}/out/10_window.png)
 # MSAA with deferred shading (chapters/10_frame/msaa.h): the cross-checks, the edges of a scene
 # known to the pixel, the exact fragment count and the tonemap order at a bright edge.
 lightpass_gtests(10_msaa gl lightpass_10_frame unit/test_10_msaa_gl.cpp)
@@ -50,6 +61,6 @@ lightpass_gtests(10_msaa gl lightpass_10_frame unit/test_10_msaa_gl.cpp)
 lightpass_image_test(10_frame.msaa_4_is_chapter_03s_street_with_resolved_edges "MSAA 4 samples" ${CMAKE_BINARY_DIR}/out/10_msaa.png
   --near ${CMAKE_SOURCE_DIR}/tests/reference/03_light_volumes/street_level_stencil.png 4
   --differs-from ${CMAKE_SOURCE_DIR}/tests/reference/03_light_volumes/street_level_stencil.png 0.5
-  RUN ${P10} --headless --size 320x180 --scene assets/street/street.gltf --view street_level --msaa 4 --out ${CMAKE_BINARY_DIR}/out/10_msaa.png)
+  RUN ${P10} --headless --mode frame --size 320x180 --scene assets/street/street.gltf --view street_level --msaa 4 --out ${CMAKE_BINARY_DIR}/out/10_msaa.png)
 lightpass_program_test(10_frame.msaa_bad_samples 2 "msaa" ${P10} --msaa 3)
 lightpass_program_test(10_frame.sweep_bad_part 2 "--part must be all, transparency or msaa" $<TARGET_FILE:10_frame_sweep> --part everything)

@@ -47,16 +47,16 @@ def main(d: Path):
 # sun x 25): each step adds a
 # stage of the whole frame; every image goes through chapter 05's tonemapping.
 STRIP = [
-    ("10_strip_1_direct.png", ["--shadows", "0", "--ao", "0", "--indirect", "0"]),
-    ("10_strip_2_shadows.png", ["--ao", "0", "--indirect", "0"]),
-    ("10_strip_3_ao.png", ["--indirect", "0"]),
-    ("10_strip_4_indirect.png", []),
+    ("10_strip_1_direct.png", ["--shadows", "0", "--ao", "0", "--indirect", "0", "--bloom", "off"]),
+    ("10_strip_2_shadows.png", ["--ao", "0", "--indirect", "0", "--bloom", "off"]),
+    ("10_strip_3_ao.png", ["--indirect", "0", "--bloom", "off"]),
+    ("10_strip_4_indirect.png", ["--bloom", "off"]),
     ("10_strip_5_bloom.png", ["--bloom", "before"]),
 ]
 
 
 # The pass diagrams: what the whole frame runs on each scene, as the program prints it.
-DIAGRAMS = [("10_passes_street_neon.svg", "assets/street_neon/street_neon.gltf"),
+DIAGRAMS = [("10_passes_street_shop.svg", "assets/street_shop/street_shop.gltf"),
             ("10_passes_atrium.svg", "assets/atrium/atrium.gltf"),
             ("10_passes_glass.svg", "assets/glass/glass.gltf")]
 
@@ -129,7 +129,7 @@ def diagrams_from_csv(d: Path):
                    "reads": [b.strip() for b in r["reads"].split("+")], "writes": r["writes"]}
                   for r in rows if r["scene"] == stem]
         if stages:
-            diagram(stages, f"The whole frame's passes on {stem} (./run 10 --mode whole)", d / name)
+            diagram(stages, f"The whole frame's passes on {stem} (./run 10 --scene ...)", d / name)
 
 
 def strip(build: Path, d: Path):
