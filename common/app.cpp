@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <utility>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -122,6 +123,8 @@ App::App(const Chapter& chapter, Options options) : chapter_(chapter), options_(
   frame_.spec = &chapter_.cli;
 
   if (context_->is_window()) {
+    // Tests of the panel's scene switch: the scene picked after the second frame.
+    if (const char* s = std::getenv("LIGHTPASS_TEST_SWITCH_SCENE")) test_scene_ = s;
     gui_ = std::make_unique<Gui>(context_->window());
     glm::vec3 extent = scene_->bounds_max - scene_->bounds_min;
     fly_ = FlyCamera(scene_->camera(view_), std::max(0.5f, glm::length(extent) * 0.1f));
@@ -208,6 +211,7 @@ bool App::next_frame() {
     metrics_.throw_if_error();
     context_->swap_and_poll();
   }
+  if (!test_scene_.empty() && frame_.index == 2) scene_request_ = std::exchange(test_scene_, {});
   if (!scene_request_.empty()) return false;  // the body ends; switch_scene() loads the scene
   started_ = true;
   panel_drawn_ = false;
@@ -473,6 +477,7 @@ bool App::switch_scene() {
   scene_error_.clear();
   options_.scene = path;
   view_ = scene_->cameras.front().name;
+  std::cout << "scene: " << path << " (view " << view_ << ")\n";
   glm::vec3 extent = scene_->bounds_max - scene_->bounds_min;
   fly_ = FlyCamera(scene_->camera(view_), std::max(0.5f, glm::length(extent) * 0.1f));
   frame_.index = 0;  // a new shot: state that builds up over frames starts again

@@ -130,6 +130,7 @@ class App {
   double last_time_ = 0;
   std::string view_;
   std::string scene_request_, scene_error_;  // the panel's scene choice; why it did not load
+  std::string test_scene_;  // tests: LIGHTPASS_TEST_SWITCH_SCENE, picked as if in the panel
   std::string last_mode_;
   bool view_changed_ = false;
   std::unique_ptr<OutputTarget> target_;

@@ -53,6 +53,19 @@ lightpass_program_test(10_frame.whole_says_what_it_does_not_run 0
 lightpass_image_test(10_frame.window_smoke_screenshot "window screenshot, 640x360" ${CMAKE_BINARY_DIR}/out/10_window.png
   --size 640x360 --background ${BACKGROUND_SRGB8} --lit 0.3 1
   RUN xvfb-run -a -s "-screen 0 640x360x24" ${P10} --size 640x360 --frames 3 --out ${CMAKE_BINARY_DIR}/out/10_window.png)
+# The panel's scene switch (common/app.h, App::switch_scene), picked by the test hook after the
+# second frame: the chapter's body runs again on the atrium, whose whole frame the window shows
+# (the panel covers the left half; its right half is the atrium's, not the street's). A scene
+# that does not load is reported, and the street kept.
+lightpass_image_test(10_frame.window_switches_to_the_atrium "scene: assets/atrium/atrium.gltf [(]view overview[)]"
+  ${CMAKE_BINARY_DIR}/out/10_window_atrium.png --size 640x360 --lit 0.3 1
+  RUN env LIGHTPASS_TEST_SWITCH_SCENE=assets/atrium/atrium.gltf
+      xvfb-run -a -s "-screen 0 640x360x24" ${P10} --size 640x360 --frames 3 --out ${CMAKE_BINARY_DIR}/out/10_window_atrium.png)
+lightpass_image_test(10_frame.window_keeps_its_scene_when_the_new_one_fails
+  "could not load tests/data/malformed.gltf: .*[(]kept assets/street_shop/street_shop.gltf[)]"
+  ${CMAKE_BINARY_DIR}/out/10_window_kept.png --size 320x180 --lit 0.3 1
+  RUN env LIGHTPASS_TEST_SWITCH_SCENE=tests/data/malformed.gltf
+      xvfb-run -a -s "-screen 0 320x180x24" ${P10} --size 320x180 --frames 3 --out ${CMAKE_BINARY_DIR}/out/10_window_kept.png)
 # MSAA with deferred shading (chapters/10_frame/msaa.h): the cross-checks, the edges of a scene
 # known to the pixel, the exact fragment count and the tonemap order at a bright edge.
 lightpass_gtests(10_msaa gl lightpass_10_frame unit/test_10_msaa_gl.cpp)
