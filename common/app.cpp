@@ -105,7 +105,8 @@ App::App(const Chapter& chapter, Options options) : chapter_(chapter), options_(
                               .height = options_.height, .title = "lightpass " + chapter_.cli.program});
   scene_ = std::make_unique<Scene>(load_scene(resolve_input(options_.scene)));
   for (const auto& w : scene_->warnings) std::cerr << "warning: " << w << '\n';
-  for (const auto& n : scene_->notes) std::cout << "note: " << n << '\n';
+  // --bench writes JSON on standard output: its notes go with the warnings.
+  for (const auto& n : scene_->notes) (options_.bench ? std::cerr : std::cout) << "note: " << n << '\n';
   if (!options_.out.empty()) {
     // --out names a PNG (an image) or, with --check, a folder: a missing folder is made, and said.
     std::filesystem::path dir = options_.check ? std::filesystem::path(options_.out) : std::filesystem::path(options_.out).parent_path();

@@ -77,3 +77,7 @@ lightpass_image_test(10_frame.msaa_4_is_chapter_03s_street_with_resolved_edges "
   RUN ${P10} --headless --mode frame --size 320x180 --scene assets/street/street.gltf --view street_level --msaa 4 --out ${CMAKE_BINARY_DIR}/out/10_msaa.png)
 lightpass_program_test(10_frame.msaa_bad_samples 2 "msaa" ${P10} --msaa 3)
 lightpass_program_test(10_frame.sweep_bad_part 2 "--part must be all, transparency or msaa" $<TARGET_FILE:10_frame_sweep> --part everything)
+# --bench's standard output is its JSON alone, even for a scene the loader has notes about (the
+# street's glass: the note goes to standard error).
+lightpass_program_test(10_frame.bench_output_is_json_beside_scene_notes 0 "^valid JSON of assets/street_shop/street_shop.gltf$"
+  python3 ${CMAKE_CURRENT_SOURCE_DIR}/stdout_is_json.py ${P10} --bench --frames 1 --size 64x36)
