@@ -11,6 +11,7 @@
 // wrong resolve order).
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <iostream>
 
 #include <imgui.h>
@@ -70,14 +71,21 @@ const CliSpec kCli{
 // renderer that made the references keeps 3 steps and 0.1 %.
 const CompareOptions kOneHeatLevel{.threshold = 70, .max_failing_fraction = 0.01};
 
+// The atrium's tiled floor is minified far into the distance, where OpenGL leaves the mip
+// level to the implementation: on an NVIDIA H200 0.36 to 0.40 % of the whole frame's pixels in
+// the aisle differ from the llvmpipe references by more than 3 steps, all on the floor's tile
+// lines, with AO and indirect light off too (chapters 02, 05 and 06 measured the same). Another
+// renderer gets their allowance, 2 %; the renderer that made the references keeps 0.1 %.
+const CompareOptions kTexturedFloor{.threshold = 3, .max_failing_fraction = 0.02};
+
 // The whole frame with every stage on (the default knobs), then each stage the scene has
 // switched off in turn, and its glass by WBOIT instead of sorting.
-std::vector<Shot> whole_shots(const char* view, bool neon_and_glass) {
-  std::vector<Shot> shots = {{view, "whole"},
-                             {view, "whole", {{"shadows", 0}}},
-                             {view, "whole", {{"clustered", 0}}},
-                             {view, "whole", {{"ao", 0}, {"indirect", 0}}},
-                             {view, "whole", {{"bloom", 0}}}};
+std::vector<Shot> whole_shots(const char* view, bool neon_and_glass, std::optional<CompareOptions> other = {}) {
+  std::vector<Shot> shots = {{view, "whole", {}, {}, other},
+                             {view, "whole", {{"shadows", 0}}, {}, other},
+                             {view, "whole", {{"clustered", 0}}, {}, other},
+                             {view, "whole", {{"ao", 0}, {"indirect", 0}}, {}, other},
+                             {view, "whole", {{"bloom", 0}}, {}, other}};
   if (neon_and_glass) {
     shots.push_back({view, "whole", {{"neon", 0}}});
     shots.push_back({view, "whole", {{"transparency", 1}}});
@@ -107,7 +115,7 @@ std::vector<Shot> glass_shots() {
 const Chapter kChapter{.cli = kCli,
                        .references = street_shots(),
                        .scene_references = {{"assets/glass/glass.gltf", glass_shots()},
-                                            {"assets/atrium/atrium.gltf", whole_shots("aisle", false)}}};
+                                            {"assets/atrium/atrium.gltf", whole_shots("aisle", false, kTexturedFloor)}}};
 
 // An image drawn into the output as it is (no sRGB encoding: the bytes are already sRGB).
 void put_image(const ImageRGBA8& image, GLuint framebuffer) {
