@@ -234,6 +234,43 @@ TEST(TransparencyGl, GlassOfAlphaOneEqualsTheOpaquePath) {
   }
 }
 
+// The atrium's floor (an albedo and a tangent-space normal map) made glass of alpha 1: through
+// the stage it is the opaque floor of the G-buffer, normal map and all, within the 2 steps of
+// the test above (chapter 02's float layout). Without the map read (the interpolated normal)
+// the tiles' bevels would be flat: the floor drawn without its map is more than 2 steps off on
+// many of its pixels, so this test fails if the glass ignores the map.
+TEST(TransparencyGl, NormalMappedGlassOfAlphaOneEqualsTheOpaquePath) {
+  auto atrium = [](bool blend, bool normal_map) {
+    Scene s = load_scene(from_root("assets/atrium/atrium.gltf"));
+    std::size_t mapped = 0;
+    for (Material& m : s.materials)
+      if (m.normal_texture >= 0) {
+        ++mapped;
+        m.blend = blend;
+        m.base_color.a = 1.f;
+        if (!normal_map) m.normal_texture = -1;
+      }
+    EXPECT_EQ(mapped, 1u) << "the atrium's tiled floor";
+    return s;
+  };
+  const ch02::Layout layout = ch02::float_reference_for(ch02::our_layout());
+  World glass(atrium(true, true), layout), opaque(atrium(false, true), layout), flat(atrium(false, false), layout);
+  const ImageRGBA8 truth = opaque.render("aisle", Method::Off);
+  const ExactComposite exact = glass.exact("aisle");
+  const std::vector<int> sorted = steps(glass.render("aisle", Method::Sorted), truth);
+  const std::vector<int> unmapped = steps(flat.render("aisle", Method::Off), truth);
+  std::size_t floor = 0, off = 0, bevels = 0;
+  for (std::size_t i = 0; i < sorted.size(); ++i) {
+    if (exact.layers[i] == 0) continue;  // not the floor
+    ++floor;
+    if (sorted[i] > 2) ++off;
+    if (unmapped[i] > 2) ++bevels;
+  }
+  EXPECT_GT(floor, std::size_t(kW * kH / 4));
+  EXPECT_EQ(off, 0u) << "of " << floor << " floor pixels";
+  EXPECT_GT(bevels, floor / 20) << "the normal map changes the floor's light by more than 2 steps on 5 % of it";
+}
+
 TEST(TransparencyGl, APaneBehindTheWallIsHidden) {
   // The hidden pane (behind the wall) fails the depth test against the G-buffer everywhere:
   // making it clear changes no pixel of either method, nor the number of fragments captured.

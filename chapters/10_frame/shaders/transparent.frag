@@ -9,6 +9,7 @@
 //   GLASS_CAPTURE  every fragment appended to a list (the exact order, sorted on the CPU).
 // (it brings lighting.glsl, gbuffer.glsl and FRAME_VISIBILITY with it)
 #include "09_clustered/shaders/clustered_forward.glsl"
+#include "01_forward/shaders/surface_normal.glsl"
 
 // The depth test (against the G-buffer's depth) before the shader: hidden glass is never
 // shaded, never captured, and GL_SAMPLES_PASSED counts exactly the fragments shaded.
@@ -17,6 +18,7 @@ layout(early_fragment_tests) in;
 layout(std430, binding = 3) readonly buffer Directional { GpuLight directional[]; };
 
 layout(binding = 0) uniform sampler2D u_base_color_texture;
+layout(binding = 1) uniform sampler2D u_normal_texture;
 layout(binding = 2) uniform sampler2D u_emissive_texture;
 
 uniform vec3 u_eye;
@@ -24,6 +26,8 @@ uniform vec4 u_base_color;
 uniform vec3 u_specular;
 uniform float u_exponent;
 uniform vec3 u_emissive;
+uniform bool u_has_normal_map;
+uniform float u_normal_scale;
 uniform vec3 u_ambient;
 uniform int u_light_count;  // directional lights
 
@@ -35,14 +39,15 @@ in vec4 v_tangent;
 // [glass-shading]
 // Chapter 01's per-pixel Blinn-Phong (lighting.glsl), as the opaque surfaces are lit: the
 // directional lights with the frame's visibility (the sun's shadow), the local lights from
-// the fragment's cluster; the interpolated normal (normal maps on glass are not read yet).
+// the fragment's cluster; the normal as every pass reads it (chapter 01's surface_normal():
+// renormalised, bent by the material's normal map).
 // The result premultiplied by the coverage alpha: the surface adds alpha of its colour and
 // lets (1 - alpha) of what is behind through.
 vec4 glass_colour() {
   vec4 base = u_base_color * texture(u_base_color_texture, v_uv);
   Surface s;
   s.position = v_position;
-  s.normal = normalize(v_normal);
+  s.normal = surface_normal(v_normal, v_tangent, v_position, v_uv, true, u_has_normal_map, u_normal_texture, u_normal_scale);
   s.albedo = base.rgb;
   s.specular = u_specular;
   s.exponent = u_exponent;
