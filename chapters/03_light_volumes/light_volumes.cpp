@@ -63,9 +63,9 @@ void additive_volume_state() {
 // test: +1) but not in front of the front face (the front face fails: -1). Behind the
 // volume neither fails (0), in front of it both do (0), and with the eye inside there is
 // no front face: the back face alone gives 1.
-// `bits`: the stencil bits the mask counts in (all 8 here; chapter 10 keeps one for its MSAA
-// edge mark). The wrapping counts below change only the bits the write mask lets through, and
-// those count modulo 2^bits by themselves: a carry never reaches the others.
+// `bits`: the low stencil bits the mask counts in (all 8 here; chapter 10 counts in 0x7F and
+// keeps bit 7 for its MSAA edge mark). The low 7 bits of a count wrapped up or down are the
+// same whatever bit 7 holds, so they count modulo 128 alone, and the write mask keeps bit 7.
 void stencil_mark_state(const DepthTests& tests, GLuint bits = 0xFF) {
   glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   glEnable(GL_DEPTH_TEST);

@@ -177,16 +177,19 @@ void MsaaFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outpu
     glProgramUniform2fv(p.edges.id(), glGetUniformLocation(p.edges.id(), "u_sample_positions"), s.samples,
                         &positions[0].x);
     counted(0, [&] { fullscreen(empty_); });
-    if (volumes && s.samples > 1) {  // the volumes' depth on unmarked pixels: their centre's
-      glStencilFunc(GL_EQUAL, 0, kEdgeBit);
-      glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-      glEnable(GL_DEPTH_TEST);
-      glDepthFunc(GL_ALWAYS);
-      p.centre_depth.use();
-      fullscreen(empty_);
-      glDepthFunc(GL_LESS);
-      glDisable(GL_DEPTH_TEST);
-    }
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  }
+  if (volumes && !everywhere && s.samples > 1) {  // the volumes' depth on unmarked pixels: their centre's
+    auto pass = timed(metrics, "msaa: centre depth for the volumes");
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glStencilFunc(GL_EQUAL, 0, kEdgeBit);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_ALWAYS);
+    p.centre_depth.use();
+    fullscreen(empty_);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_DEPTH_TEST);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   }
 
