@@ -63,12 +63,15 @@ void additive_volume_state() {
 // test: +1) but not in front of the front face (the front face fails: -1). Behind the
 // volume neither fails (0), in front of it both do (0), and with the eye inside there is
 // no front face: the back face alone gives 1.
-void stencil_mark_state(const DepthTests& tests) {
+// `bits`: the low stencil bits the mask counts in (all 8 here; chapter 10 counts in 0x7F and
+// keeps bit 7 for its MSAA edge mark). The low 7 bits of a count wrapped up or down are the
+// same whatever bit 7 holds, so they count modulo 128 alone, and the write mask keeps bit 7.
+void stencil_mark_state(const DepthTests& tests, GLuint bits = 0xFF) {
   glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(tests.less_equal);
   glDisable(GL_CULL_FACE);
-  glStencilMask(0xFF);
+  glStencilMask(bits);
   glStencilFunc(GL_ALWAYS, 0, 0xFF);
   glStencilOpSeparate(GL_BACK, GL_KEEP, GL_INCR_WRAP, GL_KEEP);
   glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_DECR_WRAP, GL_KEEP);
@@ -78,12 +81,12 @@ void stencil_mark_state(const DepthTests& tests) {
 // the eye inside), and no depth test: the mask has done it. Where the stencil is not 0 the
 // pixel is shaded and its stencil set back to 0: the next light finds a clean stencil with
 // no clear at all.
-void stencil_shade_state() {
+void stencil_shade_state(GLuint bits = 0xFF) {
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glDisable(GL_DEPTH_TEST);
   glEnable(GL_CULL_FACE);
   glCullFace(GL_FRONT);
-  glStencilFunc(GL_NOTEQUAL, 0, 0xFF);
+  glStencilFunc(GL_NOTEQUAL, 0, bits);
   glStencilOp(GL_KEEP, GL_KEEP, GL_ZERO);
 }
 // [/stencil-light]
@@ -323,6 +326,21 @@ void LightVolumes::draw_group(const Group& g, const ShaderProgram& p, int first,
     glDrawElementsInstancedBaseInstance(GL_TRIANGLES, g.index_count, GL_UNSIGNED_INT, nullptr, count, GLuint(first));
 }
 
+const ShaderProgram& LightVolumes::volume_program(const std::string& fragment, const SurfaceView& view,
+                                                  std::vector<std::string> extra) {
+  const ShaderProgram& p = program(fragment, view, std::move(extra));
+  set_volume_uniforms(p, view);
+  return p;
+}
+
+void LightVolumes::draw_volume(const ShaderProgram& program, int index) const {
+  for (const Group& g : groups()) {
+    if (index < g.count) return draw_group(g, program, index, 1, false);
+    index -= g.count;
+  }
+  throw Error("there is no local light " + std::to_string(index) + " to draw the volume of");
+}
+
 bool LightVolumes::camera_inside(const Group& g, int i, const glm::vec3& eye) const {
   if (glm::distance(eye, glm::vec3(g.position_radius(i))) > 1.01f * g.bound(i)) return false;
   glm::vec3 local = glm::vec3(glm::inverse(g.transform(i)) * glm::vec4(eye, 1.f));
@@ -516,15 +534,16 @@ void LightVolumes::draw_stencil_bits(const Draw& d) {
 }
 
 // [volume-hook]
-void draw_stencil_volumes(const SurfaceView& view, int count, const std::function<void(int, VolumePass)>& draw) {
+void draw_stencil_volumes(const SurfaceView& view, int count, const std::function<void(int, VolumePass)>& draw,
+                          GLuint stencil_bits) {
   begin_depth_convention(view);
   const DepthTests tests = depth_tests(view);
   additive_volume_state();
   glEnable(GL_STENCIL_TEST);
   for (int i = 0; i < count; ++i) {
-    stencil_mark_state(tests);
+    stencil_mark_state(tests, stencil_bits);
     draw(i, VolumePass::Mark);
-    stencil_shade_state();
+    stencil_shade_state(stencil_bits);
     draw(i, VolumePass::Shade);
   }
   restore_state();

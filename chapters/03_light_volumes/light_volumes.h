@@ -148,9 +148,12 @@ std::optional<glm::ivec4> scissor_rect(const FrameCamera& camera, const glm::vec
 // own programs (Mark: any vertex shader with shaders/stencil.frag; Shade: one that writes L1
 // and L2 and declares early fragment tests) into the bound framebuffer, whose depth-stencil
 // holds the G-buffer's depth and a zero stencil (LightBuffer::begin); each volume leaves the
-// stencil at zero again.
+// stencil at zero again. `stencil_bits`: the bits the masks count in and the light tests
+// (write and read masks); the others are neither written nor read, and keep what the caller
+// put there (chapter 10's MSAA edge mark, bit 7: its volumes count in bits 0-6).
 enum class VolumePass { Mark, Shade };
-void draw_stencil_volumes(const SurfaceView& view, int count, const std::function<void(int index, VolumePass pass)>& draw);
+void draw_stencil_volumes(const SurfaceView& view, int count, const std::function<void(int index, VolumePass pass)>& draw,
+                          GLuint stencil_bits = 0xFF);
 // [/volume-hook-h]
 
 class LightVolumes {
@@ -181,6 +184,13 @@ class LightVolumes {
   bool counting() const { return counting_; }
   FragmentCounts counts() const;  // of the last draw_local (waits for the GPU)
   const DrawStats& draw_stats() const { return stats_; }
+
+  // For draw_stencil_volumes with these lights and other light shaders (chapter 10's MSAA):
+  // a program of volume.vert (the light records as its outputs) and `fragment`, its
+  // view-projection set; and local light `index`'s volume (light order) drawn with it.
+  const ShaderProgram& volume_program(const std::string& fragment, const SurfaceView& view,
+                                      std::vector<std::string> extra = {});
+  void draw_volume(const ShaderProgram& program, int index) const;
 
   // Pictures, into the bound framebuffer, whose depth-stencil holds the scene's depth:
   // every volume as a wireframe in its light's colour, depth-tested against the scene.

@@ -61,7 +61,10 @@ const CliSpec kCli{
                           {"1", "2", "4"}),
               choice_knob("msaa-view", "with --msaa 2 or 4: the image, the edges marked for per-sample light (red), "
                                        "or the samples resolved before the tonemap (wrong on bright edges)",
-                          {"image", "edges", "resolve-first"})}};
+                          {"image", "edges", "resolve-first"}),
+              choice_knob("msaa-lights", "with --msaa 2 or 4: the local lights as chapter 03's stencil volumes (the "
+                                         "stencil shared with the edge mark) or one full-screen loop over every light",
+                          {"volumes", "full-screen"})}};
 
 // The error views draw |method - exact| as a heat map whose first level (one 8-bit step,
 // colour value 64) is most of what they show: half-float and 8-bit rounding of each layer
@@ -167,11 +170,13 @@ int main(int argc, char** argv) {
         const std::string& view = f.choice("msaa-view");
         msaa.render(f.camera, output,
                     {.samples = samples, .order = view == "resolve-first" ? ResolveOrder::ResolveFirst : ResolveOrder::TonemapFirst,
-                     .show = view == "edges" ? MsaaShow::Edges : MsaaShow::Image},
+                     .show = view == "edges" ? MsaaShow::Edges : MsaaShow::Image,
+                     .lights = f.choice("msaa-lights") == "full-screen" ? MsaaLights::FullScreen : MsaaLights::Volumes},
                     &app.metrics());
         app.metrics().set_allocation("MSAA G-buffer + light + stencil, all samples", msaa.allocated_bytes());
         if (std::ostream& out = app.report())
-          out << "MSAA " << samples << " samples (deferred, per sample on the edges; glass not drawn), " << view << '\n';
+          out << "MSAA " << samples << " samples (deferred, per sample on the edges; glass not drawn), " << view
+              << ", local lights: " << f.choice("msaa-lights") << '\n';
         continue;
       }
       const std::string& which = f.choice("transparency");

@@ -49,6 +49,7 @@ MsaaFrame::MsaaFrame(const SceneGpu& scene)
 
 void MsaaFrame::reload_shaders() {
   geometry_.reload_shaders();
+  volumes_.reload_shaders();
   programs_.reset();
 }
 
@@ -64,6 +65,7 @@ void MsaaFrame::set_lights(const ch03::LightSet& lights) {
   if (local.empty()) local.resize(1);
   directional_ = gl::make_buffer(directional.data(), directional.size() * sizeof(ch01::GpuLight));
   local_ = gl::make_buffer(local.data(), local.size() * sizeof(LocalLight));
+  volumes_.set_lights(lights);  // the same records, drawn as chapter 03's volumes
 }
 
 void MsaaFrame::resize(int width, int height, int samples) {
@@ -80,7 +82,7 @@ void MsaaFrame::resize(int width, int height, int samples) {
   if (gbuffer_ && gbuffer_->width() == width && gbuffer_->height() == height && gbuffer_->samples() == samples) return;
   gbuffer_ = std::make_unique<ch02::GBuffer>(width, height, ch02::our_layout(), samples);
   radiance_ = make_target(GL_RGBA16F, width, height, samples);
-  stencil_ = make_target(GL_DEPTH24_STENCIL8, width, height, samples);
+  stencil_ = make_target(ch02::depth_format(gbuffer_->layout().depth), width, height, samples);  // blit: same format
   radiance_fbo_ = gl::Framebuffer();
   glNamedFramebufferTexture(radiance_fbo_.id(), GL_COLOR_ATTACHMENT0, radiance_.id(), 0);
   glNamedFramebufferTexture(radiance_fbo_.id(), GL_DEPTH_STENCIL_ATTACHMENT, stencil_.id(), 0);
@@ -98,7 +100,8 @@ std::size_t MsaaFrame::allocated_bytes() const {
   if (!gbuffer_) return 0;
   const std::size_t samples = std::size_t(gbuffer_->samples());
   const std::size_t pixels = std::size_t(gbuffer_->width()) * std::size_t(gbuffer_->height());
-  return (gbuffer_->bytes_per_pixel() + 8 + 4) * pixels * samples;  // + RGBA16F light + D24S8
+  const std::size_t depth_stencil = gl::bytes_per_texel(ch02::depth_format(gbuffer_->layout().depth));
+  return (gbuffer_->bytes_per_pixel() + 8 + depth_stencil) * pixels * samples;  // + RGBA16F light + depth-stencil
 }
 
 
@@ -117,7 +120,8 @@ void MsaaFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outpu
         ShaderProgram({vs, {GL_FRAGMENT_SHADER, "10_frame/shaders/msaa_shade.frag"}}, d),
         ShaderProgram({vs, {GL_FRAGMENT_SHADER, "10_frame/shaders/msaa_shade.frag"}}, per_sample),
         ShaderProgram({vs, {GL_FRAGMENT_SHADER, "10_frame/shaders/msaa_resolve.frag"}}, d),
-        ShaderProgram({vs, {GL_FRAGMENT_SHADER, "10_frame/shaders/msaa_mark.frag"}}, d)});
+        ShaderProgram({vs, {GL_FRAGMENT_SHADER, "10_frame/shaders/msaa_mark.frag"}}, d),
+        ShaderProgram({vs, {GL_FRAGMENT_SHADER, "10_frame/shaders/msaa_centre_depth.frag"}}, d)});
     programs_samples_ = s.samples;
   }
   Programs& p = *programs_;
@@ -151,13 +155,20 @@ void MsaaFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outpu
   glStencilMask(0xFF);
   const GLint zero = 0;
   glClearNamedFramebufferiv(radiance_fbo_.id(), GL_STENCIL, 0, &zero);
+  const bool volumes = s.lights == MsaaLights::Volumes;
+  glDisable(GL_SCISSOR_TEST);
+  glDepthMask(GL_TRUE);
+  if (volumes)  // the volumes' depth tests: a copy of the G-buffer's depth, every sample
+    glBlitNamedFramebuffer(gbuffer_->framebuffer(), radiance_fbo_.id(), 0, 0, output.width, output.height, 0, 0,
+                           output.width, output.height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
 
-  // 2. The edges: 1 in the stencil where the pixel's samples differ.
+  // 2. The edges: bit 7 of the stencil where the pixel's samples differ.
   const bool everywhere = s.shading == MsaaShading::PerSampleEverywhere;
   if (!everywhere) {
     auto pass = timed(metrics, "msaa: mark edges");
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    glStencilFunc(GL_ALWAYS, 1, 0xFF);
+    glStencilMask(kEdgeBit);  // this pass writes bit 7 and only bit 7
+    glStencilFunc(GL_ALWAYS, kEdgeBit, 0xFF);
     glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
     p.edges.use();
     p.edges.set("u_depth_threshold", s.depth_threshold);
@@ -168,40 +179,73 @@ void MsaaFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outpu
     counted(0, [&] { fullscreen(empty_); });
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   }
+  if (volumes && !everywhere && s.samples > 1) {  // the volumes' depth on unmarked pixels: their centre's
+    auto pass = timed(metrics, "msaa: centre depth for the volumes");
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glStencilFunc(GL_EQUAL, 0, kEdgeBit);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_ALWAYS);
+    p.centre_depth.use();
+    fullscreen(empty_);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_DEPTH_TEST);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  }
 
-  // 3. The light: once per pixel where the stencil is 0, once per sample where it is 1
-  //    (per sample everywhere: the stencil is not looked at).
+  // 3. The light: once per pixel where the edge bit is 0, once per sample where it is 1
+  //    (per sample everywhere: the stencil is not looked at). Every light, or with volumes
+  //    only the directional lights and the ambient (one light each, every pixel).
+  glStencilMask(0xFF);
   glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDirectionalBinding, directional_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLocalBinding, local_.id());
   for (ShaderProgram* program : {&p.per_pixel, &p.per_sample}) {
     program->set("u_directional_count", directional_count_);
-    program->set("u_local_count", local_count_);
+    program->set("u_local_count", volumes ? 0 : local_count_);
     program->set("u_ambient", ambient_);
     program->set("u_background", background_);
   }
   if (!everywhere) {
     auto pass = timed(metrics, "msaa: light per pixel (stencil 0)");
-    glStencilFunc(GL_EQUAL, 0, 0xFF);
+    glStencilFunc(GL_EQUAL, 0, kEdgeBit);
     p.per_pixel.use();
     counted(1, [&] { fullscreen(empty_); });
   }
   {
     auto pass = timed(metrics, everywhere ? "msaa: light per sample everywhere" : "msaa: light per sample (stencil 1)");
     if (everywhere) glDisable(GL_STENCIL_TEST);
-    glStencilFunc(GL_EQUAL, 1, 0xFF);
+    glStencilFunc(GL_EQUAL, kEdgeBit, kEdgeBit);
     p.per_sample.use();
     counted(2, [&] { fullscreen(empty_); });
   }
-  if (s.show == MsaaShow::Edges && !everywhere) {  // the picture: marked pixels red
+  // 4. With volumes: the local lights, each one chapter 03's stencil volume at both rates.
+  if (volumes) {
+    auto pass = timed(metrics, "msaa: local lights (chapter 03's volumes)");
+    draw_volumes(s, counting);
+    glBindFramebuffer(GL_FRAMEBUFFER, radiance_fbo_.id());
+    glDisable(GL_DEPTH_TEST);
+  }
+  // What the lights left in the stencil, counted: the samples whose stencil is exactly the
+  // edge bit (marked, and no volume count left behind); the picture draws them red.
+  std::uint64_t marked_after_lights = 0;
+  if (!everywhere && (counting || s.show == MsaaShow::Edges)) {
     glEnable(GL_STENCIL_TEST);
-    glStencilFunc(GL_EQUAL, 1, 0xFF);
+    glStencilFunc(GL_EQUAL, kEdgeBit, 0xFF);
+    if (s.show != MsaaShow::Edges) glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     p.mark.use();
+    gl::Query q(GL_SAMPLES_PASSED);
+    if (counting) glBeginQuery(GL_SAMPLES_PASSED, q.id());
     fullscreen(empty_);
+    if (counting) {
+      glEndQuery(GL_SAMPLES_PASSED);
+      marked_after_lights = query_result_u64(q.id()) / std::uint64_t(s.samples);
+    }
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   }
   glDisable(GL_STENCIL_TEST);
 
-  // 4. The resolve into the output: tonemap each sample, then average (or the wrong order).
+  // 5. The resolve into the output: tonemap each sample, then average (or the wrong order).
   {
     auto pass = timed(metrics, "msaa: tonemap + resolve");
     output.bind();
@@ -224,6 +268,44 @@ void MsaaFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outpu
              .marked = samples_passed[0] / n, .per_pixel = samples_passed[1] / n, .per_sample = samples_passed[2],
              .counted = counting};
   // [/counts]
+  counts_.marked_after_lights = marked_after_lights;
+  for (const auto& [per_sample, query] : volume_queries_)  // read once the frame is drawn: no stall per light
+    (per_sample ? counts_.volume_per_sample : counts_.volume_pixel_samples) += query_result_u64(query.id());
+}
+
+void MsaaFrame::draw_volumes(const MsaaSettings& s, bool counting) {
+  ch03::SurfaceView view = ch03::surface_view(*gbuffer_);
+  view.defines.push_back("MSAA_SAMPLES " + std::to_string(s.samples));
+  const ShaderProgram& mark = volumes_.volume_program("03_light_volumes/shaders/stencil.frag", view);
+  const ShaderProgram& per_pixel = volumes_.volume_program("10_frame/shaders/msaa_volume.frag", view);
+  const ShaderProgram& per_sample = volumes_.volume_program("10_frame/shaders/msaa_volume.frag", view, {"PER_SAMPLE 1"});
+  const int count = int(volumes_.lights().local_count());
+  volume_queries_.clear();
+  auto draw = [&](const ShaderProgram& program, int i) {
+    if (!counting) return volumes_.draw_volume(program, i);
+    volume_queries_.emplace_back(&program == &per_sample, gl::Query(GL_SAMPLES_PASSED));
+    glBeginQuery(GL_SAMPLES_PASSED, volume_queries_.back().second.id());
+    volumes_.draw_volume(program, i);
+    glEndQuery(GL_SAMPLES_PASSED);
+  };
+  const bool everywhere = s.shading == MsaaShading::PerSampleEverywhere;
+  // [msaa-volumes]
+  // Chapter 03's stencil strategy, its masks in bits 0-6: per light, the mask (both faces
+  // count where the surface lies inside: bits 0-6 become 1, bit 7 is never written), then the
+  // light through it. That pass's state tests "bits 0-6 not 0" and zeroes bits 0-6 only;
+  // here the edge bit picks the rate, and the order does the rest. First the per-sample
+  // shader where the stencil is above 0x80 (edge bit set, inside): it zeroes those samples'
+  // count. Then the per-pixel shader where a count is left: inside and not marked.
+  ch03::draw_stencil_volumes(view, count, [&](int i, ch03::VolumePass pass) {
+    if (pass == ch03::VolumePass::Mark) return volumes_.draw_volume(mark, i);
+    if (everywhere) glStencilFunc(GL_NOTEQUAL, 0, kVolumeBits);  // no edge mark: all samples inside
+    else glStencilFunc(GL_LESS, kEdgeBit, 0xFF);                 // 0x80 < stencil: marked and inside
+    draw(per_sample, i);
+    if (everywhere) return;  // every sample inside is done
+    glStencilFunc(GL_NOTEQUAL, 0, kVolumeBits);  // a count left: inside, not marked
+    draw(per_pixel, i);
+  }, kVolumeBits);
+  // [/msaa-volumes]
 }
 
 

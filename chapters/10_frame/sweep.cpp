@@ -8,10 +8,12 @@
 //
 // Then MSAA with deferred shading (msaa.h), on the street: no MSAA, 4 samples lit per sample
 // on the edges only, 4 samples lit per sample everywhere, and the edges with the wrong resolve
-// order, each against a supersampled ground truth (the frame at 4x the width and height, one
-// sample, each pixel's display value averaged over its 4x4 block): error in 8-bit steps,
-// fragments shaded, edges marked, and the time of the MSAA passes. Writes 10_msaa_llvmpipe.csv
-// (or 10_msaa.csv), and on llvmpipe the book's pictures of the edges and of the resolve order.
+// order, each with the local lights as chapter 03's stencil volumes and as one full-screen loop
+// (MsaaSettings::lights), each against a supersampled ground truth (the frame at 4x the width
+// and height, one sample, each pixel's display value averaged over its 4x4 block): error in
+// 8-bit steps, fragments shaded, volume samples lit, edges marked, and the time of the MSAA
+// passes. Writes 10_msaa_llvmpipe.csv (or 10_msaa.csv), and on llvmpipe the book's pictures of
+// the edges and of the resolve order (--msaa-size 160x90 keeps the loop's llvmpipe run short).
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -133,12 +135,14 @@ void sweep(const Settings& s, std::ofstream& csv) {
 // [msaa-truth]
 // The ground truth: the frame at `factor` times the width and height, one sample per pixel,
 // its linear display values (after the tonemap) averaged over each factor x factor block.
+// Its local lights are the full-screen loop's (summed in fp32, not rounded to half floats per
+// light), the same truth for both ways the sweep brings them.
 ImageRGBA8 supersampled(ch10::MsaaFrame& msaa, const FrameCamera& camera, int w, int h, int factor) {
   const int W = w * factor, H = h * factor;
   gl::Texture colour = gl::make_texture_2d(GL_RGBA32F, W, H);
   gl::Framebuffer fbo;
   glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, colour.id(), 0);
-  msaa.render(camera, {fbo.id(), W, H}, {.samples = 1});
+  msaa.render(camera, {fbo.id(), W, H}, {.samples = 1, .lights = ch10::MsaaLights::FullScreen});
   std::vector<float> big(std::size_t(W) * std::size_t(H) * 4);
   glGetTextureImage(colour.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(big.size() * sizeof(float)), big.data());
   ImageF mean = ImageF::blank(w, h, 3);
@@ -183,8 +187,13 @@ void sweep_msaa(const Settings& s, bool software) {
       << "; the street (street_level); ms: the MSAA frame's passes, mean and fastest of " << s.frames << " frames\n"
       << "# error: against the frame at 4x the width and height (16 samples per pixel, display values box-filtered), "
          "in 8-bit steps over all pixels\n"
-      << "# shaded: fragment shader invocations of the light passes (exact, GL_SAMPLES_PASSED); marked: edge pixels\n"
-      << "mode,samples,marked,marked_percent,shaded,shaded_per_pixel,ms,min_ms,error_mean,error_p99,error_max,psnr_db,"
+      << "# shaded: fragment shader invocations of the full-screen light passes (exact, GL_SAMPLES_PASSED); marked: edge "
+         "pixels\n"
+      << "# lights: the local lights as chapter 03's stencil volumes or a full-screen loop (every light per invocation); "
+         "volume_pixel_samples / volume_per_sample: the samples the volumes' per-pixel draws wrote and their per-sample "
+         "invocations, over all lights (exact, GL_SAMPLES_PASSED)\n"
+      << "mode,lights,samples,marked,marked_percent,shaded,shaded_per_pixel,volume_pixel_samples,volume_per_sample,ms,"
+         "min_ms,error_mean,error_p99,error_max,psnr_db,"
       << csv_measure_columns() << "\n";
   Scene scene = load_scene(from_root("assets/street/street.gltf"));
   SceneGpu gpu(scene);
@@ -205,24 +214,30 @@ void sweep_msaa(const Settings& s, bool software) {
       {"edges_per_sample", {.samples = 4}},
       {"per_sample_everywhere", {.samples = 4, .shading = ch10::MsaaShading::PerSampleEverywhere}},
       {"edges_resolve_first", {.samples = 4, .order = ch10::ResolveOrder::ResolveFirst}}};
-  std::map<std::string, ImageRGBA8> images;
-  for (const Mode& mode : modes) {
-    msaa.render(camera, output, mode.settings);  // counts (no metrics), then the image
-    const ch10::MsaaCounts n = msaa.counts();
-    images[mode.name] = target.read();
-    const CompareResult e = compare(images[mode.name], truth);
-    PassMetrics metrics;
-    const Measurement m = measure(metrics, [&] { msaa.render(camera, output, mode.settings, &metrics); }, {.frames = s.frames});
-    double ms = 0, min_ms = 0;
-    for (const PassMeasurement& p : m.passes)
-      if (p.name.rfind("msaa:", 0) == 0) ms += p.mean_ms, min_ms += p.min_ms;
-    csv << mode.name << ',' << mode.settings.samples << ',' << n.marked << ',' << 100.0 * n.marked_fraction() << ','
-        << n.shaded() << ',' << double(n.shaded()) / double(n.pixels) << ',' << ms << ',' << min_ms << ',' << e.mean_error
-        << ',' << e.p99_error << ',' << e.max_error << ',' << e.psnr_db << ','
-        << csv_measure_values(s.renderer, w, h, m.frames) << '\n';
-    std::cout << "  msaa " << mode.name << ": " << n.marked << " marked, " << n.shaded() << " shaded, " << ms
-              << " ms, error mean " << e.mean_error << " p99 " << e.p99_error << std::endl;
-  }
+  std::map<std::string, ImageRGBA8> images;  // the volumes' (the default)
+  for (const ch10::MsaaLights lights : {ch10::MsaaLights::Volumes, ch10::MsaaLights::FullScreen})
+    for (Mode mode : modes) {
+      mode.settings.lights = lights;
+      const char* lights_name = lights == ch10::MsaaLights::Volumes ? "volumes" : "full_screen";
+      msaa.render(camera, output, mode.settings);  // counts (no metrics), then the image
+      const ch10::MsaaCounts n = msaa.counts();
+      const ImageRGBA8 image = target.read();
+      if (lights == ch10::MsaaLights::Volumes) images[mode.name] = image;
+      const CompareResult e = compare(image, truth);
+      PassMetrics metrics;
+      const Measurement m = measure(metrics, [&] { msaa.render(camera, output, mode.settings, &metrics); }, {.frames = s.frames});
+      double ms = 0, min_ms = 0;
+      for (const PassMeasurement& p : m.passes)
+        if (p.name.rfind("msaa:", 0) == 0) ms += p.mean_ms, min_ms += p.min_ms;
+      csv << mode.name << ',' << lights_name << ',' << mode.settings.samples << ',' << n.marked << ','
+          << 100.0 * n.marked_fraction() << ',' << n.shaded() << ',' << double(n.shaded()) / double(n.pixels) << ','
+          << n.volume_pixel_samples << ',' << n.volume_per_sample << ',' << ms << ',' << min_ms << ',' << e.mean_error
+          << ',' << e.p99_error << ',' << e.max_error << ',' << e.psnr_db << ','
+          << csv_measure_values(s.renderer, w, h, m.frames) << '\n';
+      std::cout << "  msaa " << mode.name << " (" << lights_name << "): " << n.marked << " marked, " << n.shaded()
+                << " shaded, " << n.volume_samples() << " volume samples, " << ms << " ms, error mean " << e.mean_error
+                << " p99 " << e.p99_error << std::endl;
+    }
   std::cout << "wrote " << path << '\n';
   if (!software) return;
   // The pictures (llvmpipe's, committed with the book): the edges, and the resolve orders

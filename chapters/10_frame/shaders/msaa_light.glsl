@@ -2,12 +2,10 @@
 // one shader: chapter 03's global pass (ambient and the directional lights), each local light
 // with chapter 03's cut (local_light.glsl), and chapter 03's composite
 // F = albedo * L1 + L2 + emissive. The per-pixel and the per-sample passes both call it, so
-// the two rates light with the same code.
-#include "01_forward/shaders/lighting.glsl"
-#include "02_gbuffer/shaders/gbuffer.glsl"
-#include FRAME_VISIBILITY  // chapter 03's hooks/full_visibility.glsl
+// the two rates light with the same code. With MsaaLights::Volumes the local lights are
+// chapter 03's volumes instead (msaa_volume.frag) and u_local_count is 0 here.
+#include "10_frame/shaders/msaa_surface.glsl"
 #include FRAME_AMBIENT     // chapter 03's hooks/constant_ambient.glsl
-#include "03_light_volumes/shaders/local_light.glsl"
 
 struct LocalLight {
   GpuLight light;
@@ -30,7 +28,7 @@ vec3 frame_radiance(Surface s, ivec2 pixel) {
     blinn_phong(s.normal, to_eye, to_light, radiance, s.exponent, diffuse, specular);
   }
   diffuse += ambient_light(u_ambient, s, pixel);
-  for (int i = 0; i < u_local_count; ++i) {  // chapter 03's volumes, as a loop
+  for (int i = 0; i < u_local_count; ++i) {  // chapter 03's volumes, as a loop (or 0: volumes)
     vec3 d, sp;
     local_light(locals[i].light, locals[i].cut.x, i, s, d, sp);
     diffuse += d;

@@ -12,17 +12,6 @@ out vec4 out_radiance;
 void main() {
   // [shade]
   ivec2 pixel = ivec2(gl_FragCoord.xy);
-#ifdef PER_SAMPLE
-  Surface s = decode_gbuffer_sample(pixel, gl_SampleID, vec2(pixel) + gl_SamplePosition);
-#else
-  // Every sample here lies in one plane, and the sample pattern is symmetric about the pixel
-  // centre: the mean of their depths is the depth at the centre, where the light is computed
-  // (as the frame without MSAA does; sample 0 alone would shift the image by its offset).
-  Surface s = decode_gbuffer_sample(pixel, 0, vec2(pixel) + 0.5);
-  float depth = 0.0;
-  for (int i = 0; i < MSAA_SAMPLES; ++i) depth += GB_FETCH(gb_depth, pixel, i).r;
-  if (!s.is_sky) s.position = reconstruct_position(vec2(pixel) + 0.5, depth / float(MSAA_SAMPLES));
-#endif
-  out_radiance = vec4(frame_radiance(s, pixel), 1.0);
+  out_radiance = vec4(frame_radiance(msaa_surface(pixel), pixel), 1.0);
   // [/shade]
 }
