@@ -174,9 +174,14 @@ int main(int argc, char** argv) {
                      .lights = f.choice("msaa-lights") == "full-screen" ? MsaaLights::FullScreen : MsaaLights::Volumes},
                     &app.metrics());
         app.metrics().set_allocation("MSAA G-buffer + light + stencil, all samples", msaa.allocated_bytes());
+        // MSAA is its own frame (chapter 03's lights over a multisampled G-buffer): the whole
+        // frame's other stages are not drawn with it, and the program says so.
+        const char* not_whole = "the whole frame has no MSAA yet: --msaa draws chapter 03's opaque frame with MSAA";
+        if (f.mode == "whole") app.report() << "note: " << not_whole << '\n';
         if (std::ostream& out = app.report())
           out << "MSAA " << samples << " samples (deferred, per sample on the edges; glass not drawn), " << view
               << ", local lights: " << f.choice("msaa-lights") << '\n';
+        app.panel([&] { if (f.mode == "whole") ImGui::TextWrapped("%s", not_whole); });
         continue;
       }
       const std::string& which = f.choice("transparency");
