@@ -146,13 +146,17 @@ def budget_csv(out: Path, jsons):
         first = json.load(open(jsons[0]))
         f.write(f"# the whole frame's passes (10_frame --bench --mode whole), GPU time: {first['renderer']}, "
                 f"{first['width']}x{first['height']}\n")
-        w.writerow(["scene", "culling", "order", "pass", "ms", "total_ms", "renderer", "width", "height", "frames"])
+        w.writerow(["scene", "culling", "gi", "order", "pass", "ms", "total_ms", "renderer", "width", "height", "frames"])
         for path in jsons:
             b = json.load(open(path))
             scene = Path(b["scene"]).stem
-            culling = "clustered" if float(b["knobs"].get("clustered", 1)) else "stencil"
+            knobs = b["knobs"]
+            culling = "clustered" if float(knobs.get("clustered", 1)) else "stencil"
+            # chapter 08's pass as the whole frame runs it: AO and one bounce (SSGI), AO alone (SSAO), or neither
+            ao, indirect = float(knobs.get("ao", 1)), float(knobs.get("indirect", 1))
+            gi = "ao+indirect" if indirect else "ao" if ao else "none"
             for i, p in enumerate(b["passes"]):
-                w.writerow([scene, culling, i, p["name"], f"{p['mean_ms']:.6g}", f"{b['total_ms']:.6g}", b["renderer"],
+                w.writerow([scene, culling, gi, i, p["name"], f"{p['mean_ms']:.6g}", f"{b['total_ms']:.6g}", b["renderer"],
                             b["width"], b["height"], b["frames"]])
 
 
@@ -162,7 +166,7 @@ def budget_plot(d: Path, csv_path: Path, out: Path):
     note = open(csv_path).readline().lstrip("# ").strip()
     bars = []
     for r in rows:
-        key = (r["scene"], r["culling"])
+        key = (r["scene"], r["culling"], r.get("gi", ""))
         if not bars or bars[-1][0] != key:
             bars.append((key, []))
         bars[-1][1].append((r["pass"], float(r["ms"])))
@@ -174,16 +178,16 @@ def budget_plot(d: Path, csv_path: Path, out: Path):
                 names.append(stage)
     colours = ["#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f", "#edc948", "#b07aa1", "#ff9da7", "#9c755f",
                "#bab0ac", "#1f77b4", "#8c564b"]
-    width, left, top, bar_h, gap = 900, 190, 50, 26, 14
+    width, left, top, bar_h, gap = 960, 260, 50, 26, 14
     longest = max(sum(ms for _, ms in parts) for _, parts in bars)
     scale = (width - left - 80) / longest
     height = top + len(bars) * (bar_h + gap) + 30 + 18 * ((len(names) + 3) // 4)
     svg = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" font-family="sans-serif" font-size="12">',
            f'<text x="10" y="20" font-size="15">The frame budget: GPU time per pass</text>',
            f'<text x="10" y="38" fill="#555">{esc(note)}</text>']
-    for i, ((scene, culling), parts) in enumerate(bars):
+    for i, ((scene, culling, gi), parts) in enumerate(bars):
         y = top + i * (bar_h + gap)
-        svg.append(f'<text x="{left - 6}" y="{y + bar_h * 0.65}" text-anchor="end">{esc(scene)}, {esc(culling)}</text>')
+        svg.append(f'<text x="{left - 6}" y="{y + bar_h * 0.65}" text-anchor="end">{esc(scene)}, {esc(culling)}, {esc(gi)}</text>')
         x = left
         for n, ms in parts:
             w = ms * scale
