@@ -185,4 +185,17 @@ gl::Program ShaderProgram::build(const std::vector<ShaderStage>& stages, const s
   return program;
 }
 
+const ShaderProgram& ProgramCache::get(const std::vector<ShaderStage>& stages, const std::vector<std::string>& defines) {
+  std::string key;
+  for (const ShaderStage& st : stages) key += std::to_string(st.type) + ":" + st.path + "|";
+  for (const std::string& d : defines) key += "|" + d;
+  auto it = programs_.find(key);
+  if (it == programs_.end()) it = programs_.emplace(key, ShaderProgram(stages, defines)).first;
+  return it->second;
+}
+
+void ProgramCache::reload() {
+  for (auto& [key, program] : programs_) program.reload();
+}
+
 }  // namespace lp

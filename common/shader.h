@@ -3,6 +3,7 @@
 // and run again (or press R in the window). `#include "01_forward/shaders/x.glsl"` is
 // resolved from chapters/. Compile and link errors name the original file and line.
 #include <filesystem>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -58,6 +59,19 @@ class ShaderProgram {
   std::vector<ShaderStage> stages_;
   std::vector<std::string> defines_;
   gl::Program program_;
+};
+
+// Programs made when first asked for, one per set of stages and defines (a stage or chapter
+// that compiles variants: per layout, per hook, per output). References stay valid until
+// clear().
+class ProgramCache {
+ public:
+  const ShaderProgram& get(const std::vector<ShaderStage>& stages, const std::vector<std::string>& defines = {});
+  void reload();                     // every program from disk again (R in the window); a failure keeps the old one
+  void clear() { programs_.clear(); }  // forget them all: each is made again, from disk, when next asked for
+
+ private:
+  std::map<std::string, ShaderProgram> programs_;
 };
 
 }  // namespace lp

@@ -263,7 +263,7 @@ LightVolumes::LightVolumes(int sphere_subdivisions, int cone_sides)
 }
 
 void LightVolumes::reload_shaders() {
-  for (auto& [key, p] : programs_) p.reload();
+  programs_.reload();
 }
 
 const ShaderProgram& LightVolumes::program(const std::string& fragment, const SurfaceView& view, std::vector<std::string> extra,
@@ -273,13 +273,7 @@ const ShaderProgram& LightVolumes::program(const std::string& fragment, const Su
   defines.insert(defines.end(), hooks.begin(), hooks.end());
   defines.insert(defines.end(), extra.begin(), extra.end());
   const std::string vertex = volumes ? "03_light_volumes/shaders/volume.vert" : "02_gbuffer/shaders/fullscreen.vert";
-  std::string key = vertex + "|" + fragment;
-  for (const auto& d : defines) key += "|" + d;
-  auto it = programs_.find(key);
-  if (it == programs_.end()) {
-    it = programs_.emplace(key, ShaderProgram({{GL_VERTEX_SHADER, vertex}, {GL_FRAGMENT_SHADER, fragment}}, defines)).first;
-  }
-  return it->second;
+  return programs_.get({{GL_VERTEX_SHADER, vertex}, {GL_FRAGMENT_SHADER, fragment}}, defines);
 }
 
 void LightVolumes::set_lights(LightSet lights) {

@@ -18,7 +18,6 @@
 //   glBindFramebuffer(GL_FRAMEBUFFER, output);  volumes.composite(light, view, background);
 #include <cstdint>
 #include <functional>
-#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -230,7 +229,7 @@ class LightVolumes {
   FragmentCounters counters_{4};  // shaded, lit, lit_inner (light.frag), marking (stencil.frag)
   std::uint64_t count_start_ = 0;
   gl::VertexArray points_vao_, cones_vao_, wide_vao_;
-  std::map<std::string, ShaderProgram> programs_;
+  ProgramCache programs_;
   ch02::FullScreenPass full_screen_;
   bool counting_ = false;
   DrawStats stats_;

@@ -15,19 +15,14 @@ const char* const kCapsule = "04_neon/shaders/capsule.vert";
 NeonVolumes::NeonVolumes() = default;
 
 void NeonVolumes::reload_shaders() {
-  for (auto& [key, p] : programs_) p.reload();
+  programs_.reload();
 }
 
 const ShaderProgram& NeonVolumes::program(const std::string& vertex, const std::string& fragment,
                                           const ch03::SurfaceView& view, std::vector<std::string> extra) {
   std::vector<std::string> defines = view.defines;
   defines.insert(defines.end(), extra.begin(), extra.end());
-  std::string key = vertex + "|" + fragment;
-  for (const auto& d : defines) key += "|" + d;
-  auto it = programs_.find(key);
-  if (it == programs_.end())
-    it = programs_.emplace(key, ShaderProgram({{GL_VERTEX_SHADER, vertex}, {GL_FRAGMENT_SHADER, fragment}}, defines)).first;
-  return it->second;
+  return programs_.get({{GL_VERTEX_SHADER, vertex}, {GL_FRAGMENT_SHADER, fragment}}, defines);
 }
 
 void NeonVolumes::draw(const NeonTubes& tubes, const ch03::LightBuffer& light, const ch03::SurfaceView& view,

@@ -14,7 +14,6 @@
 //   neon.draw(tubes, light, view, how);                    // here: one capsule per tube
 //   glBindFramebuffer(GL_FRAMEBUFFER, output);  volumes.composite(light, view, background);
 #include <cstdint>
-#include <map>
 #include <string>
 #include <vector>
 
@@ -75,7 +74,7 @@ class NeonVolumes {
  private:
   const ShaderProgram& program(const std::string& vertex, const std::string& fragment, const ch03::SurfaceView& view,
                                std::vector<std::string> extra = {});
-  std::map<std::string, ShaderProgram> programs_;
+  ProgramCache programs_;
   ch02::FullScreenPass full_screen_;
   ch03::FragmentCounters counters_;  // per tube: shaded, lit, lit_open, marking
   std::uint64_t count_start_ = 0;

@@ -96,7 +96,7 @@ ShadowStage::ShadowStage(const SceneGpu& scene, const Light& sun) : scene_(scene
 }
 
 void ShadowStage::reload_shaders() {
-  for (auto& [key, p] : programs_) p.reload();
+  programs_.reload();
 }
 
 void ShadowStage::set(const ShadowSettings& settings, ShadowPicture picture) {
@@ -112,13 +112,7 @@ ch03::ShaderHooks ShadowStage::shader_hooks() const {
 
 const ShaderProgram& ShadowStage::program(const std::string& vertex, const std::string& fragment,
                                           std::vector<std::string> defines) {
-  std::string key = vertex + "|" + fragment;
-  for (const auto& d : defines) key += "|" + d;
-  auto it = programs_.find(key);
-  if (it == programs_.end())
-    it = programs_.emplace(key, ShaderProgram({{GL_VERTEX_SHADER, vertex}, {GL_FRAGMENT_SHADER, fragment}}, defines))
-             .first;
-  return it->second;
+  return programs_.get({{GL_VERTEX_SHADER, vertex}, {GL_FRAGMENT_SHADER, fragment}}, defines);
 }
 
 void ShadowStage::allocate() {

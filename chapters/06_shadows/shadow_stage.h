@@ -8,7 +8,6 @@
 //   frame.add_stage(shadows);
 //   shadows.set({.method = ShadowMethod::Pcf, .kernel = 3});
 //   frame.render(camera, output, &metrics);
-#include <map>
 #include <optional>
 #include <string>
 
@@ -105,7 +104,7 @@ class ShadowStage : public ch03::FrameStage {
   gl::Framebuffer depth_fbo_, moments_fbo_, scratch_fbo_;
   gl::Sampler nearest_, compare_, linear_;
   gl::Buffer block_;
-  std::map<std::string, ShaderProgram> programs_;
+  ProgramCache programs_;
   ch02::FullScreenPass full_screen_;
   // Shadow volumes: each mesh's edge table (built on first use), the volumes' vertices, and
   // the visibility they leave, one byte per pixel, beside the G-buffer's depth-stencil.

@@ -14,15 +14,10 @@ constexpr std::uint64_t kKernelSeed = 0x5541u, kNoiseSeed = 0x4e4fu;
 
 Ssao::Ssao() : noise_(noise_tile(kNoiseSeed)) {}
 
-const ShaderProgram& Ssao::program(const std::string& key, const std::string& file, const ch02::GBuffer& gbuffer,
-                                   std::vector<std::string> defines) {
+const ShaderProgram& Ssao::program(const std::string& file, const ch02::GBuffer& gbuffer, std::vector<std::string> defines) {
   std::vector<std::string> all = gbuffer.shader_defines(0);
   all.insert(all.end(), defines.begin(), defines.end());
-  std::string full_key = key;
-  for (const auto& d : all) full_key += "|" + d;
-  auto& slot = programs_[full_key];
-  if (!slot) slot = std::make_unique<ShaderProgram>(std::vector<ShaderStage>{{GL_COMPUTE_SHADER, file}}, all);
-  return *slot;
+  return programs_.get({{GL_COMPUTE_SHADER, file}}, all);
 }
 
 void Ssao::upload_kernel(const ShaderProgram& p, const AoSettings& s) {
@@ -55,7 +50,7 @@ void Ssao::compute(const ch02::GBuffer& gbuffer, const FrameCamera& camera, cons
     height_ = h;
   }
   const bool disk = s.method == AoMethod::Disk, gtao = s.method == AoMethod::Gtao;
-  const ShaderProgram& p = program(kMethodNames[int(s.method)], "07_ssao/shaders/ssao.comp", gbuffer,
+  const ShaderProgram& p = program("07_ssao/shaders/ssao.comp", gbuffer,
                                    {disk ? "AO_DISK 1" : gtao ? "AO_GTAO 1" : "AO_CLASSIC 1", s.tutorial_bug ? "AO_TUTORIAL_BUG 1" : "AO_NO_BUG 1",
                                     disk && s.bunnell_term ? "AO_BUNNELL 1" : "AO_FORM_FACTOR 1"});
   upload_kernel(p, s);  // the kernel (classic) and the noise tile (every method)
@@ -80,7 +75,7 @@ void Ssao::compute(const ch02::GBuffer& gbuffer, const FrameCamera& camera, cons
   // neighbours are the same surface.
   blurred_used_ = s.blur;
   if (blurred_used_) {
-    const ShaderProgram& b = program("blur", "07_ssao/shaders/blur.comp", gbuffer, {});
+    const ShaderProgram& b = program("07_ssao/shaders/blur.comp", gbuffer, {});
     b.set("u_view", camera.view);
     b.set("u_scale", s.scale);
     b.set("u_depth_threshold", s.blur_depth);

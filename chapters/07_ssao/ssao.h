@@ -9,8 +9,6 @@
 //   Ssao ao;
 //   ao.compute(frame.gbuffer(), frame.camera(), {.method = AoMethod::Classic, .samples = 16});
 //   glBindTextureUnit(8, ao.texture());
-#include <map>
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -95,11 +93,10 @@ class Ssao {
   ImageF read_full(int width, int height) const;
 
  private:
-  const ShaderProgram& program(const std::string& key, const std::string& file, const ch02::GBuffer& gbuffer,
-                               std::vector<std::string> defines);
+  const ShaderProgram& program(const std::string& file, const ch02::GBuffer& gbuffer, std::vector<std::string> defines);
   void upload_kernel(const ShaderProgram& p, const AoSettings& s);
 
-  std::map<std::string, std::unique_ptr<ShaderProgram>> programs_;
+  ProgramCache programs_;
   gl::Texture raw_{GL_TEXTURE_2D}, blurred_{GL_TEXTURE_2D};
   int width_ = 0, height_ = 0;
   bool blurred_used_ = false;

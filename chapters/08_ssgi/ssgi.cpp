@@ -6,11 +6,7 @@ namespace lp::ch08 {
 
 const ShaderProgram& Ssgi::program(const std::string& file, const ch02::GBuffer& gbuffer) {
   std::vector<std::string> defines = gbuffer.shader_defines(0);
-  std::string key = file;
-  for (const auto& d : defines) key += "|" + d;
-  auto& slot = programs_[key];
-  if (!slot) slot = std::make_unique<ShaderProgram>(std::vector<ShaderStage>{{GL_COMPUTE_SHADER, file}}, defines);
-  return *slot;
+  return programs_.get({{GL_COMPUTE_SHADER, file}}, defines);
 }
 
 int Ssgi::used_samples(Pattern pattern, int samples) {

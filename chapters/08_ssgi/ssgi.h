@@ -8,8 +8,6 @@
 //   Ssgi gi;
 //   gi.compute(frame.gbuffer(), frame.light().diffuse(), frame.camera(), {.samples = 16});
 //   glBindTextureUnit(8, gi.texture());
-#include <map>
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -71,7 +69,7 @@ class Ssgi {
             const BackFaceTextures* back, GLuint out);
   void blur(const ch02::GBuffer& gbuffer, const FrameCamera& camera, const GiSettings& s, GLuint in, GLuint out);
 
-  std::map<std::string, std::unique_ptr<ShaderProgram>> programs_;
+  ProgramCache programs_;
   gl::Texture raw_{GL_TEXTURE_2D}, first_{GL_TEXTURE_2D}, second_{GL_TEXTURE_2D};
   GLuint result_ = 0;
   int width_ = 0, height_ = 0;

@@ -101,15 +101,9 @@ void ClusteredForward::draw(const ch03::LightBuffer& light, const ch03::SurfaceV
   if (output == ch03::LightVolumes::Output::HeatShaded) defines.push_back("HEAT_SHADED 1");
   if (output == ch03::LightVolumes::Output::HeatLit) defines.push_back("HEAT_LIT 1");
   auto program = [&](bool depth_only) -> const ShaderProgram& {
-    std::string key = depth_only ? "depth|" : "shade|";
-    for (const auto& d : defines) key += d + "|";
-    auto it = programs_.find(key);
-    if (it == programs_.end()) {
-      std::vector<ShaderStage> stages = {{GL_VERTEX_SHADER, "01_forward/shaders/forward.vert"}};
-      if (!depth_only) stages.push_back({GL_FRAGMENT_SHADER, "09_clustered/shaders/clustered_forward.frag"});
-      it = programs_.emplace(key, ShaderProgram(stages, defines)).first;  // the pre-pass: no fragment shader
-    }
-    return it->second;
+    std::vector<ShaderStage> stages = {{GL_VERTEX_SHADER, "01_forward/shaders/forward.vert"}};
+    if (!depth_only) stages.push_back({GL_FRAGMENT_SHADER, "09_clustered/shaders/clustered_forward.frag"});
+    return programs_.get(stages, defines);  // the pre-pass: no fragment shader
   };
   const std::vector<std::string> names = pass_names();
   draw_forward(gpu_, frame_.gbuffer(), view.camera, lists_, program(true), program(false), fbo_.id(), w, h, counting_,

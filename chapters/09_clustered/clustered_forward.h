@@ -9,7 +9,6 @@
 //
 //   ClusteredForward forward(frame);
 //   frame.set_local_lights(&forward);  // assign, depth pre-pass, shade: three passes
-#include <map>
 #include <string>
 #include <vector>
 
@@ -59,7 +58,7 @@ class ClusteredForward : public ch03::LocalLightPass {
   GLuint colour_l1_ = 0, colour_l2_ = 0;
   gl::Framebuffer fbo_;
   gl::Texture depth_{GL_TEXTURE_2D};
-  std::map<std::string, ShaderProgram> programs_;
+  ProgramCache programs_;
 };
 
 }  // namespace lp::ch09

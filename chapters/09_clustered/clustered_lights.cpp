@@ -58,15 +58,9 @@ ClusteredLights::ClusteredLights(const ch03::LightVolumes& volumes, ClusterSetti
     : volumes_(volumes), settings_(settings) {}
 
 const ShaderProgram& ClusteredLights::program(GLenum stage, const std::string& file, const std::vector<std::string>& defines) {
-  std::string key = file;
-  for (const auto& d : defines) key += "|" + d;
-  auto it = programs_.find(key);
-  if (it == programs_.end()) {
-    std::vector<ShaderStage> stages = {{stage, file}};
-    if (stage == GL_FRAGMENT_SHADER) stages.insert(stages.begin(), {GL_VERTEX_SHADER, "02_gbuffer/shaders/fullscreen.vert"});
-    it = programs_.emplace(key, ShaderProgram(stages, defines)).first;
-  }
-  return it->second;
+  std::vector<ShaderStage> stages = {{stage, file}};
+  if (stage == GL_FRAGMENT_SHADER) stages.insert(stages.begin(), {GL_VERTEX_SHADER, "02_gbuffer/shaders/fullscreen.vert"});
+  return programs_.get(stages, defines);
 }
 
 void ClusteredLights::upload_lights() {

@@ -11,7 +11,6 @@
 // The lights, their cut and their lighting are chapter 03's (frame.volumes().lights(), and
 // local_light.glsl): the image equals the stencil volumes' within float rounding.
 #include <cstdint>
-#include <map>
 #include <string>
 #include <vector>
 
@@ -131,7 +130,7 @@ class ClusteredLights : public ch03::LocalLightPass {
   std::uint32_t capacity_ = 0;
   ch03::FragmentCounters counters_{2};
   ch02::FullScreenPass full_screen_;
-  std::map<std::string, ShaderProgram> programs_;
+  ProgramCache programs_;
 };
 
 }  // namespace lp::ch09

@@ -98,11 +98,7 @@ void TransparencyStage::build_lights(const ch03::DeferredFrame& frame, PassMetri
 const ShaderProgram& TransparencyStage::program(Output output, const ch03::DeferredFrame& frame) {
   std::vector<std::string> defines = lists_.forward_defines(frame.view());
   defines.push_back(output == kOver ? "GLASS_OVER 1" : output == kWboit ? "GLASS_WBOIT 1" : "GLASS_CAPTURE 1");
-  std::string key;
-  for (const auto& d : defines) key += d + "|";
-  auto it = programs_.find(key);
-  if (it == programs_.end()) it = programs_.emplace(key, ShaderProgram(surface_stages(), defines)).first;
-  return it->second;
+  return programs_.get(surface_stages(), defines);
 }
 // [/glass-lights]
 

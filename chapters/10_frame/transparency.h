@@ -19,7 +19,6 @@
 //   glass.set({.method = Method::Wboit});
 //   frame.render(camera, output, &metrics);
 #include <cstdint>
-#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -118,7 +117,7 @@ class TransparencyStage : public ch03::FrameStage {
   gl::Buffer directional_;       // the frame's directional lights, ch01::GpuLight each
   int directional_count_ = 0;
   TransparencySettings settings_;
-  std::map<std::string, ShaderProgram> programs_;  // per output and the frame's defines
+  ProgramCache programs_;  // per output and the frame's defines
   ShaderProgram composite_;
   gl::VertexArray empty_vao_;
   int width_ = 0, height_ = 0;
