@@ -75,6 +75,15 @@ inline Texture make_texture_2d(GLenum internal_format, int w, int h, int levels 
   return t;
 }
 
+// A render target of `samples` per pixel: above 1 a GL_TEXTURE_2D_MULTISAMPLE (fixed sample
+// locations; no sampler state, read with texelFetch), else a one-level 2D texture.
+inline Texture make_render_texture(GLenum internal_format, int w, int h, int samples) {
+  if (samples <= 1) return make_texture_2d(internal_format, w, h);
+  Texture t(GL_TEXTURE_2D_MULTISAMPLE);
+  glTextureStorage2DMultisample(t.id(), samples, internal_format, w, h, GL_TRUE);
+  return t;
+}
+
 // Bytes per texel of the render-target formats the book uses (for the "what did we allocate"
 // report). Unknown formats return 0 so that a missing entry shows up as a zero, not a guess.
 std::size_t bytes_per_texel(GLenum internal_format);

@@ -12,12 +12,8 @@ namespace lp::ch02 {
 namespace {
 
 gl::Texture make_target(GLenum format, int w, int h, int samples = 1) {
-  if (samples > 1) {  // a multisampled texture has no sampler state: texelFetch only
-    gl::Texture t(GL_TEXTURE_2D_MULTISAMPLE);
-    glTextureStorage2DMultisample(t.id(), samples, format, w, h, GL_TRUE);
-    return t;
-  }
-  gl::Texture t = gl::make_texture_2d(format, w, h);
+  gl::Texture t = gl::make_render_texture(format, w, h, samples);
+  if (samples > 1) return t;  // a multisampled texture has no sampler state: texelFetch only
   glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glTextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);

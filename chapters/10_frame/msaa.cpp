@@ -18,15 +18,6 @@ struct LocalLight {  // mirrors msaa_light.glsl
 };
 static_assert(sizeof(LocalLight) == 80);
 
-gl::Texture make_target(GLenum format, int w, int h, int samples) {
-  if (samples > 1) {
-    gl::Texture t(GL_TEXTURE_2D_MULTISAMPLE);
-    glTextureStorage2DMultisample(t.id(), samples, format, w, h, GL_TRUE);
-    return t;
-  }
-  return gl::make_texture_2d(format, w, h);
-}
-
 // Where each sample lies within its pixel (0..1), as the rasteriser places them.
 std::vector<glm::vec2> query_sample_positions(GLuint framebuffer, int samples) {
   std::vector<glm::vec2> p(std::size_t(samples), glm::vec2(0.5f));
@@ -81,8 +72,8 @@ void MsaaFrame::resize(int width, int height, int samples) {
                 std::to_string(max_samples));
   if (gbuffer_ && gbuffer_->width() == width && gbuffer_->height() == height && gbuffer_->samples() == samples) return;
   gbuffer_ = std::make_unique<ch02::GBuffer>(width, height, ch02::our_layout(), samples);
-  radiance_ = make_target(GL_RGBA16F, width, height, samples);
-  stencil_ = make_target(ch02::depth_format(gbuffer_->layout().depth), width, height, samples);  // blit: same format
+  radiance_ = gl::make_render_texture(GL_RGBA16F, width, height, samples);
+  stencil_ = gl::make_render_texture(ch02::depth_format(gbuffer_->layout().depth), width, height, samples);  // blit: same format
   radiance_fbo_ = gl::Framebuffer();
   glNamedFramebufferTexture(radiance_fbo_.id(), GL_COLOR_ATTACHMENT0, radiance_.id(), 0);
   glNamedFramebufferTexture(radiance_fbo_.id(), GL_DEPTH_STENCIL_ATTACHMENT, stencil_.id(), 0);
@@ -103,7 +94,6 @@ std::size_t MsaaFrame::allocated_bytes() const {
   const std::size_t depth_stencil = gl::bytes_per_texel(ch02::depth_format(gbuffer_->layout().depth));
   return (gbuffer_->bytes_per_pixel() + 8 + depth_stencil) * pixels * samples;  // + RGBA16F light + depth-stencil
 }
-
 
 void MsaaFrame::render(const FrameCamera& camera, const ch03::FrameOutput& output, const MsaaSettings& s,
                        PassMetrics* metrics) {
@@ -129,7 +119,7 @@ void MsaaFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outpu
   const std::vector<glm::vec2>& positions = positions_;
   // Exact counts (no metrics: their occlusion queries and ours cannot both be active).
   const bool counting = metrics == nullptr;
-  std::uint64_t samples_passed[3] = {0, 0, 0};  // edges, per pixel, per sample
+  std::uint64_t samples_passed[4] = {0, 0, 0, 0};  // edges, per pixel, per sample, marked after the lights
   auto counted = [&](int which, auto&& draw) {
     if (!counting) return draw();
     gl::Query q(GL_SAMPLES_PASSED);
@@ -228,19 +218,12 @@ void MsaaFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outpu
   }
   // What the lights left in the stencil, counted: the samples whose stencil is exactly the
   // edge bit (marked, and no volume count left behind); the picture draws them red.
-  std::uint64_t marked_after_lights = 0;
   if (!everywhere && (counting || s.show == MsaaShow::Edges)) {
     glEnable(GL_STENCIL_TEST);
     glStencilFunc(GL_EQUAL, kEdgeBit, 0xFF);
     if (s.show != MsaaShow::Edges) glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     p.mark.use();
-    gl::Query q(GL_SAMPLES_PASSED);
-    if (counting) glBeginQuery(GL_SAMPLES_PASSED, q.id());
-    fullscreen(empty_);
-    if (counting) {
-      glEndQuery(GL_SAMPLES_PASSED);
-      marked_after_lights = query_result_u64(q.id()) / std::uint64_t(s.samples);
-    }
+    counted(3, [&] { fullscreen(empty_); });
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   }
   glDisable(GL_STENCIL_TEST);
@@ -268,7 +251,7 @@ void MsaaFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outpu
              .marked = samples_passed[0] / n, .per_pixel = samples_passed[1] / n, .per_sample = samples_passed[2],
              .counted = counting};
   // [/counts]
-  counts_.marked_after_lights = marked_after_lights;
+  counts_.marked_after_lights = samples_passed[3] / n;
   for (const auto& [per_sample, query] : volume_queries_)  // read once the frame is drawn: no stall per light
     (per_sample ? counts_.volume_per_sample : counts_.volume_pixel_samples) += query_result_u64(query.id());
 }
@@ -307,6 +290,5 @@ void MsaaFrame::draw_volumes(const MsaaSettings& s, bool counting) {
   }, kVolumeBits);
   // [/msaa-volumes]
 }
-
 
 }  // namespace lp::ch10
