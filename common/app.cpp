@@ -7,7 +7,6 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <utility>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -15,6 +14,7 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <utility>
 
 #include "common/error.h"
 #include "common/paths.h"
@@ -127,8 +127,7 @@ App::App(const Chapter& chapter, Options options) : chapter_(chapter), options_(
     // Tests of the panel's scene switch: the scene picked after the second frame.
     if (const char* s = std::getenv("LIGHTPASS_TEST_SWITCH_SCENE")) test_scene_ = s;
     gui_ = std::make_unique<Gui>(context_->window());
-    glm::vec3 extent = scene_->bounds_max - scene_->bounds_min;
-    fly_ = FlyCamera(scene_->camera(view_), std::max(0.5f, glm::length(extent) * 0.1f));
+    fly_to(scene_->camera(view_));
     last_time_ = glfwGetTime();
     return;
   }
@@ -150,6 +149,12 @@ App::App(const Chapter& chapter, Options options) : chapter_(chapter), options_(
 }
 
 App::~App() = default;
+
+// The window's camera, starting at `camera`, at a speed of a tenth of the scene's size a second.
+void App::fly_to(const Camera& camera) {
+  const glm::vec3 extent = scene_->bounds_max - scene_->bounds_min;
+  fly_ = FlyCamera(camera, std::max(0.5f, glm::length(extent) * 0.1f));
+}
 
 std::ostream& App::report() {
   static std::ostream quiet(nullptr);  // a stream without a buffer writes nothing
@@ -277,8 +282,7 @@ void App::panel(const std::function<void()>& chapter_controls) {
       if (ImGui::Selectable(c.name.c_str(), c.name == view_)) {
         view_ = c.name;
         view_changed_ = true;
-        glm::vec3 extent = scene_->bounds_max - scene_->bounds_min;
-        fly_ = FlyCamera(c, std::max(0.5f, glm::length(extent) * 0.1f));
+        fly_to(c);
       }
     ImGui::EndCombo();
   }
@@ -479,8 +483,7 @@ bool App::switch_scene() {
   options_.scene = path;
   view_ = scene_->cameras.front().name;
   std::cout << "scene: " << path << " (view " << view_ << ")\n";
-  glm::vec3 extent = scene_->bounds_max - scene_->bounds_min;
-  fly_ = FlyCamera(scene_->camera(view_), std::max(0.5f, glm::length(extent) * 0.1f));
+  fly_to(scene_->camera(view_));
   frame_.index = 0;  // a new shot: state that builds up over frames starts again
   metrics_.clear();
   target_.reset();

@@ -112,6 +112,7 @@ class App {
   void prepare_frame(int width, int height, const Camera& camera);
   void finish_job(const Job& job);
   void present();
+  void fly_to(const Camera& camera);
   void print_bench(const Measurement& m) const;
 
   Chapter chapter_;
