@@ -202,14 +202,15 @@ int main(int argc, char** argv) {
                                      whole->allocated_bytes());
         const char* exact_note = "the exact order is --mode frame's ground truth: the whole frame sorts the glass";
         if (which == "exact") app.report() << "note: " << exact_note << '\n';
+        const std::vector<PlannedStage> plan = whole->plan(s);
         if (std::ostream& out = app.report()) {
           out << "the whole frame:\n";
-          for (const PlannedStage& st : whole->plan(s))
+          for (const PlannedStage& st : plan)
             out << "  " << (st.runs ? "runs     " : "not run  ") << st.stage << (st.runs ? "" : " (" + st.why + ")")
                 << "  [reads " << st.reads << "; writes " << st.writes << "]\n";
         }
         app.panel([&] {
-          for (const PlannedStage& st : whole->plan(s)) ImGui::Text("%s %s", st.runs ? "[x]" : "[ ]", st.stage.c_str());
+          for (const PlannedStage& st : plan) ImGui::Text("%s %s", st.runs ? "[x]" : "[ ]", st.stage.c_str());
           if (which == "exact") ImGui::TextWrapped("%s", exact_note);
         });
         continue;

@@ -49,9 +49,9 @@ std::vector<PlannedStage> WholeFrame::plan(const WholeFrameSettings& s) const {
 }
 // [/plan]
 
-std::string WholeFrame::key(const WholeFrameSettings& s) const {
+std::string WholeFrame::key(const std::vector<PlannedStage>& p) {
   std::string k;
-  for (const PlannedStage& st : plan(s)) k += st.runs ? '1' : '0';
+  for (const PlannedStage& st : p) k += st.runs ? '1' : '0';
   return k;
 }
 
@@ -59,8 +59,7 @@ std::string WholeFrame::key(const WholeFrameSettings& s) const {
 // The stages are added to chapter 03's frame in the order their hooks must run: the shadow
 // map before any light reads it, the tubes before the indirect pass reads the lit diffuse
 // light, the glass after the composite.
-void WholeFrame::build(const WholeFrameSettings& s) {
-  const std::vector<PlannedStage> p = plan(s);
+void WholeFrame::build(const std::vector<PlannedStage>& p) {
   const bool shadows = p[kShadowMap].runs, neon = p[kNeon].runs, ao = p[kAo].runs, indirect = p[kIndirect].runs,
              glass = p[kGlass].runs;
   glass_.reset();
@@ -90,7 +89,7 @@ void WholeFrame::build(const WholeFrameSettings& s) {
     frame.add_stage(*glass_);
   }
   radiance_.reset();
-  built_ = key(s);
+  built_ = key(p);
 }
 // [/build]
 
@@ -108,11 +107,11 @@ void WholeFrame::reload_shaders() {
 // [render]
 void WholeFrame::render(const FrameCamera& camera, const ch03::FrameOutput& output, const WholeFrameSettings& s,
                         float dt, bool new_shot, PassMetrics* metrics) {
-  if (!source_ || key(s) != built_) {
-    build(s);
+  const std::vector<PlannedStage> p = plan(s);
+  if (!source_ || key(p) != built_) {
+    build(p);
     new_shot = true;
   }
-  const std::vector<PlannedStage> p = plan(s);
   if (new_shot) {
     hdr_.reset_adaptation(1.f);
     feedback_.reset();

@@ -72,8 +72,8 @@ class WholeFrame {
   ch05::DeferredRadiance& source() { return *source_; }
 
  private:
-  void build(const WholeFrameSettings& s);  // the radiance source with the stages s needs
-  std::string key(const WholeFrameSettings& s) const;
+  void build(const std::vector<PlannedStage>& p);  // the radiance source with the stages the plan runs
+  static std::string key(const std::vector<PlannedStage>& p);  // which stages run: one character each
 
   const Scene& scene_;
   bool has_sun_ = false, has_glass_ = false;
