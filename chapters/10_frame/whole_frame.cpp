@@ -11,15 +11,16 @@ bool any_glass(const Scene& scene) {
     if (m.blend) return true;
   return false;
 }
-bool has_directional(const Scene& scene) {
-  for (const Light& l : scene.lights)
-    if (l.type == LightType::Directional) return true;
+// Chapter 06's sun: the first directional light, unless it is marked casts_shadows: false.
+bool sun_casts_shadows(const Scene& scene) {
+  for (std::size_t i = 0; i < scene.lights.size(); ++i)
+    if (scene.lights[i].type == LightType::Directional) return ch06::casts_shadows(scene, i);
   return false;
 }
 }  // namespace
 
 WholeFrame::WholeFrame(const Scene& scene)
-    : scene_(scene), has_sun_(has_directional(scene)), has_glass_(any_glass(scene)), neon_lights_(ch04::neon_lights(scene)) {}
+    : scene_(scene), has_sun_(sun_casts_shadows(scene)), has_glass_(any_glass(scene)), neon_lights_(ch04::neon_lights(scene)) {}
 
 // [plan]
 std::vector<PlannedStage> WholeFrame::plan(const WholeFrameSettings& s) const {
@@ -30,7 +31,7 @@ std::vector<PlannedStage> WholeFrame::plan(const WholeFrameSettings& s) const {
   std::vector<PlannedStage> p;
   const bool glass = s.transparency != Method::Off;
   p.push_back({"G-buffer (chapter 02)", true, "", "scene", "G-buffer"});
-  p.push_back({"shadow map of the sun (chapter 06)", s.shadows && has_sun_, off(s.shadows, has_sun_, "no directional light"),
+  p.push_back({"shadow map of the sun (chapter 06)", s.shadows && has_sun_, off(s.shadows, has_sun_, "no directional light that casts shadows"),
                "scene", "shadow map"});
   p.push_back({"global light: ambient + directional (chapter 03)", true, "", "G-buffer + shadow map", "light buffer"});
   p.push_back({s.clustered ? "local lights: clusters (chapter 09)" : "local lights: stencil volumes (chapter 03)", true, "",

@@ -70,3 +70,20 @@ TEST(WholeFrameGl, EachStageOffAndOnAgainGivesTheFirstImage) {
   no_glass.transparency = Method::Off;
   EXPECT_FALSE(draw(frame, scene, 160, 90, no_glass).pixels == all.pixels) << "the shop windows drew nothing";
 }
+
+// The whole frame follows chapter 06's marking: a sun marked casts_shadows: false gets no map,
+// and the plan says why (the frame is then the same as with --shadows 0).
+TEST(WholeFrameGl, ASunMarkedNotToCastShadowsGetsNoMap) {
+  Scene scene = shop_street();
+  WholeFrame marked_on(scene);
+  ASSERT_TRUE(marked_on.plan({})[kShadowMap].runs);
+  for (Light& l : scene.lights)
+    if (l.type == LightType::Directional) l.casts_shadows = false;
+  WholeFrame frame(scene);
+  const PlannedStage shadow = frame.plan({})[kShadowMap];
+  EXPECT_FALSE(shadow.runs);
+  EXPECT_EQ(shadow.why, "no directional light that casts shadows");
+  WholeFrameSettings no_shadows;
+  no_shadows.shadows = false;
+  EXPECT_TRUE(draw(frame, scene, 160, 90).pixels == draw(frame, scene, 160, 90, no_shadows).pixels);
+}
