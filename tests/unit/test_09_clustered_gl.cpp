@@ -190,6 +190,14 @@ Tolerance tolerance_for(const Scene& s) {
   return {double(ch03::cut_threshold(1.f, ch03::peak_reflectance(s))) * double(ch03::peak_reflectance(s))};
 }
 
+// Clusters whose tiles are tiled shading's (16 pixels at 160 x 90), so that the two differ in
+// depth only.
+ClusterSettings clusters_like_tiles() {
+  ClusterSettings fine = settings_for_mode("clustered");
+  fine.clusters = {10, 6, 24};
+  return fine;
+}
+
 }  // namespace
 
 TEST_F(ClusteredGl, TiledAndClusteredEqualTheStencilVolumes) {
@@ -422,9 +430,7 @@ TEST_F(ClusteredGl, DepthDiscontinuityInATileCostsTiledExtraEvaluations) {
   const int width = 160, height = 90;
   const FrameCamera cam = camera(w, "street_level", width, height);
   ClusteredLights tiled(w.frame_.volumes(), settings_for_mode("tiled"));
-  ClusterSettings fine = settings_for_mode("clustered");
-  fine.clusters = {10, 6, 24};  // tiles of 16 pixels, as tiled's
-  ClusteredLights clustered(w.frame_.volumes(), fine);
+  ClusteredLights clustered(w.frame_.volumes(), clusters_like_tiles());
   const Render t = render(w, cam, width, height, &tiled, false);
   const Render c = render(w, cam, width, height, &clustered, false);
   EXPECT_EQ(t.counts.lit, c.counts.lit);
@@ -453,9 +459,7 @@ TEST_F(ClusteredGl, TheDepthMaskDropsLightsInATilesDepthGaps) {
     SCOPED_TRACE(name);
     ClusteredLights tiled(w.frame_.volumes(), settings_for_mode("tiled"));
     ClusteredLights masked(w.frame_.volumes(), settings_for_mode("tiled-2.5d"));
-    ClusterSettings fine = settings_for_mode("clustered");
-    fine.clusters = {10, 6, 24};  // tiles of 16 pixels, as tiled's
-    ClusteredLights clustered(w.frame_.volumes(), fine);
+    ClusteredLights clustered(w.frame_.volumes(), clusters_like_tiles());
     const Render t = render(w, cam, width, height, &tiled, false);
     const Render m = render(w, cam, width, height, &masked, true);
     const Render c = render(w, cam, width, height, &clustered, false);
