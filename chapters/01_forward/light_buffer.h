@@ -10,14 +10,12 @@
 
 namespace lp::ch01 {
 
-// Mirrors `struct GpuLight` in shaders/lighting.glsl (std430, 64 bytes).
-struct GpuLight {
-  glm::vec4 position_type;
-  glm::vec4 direction_range;
-  glm::vec4 radiance;
-  glm::vec4 spot;
-};
-static_assert(sizeof(GpuLight) == 64);
+namespace glsl {
+using glm::vec4;
+#include "chapters/01_forward/shaders/gpu_light.h"  // struct GpuLight, shared with GLSL
+}  // namespace glsl
+using glsl::GpuLight;
+static_assert(sizeof(GpuLight) == 64, "std430: four vec4");
 
 GpuLight pack_light(const Light& light);
 

@@ -168,7 +168,13 @@ const ShaderProgram& GeometryPass::program_for(const Layout& layout) {
 // [geometry-pass]
 void GeometryPass::draw(GBuffer& gbuffer, const FrameCamera& camera) {
   const ShaderProgram& program = program_for(gbuffer.layout());
-  gbuffer.set_frame(camera, palette_);
+  if (emissive_scale_ == 1.f) {
+    gbuffer.set_frame(camera, palette_);
+  } else {
+    std::vector<glm::vec3> scaled = palette_;
+    for (glm::vec3& e : scaled) e = e * emissive_scale_;
+    gbuffer.set_frame(camera, scaled);
+  }
   gbuffer.bind_for_geometry();
   gbuffer.begin_depth_convention();
   glEnable(GL_DEPTH_TEST);
@@ -183,7 +189,8 @@ void GeometryPass::draw(GBuffer& gbuffer, const FrameCamera& camera) {
     ch01::set_surface(program, scene_, inst, m);  // chapter 01's material.h
     program.set("u_emissive_code", emissive_code(static_cast<int>(&m - first_material)));
     float base = std::max({m.base_color.r, m.base_color.g, m.base_color.b, 1e-6f});
-    program.set("u_emissive_strength", std::clamp(std::max({m.emissive.r, m.emissive.g, m.emissive.b}) / base, 0.f, 1.f));
+    const glm::vec3 e = emissive_scale_ == 1.f ? m.emissive : m.emissive * emissive_scale_;
+    program.set("u_emissive_strength", std::clamp(std::max({e.r, e.g, e.b}) / base, 0.f, 1.f));
   }, SceneGpu::Primitives::Opaque);  // glass (alphaMode BLEND) is drawn after the deferred passes
   GBuffer::restore_default_depth_convention();
 }

@@ -125,6 +125,10 @@ class GeometryPass {
   // camera; reversed-Z layouts swap the projection themselves). Leaves the G-buffer's
   // framebuffer bound, depth test on with OpenGL's default convention.
   void draw(GBuffer& gbuffer, const FrameCamera& camera);
+  // Every emissive colour times `scale` when it is drawn (chapter 05's glow: a frame
+  // parameter, so the scene is never copied to change it).
+  void set_emissive_scale(float scale) { emissive_scale_ = scale; }
+  float emissive_scale() const { return emissive_scale_; }
 
   // Colour of each emissive code (index 0: none), and each material's code.
   const std::vector<glm::vec3>& emissive_palette() const { return palette_; }
@@ -135,6 +139,7 @@ class GeometryPass {
   const SceneGpu& scene_;
   std::vector<glm::vec3> palette_;
   std::vector<int> material_codes_;
+  float emissive_scale_ = 1.f;
   std::map<std::string, ShaderProgram> programs_;  // one per layout, made when first needed
 };
 

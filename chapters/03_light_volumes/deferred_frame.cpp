@@ -24,19 +24,30 @@ void DeferredFrame::reload_shaders() {
   volumes_.reload_shaders();
 }
 
-void DeferredFrame::rebuild_geometry_pass() { geometry_ = std::make_unique<ch02::GeometryPass>(scene_); }
 
 void DeferredFrame::set_strategy(Strategy strategy) { volume_lights_.set_strategy(strategy); }
 
 void DeferredFrame::set_local_lights(LocalLightPass* pass) { local_ = pass ? pass : &volume_lights_; }
 
-void DeferredFrame::add_stage(FrameStage& stage) { stages_.push_back(&stage); }
+void DeferredFrame::add_stage(FrameStage& stage) {
+  const StageNeeds needs = stage.needs();
+  if (needs.units < 0 || needs.blocks < 0) throw Error("a frame stage asked for a negative number of slots");
+  stage.slots_ = next_slots_;
+  next_slots_.first_unit += GLuint(needs.units);
+  next_slots_.first_block += GLuint(needs.blocks);
+  stages_.push_back(&stage);
+}
+
+void DeferredFrame::bind_hooks() const {
+  for (const FrameStage* stage : stages_) stage->bind_hook_resources();
+}
 
 // Chapter 03's hook files, each replaced by the one stage that names its own.
 ShaderHooks DeferredFrame::hooks() const {
   ShaderHooks hooks, chosen = {"", ""};
   for (const FrameStage* stage : stages_) {
     const ShaderHooks h = stage->shader_hooks();
+    hooks.defines.insert(hooks.defines.end(), h.defines.begin(), h.defines.end());
     for (auto [mine, theirs, what] : {std::tuple{&chosen.visibility, &h.visibility, "visibility"},
                                       std::tuple{&chosen.ambient, &h.ambient, "ambient"}}) {
       if (theirs->empty()) continue;
@@ -96,6 +107,7 @@ void DeferredFrame::render(const FrameCamera& camera, const FrameOutput& output,
   // 3. The light buffer: the G-buffer's depth, a zero stencil, then ambient and the
   //    directional lights for every pixel, and each local light where it reaches.
   light_->begin(gbuffer_->framebuffer());
+  bind_hooks();  // for the global and local passes: the stages' own passes may have used any unit
   if (!settings.scene_lights || heat) {
     light_->clear();
   } else {

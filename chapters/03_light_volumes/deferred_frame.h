@@ -12,7 +12,7 @@
 // A later chapter extends the frame without editing it, in two ways:
 // - a FrameStage (add_stage): C++ hooks at fixed points of render(), and GLSL hooks that
 //   chapter 03's light shaders include (ShaderHooks: a visibility term per light, a per-pixel
-//   ambient term). Chapter 04 adds its tube lights this way; 06 will add shadows, 07 and 08
+//   ambient term). Chapter 04 adds its tube lights this way, 06 its shadows, 07 and 08
 //   ambient occlusion and indirect light.
 // - a LocalLightPass (set_local_lights): another way to bring the local lights into the light
 //   buffer than chapter 03's volumes; chapter 09's tiled and clustered culling.
@@ -47,15 +47,34 @@ struct FrameOutput {
 };
 
 // [frame-stage]
+// The texture units and uniform-block bindings the frame gives a stage, after its own (the
+// G-buffer's units 0..4 and block 7, the light buffer's units 5 and 6) and after the stages
+// added before it. The stage names them to its GLSL by defines (shader_hooks()), so no shader
+// hard-codes a unit another stage may also use.
+struct StageSlots {
+  GLuint first_unit = 0, first_block = 0;
+  GLuint unit(int i) const { return first_unit + GLuint(i); }
+  GLuint block(int i) const { return first_block + GLuint(i); }
+};
+struct StageNeeds {
+  int units = 0, blocks = 0;  // how many of each the stage's passes and hooks read
+};
+
 // A stage a later chapter adds to the frame. render() calls the hooks in this order:
 //   geometry -> before_lights -> global + local lights -> add_light -> composite -> after_composite
 class FrameStage {
  public:
   virtual ~FrameStage() = default;
-  // The GLSL files the light shaders include (see ShaderHooks); empty strings keep chapter 03's.
+  // How many texture units and blocks the frame must give it (slots() once added).
+  virtual StageNeeds needs() const { return {}; }
+  // The GLSL files the light shaders include and the defines they need (see ShaderHooks);
+  // empty file names keep chapter 03's.
   virtual ShaderHooks shader_hooks() const { return {"", ""}; }
-  // After the G-buffer, before any light: shadow maps, ambient occlusion... and binding what
-  // the GLSL hooks read (texture units from DeferredFrame::kFirstStageUnit on).
+  // Binds what its GLSL hooks read on its slots. The frame calls it before every pass that
+  // includes the hooks (the lights, a forward pass through DeferredFrame::bind_hooks()), so a
+  // texture another stage's pass bound in between never reaches them.
+  virtual void bind_hook_resources() const {}
+  // After the G-buffer, before any light: shadow maps, ambient occlusion...
   virtual void before_lights(DeferredFrame&, PassMetrics*) {}
   // More light added into the light buffer (bound) after chapter 03's own: chapter 04's tubes.
   virtual void add_light(DeferredFrame&, PassMetrics*) {}
@@ -64,8 +83,14 @@ class FrameStage {
   virtual bool composite(DeferredFrame&, PassMetrics*) { return false; }
   // Over the finished image, into the bound output: glass, pictures.
   virtual void after_composite(DeferredFrame&, PassMetrics*) {}
+
+  const StageSlots& slots() const { return slots_; }  // given by DeferredFrame::add_stage
+
+ private:
+  friend class DeferredFrame;
+  StageSlots slots_;
 };
-// [/frame-stage]
+// [/frame-stage]// [/frame-stage]
 
 // [local-light-pass]
 // How the local lights reach the light buffer. Chapter 03's volumes (VolumeLights) are the
@@ -113,25 +138,30 @@ struct FrameSettings {
 
 class DeferredFrame {
  public:
-  // Texture units a stage may bind for its GLSL hooks: after the G-buffer's (0..4) and the
-  // light buffer's (5, 6).
-  static constexpr GLuint kFirstStageUnit = 8;
+  // The first texture unit and uniform-block binding given to the stages (StageSlots): after
+  // the G-buffer's (units 0..4, block 7) and the light buffer's (units 5, 6).
+  static constexpr GLuint kFirstStageUnit = 8, kFirstStageBlock = 8;
 
   // The scene's ambient light and chapter 01's background to start with; the icosphere of
   // the point lights' volumes subdivided `sphere_subdivisions` times (LightVolumes).
   explicit DeferredFrame(const SceneGpu& scene, const ch02::Layout& layout = ch02::our_layout(),
                          int sphere_subdivisions = 2);
   void reload_shaders();
-  // Chapter 02's geometry pass takes the emissive palette from the materials when it is
-  // made: after changing the scene's emissive colours, make it again (chapter 05's glow).
-  void rebuild_geometry_pass();
+  // Every emissive surface's colour times `scale` (chapter 05's glow), in the G-buffer and in
+  // the stages that draw surfaces themselves (chapter 10's glass reads emissive_scale()).
+  void set_emissive_scale(float scale) { geometry_->set_emissive_scale(scale); }
+  float emissive_scale() const { return geometry_->emissive_scale(); }
 
   // Chapter 03's lights: set_lights(build_light_set(...)), counting, the pictures.
   LightVolumes& volumes() { return volumes_; }
   const LightVolumes& volumes() const { return volumes_; }
   void set_strategy(Strategy strategy);             // which of chapter 03's culling strategies
   void set_local_lights(LocalLightPass* pass);      // another chapter's; nullptr: chapter 03's again
-  void add_stage(FrameStage& stage);                // called in the order added
+  // Called in the order added; gives the stage its texture units and blocks (StageSlots).
+  void add_stage(FrameStage& stage);
+  // Binds every stage's hook resources: for a pass outside render() that includes the hooks
+  // (chapter 10's glass, chapter 08's back faces). render() calls it before its light passes.
+  void bind_hooks() const;
   void set_ambient(const glm::vec3& ambient) { ambient_ = ambient; }
   void set_background(const glm::vec3& background) { background_ = background; }
   const glm::vec3& background() const { return background_; }
@@ -162,6 +192,7 @@ class DeferredFrame {
   VolumeLights volume_lights_;
   LocalLightPass* local_ = &volume_lights_;
   std::vector<FrameStage*> stages_;
+  StageSlots next_slots_{kFirstStageUnit, kFirstStageBlock};
   std::unique_ptr<ch02::GBuffer> gbuffer_;
   std::unique_ptr<LightBuffer> light_;
   SurfaceView view_;

@@ -129,8 +129,10 @@ Strategy strategy_named(const std::string& name) {
   throw Error("unknown light-volume strategy '" + name + "'");
 }
 
-std::vector<std::string> ShaderHooks::defines() const {
-  return {"FRAME_VISIBILITY \"" + visibility + "\"", "FRAME_AMBIENT \"" + ambient + "\""};
+std::vector<std::string> ShaderHooks::glsl_defines() const {
+  std::vector<std::string> all = {"FRAME_VISIBILITY \"" + visibility + "\"", "FRAME_AMBIENT \"" + ambient + "\""};
+  all.insert(all.end(), defines.begin(), defines.end());
+  return all;
 }
 
 SurfaceView surface_view(const ch02::GBuffer& gbuffer) {
@@ -269,7 +271,7 @@ void LightVolumes::reload_shaders() {
 const ShaderProgram& LightVolumes::program(const std::string& fragment, const SurfaceView& view, std::vector<std::string> extra,
                                            bool volumes) {
   std::vector<std::string> defines = view.defines;
-  const std::vector<std::string> hooks = view.hooks.defines();
+  const std::vector<std::string> hooks = view.hooks.glsl_defines();
   defines.insert(defines.end(), hooks.begin(), hooks.end());
   defines.insert(defines.end(), extra.begin(), extra.end());
   const std::string vertex = volumes ? "03_light_volumes/shaders/volume.vert" : "02_gbuffer/shaders/fullscreen.vert";

@@ -52,15 +52,19 @@ Strategy strategy_named(const std::string& name);  // throws Error for an unknow
 
 // [shader-hooks]
 // The GLSL that chapter 03's light shaders include for the terms later chapters add, each a
-// file named by a define (`#include FRAME_VISIBILITY`). Chapter 03's own files change nothing:
-// every light fully visible, the scene's constant ambient. Chapter 06 names its shadow
-// lookup, chapters 07 and 08 their ambient occlusion and indirect light.
+// file named by a define (`#include FRAME_VISIBILITY`), and the defines those files need (a
+// method, the texture units and blocks the frame gave the stage). Chapter 03's own files
+// change nothing: every light fully visible, the scene's constant ambient. Chapter 06 names
+// its shadow lookup, chapters 07 and 08 their ambient occlusion and indirect light.
 struct ShaderHooks {
   // float directional_visibility(int index, GpuLight, Surface); float local_visibility(...)
   std::string visibility = "03_light_volumes/shaders/hooks/full_visibility.glsl";
   // vec3 ambient_light(vec3 ambient, Surface, ivec2 pixel)
   std::string ambient = "03_light_volumes/shaders/hooks/constant_ambient.glsl";
-  std::vector<std::string> defines() const;  // {"FRAME_VISIBILITY \"...\"", "FRAME_AMBIENT \"...\""}
+  std::vector<std::string> defines;  // what the files need, e.g. {"SHADOW_METHOD SHADOW_PCF", "SHADOW_UNIT 8"}
+  // Everything a program that includes the hooks is compiled with: FRAME_VISIBILITY and
+  // FRAME_AMBIENT (the quoted paths), then `defines`.
+  std::vector<std::string> glsl_defines() const;
 };
 // [/shader-hooks]
 
@@ -164,6 +168,9 @@ class LightVolumes {
 
   void set_lights(LightSet lights);
   const LightSet& lights() const { return lights_; }
+  // lights().directional as uploaded (std430 GpuLight records): for a pass of another stage
+  // that lights surfaces with them (chapter 10's glass) instead of uploading them again.
+  GLuint directional_buffer() const { return directional_.id(); }
   const VolumeShapes& shapes() const { return shapes_; }
 
   // Ambient and the directional lights for every pixel; writes the light buffer (no blending).

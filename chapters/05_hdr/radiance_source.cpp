@@ -62,22 +62,21 @@ void ForwardRadiance::render(const FrameCamera& camera, const RadianceTarget& ta
 
 // --- Chapter 03's deferred path ----------------------------------------------------------------
 
+DeferredRadiance::DeferredRadiance(const SceneGpu& scene, const ch02::Layout& layout, ch03::Strategy strategy)
+    : gpu_(scene), frame_(std::make_unique<ch03::DeferredFrame>(gpu_, layout)),
+      peak_reflectance_(ch03::peak_reflectance(scene.scene())), sun_(1), glow_(1) {
+  frame_->set_strategy(strategy);
+}
+
 DeferredRadiance::DeferredRadiance(const Scene& scene, const ch02::Layout& layout, ch03::Strategy strategy)
-    : original_(scene), scene_(std::make_unique<Scene>(rescaled_scene(scene, 1, 1))),
-      gpu_(std::make_unique<SceneGpu>(*scene_)), frame_(std::make_unique<ch03::DeferredFrame>(*gpu_, layout)),
+    : owned_(std::make_unique<SceneGpu>(scene)), gpu_(*owned_), frame_(std::make_unique<ch03::DeferredFrame>(gpu_, layout)),
       peak_reflectance_(ch03::peak_reflectance(scene)), sun_(1), glow_(1) {
   frame_->set_strategy(strategy);
 }
 
 void DeferredRadiance::set_scales(float sun, float glow) {
   if (sun == sun_ && glow == glow_) return;
-  // The GPU scene reads materials from *scene_ at draw time: rescale them in place.
-  for (std::size_t i = 0; i < scene_->materials.size(); ++i)
-    scene_->materials[i].emissive = original_.materials[i].emissive * glow;
-  for (std::size_t i = 0; i < scene_->lights.size(); ++i)
-    scene_->lights[i].intensity = original_.lights[i].intensity * (original_.lights[i].type == LightType::Directional ? sun : 1.f);
-  // Chapter 02's geometry pass takes its emissive palette from the materials when it is made.
-  if (glow != glow_) frame_->rebuild_geometry_pass();
+  frame_->set_emissive_scale(glow);
   if (sun != sun_) lights_changed_ = true;
   sun_ = sun;
   glow_ = glow;
@@ -96,7 +95,13 @@ float DeferredRadiance::cut_threshold() const { return ch03::cut_threshold(cut_e
 
 void DeferredRadiance::render(const FrameCamera& camera, const RadianceTarget& target, PassMetrics* metrics) {
   if (lights_changed_) {
-    ch03::LightSet set = ch03::build_light_set(scene_->lights, cut_threshold(), volumes().shapes());
+    // [sun-scale]
+    // The sun's scale, applied where the lights are packed: a copy of the lights, not of the scene.
+    std::vector<Light> lights = scene().lights;
+    for (Light& l : lights)
+      if (l.type == LightType::Directional) l.intensity *= sun_;
+    // [/sun-scale]
+    ch03::LightSet set = ch03::build_light_set(lights, cut_threshold(), volumes().shapes());
     if (!warned_)  // the same lights every time: say it once
       for (const auto& warning : set.warnings) std::cerr << "warning: " << warning << '\n';
     warned_ = true;

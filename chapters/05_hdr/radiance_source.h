@@ -63,12 +63,20 @@ class ForwardRadiance {
 // Chapter 03's deferred frame as the radiance source: the same frame object chapter 03's
 // program draws (its G-buffer, light volumes into the float light buffer, composite), drawn
 // into a RadianceTarget instead of the sRGB output, with the lights cut for this chapter's
-// exposure. Stages added to it come along: chapter 04's tubes light the HDR street.
+// exposure. Stages added to it come along: chapter 04's tubes light the HDR street. The sun
+// and glow scales are the frame's parameters: the sun's applied where the lights are packed,
+// the glow where the emissive colours are drawn; the scene itself is never copied.
 class DeferredRadiance {
  public:
+  // Draws the program's scene (`scene`, already on the GPU: nothing is uploaded again).
+  explicit DeferredRadiance(const SceneGpu& scene, const ch02::Layout& layout = ch02::our_layout(),
+                            ch03::Strategy strategy = ch03::Strategy::Stencil);
+  // Uploads `scene` for itself (tests and sweeps that have no SceneGpu of their own).
   explicit DeferredRadiance(const Scene& scene, const ch02::Layout& layout = ch02::our_layout(),
                             ch03::Strategy strategy = ch03::Strategy::Stencil);
-  void set_scales(float sun, float glow);  // cheap when unchanged
+  // Directional lights ("the sun") times `sun`, emissive surfaces times `glow` (the assets are
+  // tuned for chapters 1-4, which show radiance as it is). Cheap when unchanged.
+  void set_scales(float sun, float glow);
   // The exposure the volumes are cut for: a light ends where it gives less than one output
   // step after this exposure (times the curve's output_slope()) on the brightest material.
   // Rounded up to a quarter stop, so the volumes are rebuilt only when it moves by 19 %.
@@ -80,8 +88,8 @@ class DeferredRadiance {
   // buffer follow it). With `metrics`, each pass is timed on its own.
   void render(const FrameCamera& camera, const RadianceTarget& target, PassMetrics* metrics = nullptr);
 
-  const Scene& scene() const { return *scene_; }  // rescaled
-  const SceneGpu& scene_gpu() const { return *gpu_; }
+  const Scene& scene() const { return gpu_.scene(); }  // as loaded: the scales are not in it
+  const SceneGpu& scene_gpu() const { return gpu_; }
   float peak_reflectance() const { return peak_reflectance_; }
   ch03::DeferredFrame& frame() { return *frame_; }  // add_stage() here
   const ch02::GBuffer& gbuffer() const { return frame_->gbuffer(); }
@@ -90,9 +98,8 @@ class DeferredRadiance {
   std::size_t allocated_bytes() const { return frame_->allocated_bytes(); }  // G-buffer + light buffer
 
  private:
-  const Scene& original_;
-  std::unique_ptr<Scene> scene_;  // the rescaled copy the GPU scene points at
-  std::unique_ptr<SceneGpu> gpu_;
+  std::unique_ptr<SceneGpu> owned_;  // when made from a Scene
+  const SceneGpu& gpu_;
   std::unique_ptr<ch03::DeferredFrame> frame_;
   float peak_reflectance_;
   float sun_ = -1, glow_ = -1, cut_exposure_ = 1;

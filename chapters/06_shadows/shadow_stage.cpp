@@ -1,33 +1,29 @@
 #include "chapters/06_shadows/shadow_stage.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstddef>
 
 #include "common/error.h"
 #include "common/scene_gpu.h"
 
 namespace lp::ch06 {
 
+namespace glsl {
+using glm::mat4, glm::vec2, glm::vec3, glm::vec4;
+#include "chapters/06_shadows/shaders/shadow_block.h"  // struct ShadowParameters, shared with GLSL
+}  // namespace glsl
+using glsl::ShadowParameters;
+static_assert(SHADOW_MAX_POISSON_TAPS == kMaxPoissonTaps);
+static_assert(offsetof(ShadowParameters, view) == 112 && offsetof(ShadowParameters, extent) == 176 &&
+              offsetof(ShadowParameters, poisson) == 192 && offsetof(ShadowParameters, spot_position) == 832 &&
+              sizeof(ShadowParameters) == 864, "std140: vec4 and mat4 members on 16 bytes");
+
 namespace {
-// Mirrors `uniform ShadowBlock` in shaders/shadow_visibility.glsl (std140).
-struct ShadowBlock {
-  glm::mat4 matrix;
-  glm::vec4 map, bias, filter;
-  glm::mat4 view;
-  glm::vec4 extent;
-  glm::vec4 poisson[kMaxPoissonTaps / 2];  // two taps a vec4 (x, y, z, w: tap 2i, tap 2i + 1)
-  glm::mat4 spot_matrix;
-  glm::mat4 spot_view;
-  glm::vec4 spot;      // xyz: the spot's position, w: 1 when a spot has a map
-  glm::vec4 spot_map;  // x: near, y: far, z: tan(cone), w: map size
-};
-constexpr GLuint kBlockBinding = 8;
-constexpr GLuint kDepthUnit = ch03::DeferredFrame::kFirstStageUnit;  // 8: sampler2D, nearest
-constexpr GLuint kCompareUnit = kDepthUnit + 1;                      // 9: sampler2DShadow
-constexpr GLuint kMomentsUnit = kDepthUnit + 2;                      // 10: VSM / ESM, linear
-constexpr GLuint kFilterInputUnit = kDepthUnit + 3;                  // 11: the pre-filter's input
-constexpr GLuint kVolumeUnit = kDepthUnit + 4;                       // 12: the volumes' visibility
-constexpr GLuint kSpotUnit = kDepthUnit + 5;                         // 13: the spot's depth map, nearest
+// The stage's texture units, from the first the frame gave it (shadow_visibility.glsl reads
+// SHADOW_UNIT + these), and its one uniform block.
+enum Unit : int { kDepthUnit, kCompareUnit, kMomentsUnit, kFilterInputUnit, kVolumeUnit, kSpotUnit, kUnitCount };
 }  // namespace
 
 ShadowMethod method_from_name(const std::string& name) {
@@ -59,15 +55,18 @@ int shadowed_spot(const Scene& scene) {
   return -1;
 }
 
+int shadowed_sun(const Scene& scene) {
+  for (std::size_t i = 0; i < scene.lights.size(); ++i)
+    if (scene.lights[i].type == LightType::Directional) return casts_shadows(scene, i) ? int(i) : -1;
+  return -1;
+}
+
 std::vector<std::string> unshadowed_casters(const Scene& scene) {
   std::vector<std::string> out;
-  bool sun_seen = false;
-  const int spot = shadowed_spot(scene);
+  const int sun = shadowed_sun(scene), spot = shadowed_spot(scene);
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
-    const bool first_directional = l.type == LightType::Directional && !sun_seen;
-    sun_seen = sun_seen || l.type == LightType::Directional;
-    if (!casts_shadows(scene, i) || first_directional || int(i) == spot) continue;
+    if (!casts_shadows(scene, i) || int(i) == sun || int(i) == spot) continue;
     std::string why = l.type == LightType::Directional ? "only the first directional light (the sun) has a map here"
                       : l.type == LightType::Point     ? "a point light's cube map is an exercise of this chapter"
                       : l.outer_cone > kMaxSpotCone    ? "its cone is wider than a perspective map covers (" +
@@ -92,7 +91,7 @@ ShadowStage::ShadowStage(const SceneGpu& scene, const Light& sun) : scene_(scene
     glSamplerParameteri(s, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glSamplerParameteri(s, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   }
-  block_ = gl::make_buffer(nullptr, sizeof(ShadowBlock), GL_DYNAMIC_STORAGE_BIT);
+  block_ = gl::make_buffer(nullptr, sizeof(ShadowParameters), GL_DYNAMIC_STORAGE_BIT);
 }
 
 void ShadowStage::reload_shaders() {
@@ -104,11 +103,38 @@ void ShadowStage::set(const ShadowSettings& settings, ShadowPicture picture) {
   picture_ = picture;
 }
 
+ch03::StageNeeds ShadowStage::needs() const { return {.units = kUnitCount, .blocks = 1}; }
+
 ch03::ShaderHooks ShadowStage::shader_hooks() const {
-  std::string name = kMethodNames[int(settings_.method)];
-  std::replace(name.begin(), name.end(), '-', '_');
-  return {"06_shadows/shaders/visibility_" + name + ".glsl", ""};
+  std::string method = "SHADOW_" + kMethodNames[int(settings_.method)];
+  std::transform(method.begin(), method.end(), method.begin(), [](char c) { return c == '-' ? '_' : char(std::toupper(c)); });
+  return {"06_shadows/shaders/shadow_visibility.glsl", "",
+          {"SHADOW_METHOD " + method, "SHADOW_UNIT " + std::to_string(slots().unit(0)),
+           "SHADOW_BLOCK " + std::to_string(slots().block(0))}};
 }
+
+// [bind-hook]
+// What shadow_visibility.glsl reads, on the stage's slots: the block, the sun's map (raw and
+// through the comparison sampler), the filtered moments, the spot's map, or the volumes'
+// visibility. Unused samplers still get a texture of the right kind.
+void ShadowStage::bind_hook_resources() const {
+  const ch03::StageSlots& at = slots();
+  if (settings_.method == ShadowMethod::Volumes) {
+    glBindTextureUnit(at.unit(kVolumeUnit), volume_visibility_.id());
+    glBindSampler(at.unit(kVolumeUnit), nearest_.id());
+    return;
+  }
+  glBindBufferBase(GL_UNIFORM_BUFFER, at.block(0), block_.id());
+  glBindTextureUnit(at.unit(kDepthUnit), depth_.id());
+  glBindSampler(at.unit(kDepthUnit), nearest_.id());
+  glBindTextureUnit(at.unit(kCompareUnit), depth_.id());
+  glBindSampler(at.unit(kCompareUnit), compare_.id());
+  glBindTextureUnit(at.unit(kMomentsUnit), allocated_filtered_ ? moments_.id() : depth_.id());
+  glBindSampler(at.unit(kMomentsUnit), linear_.id());
+  glBindTextureUnit(at.unit(kSpotUnit), spot_mapped_ ? spot_depth_.id() : depth_.id());
+  glBindSampler(at.unit(kSpotUnit), nearest_.id());
+}
+// [/bind-hook]
 
 const ShaderProgram& ShadowStage::program(const std::string& vertex, const std::string& fragment,
                                           std::vector<std::string> defines) {
@@ -211,12 +237,13 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
     p.use();
     p.set("u_radius", settings_.kernel / 2);
     p.set("u_c", settings_.c);
-    glUniform1i(p.location("u_input"), int(kFilterInputUnit));
-    glBindSampler(kFilterInputUnit, 0);
+    const GLuint input = slots().unit(kFilterInputUnit);
+    glUniform1i(p.location("u_input"), int(input));
+    glBindSampler(input, 0);
     for (int step = 0; step < 2; ++step) {
       glBindFramebuffer(GL_FRAMEBUFFER, step == 0 ? scratch_fbo_.id() : moments_fbo_.id());
       glViewport(0, 0, n, n);
-      glBindTextureUnit(kFilterInputUnit, step == 0 ? depth_.id() : scratch_.id());
+      glBindTextureUnit(input, step == 0 ? depth_.id() : scratch_.id());
       p.set("u_from_depth", step == 0 ? 1 : 0);
       glProgramUniform2i(p.id(), p.location("u_step"), step == 0 ? 1 : 0, step == 0 ? 0 : 1);
       full_screen_.draw();
@@ -236,33 +263,34 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
     poisson_ = taps > 0 ? poisson_disk(taps, 0x504fu) : std::vector<glm::vec2>{};
     poisson_taps_ = taps;
   }
-  ShadowBlock block{frustum_.view_projection(),
-                          glm::vec4(frustum_.texel_world(n), frustum_.depth_range(), float(n), float(settings_.kernel / 2)),
-                          glm::vec4(settings_.constant_bias, settings_.slope_bias, settings_.normal_offset,
-                                    settings_.min_variance),
-                          glm::vec4(settings_.c, settings_.p_min, float(poisson_taps_), 0),
-                          frustum_.view,
-                          glm::vec4(frustum_.box_max - frustum_.box_min, std::tan(settings_.sun_angular_radius)),
-                          {},
-                          spot_frustum_.view_projection(),
-                          spot_frustum_.view,
-                          glm::vec4(spot_ ? spot_->position : glm::vec3(0), spot_mapped_ ? 1.f : 0.f),
-                          glm::vec4(spot_frustum_.near, spot_frustum_.far, spot_frustum_.tan_cone, float(n))};
+  ShadowParameters block{};
+  block.matrix = frustum_.view_projection();
+  block.texel_metres = frustum_.texel_world(n);
+  block.depth_range = frustum_.depth_range();
+  block.map_size = float(n);
+  block.pcf_radius = float(settings_.kernel / 2);
+  block.constant_bias = settings_.constant_bias;
+  block.slope_bias = settings_.slope_bias;
+  block.normal_offset = settings_.normal_offset;
+  block.min_variance = settings_.min_variance;
+  block.esm_c = settings_.c;
+  block.vsm_p_min = settings_.p_min;
+  block.poisson_taps = float(poisson_taps_);
+  block.view = frustum_.view;
+  block.extent = glm::vec2(frustum_.box_max - frustum_.box_min);
+  block.tan_sun_radius = std::tan(settings_.sun_angular_radius);
   for (std::size_t i = 0; i < poisson_.size(); ++i) {
     glm::vec4& slot = block.poisson[i / 2];
     slot[int(i % 2) * 2] = poisson_[i].x;
     slot[int(i % 2) * 2 + 1] = poisson_[i].y;
   }
+  block.spot_matrix = spot_frustum_.view_projection();
+  block.spot_view = spot_frustum_.view;
+  block.spot_position = spot_ ? spot_->position : glm::vec3(0);
+  block.spot_mapped = spot_mapped_ ? 1.f : 0.f;
+  block.spot_near = spot_frustum_.near, block.spot_far = spot_frustum_.far;
+  block.spot_tan_cone = spot_frustum_.tan_cone, block.spot_map_size = float(n);
   glNamedBufferSubData(block_.id(), 0, sizeof(block), &block);
-  glBindBufferBase(GL_UNIFORM_BUFFER, kBlockBinding, block_.id());
-  glBindTextureUnit(kDepthUnit, depth_.id());
-  glBindSampler(kDepthUnit, nearest_.id());
-  glBindTextureUnit(kCompareUnit, depth_.id());
-  glBindSampler(kCompareUnit, compare_.id());
-  glBindTextureUnit(kMomentsUnit, allocated_filtered_ ? moments_.id() : depth_.id());
-  glBindSampler(kMomentsUnit, linear_.id());
-  glBindTextureUnit(kSpotUnit, spot_mapped_ ? spot_depth_.id() : depth_.id());
-  glBindSampler(kSpotUnit, nearest_.id());
 }
 // [/shadow-stage]
 
@@ -370,8 +398,6 @@ void ShadowStage::draw_volumes(ch03::DeferredFrame& frame, PassMetrics* metrics)
   glBindVertexArray(0);
   glEnable(GL_DEPTH_TEST);
   glDepthMask(GL_TRUE);
-  glBindTextureUnit(kVolumeUnit, volume_visibility_.id());
-  glBindSampler(kVolumeUnit, nearest_.id());
 }
 // [/volumes-stage]
 
@@ -382,7 +408,7 @@ bool ShadowStage::composite(ch03::DeferredFrame& frame, PassMetrics* metrics) {
   auto pass = timed(metrics, picture_ == ShadowPicture::Map ? "composite: the sun's depth map"
                                                                   : "composite: the sun's visibility alone");
   std::vector<std::string> defines = frame.view().defines;
-  for (const auto& d : frame.view().hooks.defines()) defines.push_back(d);
+  for (const auto& d : frame.view().hooks.glsl_defines()) defines.push_back(d);
   if (picture_ == ShadowPicture::Map) defines.push_back("SHOW_MAP 1");
   if (picture_ == ShadowPicture::Penumbra) defines.push_back("SHOW_PENUMBRA 1");
   if (picture_ == ShadowPicture::SpotVisibility) {
@@ -391,6 +417,7 @@ bool ShadowStage::composite(ch03::DeferredFrame& frame, PassMetrics* metrics) {
     defines.push_back("SHOW_SPOT 1");
   }
   const ShaderProgram& p = program("02_gbuffer/shaders/fullscreen.vert", "06_shadows/shaders/show_visibility.frag", defines);
+  frame.bind_hooks();
   glDisable(GL_DEPTH_TEST), glDisable(GL_BLEND), glDisable(GL_CULL_FACE), glDisable(GL_STENCIL_TEST);
   p.use();
   p.set("u_sun_direction", glm::normalize(sun_.direction));

@@ -1,8 +1,9 @@
 #pragma once
 // Chapter 06's shadows as a stage of chapter 03's deferred frame (deferred_frame.h): before
 // the lights, the sun's depth map is drawn from its fitted orthographic frustum (and, for VSM
-// and ESM, pre-filtered), bound on units kFirstStageUnit.., and the frame's light shaders
-// include the visibility hook of the chosen method (shaders/visibility_<method>.glsl).
+// and ESM, pre-filtered); the frame's light shaders include the visibility hook,
+// shaders/shadow_visibility.glsl, with the chosen method and the stage's slots as defines, and
+// the frame binds the maps on those slots before each pass that includes it.
 //
 //   ch03::DeferredFrame frame(scene_gpu);   ShadowStage shadows(scene_gpu, sun);
 //   frame.add_stage(shadows);
@@ -76,7 +77,9 @@ class ShadowStage : public ch03::FrameStage {
   std::size_t allocated_bytes() const;
   const VolumeStats& volume_stats() const { return volume_stats_; }
 
+  ch03::StageNeeds needs() const override;
   ch03::ShaderHooks shader_hooks() const override;
+  void bind_hook_resources() const override;
   void before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics) override;
   bool composite(ch03::DeferredFrame& frame, PassMetrics* metrics) override;
 
@@ -141,6 +144,8 @@ std::vector<std::string> unshadowed_casters(const Scene& scene);
 // The spot light that gets a map: the first spot marked to cast with a cone of at most
 // kMaxSpotCone; its index in scene.lights, or -1.
 int shadowed_spot(const Scene& scene);
+// The sun that gets a map: the first directional light, if it casts; its index, or -1.
+int shadowed_sun(const Scene& scene);
 // [/casts-shadows]
 
 }  // namespace lp::ch06

@@ -1,8 +1,9 @@
 #pragma once
 // Chapter 07's ambient occlusion as a stage of chapter 03's deferred frame: after the
 // G-buffer and before any light, the AO pass (ssao.h) reads the surfaces; its texture goes on
-// unit 8 (DeferredFrame::kFirstStageUnit), where the frame's ambient hook,
-// shaders/ao_ambient.glsl, multiplies the ambient light by it. The direct lights are untouched.
+// the one texture unit the frame gives the stage (AO_UNIT to GLSL), where the frame's ambient
+// hook, shaders/ao_ambient.glsl, multiplies the ambient light by it. The direct lights are
+// untouched.
 //
 //   ch03::DeferredFrame frame(scene_gpu);  AoStage ao;  frame.add_stage(ao);
 //   ao.set({.method = AoMethod::Disk, .samples = 32}, AoShow::Image, scene.ambient);
@@ -31,11 +32,14 @@ class AoStage : public ch03::FrameStage {
   const Ssao& ssao() const { return ssao_; }
   const AoSettings& settings() const { return settings_; }
 
-  ch03::ShaderHooks shader_hooks() const override { return {"", "07_ssao/shaders/ao_ambient.glsl"}; }
+  ch03::StageNeeds needs() const override { return {.units = 1}; }
+  ch03::ShaderHooks shader_hooks() const override;
+  void bind_hook_resources() const override;
   void before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics) override;
   bool composite(ch03::DeferredFrame& frame, PassMetrics* metrics) override;
 
  private:
+  std::vector<std::string> unit_defines() const;  // {"AO_UNIT <its unit>"}
   Ssao ssao_;
   AoSettings settings_;
   AoShow show_ = AoShow::Image;

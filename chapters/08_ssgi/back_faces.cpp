@@ -40,6 +40,7 @@ void BackFaceLayer::draw(const SceneGpu& scene, ch03::DeferredFrame& frame) {
   ch03::SurfaceView view = ch03::surface_view(*gbuffer_);
   view.hooks = frame.view().hooks;
   light_->begin(gbuffer_->framebuffer());
+  frame.bind_hooks();
   frame.volumes().draw_global(*light_, view, glm::vec3(0));
   frame.volumes().draw_local(*light_, view, ch03::Strategy::Stencil);
   // 3. The frame's G-buffer where the passes after this one expect it

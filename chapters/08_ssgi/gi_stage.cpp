@@ -48,13 +48,14 @@ void GiStage::add_light(ch03::DeferredFrame& frame, PassMetrics* metrics) {
   auto pass = timed(metrics, "ssgi: add to the light buffer");
   if (!add_program_)
     add_program_ = std::make_unique<ShaderProgram>(std::vector<ShaderStage>{
-        {GL_VERTEX_SHADER, "02_gbuffer/shaders/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "08_ssgi/shaders/add_indirect.frag"}});
+        {GL_VERTEX_SHADER, "02_gbuffer/shaders/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "08_ssgi/shaders/add_indirect.frag"}},
+        std::vector<std::string>{"GI_UNIT " + std::to_string(slots().unit(0))});
   frame.light().bind();
   glViewport(0, 0, frame.light().width(), frame.light().height());
   add_program_->use();
   add_program_->set("u_ambient", ambient_);
   add_program_->set("u_gi_on", ran_ ? 1 : 0);
-  glBindTextureUnit(ch03::DeferredFrame::kFirstStageUnit, ran_ ? ssgi_.texture() : 0);
+  glBindTextureUnit(slots().unit(0), ran_ ? ssgi_.texture() : 0);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_STENCIL_TEST);
   glEnable(GL_BLEND);
@@ -71,6 +72,7 @@ bool GiStage::composite(ch03::DeferredFrame& frame, PassMetrics* metrics) {
   auto pass = timed(metrics, "composite: the indirect light");
   if (!show_program_) {
     std::vector<std::string> defines = frame.gbuffer().shader_defines(0);
+    defines.push_back("GI_UNIT " + std::to_string(slots().unit(0)));
     show_program_ = std::make_unique<ShaderProgram>(
         std::vector<ShaderStage>{{GL_VERTEX_SHADER, "02_gbuffer/shaders/fullscreen.vert"},
                                  {GL_FRAGMENT_SHADER, "08_ssgi/shaders/show_gi.frag"}},
@@ -87,16 +89,16 @@ bool GiStage::composite(ch03::DeferredFrame& frame, PassMetrics* metrics) {
   show_program_->set("u_heat", heat_ > 0.f ? heat_ : 1.f);
   show_program_->set("u_picture_offset", guard_);
   const bool picture = show_ == GiShow::Picture || show_ == GiShow::Heat;
-  glBindTextureUnit(ch03::DeferredFrame::kFirstStageUnit, picture ? picture_.id() : ran_ ? ssgi_.texture() : 0);
+  glBindTextureUnit(slots().unit(0), picture ? picture_.id() : ran_ ? ssgi_.texture() : 0);
   const BackFaceTextures layer = back_.textures();
-  glBindTextureUnit(9, drew_back_ ? layer.albedo : 0);
-  glBindTextureUnit(10, drew_back_ ? layer.light : 0);
+  glBindTextureUnit(slots().unit(1), drew_back_ ? layer.albedo : 0);
+  glBindTextureUnit(slots().unit(2), drew_back_ ? layer.light : 0);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
   glBindVertexArray(vao_.id());
   glDrawArrays(GL_TRIANGLES, 0, 3);
-  glBindTextureUnit(9, 0);
-  glBindTextureUnit(10, 0);
+  glBindTextureUnit(slots().unit(1), 0);
+  glBindTextureUnit(slots().unit(2), 0);
   return true;
 }
 

@@ -49,6 +49,9 @@ class GiStage : public ch03::FrameStage {
   const GiSettings& settings() const { return settings_; }
   GiMode mode() const { return mode_; }
 
+  // Three units for its own passes (GI_UNIT to GLSL: the indirect light, the back faces'
+  // albedo and light); its ambient hook reads none.
+  ch03::StageNeeds needs() const override { return {.units = 3}; }
   ch03::ShaderHooks shader_hooks() const override { return {"", "08_ssgi/shaders/no_ambient.glsl"}; }
   void add_light(ch03::DeferredFrame& frame, PassMetrics* metrics) override;
   bool composite(ch03::DeferredFrame& frame, PassMetrics* metrics) override;

@@ -153,7 +153,7 @@ std::vector<std::string> ClusteredLights::build_lists(int w, int h, const ch03::
   stats_.cells = grid_.cells();
 
   std::vector<std::string> defines = view.defines;
-  for (const auto& d : view.hooks.defines()) defines.push_back(d);
+  for (const auto& d : view.hooks.glsl_defines()) defines.push_back(d);
   if (clustered) defines.push_back("CLUSTERED 1");
   if (clustered && settings_.all_cells) defines.push_back("ALL_CELLS 1");
   const bool mask = !clustered && settings_.depth_mask;
@@ -231,7 +231,7 @@ void ClusteredLights::assign(const std::vector<std::string>& defines, const Fram
 
 std::vector<std::string> ClusteredLights::forward_defines(const ch03::SurfaceView& view, bool counting) const {
   std::vector<std::string> d = view.defines;
-  for (const auto& h : view.hooks.defines()) d.push_back(h);
+  for (const auto& h : view.hooks.glsl_defines()) d.push_back(h);
   d.push_back("CLUSTERED 1");
   if (counting)
     for (const auto& c : ch03::FragmentCounters::defines()) d.push_back(c);

@@ -100,7 +100,7 @@ void MsaaFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outpu
   resize(output.width, output.height, s.samples);
   if (!programs_) {
     std::vector<std::string> d = gbuffer_->shader_defines(0);
-    for (const std::string& x : ch03::ShaderHooks{}.defines()) d.push_back(x);
+    for (const std::string& x : ch03::ShaderHooks{}.glsl_defines()) d.push_back(x);
     d.push_back("MSAA_SAMPLES " + std::to_string(s.samples));
     const ShaderStage vs{GL_VERTEX_SHADER, "02_gbuffer/shaders/fullscreen.vert"};
     auto per_sample = d;

@@ -83,15 +83,12 @@ void TransparencyStage::reload_shaders() {
 }
 
 // [glass-lights]
-// The glass's lights are the frame's: its directional lights for the global part, and
-// chapter 09's lists of every cluster for the local lights (a pane may lie in a cluster no
-// opaque surface occupies). The lists are built for the frame's camera each frame.
+// The glass's lights are the frame's: its directional lights for the global part (the
+// buffer chapter 03's global pass reads, bound in draw_surfaces), and chapter 09's lists of
+// every cluster for the local lights (a pane may lie in a cluster no opaque surface
+// occupies). The lists are built for the frame's camera each frame.
 void TransparencyStage::build_lights(const ch03::DeferredFrame& frame, PassMetrics* metrics) {
   auto pass = timed(metrics, "transparency: light lists (chapter 09, every cluster)");
-  const auto& directional = frame.volumes().lights().directional;
-  directional_count_ = int(directional.size());
-  glNamedBufferData(directional_.id(), GLsizeiptr(std::max<std::size_t>(directional.size(), 1) * sizeof(ch01::GpuLight)),
-                    directional.empty() ? nullptr : directional.data(), GL_DYNAMIC_DRAW);
   lists_.build_lists(frame.light().width(), frame.light().height(), frame.view());
 }
 
@@ -138,10 +135,11 @@ void TransparencyStage::draw_surfaces(const ch03::DeferredFrame& frame, Output o
   program.set("u_view_projection", camera.view_projection());
   program.set("u_eye", frame.camera().position);
   program.set("u_ambient", scene_.scene().ambient);
-  program.set("u_light_count", directional_count_);
+  program.set("u_light_count", int(frame.volumes().lights().directional.size()));
   program.set("u_size", glm::vec2(width_, height_));
   if (output == kCapture) program.set("u_capacity", capacity_);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDirectionalBinding, directional_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDirectionalBinding, frame.volumes().directional_buffer());
+  frame.bind_hooks();  // the stages' passes since the lights (chapter 08's) may have taken their units
   frame.gbuffer().begin_depth_convention();
   glEnable(GL_DEPTH_TEST);
   glDepthMask(GL_FALSE);
@@ -153,7 +151,9 @@ void TransparencyStage::draw_surfaces(const ch03::DeferredFrame& frame, Output o
   for (const BlendedDraw& d : draws) {
     const Scene& s = scene_.scene();
     const Instance& inst = s.instances[d.instance];
-    ch01::set_surface(program, scene_, inst, s.materials[s.meshes[inst.mesh].primitives[d.primitive].material]);
+    const Material& m = s.materials[s.meshes[inst.mesh].primitives[d.primitive].material];
+    ch01::set_surface(program, scene_, inst, m);
+    if (frame.emissive_scale() != 1.f) program.set("u_emissive", m.emissive * frame.emissive_scale());  // chapter 05's glow
     if (ranks) {
       auto same = [&](const BlendedDraw& o) { return o.instance == d.instance && o.primitive == d.primitive; };
       program.set("u_rank", int(std::find_if(back_to_front.begin(), back_to_front.end(), same) - back_to_front.begin()));

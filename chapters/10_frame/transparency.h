@@ -114,8 +114,6 @@ class TransparencyStage : public ch03::FrameStage {
   const SceneGpu& scene_;
   std::vector<BlendedDraw> draws_;
   ch09::ClusteredLights lists_;  // every cluster's list (all_cells): glass may lie in any of them
-  gl::Buffer directional_;       // the frame's directional lights, ch01::GpuLight each
-  int directional_count_ = 0;
   TransparencySettings settings_;
   ProgramCache programs_;  // per output and the frame's defines
   ShaderProgram composite_;

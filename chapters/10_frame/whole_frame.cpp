@@ -11,16 +11,15 @@ bool any_glass(const Scene& scene) {
     if (m.blend) return true;
   return false;
 }
-// Chapter 06's sun: the first directional light, unless it is marked casts_shadows: false.
-bool sun_casts_shadows(const Scene& scene) {
-  for (std::size_t i = 0; i < scene.lights.size(); ++i)
-    if (scene.lights[i].type == LightType::Directional) return ch06::casts_shadows(scene, i);
-  return false;
-}
 }  // namespace
 
+WholeFrame::WholeFrame(const SceneGpu& scene)
+    : gpu_(scene), scene_(scene.scene()), has_sun_(ch06::shadowed_sun(scene_) >= 0), has_glass_(any_glass(scene_)),
+      neon_lights_(ch04::neon_lights(scene_)) {}
+
 WholeFrame::WholeFrame(const Scene& scene)
-    : scene_(scene), has_sun_(sun_casts_shadows(scene)), has_glass_(any_glass(scene)), neon_lights_(ch04::neon_lights(scene)) {}
+    : owned_(std::make_unique<SceneGpu>(scene)), gpu_(*owned_), scene_(scene), has_sun_(ch06::shadowed_sun(scene) >= 0),
+      has_glass_(any_glass(scene)), neon_lights_(ch04::neon_lights(scene)) {}
 
 // [plan]
 std::vector<PlannedStage> WholeFrame::plan(const WholeFrameSettings& s) const {
@@ -68,11 +67,11 @@ void WholeFrame::build(const std::vector<PlannedStage>& p) {
   shadows_.reset();
   neon_.reset();
   clustered_.reset();
-  source_ = std::make_unique<ch05::DeferredRadiance>(scene_);
+  source_ = std::make_unique<ch05::DeferredRadiance>(gpu_);  // the scene stays on the GPU as it is
   ch03::DeferredFrame& frame = source_->frame();
   clustered_ = std::make_unique<ch09::ClusteredLights>(frame.volumes());
   if (shadows) {
-    shadows_ = std::make_unique<ch06::ShadowStage>(source_->scene_gpu(), ch06::find_sun(source_->scene()));
+    shadows_ = std::make_unique<ch06::ShadowStage>(gpu_, scene_.lights[std::size_t(ch06::shadowed_sun(scene_))]);
     frame.add_stage(*shadows_);
   }
   if (neon) {

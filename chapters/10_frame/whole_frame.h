@@ -14,7 +14,7 @@
 // What the scene does not need is not run, and plan() says so: no tubes, no neon pass; no
 // sun, no shadow map; no glass, no transparency pass; no ambient light, no AO.
 //
-//   WholeFrame frame(scene);
+//   WholeFrame frame(scene_gpu);
 //   frame.render(camera, {target, w, h}, settings, dt, new_shot, &metrics);
 #include <memory>
 #include <string>
@@ -60,7 +60,8 @@ struct PlannedStage {
 
 class WholeFrame {
  public:
-  explicit WholeFrame(const Scene& scene);
+  explicit WholeFrame(const SceneGpu& scene);  // the program's scene, as uploaded
+  explicit WholeFrame(const Scene& scene);     // uploads it once (tests)
   void reload_shaders();
   std::vector<PlannedStage> plan(const WholeFrameSettings& s) const;
   // The frame into `output` (sRGB8, any size); each pass timed in `metrics`. `dt`: seconds
@@ -69,12 +70,16 @@ class WholeFrame {
               bool new_shot, PassMetrics* metrics = nullptr);
   std::size_t allocated_bytes() const;
   const ch05::DeferredRadiance& source() const { return *source_; }
+  // The float radiance the last render() tonemapped (nullptr before the first).
+  const ch05::RadianceTarget* radiance() const { return radiance_.get(); }
   ch05::DeferredRadiance& source() { return *source_; }
 
  private:
   void build(const std::vector<PlannedStage>& p);  // the radiance source with the stages the plan runs
   static std::string key(const std::vector<PlannedStage>& p);  // which stages run: one character each
 
+  std::unique_ptr<SceneGpu> owned_;  // when made from a Scene
+  const SceneGpu& gpu_;
   const Scene& scene_;
   bool has_sun_ = false, has_glass_ = false;
   std::vector<ch04::NeonLight> neon_lights_;

@@ -510,6 +510,59 @@ TEST_F(LightVolumesGl, TheVisibilityHookReachesEveryLight) {
   EXPECT_EQ(dark.image.pixels, truth.image.pixels);
 }
 
+namespace {
+// A 1 x 1 R32F texture holding `value`.
+gl::Texture one_texel(float value) {
+  gl::Texture t = gl::make_texture_2d(GL_R32F, 1, 1);
+  glTextureSubImage2D(t.id(), 0, 0, 0, 1, 1, GL_RED, GL_FLOAT, &value);
+  return t;
+}
+// A stage whose visibility hook reads its second unit (a texel of 0: no light reaches), bound
+// only when the frame asks for it.
+struct UnitStage : FrameStage {
+  gl::Texture dark = one_texel(0.f);
+  StageNeeds needs() const override { return {.units = 2, .blocks = 1}; }
+  ShaderHooks shader_hooks() const override {
+    return {test_hook("visibility_from_unit.glsl"), "", {"TEST_UNIT " + std::to_string(slots().unit(1))}};
+  }
+  void bind_hook_resources() const override { glBindTextureUnit(slots().unit(1), dark.id()); }
+};
+// A stage whose own pass, before the lights, leaves a texel of 1 on units 0..31 (as chapter
+// 08's pass once left its light on the unit chapter 06's map was read from).
+struct ClobberingStage : FrameStage {
+  gl::Texture lit = one_texel(1.f);
+  StageNeeds needs() const override { return {.units = 1}; }
+  void before_lights(DeferredFrame& frame, PassMetrics*) override {
+    for (GLuint unit = 8; unit < 32; ++unit) glBindTextureUnit(unit, lit.id());
+    frame.gbuffer().bind_textures(0);
+  }
+};
+}  // namespace
+
+TEST_F(LightVolumesGl, TheFrameBindsEachStagesUnitsBeforeTheLights) {
+  // Each stage gets its own units after the frame's and the earlier stages'; and whatever a
+  // stage's own pass binds, the frame binds every stage's hook resources again before the
+  // lights: the image is the ambient-only frame's (the hook's texel is 0), not the lit one.
+  const FrameCamera cam = camera("street_level");
+  DeferredFrame hooked(*gpu_), ambient_only(*gpu_);
+  hooked.volumes().set_lights(light_set(scene_->lights));
+  UnitStage reader;
+  ClobberingStage clobber;
+  hooked.add_stage(reader);
+  hooked.add_stage(clobber);
+  EXPECT_EQ(reader.slots().first_unit, DeferredFrame::kFirstStageUnit);
+  EXPECT_EQ(reader.slots().first_block, DeferredFrame::kFirstStageBlock);
+  EXPECT_EQ(clobber.slots().first_unit, DeferredFrame::kFirstStageUnit + 2);
+  EXPECT_EQ(clobber.slots().first_block, DeferredFrame::kFirstStageBlock + 1);
+  LightSet none = without_local(light_set(scene_->lights));
+  none.directional.clear();
+  ambient_only.volumes().set_lights(std::move(none));
+  Render dark = render(cam, Strategy::Stencil, LightVolumes::Output::Light, &hooked);
+  Render truth = render(cam, Strategy::Stencil, LightVolumes::Output::Light, &ambient_only);
+  EXPECT_EQ(dark.counts.lit, 0u);
+  EXPECT_EQ(dark.image.pixels, truth.image.pixels);
+}
+
 TEST_F(LightVolumesGl, TheVisibilityHookKnowsWhichLightItIs) {
   // The hook gets each light's place in light order: blocking the odd ones must give the
   // image of a frame that only has the even ones, with every strategy (instanced draws

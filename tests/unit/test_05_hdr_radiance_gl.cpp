@@ -261,9 +261,11 @@ struct CrossCheck {
     stored = probe.read(deferred.gbuffer());
     ch02::GBuffer exact_gbuffer(kW, kH, ch02::float_reference_for(ch02::our_layout()));
     ch02::GeometryPass geometry(deferred.scene_gpu());
+    geometry.set_emissive_scale(v.glow);
     geometry.draw(exact_gbuffer, camera);
     exact = probe.read(exact_gbuffer);
-    allowed = cross_check_allowance(deferred.scene(), cut_lights(deferred.scene(), deferred.cut_threshold()), exact, stored,
+    const Scene scaled = rescaled_scene(scene, v.sun, v.glow);  // the scene the two sources draw
+    allowed = cross_check_allowance(scaled, cut_lights(scaled, deferred.cut_threshold()), exact, stored,
                                     read_texture(deferred.light_buffer().diffuse(), kW, kH),
                                     read_texture(deferred.light_buffer().specular(), kW, kH), deferred_image, forward_image,
                                     deferred.gbuffer().camera(), ch02::our_layout());

@@ -14,6 +14,7 @@
 #include "chapters/02_gbuffer/layout.h"
 #include "chapters/03_light_volumes/deferred_frame.h"
 #include "chapters/03_light_volumes/light_radius.h"
+#include "chapters/06_shadows/shadow_stage.h"
 #include "chapters/10_frame/transparency.h"
 #include "common/paths.h"
 #include "common/target.h"
@@ -362,4 +363,51 @@ TEST(TransparencyGl, GlassBeforeTheSkyBlendsOverTheBackground) {
   std::printf("  %zu pixels of glass before the sky, %zu changed by it\n", before_sky, changed);
   EXPECT_GT(before_sky, 200u) << "the view should see glass against the sky";
   EXPECT_GT(changed, before_sky * 9 / 10) << "the glass shows against the sky";
+}
+
+namespace {
+// A stage whose own pass, after the lights, leaves a texel of 1 (the far plane, lit) on every
+// unit the stages may get, as chapter 08's pass once left its indirect light on the unit
+// chapter 06's map is read from.
+struct ClobberingStage : ch03::FrameStage {
+  gl::Texture far = gl::make_texture_2d(GL_R32F, 1, 1);
+  ClobberingStage() {
+    const float one = 1.f;
+    glTextureSubImage2D(far.id(), 0, 0, 0, 1, 1, GL_RED, GL_FLOAT, &one);
+  }
+  void add_light(ch03::DeferredFrame&, PassMetrics*) override {
+    for (GLuint unit = ch03::DeferredFrame::kFirstStageUnit; unit < 32; ++unit) glBindTextureUnit(unit, far.id());
+  }
+};
+}  // namespace
+
+// The glass is drawn after every other stage's pass, so it binds the frame's hook resources
+// itself (DeferredFrame::bind_hooks()) before it reads the sun's map: a stage that left other
+// textures on those units changes no pixel. The atrium's floor as glass of alpha 1 (its own
+// colour, nothing behind), with chapter 06's shadows; without them the floor is brighter, so
+// the map is really read.
+TEST(TransparencyGl, TheGlassReadsTheShadowMapWhateverAStageLeftOnItsUnits) {
+  Scene scene = load_scene(from_root("assets/atrium/atrium.gltf"));
+  for (Material& m : scene.materials)
+    if (m.normal_texture >= 0) m.blend = true, m.base_color.a = 1.f;  // the tiled floor
+  const SceneGpu gpu(scene);
+  const FrameCamera cam = frame_camera(scene.camera("aisle"), float(kW) / kH);
+  auto draw = [&](bool shadows, bool clobber) {
+    ch03::DeferredFrame frame(gpu);
+    ch03::use_lights(frame, scene, scene.lights, false);
+    ch06::ShadowStage map(gpu, ch06::find_sun(scene));
+    ClobberingStage clobbering;
+    TransparencyStage glass(frame, gpu);
+    if (shadows) frame.add_stage(map);
+    if (clobber) frame.add_stage(clobbering);
+    frame.add_stage(glass);
+    OutputTarget target(kW, kH);
+    frame.render(cam, {target.framebuffer(), kW, kH});
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+    return target.read();
+  };
+  const ImageRGBA8 shadowed = draw(true, false), clobbered = draw(true, true), unshadowed = draw(false, false);
+  EXPECT_TRUE(clobbered.pixels == shadowed.pixels) << compare(clobbered, shadowed).summary();
+  EXPECT_GT(compare(unshadowed, shadowed, {.threshold = 3, .max_failing_fraction = 0}).failing_fraction, 0.05)
+      << "the sun's map darkens part of the floor";
 }

@@ -26,6 +26,24 @@ ImageRGBA8 draw(WholeFrame& frame, const Scene& scene, int w, int h, const Whole
   return target.read();
 }
 
+// The atrium with its tiled floor made glass of alpha 1 (the stage's "over" then writes the
+// glass's own colour, nothing of what lies behind).
+Scene atrium_with_glass_floor() {
+  Scene s = load_scene(from_root("assets/atrium/atrium.gltf"));
+  for (Material& m : s.materials)
+    if (m.normal_texture >= 0) m.blend = true, m.base_color.a = 1.f;  // the floor: the one normal-mapped material
+  return s;
+}
+
+// The whole frame's float radiance (before the HDR stage) of the atrium's aisle, a new shot.
+ImageF radiance(WholeFrame& frame, const Scene& scene, const WholeFrameSettings& s) {
+  const int w = 160, h = 90;
+  OutputTarget target(w, h);
+  frame.render(frame_camera(scene.camera("aisle"), float(w) / float(h)), {target.framebuffer(), w, h}, s, 1.f / 60.f, true);
+  EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+  return frame.radiance()->read();
+}
+
 }  // namespace
 
 // A window resized mid-run: the G-buffer, light and radiance targets, the light lists, the AO
@@ -86,4 +104,33 @@ TEST(WholeFrameGl, ASunMarkedNotToCastShadowsGetsNoMap) {
   WholeFrameSettings no_shadows;
   no_shadows.shadows = false;
   EXPECT_TRUE(draw(frame, scene, 160, 90).pixels == draw(frame, scene, 160, 90, no_shadows).pixels);
+}
+
+// The glass reads the sun's shadow map on the units the frame gave chapter 06's stage, whatever
+// ran between the lights and the glass: chapter 08's pass binds textures of its own there. The
+// atrium's floor as glass of alpha 1 is lit by the sun (through its map), the local lights and
+// the constant ambient, none of which chapter 08 computes: its radiance is the same, bit for
+// bit, with AO and indirect light on or off. And the map is really read: without it the floor
+// is brighter on the pixels the columns shade.
+TEST(WholeFrameGl, TheGlassSeesTheSunsMapWithIndirectLightOnOrOff) {
+  const Scene scene = atrium_with_glass_floor();
+  WholeFrame frame(scene);
+  WholeFrameSettings all, no_gi, no_glass, no_shadows;
+  no_gi.ao = no_gi.indirect = false;
+  no_glass.transparency = Method::Off;
+  no_shadows.shadows = false;
+  ASSERT_TRUE(frame.plan(all)[kShadowMap].runs && frame.plan(all)[kIndirect].runs && frame.plan(all)[kGlass].runs);
+  const ImageF with_gi = radiance(frame, scene, all), without_gi = radiance(frame, scene, no_gi);
+  const ImageF behind = radiance(frame, scene, no_glass), unshadowed = radiance(frame, scene, no_shadows);
+  std::size_t floor = 0, same = 0, shaded = 0;
+  for (std::size_t i = 0; i < with_gi.data.size(); i += 4) {  // RGBA floats
+    auto rgb = [&](const ImageF& im) { return glm::vec3(im.data[i], im.data[i + 1], im.data[i + 2]); };
+    if (rgb(with_gi) == rgb(behind)) continue;  // no glass here
+    ++floor;
+    if (rgb(with_gi) == rgb(without_gi)) ++same;
+    if (glm::dot(rgb(with_gi), glm::vec3(1)) < 0.5f * glm::dot(rgb(unshadowed), glm::vec3(1))) ++shaded;
+  }
+  EXPECT_GT(floor, std::size_t(160 * 90 / 5)) << "the glass floor covers a fifth of the view at least";
+  EXPECT_EQ(same, floor) << "glass pixels whose light changed with chapter 08's stage";
+  EXPECT_GT(shaded, floor / 20) << "the sun's map darkens at least 5 % of the glass floor by half";
 }

@@ -1,15 +1,8 @@
 // The book's lighting model in GLSL: the same formulas as blinn_phong.h (the C++ copy the
 // tests and the ground truth use). Later chapters include this file.
 
-// [light-struct]
-// One light as the shaders see it, 64 bytes in std430.
-struct GpuLight {
-  vec4 position_type;    // xyz: world position, w: 0 directional, 1 point, 2 spot
-  vec4 direction_range;  // xyz: direction the light shines, w: range (0 = unbounded)
-  vec4 radiance;         // rgb: colour x intensity
-  vec4 spot;             // x: cos(outer cone), y: 1 / (cos(inner) - cos(outer))
-};
-// [/light-struct]
+// struct GpuLight, one file shared with C++ (light_buffer.h)
+#include "01_forward/shaders/gpu_light.h"
 
 const float LIGHT_DIRECTIONAL = 0.0;
 const float LIGHT_POINT = 1.0;

@@ -1,33 +1,47 @@
 // Chapter 06's visibility hook (chapter 03's FRAME_VISIBILITY, deferred_frame.h): the sun
-// looked up in its shadow map by the method the define SHADOW_METHOD names (the small files
-// visibility_*.glsl define it and include this one). The C++ twins are in shadow_math.h.
-// Only the first directional light has a map, and the first spot light the scene marks to cast
-// (shadow_stage.h [casts-shadows]) a perspective one; the other lights keep visibility 1.
+// looked up in its shadow map by the method the define SHADOW_METHOD names, or, with
+// SHADOW_VOLUMES, read from the visibility its shadow volumes left. ShadowStage::shader_hooks()
+// passes the method and its slots (SHADOW_UNIT, SHADOW_BLOCK). The C++ twins are in
+// shadow_math.h. Only the first directional light has a map, and the first spot light the
+// scene marks to cast (shadow_stage.h [casts-shadows]) a perspective one; the other lights
+// keep visibility 1.
 #include "03_light_volumes/shaders/hooks/frame_pixel.glsl"
 #define SHADOW_HARD 0
 #define SHADOW_PCF 1
 #define SHADOW_PCF_HARDWARE 2
 #define SHADOW_VSM 3
 #define SHADOW_ESM 4
-#define SHADOW_PCSS 5
+#define SHADOW_VOLUMES 5
+#define SHADOW_PCSS 6
+#if !defined(SHADOW_METHOD) || !defined(SHADOW_UNIT) || !defined(SHADOW_BLOCK)
+#error the shadow hook needs SHADOW_METHOD, SHADOW_UNIT and SHADOW_BLOCK (ShadowStage::shader_hooks)
+#endif
 
-layout(std140, binding = 8) uniform ShadowBlock {
-  mat4 sh_matrix;   // world to the light's clip space (orthographic)
-  vec4 sh_map;      // x: metres per texel, y: depth range in metres, z: map size, w: PCF radius (texels)
-  vec4 sh_bias;     // x: constant (texels), y: slope-scaled (texels), z: normal offset (texels), w: VSM min variance
-  vec4 sh_filter;   // x: ESM's c, y: VSM's p_min, z: PCF's Poisson taps (0: the grid)
-  mat4 sh_view;     // world to the light's view space (looking down -z)
-  vec4 sh_extent;   // x, y: the box's width and height in metres; w: PCSS's tan(sun's angular radius)
-  vec4 sh_poisson[32];  // PCF's Poisson disk in the unit disk, two taps a vec4
-  mat4 sh_spot_matrix;  // world to the spot light's clip space (perspective)
-  mat4 sh_spot_view;    // world to the spot light's view space (looking down -z)
-  vec4 sh_spot;         // xyz: the spot's position, w: 1 when a spot has a map
-  vec4 sh_spot_map;     // x: near, y: far (metres), z: tan(cone), w: map size
-};
-layout(binding = 8) uniform sampler2D sh_depth;
-layout(binding = 9) uniform sampler2DShadow sh_depth_compare;
-layout(binding = 10) uniform sampler2D sh_moments;
-layout(binding = 13) uniform sampler2D sh_spot_depth;
+#if SHADOW_METHOD == SHADOW_VOLUMES
+// No map: ShadowStage counted the sun's shadow volumes in the stencil before the lights and
+// left 1 (lit) or 0 (in a volume) per pixel of the G-buffer, read here at the pixel being lit.
+layout(binding = SHADOW_UNIT + 4) uniform sampler2D sh_volume_visibility;
+#define sh_depth sh_volume_visibility  // show_visibility.frag's map view shows this instead
+
+// [volumes-glsl]
+float directional_visibility(int index, GpuLight light, Surface s) {
+  if (index != 0) return 1.0;
+  if (dot(s.normal, -light.direction_range.xyz) <= 0.0) return 1.0;  // faces away, as the maps
+  return texelFetch(sh_volume_visibility, ivec2(frame_pixel()), 0).r;
+}
+// [/volumes-glsl]
+
+float local_visibility(int index, GpuLight light, Surface s) { return 1.0; }
+#else
+
+#include "06_shadows/shaders/shadow_block.h"
+layout(std140, binding = SHADOW_BLOCK) uniform ShadowBlock { ShadowParameters sh; };
+// The stage's units: the sun's map read raw (nearest) and through the comparison sampler,
+// VSM's or ESM's filtered map, and the spot's map (+3 is the pre-filter's input, +4 the volumes').
+layout(binding = SHADOW_UNIT + 0) uniform sampler2D sh_depth;
+layout(binding = SHADOW_UNIT + 1) uniform sampler2DShadow sh_depth_compare;
+layout(binding = SHADOW_UNIT + 2) uniform sampler2D sh_moments;
+layout(binding = SHADOW_UNIT + 5) uniform sampler2D sh_spot_depth;
 
 // [bias-glsl]
 // shadow_math.h's slope_scaled_bias and normal_offset; the bias in window-depth units
@@ -36,10 +50,10 @@ vec3 shadow_lookup(Surface s, vec3 to_light) {
   float cos_theta = clamp(dot(s.normal, to_light), 1e-4, 1.0);
   float sin_theta = sqrt(1.0 - cos_theta * cos_theta);
   float tan_theta = min(sin_theta / cos_theta, 10.0);
-  vec3 p = s.position + s.normal * (sh_bias.z * sh_map.x * sin_theta);
-  vec4 clip = sh_matrix * vec4(p, 1.0);
+  vec3 p = s.position + s.normal * (sh.normal_offset * sh.texel_metres * sin_theta);
+  vec4 clip = sh.matrix * vec4(p, 1.0);
   vec3 window = clip.xyz / clip.w * 0.5 + 0.5;
-  float bias = sh_map.x * (sh_bias.x + sh_bias.y * tan_theta) / sh_map.y;
+  float bias = sh.texel_metres * (sh.constant_bias + sh.slope_bias * tan_theta) / sh.depth_range;
   return vec3(window.xy, window.z - bias);
 }
 // [/bias-glsl]
@@ -50,9 +64,9 @@ vec3 shadow_lookup(Surface s, vec3 to_light) {
 // lookup compares the map with the receiver's plane there, q.z + dot(gradient, o), not with
 // q.z: a tilted receiver no longer shadows itself in the kernel's outer taps.
 vec2 receiver_plane_gradient(Surface s) {
-  vec3 n = mat3(sh_view) * s.normal;
+  vec3 n = mat3(sh.view) * s.normal;
   float nz = max(n.z, 0.05);  // faces the light (n.z > 0); at most 20:1 slopes
-  return vec2(n.x, n.y) / nz * sh_extent.xy / sh_map.y;
+  return vec2(n.x, n.y) / nz * sh.extent / sh.depth_range;
 }
 // [/receiver-plane-glsl]
 
@@ -65,7 +79,7 @@ mat2 poisson_turn() {
   return mat2(cos(angle), sin(angle), -sin(angle), cos(angle));
 }
 vec2 poisson_tap(int i) {
-  vec4 pair = sh_poisson[i / 2];
+  vec4 pair = sh.poisson[i / 2];
   return (i & 1) == 0 ? pair.xy : pair.zw;
 }
 // [/poisson-glsl]
@@ -87,10 +101,10 @@ float directional_visibility(int index, GpuLight light, Surface s) {
 #elif SHADOW_METHOD == SHADOW_PCF
   // [pcf-glsl]
   // k x k comparisons on the texel grid around the lookup, averaged.
-  int r = int(sh_map.w);
-  float texel = 1.0 / sh_map.z, lit = 0.0;
+  int r = int(sh.pcf_radius);
+  float texel = 1.0 / sh.map_size, lit = 0.0;
   vec2 g = receiver_plane_gradient(s);
-  int taps = int(sh_filter.z);
+  int taps = int(sh.poisson_taps);
   if (taps > 0) {
     // Or `taps` comparisons on a Poisson disk k texels across, turned per pixel.
     mat2 turn = poisson_turn();
@@ -111,8 +125,8 @@ float directional_visibility(int index, GpuLight light, Surface s) {
 #elif SHADOW_METHOD == SHADOW_PCF_HARDWARE
   // [pcf-hardware-glsl]
   // The comparison sampler: four comparisons weighted bilinearly in one tap, on the same grid.
-  int r = int(sh_map.w);
-  float texel = 1.0 / sh_map.z, lit = 0.0;
+  int r = int(sh.pcf_radius);
+  float texel = 1.0 / sh.map_size, lit = 0.0;
   vec2 g = receiver_plane_gradient(s);
   for (int y = -r; y <= r; ++y)
     for (int x = -r; x <= r; ++x) {
@@ -125,27 +139,27 @@ float directional_visibility(int index, GpuLight light, Surface s) {
   // [vsm-glsl]
   vec2 m = texture(sh_moments, q.xy).xy;
   if (q.z <= m.x) return 1.0;
-  float variance = max(m.y - m.x * m.x, sh_bias.w);
+  float variance = max(m.y - m.x * m.x, sh.min_variance);
   float d = q.z - m.x;
   float p_max = variance / (variance + d * d);
-  return clamp((p_max - sh_filter.y) / (1.0 - sh_filter.y), 0.0, 1.0);
+  return clamp((p_max - sh.vsm_p_min) / (1.0 - sh.vsm_p_min), 0.0, 1.0);
   // [/vsm-glsl]
 #elif SHADOW_METHOD == SHADOW_ESM
   // [esm-glsl]
   float l = texture(sh_moments, q.xy).x;  // log of the filtered exp(c z)
-  return clamp(exp(min(l - sh_filter.x * q.z, 0.0)), 0.0, 1.0);
+  return clamp(exp(min(l - sh.esm_c * q.z, 0.0)), 0.0, 1.0);
   // [/esm-glsl]
 #elif SHADOW_METHOD == SHADOW_PCSS
   // [pcss-glsl]
   // shadow_math.h's pcss(): depths in window units (q.z: the receiver's) times the box's depth
-  // range sh_map.y are metres from the near plane; a radius in metres is sh_extent.xy apart in
+  // range sh.depth_range are metres from the near plane; a radius in metres is sh.extent apart in
   // the map's (u, v). Every tap compares with the receiver's plane there, as PCF's do.
-  float tan_size = sh_extent.w;
+  float tan_size = sh.tan_sun_radius;
   vec2 g = receiver_plane_gradient(s);
   mat2 turn = poisson_turn();
-  int taps = int(sh_filter.z);
+  int taps = int(sh.poisson_taps);
   // 1. The blocker search: whatever can hide part of the sun lies within d_r tan(theta).
-  vec2 search = max(q.z * sh_map.y * tan_size, sh_map.x) / sh_extent.xy;
+  vec2 search = max(q.z * sh.depth_range * tan_size, sh.texel_metres) / sh.extent;
   float blockers = 0.0, sum = 0.0;
   for (int i = 0; i < taps; ++i) {
     vec2 o = turn * poisson_tap(i) * search;
@@ -155,12 +169,12 @@ float directional_visibility(int index, GpuLight light, Surface s) {
   if (blockers == 0.0) return 1.0;  // nothing between the receiver and any of the sun
   // 2. The penumbra: the sun's disk on the blockers' mean depth, (d_r - d_b) tan(theta) across
   // (half a texel at least: below it the map cannot tell).
-  float radius = max((q.z - sum / blockers) * sh_map.y * tan_size, 0.5 * sh_map.x);
+  float radius = max((q.z - sum / blockers) * sh.depth_range * tan_size, 0.5 * sh.texel_metres);
   sh_pcss_radius = radius;
   // 3. PCF over that disk.
   float lit = 0.0;
   for (int i = 0; i < taps; ++i) {
-    vec2 o = turn * poisson_tap(i) * (radius / sh_extent.xy);
+    vec2 o = turn * poisson_tap(i) * (radius / sh.extent);
     lit += q.z + dot(g, o) <= texture(sh_depth, q.xy + o).r ? 1.0 : 0.0;
   }
   return lit / float(taps);
@@ -180,32 +194,32 @@ float directional_visibility(int index, GpuLight light, Surface s) {
 // in the light's view space the ray through the map's (u, v) is t (x tan, y tan, -1), x and y
 // in [-1, 1], and it meets the plane n . (X - p) = 0 at t = n . p / n . ray, its depth t).
 float local_visibility(int index, GpuLight light, Surface s) {
-  if (sh_spot.w == 0.0 || light.position_type.w != LIGHT_SPOT || distance(light.position_type.xyz, sh_spot.xyz) > 1e-4) return 1.0;
-  vec3 to_light = normalize(sh_spot.xyz - s.position);
+  if (sh.spot_mapped == 0.0 || light.position_type.w != LIGHT_SPOT || distance(light.position_type.xyz, sh.spot_position) > 1e-4) return 1.0;
+  vec3 to_light = normalize(sh.spot_position - s.position);
   float cos_theta = dot(s.normal, to_light);
   if (cos_theta <= 0.0) return 1.0;  // faces away: the light adds nothing anyway
   cos_theta = clamp(cos_theta, 1e-4, 1.0);
   float sin_theta = sqrt(1.0 - cos_theta * cos_theta);
   float tan_theta = min(sin_theta / cos_theta, 10.0);
-  float d = (sh_spot_matrix * vec4(s.position, 1.0)).w;
-  float texel = 2.0 * d * sh_spot_map.z / sh_spot_map.w;
-  vec4 clip = sh_spot_matrix * vec4(s.position + s.normal * (sh_bias.z * texel * sin_theta), 1.0);
-  if (clip.w <= sh_spot_map.x) return 1.0;
+  float d = (sh.spot_matrix * vec4(s.position, 1.0)).w;
+  float texel = 2.0 * d * sh.spot_tan_cone / sh.spot_map_size;
+  vec4 clip = sh.spot_matrix * vec4(s.position + s.normal * (sh.normal_offset * texel * sin_theta), 1.0);
+  if (clip.w <= sh.spot_near) return 1.0;
   vec3 window = clip.xyz / clip.w * 0.5 + 0.5;
   if (any(lessThan(window.xy, vec2(0.0))) || any(greaterThan(window.xy, vec2(1.0))) || window.z > 1.0) return 1.0;
 #if SHADOW_METHOD == SHADOW_HARD
   int r = 0;
 #else
-  int r = int(sh_map.w);
+  int r = int(sh.pcf_radius);
 #endif
-  float bias = texel * (sh_bias.x + sh_bias.y * tan_theta);
-  vec3 p_view = (sh_spot_view * vec4(s.position + s.normal * (sh_bias.z * texel * sin_theta), 1.0)).xyz;
-  vec3 n_view = mat3(sh_spot_view) * s.normal;
-  float n = sh_spot_map.x, f = sh_spot_map.y, lit = 0.0;
+  float bias = texel * (sh.constant_bias + sh.slope_bias * tan_theta);
+  vec3 p_view = (sh.spot_view * vec4(s.position + s.normal * (sh.normal_offset * texel * sin_theta), 1.0)).xyz;
+  vec3 n_view = mat3(sh.spot_view) * s.normal;
+  float n = sh.spot_near, f = sh.spot_far, lit = 0.0;
   for (int y = -r; y <= r; ++y)
     for (int x = -r; x <= r; ++x) {
-      vec2 uv = window.xy + vec2(x, y) / sh_spot_map.w;
-      vec3 ray = vec3((2.0 * uv - 1.0) * sh_spot_map.z, -1.0);
+      vec2 uv = window.xy + vec2(x, y) / sh.spot_map_size;
+      vec3 ray = vec3((2.0 * uv - 1.0) * sh.spot_tan_cone, -1.0);
       float across = dot(n_view, ray);
       float receiver = (r == 0 || abs(across) < 1e-4 ? clip.w : dot(n_view, p_view) / across) - bias;
       float z = 2.0 * texture(sh_spot_depth, uv).r - 1.0;
@@ -215,3 +229,4 @@ float local_visibility(int index, GpuLight light, Surface s) {
   return lit / float((2 * r + 1) * (2 * r + 1));
 }
 // [/spot-glsl]
+#endif  // SHADOW_METHOD

@@ -22,12 +22,12 @@ void main() {
 #ifdef SHOW_SPOT
   // The marked spot light's visibility alone; blue where it does not reach (outside its cone,
   // facing away, the sky).
-  vec3 from_spot = normalize(s.position - sh_spot.xyz);
+  vec3 from_spot = normalize(s.position - sh.spot_position);
   if (s.is_sky || dot(s.normal, -from_spot) <= 0.0 || dot(from_spot, u_spot_direction) < u_spot_cos_cone) {
     out_colour = vec4(0.1, 0.15, 0.4, 1.0);
     return;
   }
-  GpuLight spot = GpuLight(vec4(sh_spot.xyz, LIGHT_SPOT), vec4(u_spot_direction, 0.0), vec4(1.0), vec4(0.0));
+  GpuLight spot = GpuLight(vec4(sh.spot_position, LIGHT_SPOT), vec4(u_spot_direction, 0.0), vec4(1.0), vec4(0.0));
   out_colour = vec4(vec3(local_visibility(0, spot, s)), 1.0);
   return;
 #endif

@@ -1,7 +1,7 @@
 #version 450
 // The AO term itself (--show ao): A as grey, written so that the 8-bit sRGB image holds
 // round(255 A) (the output is sRGB-encoded, so the shader writes A decoded from sRGB).
-layout(binding = 8) uniform sampler2D u_ao;
+layout(binding = AO_UNIT) uniform sampler2D u_ao;  // the stage's unit (AoStage)
 uniform vec2 u_size;  // the output's size
 uniform float u_heat; // > 0: a heat map (black 0, blue, green, yellow, red at u_heat), not grey
 out vec4 colour;

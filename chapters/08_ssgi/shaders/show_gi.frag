@@ -5,9 +5,9 @@
 // or the back-face layer: the light its surfaces send, albedo x L1 (4). The pictures (2, 3) are
 // the screen's size: with a guard band they start u_picture_offset pixels in.
 #include "02_gbuffer/shaders/gbuffer.glsl"
-layout(binding = 8) uniform sampler2D u_gi;
-layout(binding = 9) uniform sampler2D u_back_albedo;
-layout(binding = 10) uniform sampler2D u_back_light;
+layout(binding = GI_UNIT + 0) uniform sampler2D u_gi;  // the stage's units (GiStage)
+layout(binding = GI_UNIT + 1) uniform sampler2D u_back_albedo;
+layout(binding = GI_UNIT + 2) uniform sampler2D u_back_light;
 uniform int u_mode;
 uniform int u_picture_offset;  // pixels, on both axes
 uniform float u_exposure, u_heat;
