@@ -31,6 +31,15 @@
 
 namespace lp {
 
+// [minified-texture-allowance]
+// A view that samples a texture minified far into the distance (the atrium's tiled floor)
+// reads a mip level OpenGL leaves to the implementation, and a surface's highlight can magnify
+// a different texel into tens of steps: on a renderer other than the references' such a view
+// may fail on up to 2 % of its pixels (README.md, "Is my build right?"; the chapters' books
+// quote what the H200 measured). The renderer that made the references keeps 0.1 %.
+inline constexpr CompareOptions kMinifiedTextureAllowance{.threshold = 3, .max_failing_fraction = 0.02};
+// [/minified-texture-allowance]
+
 // One reference image: a view, a mode and knob values, compared with a tolerance.
 struct Shot {
   std::string view;

@@ -88,4 +88,28 @@ ImageF read_texture(GLuint texture, int w, int h) {
   return img;
 }
 
+void put_picture(const ImageRGBA8& picture, GLuint framebuffer) {
+  ImageRGBA8 rows = picture;
+  flip_vertically(rows);  // OpenGL's rows start at the bottom
+  gl::Texture t = gl::make_texture_2d(GL_SRGB8_ALPHA8, picture.width, picture.height);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTextureSubImage2D(t.id(), 0, 0, 0, picture.width, picture.height, GL_RGBA, GL_UNSIGNED_BYTE, rows.pixels.data());
+  gl::Framebuffer source;
+  glNamedFramebufferTexture(source.id(), GL_COLOR_ATTACHMENT0, t.id(), 0);
+  GLboolean srgb = glIsEnabled(GL_FRAMEBUFFER_SRGB);
+  glDisable(GL_FRAMEBUFFER_SRGB);  // a copy of the bytes, not a decode and encode
+  glBlitNamedFramebuffer(source.id(), framebuffer, 0, 0, picture.width, picture.height, 0, 0, picture.width,
+                         picture.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  if (srgb) glEnable(GL_FRAMEBUFFER_SRGB);
+}
+
+ImageRGBA8 read_framebuffer(GLuint framebuffer, int width, int height) {
+  ImageRGBA8 image = ImageRGBA8::blank(width, height);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, image.pixels.data());
+  flip_vertically(image);
+  return image;
+}
+
 }  // namespace lp

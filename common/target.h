@@ -51,6 +51,12 @@ class ColourTarget {
 // A colour texture read back as RGBA floats, top row first.
 ImageF read_texture(GLuint texture, int width, int height);
 
+// The pictures a program draws instead of its frame (a truth, an error map): `picture` (rows
+// top first, sRGB bytes) copied into `framebuffer`'s lower-left corner as it is, byte for byte
+// (no sRGB encoding: the bytes are encoded already); and an RGBA8 framebuffer read back.
+void put_picture(const ImageRGBA8& picture, GLuint framebuffer);
+ImageRGBA8 read_framebuffer(GLuint framebuffer, int width, int height);  // rows top first
+
 // A CPU picture (a ray-traced truth, an error map; rows top first) uploaded into a float
 // texture for a pass to draw: one channel (GL_R32F, the picture's first channel) or four
 // (GL_RGBA32F: its channels, the last repeated into those it lacks, alpha 1). The texture

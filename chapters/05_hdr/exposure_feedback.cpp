@@ -44,8 +44,8 @@ void ExposureFeedback::poll() {
 // [/read-back]
 
 // [in-flight]
-// Nothing throttles a CPU that draws without presenting: headless on an H200 it ran more
-// than 25 frames ahead of the GPU, and a three-slot ring rarely saw a copy finish. So
+// Nothing throttles a CPU that draws without presenting: headless on a fast GPU it runs many
+// frames ahead, and a three-slot ring would rarely see a copy finish. So
 // the ring is also the limit on frames in flight, as a swap chain's is: when the oldest copy
 // is as many frames old as there are slots and still not done, wait for it. The GPU still
 // has the frames after it queued and never idles; a reading is never older than that.

@@ -56,12 +56,8 @@ const std::vector<lp::Shot> kStreetShots = {
     // input at key 0.18 (mean 114 steps, Reinhard's 115; at the same key ACES's is 140).
     {"street_level", "aces", {{"key", 0.108}}},
 };
-// The atrium's tiled floor is minified far into the distance, where OpenGL leaves the mip
-// level to the implementation: on an NVIDIA H200 0.4 to 0.9 % of these sunlit views' pixels
-// differ from the llvmpipe references by more than 3 steps, all on the floor (chapter 02
-// measured the same). Another renderer gets chapter 02's allowance for it, 2 %; the renderer
-// that made the references keeps 0.1 %.
-const lp::CompareOptions kTexturedFloor{.threshold = 3, .max_failing_fraction = 0.02};
+// The atrium's tiled floor is minified far into the distance: kMinifiedTextureAllowance.
+const lp::CompareOptions kTexturedFloor = lp::kMinifiedTextureAllowance;
 const std::vector<lp::Shot> kAtriumShots = {
     // A strong sun: float against 8-bit, the operators, and the first frame after coming in
     // from a scene 30x brighter (the eye has not adapted yet).
@@ -123,7 +119,7 @@ class RadianceTargets {
 
 int main(int argc, char** argv) {
   return lp::run_chapter(argc, argv, kChapter, [](lp::App& app) {
-    DeferredRadiance source(app.scene());
+    DeferredRadiance source(app.scene_gpu());  // the program's scene, as uploaded
     // Chapter 04's tubes, where the scene has any (the night street with its signs), as a
     // stage of the same deferred frame.
     lp::ch04::NeonTubes tubes;

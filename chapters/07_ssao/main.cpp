@@ -52,12 +52,11 @@ const CliSpec kCli{
 // On a renderer other than the references' (a reader's GPU), two kinds of pixel may differ by
 // more than 3 steps, and each view below that has them gets an allowance there (the renderer
 // that made the references keeps 0.1 %): the atrium's normal-mapped floor, whose mip level far
-// away OpenGL leaves to the implementation (the AO reads the mapped normals; 0.2 to 0.7 % of
-// the pixels on an NVIDIA H200, as chapters 02 and 05 measured for the lit floor), and, with
-// neither noise nor blur, or in the error view against the CPU-traced truth, a one-pixel
-// column along a box edge where the range check compares depths that differ between renderers
-// in their last bits (0.15 % there).
-const CompareOptions kOtherRenderer{.threshold = 3, .max_failing_fraction = 0.02};
+// away OpenGL leaves to the implementation (the AO reads the mapped normals:
+// kMinifiedTextureAllowance, common/app.h), and, with neither noise nor blur, or in the error
+// view against the CPU-traced truth, a one-pixel column along a box edge where the range check
+// compares depths that differ between renderers in their last bits.
+const CompareOptions kOtherRenderer = kMinifiedTextureAllowance;
 const CompareOptions kDepthEdge{.threshold = 3, .max_failing_fraction = 0.005};
 
 std::vector<Shot> cornell_shots() {

@@ -66,15 +66,14 @@ const CliSpec kCli{
 
 // [references]
 // On a renderer other than the references' (a reader's GPU), the atrium's normal-mapped floor
-// reads a mip level far away that OpenGL leaves to the implementation (chapters 02, 05 and 07
-// measured 0.2 to 0.7 % of its pixels off by more than 3 steps on an NVIDIA H200): the atrium's
-// views get chapter 07's allowance there; the renderer that made the references keeps 0.1 %.
-const CompareOptions kOtherRenderer{.threshold = 3, .max_failing_fraction = 0.02};
+// reads a mip level far away that OpenGL leaves to the implementation: the atrium's views get
+// kMinifiedTextureAllowance (common/app.h).
+const CompareOptions kOtherRenderer = kMinifiedTextureAllowance;
 // The error view subtracts the CPU truth from the GPU's estimate: where two walls of the box
 // meet at the same depth the depth test keeps one of them and the truth's primary ray may hit
 // the other (implementation-defined, as common.raytrace's agreement test says), and the
-// error there is large. On an NVIDIA H200 0.35 % of its pixels differed, along the box's
-// corner edges; another renderer gets 1 %, the references' renderer keeps 0.1 %.
+// error there is large, along the box's corner edges; another renderer gets 1 %, the
+// references' renderer keeps 0.1 %.
 const CompareOptions kCornerTies{.threshold = 3, .max_failing_fraction = 0.01};
 
 std::vector<Shot> cornell_shots() {

@@ -39,9 +39,8 @@ std::vector<std::string> modes() {
 
 // The heat maps draw counts: where a light's cut sphere grazes a pixel's position or a tile's
 // box within float rounding, another renderer may count it one way and llvmpipe the other,
-// and a count one apart is a colour several steps apart. On an NVIDIA H200 0.3 to 1.25 % of
-// these views' pixels differed so (single pixels, and two whole tiles of the grid view);
-// another renderer gets 2 %, the allowance of the book's other implementation-defined views,
+// and a count one apart is a colour several steps apart (single pixels, and whole tiles of the
+// grid view); another renderer gets 2 %, the allowance of the book's other implementation-defined views,
 // and the renderer that made the references keeps 0.1 %. The images (lit) are held as usual.
 const CompareOptions kCounts{.threshold = 3, .max_failing_fraction = 0.02};
 

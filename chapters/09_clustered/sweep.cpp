@@ -101,8 +101,8 @@ int main(int argc, char** argv) {
         pass.set_counting(false);
         forward_pass.set_counting(false);
         PassMetrics metrics;
-        // The stencil volumes at 10 000 lights and more take most of a second a frame (seconds
-        // at 100 000 on the H200): a few frames, one-frame warm-up blocks (a pass that long
+        // The stencil volumes at 10 000 lights and more take most of a second a frame or more:
+        // a few frames, one-frame warm-up blocks (a pass that long
         // needs no clock ramp), so that the sweep stays within minutes.
         MeasureOptions options{.frames = s.frames};
         if (method == "stencil" && n >= 10000) {
