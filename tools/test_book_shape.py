@@ -126,6 +126,48 @@ class TestLength(unittest.TestCase):
         self.assertEqual(problems(text), [])
 
 
+class TestRewrittenChapters(unittest.TestCase):
+    """The same mutations on the book's own rewritten chapters: each passes as it is, and fails
+    with a section moved, a concept diagram deleted or a long line added."""
+
+    def chapters(self):
+        self.assertTrue(book_shape.REWRITTEN, "no rewritten chapter to mutate")
+        for name in book_shape.REWRITTEN:
+            text = (book_shape.ROOT / "book" / name).read_text()
+            yield name, text, book_shape.diagrams_drawn(name)
+
+    def test_each_passes_as_it_is(self):
+        for name, text, diagrams in self.chapters():
+            self.assertEqual(book_shape.check_chapter(name, text, diagrams)[0], [], name)
+
+    def test_a_moved_section_fails(self):
+        for name, text, diagrams in self.chapters():
+            start, end = text.index("\n## Run it\n"), text.index("\n## How good is it\n")
+            run_it = text[start:end]
+            moved = text[:start] + text[end:]
+            at = moved.index("\n## Going further\n")
+            moved = moved[:at] + run_it + moved[at:]
+            found = book_shape.check_chapter(name, moved, diagrams)[0]
+            self.assertTrue(any("order" in p for p in found), (name, found))
+
+    def test_a_deleted_diagram_fails(self):
+        for name, text, diagrams in self.chapters():
+            lines = text.split("\n")
+            begin = lines.index("## The idea")
+            shown = [i for i in range(begin, lines.index("## Build it"))
+                     if any(f"figures/{d})" in lines[i] for d in diagrams)]
+            # Keep one diagram: the rule asks for two.
+            mutated = "\n".join(l for i, l in enumerate(lines) if i not in shown[1:])
+            found = book_shape.check_chapter(name, mutated, diagrams)[0]
+            self.assertTrue(any("concept diagram" in p for p in found), (name, found))
+
+    def test_a_long_line_fails(self):
+        for name, text, diagrams in self.chapters():
+            mutated = text.replace("\n## Hard cases\n", "\n## Hard cases\n\n" + "word " * 70 + "\n", 1)
+            found = book_shape.check_chapter(name, mutated, diagrams)[0]
+            self.assertTrue(any("a line of" in p for p in found), (name, found))
+
+
 class TestLists(unittest.TestCase):
     def test_every_chapter_of_the_book_is_classified(self):
         names = sorted(p.name for p in (book_shape.ROOT / "book").glob("[0-9][0-9]-*.md"))
