@@ -9,7 +9,7 @@
                       over two occluders: light bleeding, and what P_min does to it
 06_pcss.svg           PCSS's similar triangles for the sun: the cone towards the sun's disk on
                       the blockers' plane (filter radius) and on the map's near plane (search)
-06_light_frustum.svg  the sun's map box in light space: across the light fitted to what the view
+06_light_frustum.svg  the sun's map box in a section of the atrium: across the light fitted to what the view
                       sees, along the light the whole scene's depth (a caster above the view)
 """
 import math
