@@ -47,7 +47,7 @@ def github_slug(text: str) -> str:
 
 
 def prefix_of(name: str) -> str:
-    """c03- for 03-light-volumes.md; a-scenes- for an appendix-scenes.md."""
+    """c03- for 03-light-volumes.md; a-scenes- for appendix-scenes.md, a-bibliography- for bibliography.md."""
     return f"c{name[:2]}-" if re.match(r"\d\d-", name) else "a-" + re.sub(r"^appendix-|\.md$", "", name) + "-"
 
 
@@ -115,8 +115,9 @@ def main() -> int:
     if not shutil.which("pandoc"):
         print("book_html.py: pandoc is not installed (Debian: sudo apt-get install pandoc)")
         return 1
-    # the numbered chapters, then the appendices
+    # the numbered chapters, then the appendices and the bibliography
     chapters = sorted((ROOT / "book").glob("[0-9][0-9]-*.md")) + sorted((ROOT / "book").glob("appendix-*.md"))
+    chapters += [p for p in [ROOT / "book" / "bibliography.md"] if p.exists()]
     titles, all_ids = {}, {}
     for md in chapters:
         titles[md.name], all_ids[md.name] = chapter_ids(md)

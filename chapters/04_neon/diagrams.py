@@ -11,63 +11,11 @@ import math
 import sys
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools"))
+from svgdraw import Svg, add, unit  # noqa: E402  (the book's diagram primitives)
+
 OUT = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parents[2] / "book" / "figures"
 INK, TUBE, RAY, GOOD, BAD, GREY = "#222", "#d6338a", "#1f77b4", "#2ca02c", "#d62728", "#999"
-
-
-class Svg:
-    def __init__(self, w, h):
-        self.w, self.h, self.items = w, h, []
-
-    def line(self, a, b, colour=INK, width=1.5, dash=None, arrow=False):
-        d = f' stroke-dasharray="{dash}"' if dash else ""
-        m = ' marker-end="url(#arrow)"' if arrow else ""
-        self.items.append(f'<line x1="{a[0]:.1f}" y1="{a[1]:.1f}" x2="{b[0]:.1f}" y2="{b[1]:.1f}" '
-                          f'stroke="{colour}" stroke-width="{width}"{d}{m}/>')
-
-    def poly(self, pts, colour=INK, width=1.5, fill="none", dash=None, closed=True):
-        d = f' stroke-dasharray="{dash}"' if dash else ""
-        tag = "polygon" if closed else "polyline"
-        p = " ".join(f"{x:.1f},{y:.1f}" for x, y in pts)
-        self.items.append(f'<{tag} points="{p}" fill="{fill}" stroke="{colour}" stroke-width="{width}"{d}/>')
-
-    def dot(self, p, colour=INK, r=3.5):
-        self.items.append(f'<circle cx="{p[0]:.1f}" cy="{p[1]:.1f}" r="{r}" fill="{colour}"/>')
-
-    def circle(self, c, r, colour=GREY, dash=None):
-        d = f' stroke-dasharray="{dash}"' if dash else ""
-        self.items.append(f'<circle cx="{c[0]:.1f}" cy="{c[1]:.1f}" r="{r:.1f}" fill="none" stroke="{colour}"{d}/>')
-
-    def arc(self, c, r, a0, a1, colour=INK):
-        p0 = (c[0] + r * math.cos(a0), c[1] + r * math.sin(a0))
-        p1 = (c[0] + r * math.cos(a1), c[1] + r * math.sin(a1))
-        large = 1 if abs(a1 - a0) > math.pi else 0
-        sweep = 1 if a1 > a0 else 0
-        self.items.append(f'<path d="M {p0[0]:.1f} {p0[1]:.1f} A {r} {r} 0 {large} {sweep} {p1[0]:.1f} {p1[1]:.1f}" '
-                          f'fill="none" stroke="{colour}"/>')
-
-    def text(self, p, s, colour=INK, size=13, anchor="start", italic=False):
-        st = ' font-style="italic"' if italic else ""
-        s = s.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
-        self.items.append(f'<text x="{p[0]:.1f}" y="{p[1]:.1f}" fill="{colour}" font-size="{size}" '
-                          f'text-anchor="{anchor}"{st}>{s}</text>')
-
-    def save(self, name):
-        head = (f'<svg xmlns="http://www.w3.org/2000/svg" width="{self.w}" height="{self.h}" '
-                f'font-family="sans-serif">\n<defs><marker id="arrow" viewBox="0 0 10 10" refX="9" refY="5" '
-                f'markerWidth="7" markerHeight="7" orient="auto-start-reverse"><path d="M 0 0 L 10 5 L 0 10 z" '
-                f'fill="context-stroke"/></marker></defs>\n<rect width="{self.w}" height="{self.h}" fill="white"/>\n')
-        (OUT / name).write_text(head + "\n".join(self.items) + "\n</svg>\n")
-        print(f"wrote {OUT / name}")
-
-
-def add(a, b, k=1.0):
-    return (a[0] + k * b[0], a[1] + k * b[1])
-
-
-def unit(v):
-    n = math.hypot(*v)
-    return (v[0] / n, v[1] / n)
 
 
 def frame_figure():
@@ -114,7 +62,7 @@ def frame_figure():
     s.text((x[0] - 24, x[1] + 6), "x", INK, 15, italic=True)
     s.text((20, 318), "Each radian of φ brings (I / L) / d: the integral over the tube is one over the angle it spans.",
            INK, 12)
-    s.save("04_frame.svg")
+    s.save(OUT, "04_frame.svg")
 
 
 def closest_figure():
@@ -143,7 +91,7 @@ def closest_figure():
     s.text((420, 135), "closest in angle: B for both", GOOD, 12)
     s.text((20, 268), "Nearly parallel, every point of the tube is almost equally close to the ray in distance, so the", INK, 12)
     s.text((20, 286), "answer is ill-conditioned. In angle the question has one smooth answer, and no parallel case.", INK, 12)
-    s.save("04_closest.svg")
+    s.save(OUT, "04_closest.svg")
 
 
 def capsule_figure():
@@ -180,7 +128,7 @@ def capsule_figure():
     s.line((c2[0] - 120, c2[1] + 35), (c2[0] + 120, c2[1] + 35), GREY, 1, "4 3")
     s.text((c2[0], 285), "cylinder: caps = 0, nothing lit beyond the ends", INK, 13, "middle")
     s.text((c2[0], 70), "cap height x caps", GREY, 11, "middle")
-    s.save("04_capsule.svg")
+    s.save(OUT, "04_capsule.svg")
 
 
 if __name__ == "__main__":

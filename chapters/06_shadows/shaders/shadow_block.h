@@ -1,9 +1,7 @@
 // [shadow-block]
-// What the visibility hook knows of the shadow maps, written once for both languages: GLSL
-// includes this file in shadow_visibility.glsl (the uniform block ShadowBlock), C++ in
-// shadow_stage.cpp (which fills it), each with its own vec4 and mat4. std140: every vec4 and
-// mat4 starts on 16 bytes and the floats fill the lines between (shadow_stage.cpp asserts the
-// offsets).
+// What the visibility hook knows of the maps, written once for both languages: GLSL includes
+// it in shadow_visibility.glsl (uniform block ShadowBlock), C++ in shadow_stage.cpp, which
+// fills it and asserts the std140 offsets (vec4 and mat4 on 16 bytes, floats between).
 #define SHADOW_MAX_POISSON_TAPS 64
 struct ShadowParameters {
   mat4 matrix;           // world to the sun map's clip space (orthographic)

@@ -1,0 +1,272 @@
+#!/usr/bin/env python3
+"""Chapter 06's concept diagrams as SVG, computed from the formulas the chapter teaches.
+
+    python3 tools/diagrams_06.py [OUT_DIR]      (default book/figures)
+
+06_acne.svg           a tilted receiver against the depths a map keeps (one per texel): acne
+                      without bias; the constant and slope-scaled biases and the normal offset
+06_chebyshev.svg      Chebyshev's bound on the lit fraction against the truth, for a filter
+                      over two occluders: light bleeding, and what P_min does to it
+06_pcss.svg           PCSS's similar triangles for the sun: the cone towards the sun's disk on
+                      the blockers' plane (filter radius) and on the map's near plane (search)
+06_light_frustum.svg  the sun's map box in a section of the atrium: across the light fitted to what the view
+                      sees, along the light the whole scene's depth (a caster above the view)
+"""
+import math
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from svgdraw import BAD, GOOD, GREY, INK, LIGHT, PALE, RAY, Svg, add  # noqa: E402
+
+DARK = "#444"
+
+
+def light_arrows(s, xs, y0, y1):
+    for x in xs:
+        s.line((x, y0), (x, y1), LIGHT, 2, arrow=True)
+
+
+def acne_figure(out: Path):
+    """Light from the top; depth grows down the page. The map keeps, per texel of width W, the
+    receiver's depth at the texel's centre; every point of the texel is compared with it."""
+    s = Svg(680, 340)
+    W, theta = 40.0, math.radians(30)
+    tan_t = math.tan(theta)
+    for panel, (x0, title) in enumerate(((20, "No bias: half of every texel shadows itself"),
+                                         (360, "Constant + slope-scaled bias, normal offset"))):
+        s.text((x0 + 150, 22), title, INK, 12, "middle", bold=True)
+        light_arrows(s, [x0 + 40 + 55 * i for i in range(5)], 30, 52)
+        top = 68  # the map's texels, seen edge on
+        y_at = lambda x: 120 + (x - x0 - 20) * tan_t  # noqa: E731  the receiver's depth (page y)
+        bias = 0.0 if panel == 0 else W * (0.25 + 0.5 * tan_t)  # constant quarter texel + half a texel's slope
+        for i in range(6):
+            a, b = x0 + 20 + i * W, x0 + 20 + (i + 1) * W
+            s.rect(a, top - 8, W - 2, 8, PALE, GREY)
+            c = (a + b) / 2
+            stored = y_at(c)
+            s.line((a, stored), (b, stored), RAY, 2)
+            if panel == 1:
+                s.line((a, stored + bias), (b, stored + bias), RAY, 1, "3 2")
+            # The receiver in this texel: shadowed where it lies beyond stored + bias.
+            cut = min(max(c + bias / tan_t, a), b)
+            s.line((a, y_at(a)), (cut, y_at(cut)), LIGHT, 5)
+            if cut < b:
+                s.line((cut, y_at(cut)), (b, y_at(b)), DARK, 5)
+        s.text((x0 + 20, top + 14), "the map: one depth per texel, w wide", GREY, 10)
+        end = x0 + 20 + 6 * W
+        s.text((end - 10, y_at(end) + 20), "receiver", INK, 11)
+        if panel == 0:
+            s.text((x0 + 20, 300), "blue: the depth the texel keeps (its centre's)", RAY, 11)
+            s.text((x0 + 20, 316), "dark: the receiver beyond it, so 'in shadow': acne", DARK, 11)
+            # The angle between the receiver and the plane facing the light is theta.
+            p = (x0 + 20, y_at(x0 + 20))
+            s.line(p, (p[0] + 70, p[1]), GREY, 1, "3 2")
+            s.arc(p, 40, 0, theta, INK)
+            s.text((p[0] + 44, p[1] + 14), "θ", INK, 13, italic=True)
+            s.text((x0 + 20, 334), "across a texel the depth changes by w tan θ", INK, 11)
+        else:
+            s.text((x0 + 20, 300), "dashed: stored + bias, bias = w (c + s tan θ)", RAY, 11)
+            # Normal offset: the lookup moves off the surface along its normal.
+            p = (x0 + 20 + 3.5 * W, y_at(x0 + 20 + 3.5 * W))
+            n = (math.sin(theta), -math.cos(theta))
+            k = 34
+            q = add(p, n, k)
+            s.dot(p, INK, 3)
+            s.line(p, q, GOOD, 2, arrow=True)
+            s.line(q, (q[0], top), GOOD, 1, "2 3")
+            s.text((q[0] + 6, q[1] - 4), "normal offset", GOOD, 11)
+            s.text((x0 + 20, 316), "normal offset: look up at p + n k w sin θ", GOOD, 11)
+            s.text((x0 + 20, 334), "too much of either: the shadow leaves its caster", INK, 11)
+    s.save(out, "06_acne.svg")
+
+
+def chebyshev_figure(out: Path):
+    """A filter over two occluders, half its texels at depth a, half at b, over a receiver at d.
+    The truth: the fraction of filtered depths >= d. Chebyshev's bound from the mean and variance."""
+    a, b, p_min = 0.2, 0.5, 0.2
+    mean = (a + b) / 2
+    var = (a * a + b * b) / 2 - mean * mean
+    truth = lambda d: 1.0 if d <= a else 0.5 if d <= b else 0.0  # noqa: E731
+    bound = lambda d: 1.0 if d <= mean else var / (var + (d - mean) ** 2)  # noqa: E731
+    cut = lambda p: min(max((p - p_min) / (1 - p_min), 0.0), 1.0)  # noqa: E731
+    s = Svg(640, 350)
+    L, R, T, B = 70, 600, 40, 250
+    X = lambda d: L + (R - L) * d  # noqa: E731
+    Y = lambda v: B - (B - T) * v  # noqa: E731
+    s.line((L, B), (R, B), INK, 1)
+    s.line((L, B), (L, T), INK, 1)
+    for v in (0, 0.5, 1):
+        s.text((L - 8, Y(v) + 4), f"{v:g}", INK, 11, "end")
+    for d in (0, a, mean, b, 1):
+        s.line((X(d), B), (X(d), B + 4), INK, 1)
+    s.text((X(0), B + 16), "0", INK, 11, "middle")
+    s.text((X(a), B + 16), "a", INK, 12, "middle", italic=True)
+    s.text((X(mean), B + 16), "M1", INK, 11, "middle")
+    s.text((X(b), B + 16), "b", INK, 12, "middle", italic=True)
+    s.text((X(1), B + 16), "1", INK, 11, "middle")
+    s.text(((L + R) / 2, B + 34), "the receiver's depth d (from the light)", INK, 12, "middle")
+    s.text((L - 50, T - 14), "lit fraction", INK, 12)
+    n = 200
+    ds = [i / n for i in range(n + 1)]
+    # The bleeding: where the bound says light and the truth says none.
+    s.poly([(X(d), Y(bound(d))) for d in ds if d > b] + [(X(1), Y(0)), (X(b + 1e-9), Y(0))], "none", 0, BAD,
+           opacity=0.18)
+    s.poly([(X(d), Y(truth(d))) for d in ds], INK, 2.5, closed=False)
+    s.poly([(X(d), Y(bound(d))) for d in ds], RAY, 2, closed=False)
+    s.poly([(X(d), Y(cut(bound(d)))) for d in ds], GOOD, 2, dash="6 4", closed=False)
+    d_r = 0.8
+    s.dot((X(d_r), Y(bound(d_r))), RAY, 4)
+    s.text((X(d_r) + 4, Y(bound(d_r)) - 12), f"a receiver behind both: truth 0, bound {bound(d_r):.2f}", BAD, 11,
+           "middle")
+    s.text((X(0.6), Y(0.06) - 2), "light bleeding", BAD, 11)
+    s.dot((X(b), Y(bound(b))), RAY, 4)
+    s.text((X(b) + 8, Y(bound(b)) - 6), f"just behind b: bound {bound(b):.2f}, true 0.5", RAY, 11)
+    s.text((X(b) - 8, Y(cut(bound(b))) + 16), f"with P_min: {cut(bound(b)):.2f}", GOOD, 11, "end")
+    y = 306
+    s.line((L, y), (L + 24, y), INK, 2.5)
+    s.text((L + 30, y + 4), "truth: half the filter at a, half at b", INK, 11)
+    s.line((L + 250, y), (L + 274, y), RAY, 2)
+    s.text((L + 280, y + 4), "Chebyshev: s² / (s² + (d − M1)²)", RAY, 11)
+    s.line((L, y + 20), (L + 24, y + 20), GOOD, 2, "6 4")
+    s.text((L + 30, y + 24), f"with P_min = {p_min:g}: (p − P_min) / (1 − P_min), clamped", GOOD, 11)
+    s.save(out, "06_chebyshev.svg")
+
+
+def pcss_figure(out: Path):
+    """The sun as a disk of directions of angular radius theta (exaggerated here). From a
+    receiver, the directions towards it form a cone; on the blockers' plane it is a disk of
+    radius (d_r - d_b) tan theta, on the map's near plane one of radius d_r tan theta."""
+    s = Svg(640, 380)
+    theta = math.radians(14)
+    t = math.tan(theta)
+    near, blocker, receiver = 50.0, 160.0, 300.0
+    edge = 300.0
+    s.line((40, near), (600, near), GREY, 1, "5 4")
+    s.text((600, near - 6), "the map's near plane, d = 0", GREY, 11, "end")
+    s.line((40, blocker), (edge, blocker), INK, 6)
+    s.text((50, blocker - 10), "blocker, at depth d_b", INK, 11)
+    s.line((40, receiver), (600, receiver), INK, 1.5)
+    s.text((600, receiver - 6), "receiver plane, depth d_r", INK, 11, "end")
+    light_arrows(s, [80, 200, 440, 560], 10, 38)
+    # The penumbra on the receiver plane: the edge seen through the cone from each point.
+    half = (receiver - blocker) * t
+    for i in range(24):
+        x = edge - half + 2 * half * i / 24
+        lit = min(max((x - (edge - half)) / (2 * half), 0), 1)
+        g = int(60 + 180 * lit)
+        s.rect(x, receiver + 2, 2 * half / 24 + 0.5, 8, f"rgb({g},{g},{g})")
+    s.rect(40, receiver + 2, edge - half - 40, 8, "rgb(60,60,60)")
+    s.rect(edge + half, receiver + 2, 600 - edge - half, 8, "rgb(240,240,240)")
+    s.text((edge - half, receiver + 26), "penumbra: 2 (d_r − d_b) tan θ wide", INK, 11)
+    # The cone from one receiver point inside the penumbra.
+    p = (edge + 0.35 * half, receiver)
+    for side in (-1, 1):
+        s.line(p, (p[0] + side * (receiver - near) * t, near), LIGHT, 1.5)
+    s.line(p, (p[0], near), GREY, 1, "2 3")
+    s.arc(p, 60, -math.pi / 2, -math.pi / 2 + theta, INK)
+    s.text((p[0] + 10, p[1] - 64), "θ", INK, 13, italic=True)
+    s.dot(p, INK, 4)
+    s.text((p[0] + 8, p[1] - 6), "receiver", INK, 11)
+    # The disk on the blockers' plane: its covered part is the hidden part of the sun.
+    r_f = (receiver - blocker) * t
+    s.line((p[0] - r_f, blocker + 14), (p[0] + r_f, blocker + 14), RAY, 3)
+    s.line((p[0] - r_f, blocker + 14), (edge, blocker + 14), BAD, 3)
+    s.text((p[0] + r_f + 6, blocker + 18), "filter: (d_r − d_b) tan θ each side", RAY, 11)
+    s.text((p[0] + r_f + 6, blocker + 32), "red: the part blockers cover", BAD, 11)
+    r_s = (receiver - near) * t
+    s.line((p[0] - r_s, near + 12), (p[0] + r_s, near + 12), GOOD, 3)
+    s.text((p[0] + r_s + 6, near + 26), "search: d_r tan θ each side", GOOD, 11)
+    s.text((40, 352), "Angle exaggerated: the book's sun is 0.02 rad in radius.", INK, 11)
+    s.text((40, 368), "A blocker nearer the receiver meets a narrower part of the cone: the shadow hardens at contact.",
+           INK, 11)
+    s.save(out, "06_pcss.svg")
+
+
+def clip(poly, x0, y0, x1, y1):
+    """Sutherland-Hodgman: the polygon cut to the rectangle [x0, x1] x [y0, y1]."""
+    for inside, cross in ((lambda p: p[0] >= x0, lambda p, q: (x0, p[1] + (q[1] - p[1]) * (x0 - p[0]) / (q[0] - p[0]))),
+                          (lambda p: p[0] <= x1, lambda p, q: (x1, p[1] + (q[1] - p[1]) * (x1 - p[0]) / (q[0] - p[0]))),
+                          (lambda p: p[1] >= y0, lambda p, q: (p[0] + (q[0] - p[0]) * (y0 - p[1]) / (q[1] - p[1]), y0)),
+                          (lambda p: p[1] <= y1, lambda p, q: (p[0] + (q[0] - p[0]) * (y1 - p[1]) / (q[1] - p[1]), y1))):
+        out = []
+        for i, p in enumerate(poly):
+            q = poly[(i + 1) % len(poly)]
+            if inside(p):
+                out.append(p)
+                if not inside(q):
+                    out.append(cross(p, q))
+            elif inside(q):
+                out.append(cross(p, q))
+        poly = out
+    return poly
+
+
+def light_frustum_figure(out: Path):
+    """A vertical section through the atrium (metres, y up). The sun's map is a box aligned with
+    the light: across the light it spans the view frustum's corners (cut to the scene's
+    bounds), along the light the whole scene's depth, so a caster above the view still lands in
+    the map in front of the floor it shadows (shadow_math.h, fit_light_frustum)."""
+    sun = math.radians(-130)
+    d = (math.cos(sun), math.sin(sun))  # the way the light shines: down and to the left
+    across = (-d[1], d[0])
+    dot = lambda p, v: p[0] * v[0] + p[1] * v[1]  # noqa: E731
+    scene = [(0, 0), (40, 0), (40, 12), (0, 12)]
+    eye, pitch, half_fov, far = (31.0, 1.7), math.radians(-12), math.radians(18), 18.0
+    look = math.pi - pitch  # looking down the hall, to the left, `pitch` below the horizontal
+    frustum = [add(eye, (math.cos(look + k * half_fov), math.sin(look + k * half_fov)), dist)
+               for k, dist in ((-1, 0.3), (1, 0.3), (1, far), (-1, far))]
+    view = clip(frustum, 0, 0, 40, 12)
+    u_scene = [dot(p, across) for p in scene]
+    u_view = [dot(p, across) for p in frustum]
+    z_scene = [dot(p, d) for p in scene]
+    u0, u1 = max(min(u_view), min(u_scene)), min(max(u_view), max(u_scene))
+    z0, z1 = min(z_scene), max(z_scene)
+    corner = lambda u, z: (u * across[0] + z * d[0], u * across[1] + z * d[1])  # noqa: E731
+    box = [corner(u0, z0), corner(u1, z0), corner(u1, z1), corner(u0, z1)]
+    whole = [corner(min(u_scene), z0), corner(max(u_scene), z0), corner(max(u_scene), z1), corner(min(u_scene), z1)]
+    pts = box + scene + view + whole
+    xs, ys = [p[0] for p in pts], [p[1] for p in pts]
+    k = min(420 / (max(xs) - min(xs)), 360 / (max(ys) - min(ys)))
+    P = lambda p: (10 + k * (p[0] - min(xs)), 20 + k * (max(ys) - p[1]))  # noqa: E731
+    s = Svg(680, 400)
+    s.poly([P(p) for p in whole], GREY, 1, dash="2 4")
+    s.poly([P(p) for p in scene], INK, 1.2, PALE)
+    s.text(add(P((0, 12)), (0, -6)), "the scene's bounds (40 x 12 m)", GREY, 11)
+    s.poly([P(p) for p in view], RAY, 1.5, RAY, opacity=0.18)
+    s.dot(P(eye), RAY, 4)
+    s.text(add(P(eye), (8, 4)), "camera", RAY, 11)
+    capital = [(22.0, 8.0), (24.0, 8.0), (24.0, 9.0), (22.0, 9.0)]
+    s.poly([P(p) for p in capital], INK, 1, INK)
+    foot = (23.0, 8.0)
+    floor = add(foot, d, foot[1] / -d[1])
+    s.line(P(foot), P(floor), LIGHT, 2, "5 3", arrow=True)
+    s.text(add(P(capital[2]), (6, -4)), "a capital above the view", INK, 11)
+    s.text(add(P(floor), (0, 18)), "its shadow, in view", INK, 11, "middle")
+    s.poly([P(p) for p in box], GOOD, 2.5, dash="8 4")
+    for i, (line, colour) in enumerate((("Green: the map's box, aligned", GOOD), ("with the light.", GOOD),
+                                        ("Across the light it spans", GOOD), ("what the view sees;", GOOD),
+                                        ("along the light, the whole", GOOD), ("scene's depth.", GOOD), ("", GOOD),
+                                        ("Dotted: the box fitted to", GREY), ("the whole scene, whose", GREY),
+                                        ("texels would be spread", GREY), ("over far more floor.", GREY), ("", GREY),
+                                        ("Blue: what the view sees.", RAY))):
+        s.text((470, 130 + 16 * i), line, colour, 12)
+    light_arrows_along(s, P, d, [corner(u0 + (u1 - u0) * f, z0 - 1.5) for f in (0.2, 0.5, 0.8)])
+    s.save(out, "06_light_frustum.svg")
+
+
+def light_arrows_along(s, P, d, starts):
+    for p in starts:
+        s.line(P(p), P(add(p, d, 2.5)), LIGHT, 2, arrow=True)
+
+
+def main(out: Path):
+    out.mkdir(parents=True, exist_ok=True)
+    acne_figure(out)
+    chebyshev_figure(out)
+    pcss_figure(out)
+    light_frustum_figure(out)
+
+
+if __name__ == "__main__":
+    main(Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parent.parent / "book" / "figures")
