@@ -18,6 +18,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -107,6 +108,11 @@ struct ImageContext {
   SceneLimits limits;
   std::map<int, std::string> problems;   // image index -> why it is empty
   std::vector<std::string> converted;    // 16-bit images read as 8 bits
+  // Images whose bytes equal an earlier image's (one file named by many images): decoded and
+  // counted once, the later ones left empty and pointing at the first.
+  std::map<std::pair<std::size_t, std::size_t>, int> first_of_content;  // (size, hash) -> image
+  std::map<int, int> same_as;
+  std::size_t total_texels = 0;          // of the distinct images decoded so far
 };
 
 bool load_image(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
@@ -132,6 +138,17 @@ bool load_image(tinygltf::Image* image, const int index, std::string* err, std::
   }
   image->image.clear();
   image->width = image->height = 0;
+  // The same bytes again: share the first decode. (A 64-bit hash: a collision, which only a
+  // file made for it could cause, shows one of its images in place of another.)
+  if (size > 0) {
+    const auto key = std::make_pair(std::size_t(size), std::hash<std::string_view>{}(
+                                                           std::string_view(reinterpret_cast<const char*>(bytes), std::size_t(size))));
+    auto [it, fresh] = ctx.first_of_content.emplace(key, index);
+    if (!fresh) {
+      ctx.same_as[index] = it->second;
+      return true;
+    }
+  }
   int w = 0, h = 0, channels = 0;
   if (size <= 0 || !stbi_info_from_memory(bytes, size, &w, &h, &channels)) {
     const char* why = stbi_failure_reason();
@@ -145,6 +162,14 @@ bool load_image(tinygltf::Image* image, const int index, std::string* err, std::
                           std::to_string(limits.max_image_texels) + " texels)";
     return true;
   }
+  const std::size_t texels = std::size_t(w) * std::size_t(h);
+  if (texels > limits.max_total_texels - std::min(limits.max_total_texels, ctx.total_texels)) {
+    ctx.problems[index] = "it is " + std::to_string(w) + "x" + std::to_string(h) + ", and with the scene's other images (" +
+                          std::to_string(ctx.total_texels) + " texels) that is more than the loader accepts in all (" +
+                          std::to_string(limits.max_total_texels) + " texels, each distinct image counted once)";
+    return true;
+  }
+  ctx.total_texels += texels;
   bool sixteen = stbi_is_16_bit_from_memory(bytes, size);
   stbi_uc* pixels = stbi_load_from_memory(bytes, size, &w, &h, &channels, 4);  // 16-bit: converted to 8
   if (!pixels) {
@@ -189,6 +214,68 @@ const std::set<std::string>& supported_extensions() {
   return s;
 }
 
+// Index accessors without a bufferView, taken out of the JSON before tinygltf sees them:
+// (glTF mesh, primitive) -> the accessor. glTF allows an accessor without one (all zeros);
+// tinygltf refuses it where it holds indices.
+using IndexFixups = std::map<std::pair<int, int>, int>;
+
+// Reads the JSON before tinygltf does, for what tinygltf gets wrong first: a compressed mesh's
+// accessors have no bufferView (Draco) or its buffer no data (meshopt's fallback), and tinygltf
+// fails on those with a message of its own before extensionsRequired could name the
+// extension. JSON that does not parse is left to tinygltf, which says where. `glb`: the whole
+// .glb when the JSON came from one, rebuilt around the new JSON when it changes.
+IndexFixups check_before_tinygltf(const unsigned char* text, std::size_t size, const fs::path& path,
+                                  const std::vector<unsigned char>* glb, std::vector<unsigned char>& rewritten) {
+  IndexFixups fixups;
+  nlohmann::json doc = nlohmann::json::parse(text, text + size, nullptr, false);
+  if (doc.is_discarded() || !doc.is_object()) return fixups;
+  if (auto it = doc.find("extensionsRequired"); it != doc.end() && it->is_array())
+    for (const auto& e : *it)
+      if (e.is_string() && !supported_extensions().count(e.get<std::string>()))
+        throw Error("cannot load scene '" + path.string() + "': it requires the extension " + e.get<std::string>() +
+                    ", which lightpass does not support" +
+                    (e == "KHR_draco_mesh_compression" || e == "EXT_meshopt_compression" || e == "KHR_meshopt_compression"
+                         ? " (a compressed mesh: export it uncompressed)"
+                         : ""));
+  auto accessors = doc.find("accessors");
+  auto meshes = doc.find("meshes");
+  if (accessors == doc.end() || !accessors->is_array() || meshes == doc.end() || !meshes->is_array()) return fixups;
+  for (std::size_t m = 0; m < meshes->size(); ++m) {
+    auto& mesh = (*meshes)[m];
+    if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+    auto& prims = mesh["primitives"];
+    for (std::size_t p = 0; p < prims.size(); ++p) {
+      auto& prim = prims[p];
+      if (!prim.is_object() || !prim.contains("indices") || !prim["indices"].is_number_unsigned()) continue;
+      const std::uint64_t a = prim["indices"].get<std::uint64_t>();
+      if (a >= accessors->size() || !(*accessors)[a].is_object() || (*accessors)[a].contains("bufferView")) continue;
+      fixups[{int(m), int(p)}] = int(a);
+      prim.erase("indices");
+    }
+  }
+  if (fixups.empty()) return fixups;
+  std::string json = doc.dump();
+  if (!glb) {
+    rewritten.assign(json.begin(), json.end());
+    return fixups;
+  }
+  // A .glb: header (magic, version, length), the JSON chunk (padded with spaces), the rest as it was.
+  while (json.size() % 4) json += ' ';
+  std::uint32_t old_json = 0;
+  std::memcpy(&old_json, glb->data() + 12, 4);
+  const std::size_t rest = std::min<std::size_t>(glb->size(), 20 + std::size_t(old_json));
+  const std::size_t total = 20 + json.size() + (glb->size() - rest);
+  if (total > std::numeric_limits<std::uint32_t>::max()) return {};
+  auto u32 = [&](std::uint32_t v) { for (int i = 0; i < 4; ++i) rewritten.push_back(static_cast<unsigned char>(v >> (8 * i))); };
+  rewritten.assign(glb->begin(), glb->begin() + 8);
+  u32(static_cast<std::uint32_t>(total));
+  u32(static_cast<std::uint32_t>(json.size()));
+  u32(0x4E4F534Au);  // "JSON"
+  rewritten.insert(rewritten.end(), json.begin(), json.end());
+  rewritten.insert(rewritten.end(), glb->begin() + std::ptrdiff_t(rest), glb->end());
+  return fixups;
+}
+
 // Reads accessor elements as floats (or as indices), checking every byte it touches, so a
 // malformed file becomes an error message rather than an out-of-bounds read.
 class AccessorReader {
@@ -198,15 +285,18 @@ class AccessorReader {
     if (index < 0 || index >= static_cast<int>(m.accessors.size())) fail(name + " does not exist");
     acc_ = &m.accessors[index];
     if (acc_->sparse.isSparse) fail(name + " is sparse; sparse accessors are not supported");
-    if (acc_->bufferView < 0 || acc_->bufferView >= static_cast<int>(m.bufferViews.size()))
-      fail(name + " has no buffer view (a compressed mesh? see extensionsRequired)");
+    components_ = tinygltf::GetNumComponentsInType(acc_->type);
+    component_bytes_ = tinygltf::GetComponentSizeInBytes(acc_->componentType);
+    if (components_ <= 0 || component_bytes_ <= 0) fail(name + " has an unknown type");
+    name_ = name;
+    // glTF: an accessor without a bufferView holds zeros (data_ stays null).
+    if (acc_->bufferView < 0) return;
+    if (acc_->bufferView >= static_cast<int>(m.bufferViews.size()))
+      fail(name + ": its bufferView " + std::to_string(acc_->bufferView) + " does not exist");
     const auto& view = m.bufferViews[acc_->bufferView];
     if (view.buffer < 0 || view.buffer >= static_cast<int>(m.buffers.size()))
       fail(name + ": buffer view " + std::to_string(acc_->bufferView) + " has no buffer");
     const auto& buffer = m.buffers[view.buffer];
-    components_ = tinygltf::GetNumComponentsInType(acc_->type);
-    component_bytes_ = tinygltf::GetComponentSizeInBytes(acc_->componentType);
-    if (components_ <= 0 || component_bytes_ <= 0) fail(name + " has an unknown type");
     const std::size_t elem = std::size_t(components_) * std::size_t(component_bytes_);
     stride_ = view.byteStride ? view.byteStride : elem;
     if (stride_ < elem)
@@ -224,13 +314,15 @@ class AccessorReader {
            std::to_string(acc_->bufferView) + " or its buffer ('" + buffer.uri.substr(0, 64) + "', " +
            std::to_string(buffer.data.size()) + " bytes)");
     data_ = buffer.data.data() + view.byteOffset + acc_->byteOffset;
-    name_ = name;
   }
   size_t count() const { return acc_->count; }
   int components() const { return components_; }
   const std::string& name() const { return name_; }
 
+  int type() const { return acc_->type; }
+
   float component(size_t i, int c) const {
+    if (!data_) return 0;
     const unsigned char* p = data_ + i * stride_ + std::size_t(c) * std::size_t(component_bytes_);
     switch (acc_->componentType) {
       case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, p, 4); return f; }
@@ -244,6 +336,12 @@ class AccessorReader {
     }
   }
   std::uint32_t index(size_t i) const {
+    if (!data_) {
+      if (acc_->componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && acc_->componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+          acc_->componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+        fail(name_ + ": indices must be unsigned byte, short or int");
+      return 0;
+    }
     const unsigned char* p = data_ + i * stride_;
     switch (acc_->componentType) {
       case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return *p;
@@ -319,8 +417,9 @@ struct UvTransform {
 
 class Loader {
  public:
-  Loader(const tinygltf::Model& m, Scene& s, const ImageContext& images, const FileContext& files, const SceneLimits& limits)
-      : m_(m), s_(s), images_(images), files_(files), limits(limits) {}
+  Loader(const tinygltf::Model& m, Scene& s, const ImageContext& images, const FileContext& files, const SceneLimits& limits,
+         const IndexFixups& fixups)
+      : m_(m), s_(s), images_(images), files_(files), limits(limits), fixups_(fixups) {}
 
   void load() {
     note_unsupported_document();
@@ -342,15 +441,25 @@ class Loader {
     if (scene.extras.Has("lightpass")) {
       const auto& lp = scene.extras.Get("lightpass");
       if (lp.Has("ambient")) s_.ambient = number3(lp.Get("ambient"), glm::vec3(0));
+      s_.lightpass_json = json_text(lp).dump();
       if (!finite(s_.ambient) || glm::any(glm::lessThan(s_.ambient, glm::vec3(0))))
         throw Error(file() + ": the scene's extras.lightpass.ambient must be three finite numbers >= 0");
     }
     check_expansion(scene.nodes);
     for (int root : scene.nodes) visit(root, glm::mat4(1), 0);
-    std::size_t drawable = 0;
-    for (const auto& inst : s_.instances) drawable += s_.meshes[inst.mesh].primitives.size();
-    if (drawable == 0) {
+    // Triangles, not primitives: a primitive of no indices, or of triangles that all have zero
+    // area (every POSITION the same), draws nothing, and a blank image must not pass silently.
+    std::vector<std::optional<std::pair<std::size_t, std::size_t>>> counted(s_.meshes.size());
+    std::size_t triangles = 0, with_area = 0;
+    for (const auto& inst : s_.instances) {
+      auto& c = counted[std::size_t(inst.mesh)];
+      if (!c) c = triangle_counts(s_.meshes[std::size_t(inst.mesh)]);
+      triangles += c->first;
+      with_area += c->second;
+    }
+    if (with_area == 0) {
       std::string why = skipped_primitives_ ? " (" + std::to_string(skipped_primitives_) + " primitives are points or lines, which are skipped)" : "";
+      if (triangles > 0) why = " (its " + std::to_string(triangles) + " triangles all have zero area: their corners coincide or lie on a line)";
       throw Error(file() + ": the scene has no triangles to draw" + why);
     }
     compute_bounds();
@@ -367,6 +476,20 @@ class Loader {
     glm::vec3 r;
     for (int i = 0; i < 3; ++i) r[i] = static_cast<float>(v.Get(i).GetNumberAsDouble());
     return r;
+  }
+
+  // A mesh's triangles, and those of them with an area (in the mesh's own space).
+  std::pair<std::size_t, std::size_t> triangle_counts(const Mesh& mesh) const {
+    std::size_t all = 0, area = 0;
+    for (const auto& p : mesh.primitives)
+      for (std::uint32_t t = p.first_index; t + 2 < p.first_index + p.index_count; t += 3) {
+        // In double: a model a few 1e-20 m across has areas that underflow a float.
+        const glm::dvec3 a = s_.vertices[s_.indices[t]].position, b = s_.vertices[s_.indices[t + 1]].position,
+                         c = s_.vertices[s_.indices[t + 2]].position;
+        ++all;
+        area += glm::any(glm::notEqual(glm::cross(b - a, c - a), glm::dvec3(0)));
+      }
+    return {all, area};
   }
 
   // What the file uses and lightpass does not do, said once for the whole file.
@@ -411,7 +534,13 @@ class Loader {
     int source = -1;
     if (gltf_index < static_cast<int>(m_.textures.size())) {
       source = m_.textures[gltf_index].source;
+      if (auto same = images_.same_as.find(source); same != images_.same_as.end()) source = same->second;
       if (source >= 0 && source < static_cast<int>(m_.images.size())) img = &m_.images[source];
+    }
+    // Textures of one image (or of images of the same bytes) share one Scene texture.
+    if (img) {
+      key = std::make_pair(-1 - source, srgb);
+      if (auto it = texture_of_key_.find(key); it != texture_of_key_.end()) return texture_of_key_[std::make_pair(gltf_index, srgb)] = it->second;
     }
     t.name = img ? (img->uri.empty() ? (img->name.empty() ? "image " + std::to_string(source) : img->name) : img->uri)
                  : "texture " + std::to_string(gltf_index);
@@ -441,7 +570,7 @@ class Loader {
       warn("material '" + material_name + "': texture '" + t.name + "' could not be loaded (" + why + "): using a fallback " +
            (srgb ? "checker" : "flat normal map"));
     }
-    texture_of_key_[key] = static_cast<int>(s_.textures.size());
+    texture_of_key_[key] = texture_of_key_[std::make_pair(gltf_index, srgb)] = static_cast<int>(s_.textures.size());
     s_.textures.push_back(std::move(t));
     return static_cast<int>(s_.textures.size() - 1);
   }
@@ -682,13 +811,14 @@ class Loader {
         ++skipped_primitives_;
         continue;
       }
-      out.primitives.push_back(primitive(prim, mode, where));
+      auto fixed = fixups_.find({gltf_mesh, int(p)});
+      out.primitives.push_back(primitive(prim, mode, where, fixed == fixups_.end() ? prim.indices : fixed->second));
     }
     s_.meshes.push_back(std::move(out));
     return static_cast<int>(s_.meshes.size() - 1);
   }
 
-  Primitive primitive(const tinygltf::Primitive& prim, int mode, const std::string& where) {
+  Primitive primitive(const tinygltf::Primitive& prim, int mode, const std::string& where, int indices) {
     auto attr = [&](const char* name) { auto it = prim.attributes.find(name); return it == prim.attributes.end() ? -1 : it->second; };
     for (const auto& [name, accessor] : prim.attributes)
       if (name != "POSITION" && name != "NORMAL" && name != "TEXCOORD_0" && name != "TANGENT")
@@ -698,6 +828,7 @@ class Loader {
     if (prim.extensions.count("KHR_draco_mesh_compression")) unsupported_once("extension KHR_draco_mesh_compression");
     if (attr("POSITION") < 0) throw Error(where + ": no POSITION attribute");
     AccessorReader pos(m_, attr("POSITION"), where + " POSITION");
+    require_type(pos, "POSITION", TINYGLTF_TYPE_VEC3, where);
     const size_t n = pos.count();
     if (n > limits.max_vertices - std::min(limits.max_vertices, s_.vertices.size()))
       throw Error(where + ": POSITION " + pos.name() + " has " + std::to_string(n) + " vertices; with the scene's " +
@@ -707,6 +838,7 @@ class Loader {
     auto read = [&](const char* name, auto assign) {
       if (attr(name) < 0) return false;
       AccessorReader r(m_, attr(name), where + " " + name);
+      require_type(r, name, std::string(name) == "TANGENT" ? TINYGLTF_TYPE_VEC4 : std::string(name) == "NORMAL" ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC2, where);
       if (r.count() != n) throw Error(where + ": " + name + " (" + r.name() + ") has " + std::to_string(r.count()) + " elements but POSITION has " + std::to_string(n));
       for (size_t i = 0; i < n; ++i) assign(verts[i], r, i);
       return true;
@@ -720,8 +852,9 @@ class Loader {
 
     // Indices of this primitive's own vertices, as triangles.
     std::vector<std::uint32_t> local;
-    if (prim.indices >= 0) {
-      AccessorReader idx(m_, prim.indices, where + " indices");
+    if (indices >= 0) {
+      AccessorReader idx(m_, indices, where + " indices");
+      require_type(idx, "indices", TINYGLTF_TYPE_SCALAR, where);
       if (idx.count() > limits.max_indices)
         throw Error(where + ": indices " + idx.name() + " has " + std::to_string(idx.count()) + " elements, more than the loader accepts (" +
                     std::to_string(limits.max_indices) + ")");
@@ -779,6 +912,25 @@ class Loader {
     out.material = material;
     if (!has_tangent) generate_tangents(s_.vertices, s_.indices, out.first_index, out.index_count, has_uv);
     return out;
+  }
+
+  // glTF fixes each attribute's type: a POSITION of VEC2 or SCALAR would read as points on a
+  // plane or a line (nothing to see), so it is refused by name rather than drawn.
+  void require_type(const AccessorReader& r, const std::string& what, int type, const std::string& where) const {
+    if (r.type() == type) return;
+    auto type_name = [](int t) -> std::string {
+      switch (t) {
+        case TINYGLTF_TYPE_SCALAR: return "SCALAR";
+        case TINYGLTF_TYPE_VEC2: return "VEC2";
+        case TINYGLTF_TYPE_VEC3: return "VEC3";
+        case TINYGLTF_TYPE_VEC4: return "VEC4";
+        case TINYGLTF_TYPE_MAT2: return "MAT2";
+        case TINYGLTF_TYPE_MAT3: return "MAT3";
+        case TINYGLTF_TYPE_MAT4: return "MAT4";
+        default: return "type " + std::to_string(t);
+      }
+    };
+    throw Error(where + ": " + what + " (" + r.name() + ") is " + type_name(r.type()) + "; glTF requires " + type_name(type));
   }
 
   // glTF 2.0 §3.7.2.1: strip triangle i is (i, i+1+i%2, i+2-i%2), fan triangle i (i+1, i+2, 0),
@@ -990,6 +1142,7 @@ class Loader {
   const ImageContext& images_;
   const FileContext& files_;
   const SceneLimits limits;
+  const IndexFixups& fixups_;
   int default_material_ = 0;
   std::vector<int> mesh_of_gltf_;
   std::vector<UvTransform> uv_transform_;  // per Scene::materials index
@@ -997,7 +1150,7 @@ class Loader {
   std::vector<std::optional<std::string>> extras_json_;  // per node, once
   std::set<std::string> dropped_lights_;
   std::size_t copied_bytes_ = 0;
-  std::map<std::pair<int, bool>, int> texture_of_key_;
+  std::map<std::pair<int, bool>, int> texture_of_key_;  // (glTF texture, sRGB) and (-1 - image, sRGB) -> Scene texture
   std::map<std::string, int> unsupported_;
   std::size_t visits_ = 0, skipped_primitives_ = 0, lights_declared_ = 0;
 };
@@ -1082,6 +1235,9 @@ Scene load_scene_from_memory(const std::vector<unsigned char>& bytes, const std:
   }
   if (json_too_deep(json, json_size))
     throw Error("cannot load scene '" + path.string() + "': its JSON nests deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+  std::vector<unsigned char> rewritten;
+  const IndexFixups fixups = check_before_tinygltf(json, json_size, path, binary && bytes.size() >= 20 ? &bytes : nullptr, rewritten);
+  const std::vector<unsigned char>& input = rewritten.empty() ? bytes : rewritten;
 
   tinygltf::TinyGLTF loader;
   tinygltf::Model model;
@@ -1093,9 +1249,9 @@ Scene load_scene_from_memory(const std::vector<unsigned char>& bytes, const std:
   std::string err, warn;
   std::string base = path.parent_path().string();
   if (base.empty()) base = ".";
-  bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), static_cast<unsigned>(bytes.size()), base)
-                   : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
-                                                static_cast<unsigned>(bytes.size()), base);
+  bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, input.data(), static_cast<unsigned>(input.size()), base)
+                   : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(input.data()),
+                                                static_cast<unsigned>(input.size()), base);
   if (!ok) {
     while (!err.empty() && err.back() == '\n') err.pop_back();
     throw Error("cannot load scene '" + path.string() + "': " + (err.empty() ? "not valid glTF" : err));
@@ -1105,7 +1261,7 @@ Scene load_scene_from_memory(const std::vector<unsigned char>& bytes, const std:
       throw Error("cannot load scene '" + path.string() + "': it requires the extension " + e + ", which lightpass does not support");
   Scene scene;
   scene.path = path;
-  Loader(model, scene, images, files, limits).load();
+  Loader(model, scene, images, files, limits, fixups).load();
   return scene;
 }
 

@@ -131,3 +131,34 @@ foreach(c "huge_length|\"length\": 1e30, \"intensity\": 1|\"length\" must be" "n
     COMMAND ${EXPECT} 1 "neon light 'sign_${name}': ${message}" -- $<TARGET_FILE:04_neon> --headless --size 64x36 --scene ${CMAKE_BINARY_DIR}/neon_extras/neon_${name}.gltf)
   set_tests_properties(common.scene.neon_${name}_names_the_node PROPERTIES TIMEOUT 10)
 endforeach()
+
+# Any scene a reader brings, to the end (issue 30): each file of tests/data/ (README.md there)
+# with the message it must print and its exit code.
+# Compressed meshes as their writers make them: named before tinygltf fails on their accessors.
+scene_test(draco_compressed_is_named 1 "requires the extension KHR_draco_mesh_compression, which lightpass does not support .a compressed mesh"
+  ${PS01} --headless --scene tests/data/draco_compressed.gltf)
+scene_test(meshopt_compressed_is_named 1 "requires the extension EXT_meshopt_compression, which lightpass does not support .a compressed mesh"
+  ${PS01} --headless --scene tests/data/meshopt_compressed.glb)
+# Nothing to draw: an error, never a blank image.
+foreach(f indices_count_zero no_vertices strip_two_indices)
+  scene_test(nothing_to_draw_${f} 1 "${f}.gltf: the scene has no triangles to draw" ${PS01} --headless --scene tests/data/${f}.gltf)
+endforeach()
+foreach(f position_all_zero degenerate_triangles)
+  scene_test(nothing_to_draw_${f} 1 "${f}.gltf: the scene has no triangles to draw .its 2 triangles all have zero area"
+    ${PS01} --headless --scene tests/data/${f}.gltf)
+endforeach()
+scene_test(position_vec2_is_refused 1 "mesh 'plane' primitive 0: POSITION .accessor 0. is VEC2. glTF requires VEC3"
+  ${PS01} --headless --scene tests/data/position_vec2.gltf)
+scene_test(position_scalar_is_refused 1 "mesh 'plane' primitive 0: POSITION .accessor 0. is SCALAR. glTF requires VEC3"
+  ${PS01} --headless --scene tests/data/position_scalar.gltf)
+# Accessors without a bufferView are zeros: the plane is drawn (minimal.gltf's covers 7.5 % of
+# the image), beside a second primitive whose indices are all 0 (no area, nothing drawn).
+foreach(f attribute_no_buffer_view indices_no_buffer_view)
+  scene_render_test(${f}_is_zeros 0 "within bounds"
+    sh -c "'${PS01}' --headless --size 160x90 --scene tests/data/${f}.gltf --out '${SCENE_OUT}/${f}.png' && '$<TARGET_FILE:png_coverage>' '${SCENE_OUT}/${f}.png' --covered 0.07 0.08")
+endforeach()
+# One image file named by 16 images renders without a word (decoded once; the budget test is
+# Scene.ImagesOfTheSameBytesAreCountedOnce).
+add_test(NAME common.scene.image_shared_16_loads_without_a_warning
+  COMMAND ${EXPECT} 0 "wrote" --no-match "warning|could not be loaded" -- ${PS01} --headless --size 64x36 --scene tests/data/image_shared_16.gltf --out ${SCENE_OUT}/shared16.png)
+set_tests_properties(common.scene.image_shared_16_loads_without_a_warning PROPERTIES TIMEOUT 30)

@@ -403,6 +403,164 @@ void write_hostile_cases(const fs::path& dir) {
   }
 }
 
+// Issue 30: any scene a reader brings, to the end. Each file is minimal.gltf (or a plane of
+// its own) changed in one way; tests/00_scene_input.cmake says what each must print.
+void write_any_scene_cases(const fs::path& dir) {
+  auto variant = [&](const std::string& name, const std::function<void(json&)>& change) {
+    json doc = minimal_doc();
+    change(doc);
+    write_doc(dir, name, doc);
+  };
+  auto prim = [](json& d) -> json& { return d["meshes"][0]["primitives"][0]; };
+  // Compressed meshes as their writers make them: Draco's accessors have no bufferView (the
+  // data is in the extension's), meshopt's fallback buffer has no data.
+  variant("draco_compressed", [&](json& d) {
+    for (auto& a : d["accessors"]) a.erase("bufferView");
+    prim(d)["extensions"]["KHR_draco_mesh_compression"] = {
+        {"bufferView", 0}, {"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}, {"TANGENT", 3}}}};
+    add_extension(d, "KHR_draco_mesh_compression", true);
+  });
+  {
+    json d = minimal_doc();
+    d["buffers"].push_back({{"byteLength", 1 << 20}, {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}});
+    for (auto& v : d["bufferViews"]) {
+      v["extensions"]["EXT_meshopt_compression"] = {{"buffer", 0}, {"byteOffset", v["byteOffset"]}, {"byteLength", v["byteLength"]},
+                                                    {"byteStride", 4}, {"count", 1}, {"mode", "ATTRIBUTES"}};
+      v["buffer"] = 1;
+    }
+    add_extension(d, "EXT_meshopt_compression", true);
+    GltfBuilder b("minimal");
+    plane_scene(b, make_rect(2.0f, 2.0f), b.add_material(plain("grey")), true);
+    write_bytes(dir / "meshopt_compressed.glb", glb(d, b.binary()));
+  }
+  // Nothing to draw: no indices, no vertices, a strip of two indices; POSITION of a type that is
+  // not VEC3; every POSITION zero (an accessor without a bufferView); only degenerate triangles.
+  variant("indices_count_zero", [&](json& d) { d["accessors"][int(prim(d)["indices"])]["count"] = 0; });
+  variant("no_vertices", [&](json& d) {
+    for (auto& a : d["accessors"]) a["count"] = 0;
+    prim(d).erase("indices");
+  });
+  variant("strip_two_indices", [&](json& d) {
+    prim(d)["mode"] = 5;
+    d["accessors"][int(prim(d)["indices"])]["count"] = 2;
+  });
+  variant("position_vec2", [&](json& d) { d["accessors"][0]["type"] = "VEC2"; });
+  variant("position_scalar", [&](json& d) { d["accessors"][0]["type"] = "SCALAR"; });
+  variant("position_all_zero", [&](json& d) {
+    d["accessors"][0].erase("bufferView");
+    d["accessors"][0]["min"] = {0.0, 0.0, 0.0};
+    d["accessors"][0]["max"] = {0.0, 0.0, 0.0};
+  });
+  {
+    GltfBuilder b("degenerate_triangles");
+    Mesh line;
+    line.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {0, 1, 0}, {0, 2, 0}};
+    b.add_camera("view", {0.0f, 1.0f, 4.0f}, {0.0f, 1.0f, 0.0f}, 0.8f, 0.05f, 50.0f);
+    b.add_point_light("light", {0.0f, 2.0f, 2.0f}, {1.0f, 1.0f, 1.0f}, 2.0f);
+    b.add_mesh_node("lines", b.add_mesh("lines", line, b.add_material(plain("grey"))), glm::vec3(0.0f));
+    b.write(dir);
+  }
+  // Accessors without a bufferView are zeros (glTF 2.0 §3.6.2.1): TEXCOORD_0 here, and the
+  // indices of a second primitive (all 0: a triangle of no area beside minimal's plane).
+  variant("attribute_no_buffer_view", [&](json& d) { d["accessors"][int(prim(d)["attributes"]["TEXCOORD_0"])].erase("bufferView"); });
+  variant("indices_no_buffer_view", [&](json& d) {
+    json zero = d["accessors"][int(prim(d)["indices"])];
+    zero.erase("bufferView");
+    d["accessors"].push_back(zero);
+    json second = prim(d);
+    second["indices"] = d["accessors"].size() - 1;
+    d["meshes"][0]["primitives"].push_back(second);
+  });
+  // Cameras: a yfov that is below pi as a double and pi as a float; legal ones that leave no image.
+  variant("camera_yfov_float_pi", [&](json& d) { d["cameras"][0]["perspective"]["yfov"] = 3.14159265; });
+  variant("camera_yfov_3_14159", [&](json& d) { d["cameras"][0]["perspective"]["yfov"] = 3.14159; });
+  variant("camera_znear_tiny", [&](json& d) { d["cameras"][0]["perspective"]["znear"] = 1e-30; });
+  // The automatic view of extreme sizes and places: minimal's plane alone (no camera, no light),
+  // scaled or moved.
+  const std::pair<const char*, std::function<void(json&)>> placed[] = {
+      {"extent_1e19", [](json& n) { n["scale"] = {1e19, 1e19, 1e19}; }},
+      {"extent_1e-19", [](json& n) { n["scale"] = {1e-19, 1e-19, 1e-19}; }},
+      {"offset_1e7", [](json& n) { n["translation"] = {1e7, 0.0, 0.0}; }},
+      {"offset_5e6", [](json& n) { n["translation"] = {5e6, 0.0, 0.0}; }},
+      {"offset_1e6", [](json& n) { n["translation"] = {1e6, 0.0, 0.0}; }},
+      // Rotated half a turn about X: the plane faces down, away from a view from above.
+      {"back_faces_only", [](json& n) { n["rotation"] = {1.0, 0.0, 0.0, 0.0}; }}};
+  for (const auto& [name, place] : placed)
+    variant(name, [&](json& d) {
+      place(d["nodes"][2]);
+      d["scenes"][0]["nodes"] = {2};
+    });
+  // Lights: one of a range too small to light anything; a scene whose only light is left out.
+  variant("light_range_tiny", [&](json& d) { d["extensions"]["KHR_lights_punctual"]["lights"][0]["range"] = 1e-30; });
+  variant("only_light_left_out", [&](json& d) { d["extensions"]["KHR_lights_punctual"]["lights"][0]["intensity"] = -1.0; });
+  // Material factors that are finite floats and break the lighting's arithmetic.
+  variant("material_huge_base_color", [&](json& d) {
+    d["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {3e38, 3e38, 3e38, 1.0};
+  });
+  variant("material_huge_specular", [&](json& d) {
+    d["materials"][0]["extensions"]["KHR_materials_specular"]["specularColorFactor"] = {1e36, 1e36, 1e36};
+  });
+  // 100 000 unbounded point lights from a small file: five levels of nodes listing the next ten times.
+  variant("lights_100000", [&](json& d) {
+    const size_t first = d["nodes"].size();
+    for (size_t i = 0; i < 5; ++i) d["nodes"].push_back({{"name", "x10_" + std::to_string(i)}, {"children", json::array()}});
+    for (size_t i = 0; i < 5; ++i)
+      for (int k = 0; k < 10; ++k) d["nodes"][first + i]["children"].push_back(first + i + 1);
+    d["nodes"].push_back({{"name", "bulb"}, {"translation", {0.0, 1.0, 0.0}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    d["scenes"][0]["nodes"] = {0, 2, first};
+  });
+  // Files and messages.
+  variant("buffer_dev_zero", [&](json& d) { d["buffers"][0]["uri"] = "/dev/zero"; });
+  {
+    // A PNG header that claims 100000 x 100000 and has no pixel data.
+    std::vector<uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+    auto crc32 = [](const std::vector<uint8_t>& p) {
+      uint32_t c = 0xFFFFFFFFu;
+      for (uint8_t v : p) {
+        c ^= v;
+        for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
+      }
+      return ~c;
+    };
+    auto chunk = [&](const char* type, std::vector<uint8_t> data) {
+      for (int i = 3; i >= 0; --i) png.push_back(uint8_t(data.size() >> (8 * i)));
+      std::vector<uint8_t> td(type, type + 4);
+      td.insert(td.end(), data.begin(), data.end());
+      png.insert(png.end(), td.begin(), td.end());
+      uint32_t c = crc32(td);
+      for (int i = 3; i >= 0; --i) png.push_back(uint8_t(c >> (8 * i)));
+    };
+    std::vector<uint8_t> ihdr;
+    for (uint32_t v : {100000u, 100000u})
+      for (int i = 3; i >= 0; --i) ihdr.push_back(uint8_t(v >> (8 * i)));
+    ihdr.insert(ihdr.end(), {8, 2, 0, 0, 0});
+    chunk("IHDR", ihdr);
+    chunk("IEND", {});
+    write_bytes(dir / "huge_header.png", png);
+    variant("image_huge_header", [&](json& d) {
+      d["images"] = json::array({{{"uri", "huge_header.png"}}});
+      d["textures"] = json::array({{{"source", 0}}});
+      d["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
+    });
+  }
+  // One image file named by 16 images: decoded and counted once.
+  variant("image_shared_16", [&](json& d) {
+    d["images"] = json::array();
+    d["textures"] = json::array();
+    for (int i = 0; i < 16; ++i) {
+      d["images"].push_back({{"uri", "stripes.png"}});
+      d["textures"].push_back({{"source", i}});
+    }
+    d["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 15}};
+  });
+  {
+    // A .glb whose JSON chunk is not JSON and holds bytes no terminal should be sent.
+    std::vector<uint8_t> out = {'g', 'l', 'T', 'F', 2, 0, 0, 0, 36, 0, 0, 0, 16, 0, 0, 0, 'J', 'S', 'O', 'N',
+                                '{', 0x1B, '[', '2', 'J', 0x07, 0xFF, 0x00, 0x9B, 'x', 0x01, 0x02, 0x03, '}', ' ', ' '};
+    write_bytes(dir / "glb_bad_json.glb", out);
+  }
+}
+
 }  // namespace
 
 void write_test_data(const fs::path& dir) {
@@ -453,6 +611,7 @@ void write_test_data(const fs::path& dir) {
   }
   write_real_model_cases(dir);
   write_hostile_cases(dir);
+  write_any_scene_cases(dir);
 }
 
 }  // namespace scenegen
