@@ -137,6 +137,9 @@ struct SceneLimits {
   std::size_t max_node_visits = 4'000'000;                // nodes visited, meshes or not
   std::size_t max_lights = 100'000;                      // light nodes after expansion
   std::size_t max_cameras = 10'000;                      // camera nodes after expansion
+  // The lights' work: each light counts the share of the scene its range reaches (1 without a
+  // range, as for the sun), for a frame shades every pixel a light reaches.
+  double max_light_reach = 4096;
   std::size_t max_node_extras = 100'000;                  // nodes with extras.lightpass
   std::size_t max_name_bytes = std::size_t(1) << 28;      // names and extras copied (256 MiB)
   std::size_t max_vertices = std::size_t(1) << 26;       // 64 M vertices (3 GiB)
