@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <iterator>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
@@ -525,4 +526,34 @@ TEST(Scene, TheTotalTexelBudgetIsNamed) {
                                             "(64 texels) that is more than the loader accepts in all (70 texels"))
       << all_warnings(tight);
   EXPECT_FALSE(enough.textures.at(enough.materials.at(0).emissive_texture).fallback) << all_warnings(enough);
+}
+
+// An index accessor without a bufferView (zeros: glTF allows it, tinygltf refuses it) is taken
+// out of the JSON before tinygltf reads it; in a .glb the file is rebuilt around the new JSON.
+// indices_no_buffer_view.gltf as a .glb (its buffer the BIN chunk) loads like the .gltf: the
+// plane's primitive drawn, the zero one counted as no area and left out.
+TEST(Scene, IndicesWithoutABufferViewLoadFromAGlbToo) {
+  nlohmann::json doc = nlohmann::json::parse(std::ifstream(from_root("tests/data/indices_no_buffer_view.gltf")));
+  doc["buffers"][0].erase("uri");
+  std::ifstream bin_file(from_root("tests/data/minimal.bin"), std::ios::binary);
+  std::vector<unsigned char> bin((std::istreambuf_iterator<char>(bin_file)), std::istreambuf_iterator<char>());
+  std::string text = doc.dump();
+  while (text.size() % 4) text += ' ';
+  while (bin.size() % 4) bin.push_back(0);
+  std::vector<unsigned char> glb = {'g', 'l', 'T', 'F'};
+  auto u32 = [&](std::uint32_t v) { for (int i = 0; i < 4; ++i) glb.push_back(static_cast<unsigned char>(v >> (8 * i))); };
+  u32(2);
+  u32(static_cast<std::uint32_t>(12 + 8 + text.size() + 8 + bin.size()));
+  u32(static_cast<std::uint32_t>(text.size()));
+  u32(0x4E4F534Au);
+  glb.insert(glb.end(), text.begin(), text.end());
+  u32(static_cast<std::uint32_t>(bin.size()));
+  u32(0x004E4942u);
+  glb.insert(glb.end(), bin.begin(), bin.end());
+  Scene s = load_scene_from_memory(glb, from_root("tests/data/indices_no_buffer_view.glb"));
+  Scene gltf = data("indices_no_buffer_view.gltf");
+  ASSERT_EQ(s.meshes.size(), 1u);
+  EXPECT_EQ(s.meshes[0].primitives.size(), 1u);
+  EXPECT_EQ(s.indices, gltf.indices);
+  EXPECT_EQ(s.meshes[0].primitives.size(), gltf.meshes[0].primitives.size());
 }
