@@ -185,6 +185,14 @@ foreach(c "extent_1e19|is 2.82843e.19 m across, where float lighting overflows: 
             --and $<TARGET_FILE:image_stats> ${SCENE_OUT}/${file}.png --matches ${SCENE_OUT}/offset_0.png)
   set_tests_properties(common.scene.auto_view_${file} PROPERTIES TIMEOUT 30 FIXTURES_REQUIRED scene_offset_0)
 endforeach()
+# Chapter 10's whole frame (its speckles were worst at 1e6 m): the same image as at the origin.
+add_test(NAME common.scene.auto_view_control_offset_0_10_frame
+  COMMAND $<TARGET_FILE:10_frame> --headless --size 160x90 --scene tests/data/offset_0.gltf --out ${SCENE_OUT}/offset_0_10.png)
+set_tests_properties(common.scene.auto_view_control_offset_0_10_frame PROPERTIES TIMEOUT 30 FIXTURES_SETUP scene_offset_0_10)
+add_test(NAME common.scene.auto_view_offset_1e6_10_frame
+  COMMAND ${EXPECT} 0 "lies 1e.06 m from the origin" -- $<TARGET_FILE:10_frame> --headless --size 160x90 --scene tests/data/offset_1e6.gltf
+          --out ${SCENE_OUT}/offset_1e6_10.png --and $<TARGET_FILE:image_stats> ${SCENE_OUT}/offset_1e6_10.png --matches ${SCENE_OUT}/offset_0_10.png)
+set_tests_properties(common.scene.auto_view_offset_1e6_10_frame PROPERTIES TIMEOUT 30 FIXTURES_REQUIRED scene_offset_0_10)
 # Every face turned away from the automatic view: it looks from the side that sees them.
 scene_render_test(auto_view_sees_front_faces 0 "every face of back_faces_only.gltf faces away from the automatic view's usual side"
   sh -c "'${PS01}' --headless --size 160x90 --scene tests/data/back_faces_only.gltf --out '${SCENE_OUT}/back.png' && '$<TARGET_FILE:png_coverage>' '${SCENE_OUT}/back.png' --covered 0.07 0.08 --lit 40")
@@ -194,7 +202,7 @@ scene_render_test(light_range_tiny_is_left_out 0 "light 'light' is left out: its
 scene_render_test(only_light_left_out_gets_the_rig 0 "none of the scene's 1 lights can be used .each is named above.: using a default rig"
   sh -c "'${PS01}' --headless --size 160x90 --scene tests/data/only_light_left_out.gltf --out '${SCENE_OUT}/rig.png' 2>&1 && '$<TARGET_FILE:png_coverage>' '${SCENE_OUT}/rig.png' --covered 0.07 0.08 --lit 60")
 # Material factors past 1: clamped with the material named, in the chapters whose light cut-off they broke.
-foreach(p 01_forward 03_light_volumes 05_hdr)
+foreach(p 01_forward 03_light_volumes 05_hdr 10_frame)
   scene_render_test(material_huge_base_color_${p} 0 "material 'grey': baseColorFactor .3e.38, 3e.38, 3e.38, 1. reflects more than all the light: clamped to 1"
     $<TARGET_FILE:${p}> --headless --size 64x36 --scene tests/data/material_huge_base_color.gltf --out ${SCENE_OUT}/base_${p}.png)
   scene_render_test(material_huge_specular_${p} 0 "material 'grey': the specular colour .* reflects more than all the light: clamped to 1"
