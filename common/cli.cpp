@@ -127,7 +127,11 @@ Options parse_cli(int argc, const char* const* argv, const CliSpec& spec) {
     if (arg == "--help" || arg == "-h") throw UsageError("");
     else if (arg == "--headless") o.headless = true;
     else if (arg == "--size") { parse_size("--size", value(), o.width, o.height); o.size_given = true; }
-    else if (arg == "--scene") o.scene = value();
+    else if (arg == "--scene") {
+      o.scene = value();
+      // An empty name would resolve to the source root itself.
+      if (o.scene.empty()) throw UsageError("--scene needs a file name, not ''");
+    }
     else if (arg == "--view") { o.view = value(); o.view_given = true; }
     else if (arg == "--mode") {
       o.mode = value();
@@ -137,7 +141,11 @@ Options parse_cli(int argc, const char* const* argv, const CliSpec& spec) {
         for (const auto& m : spec.modes) known += " " + m;
         throw UsageError("unknown mode '" + o.mode + "'; modes:" + known);
       }
-    } else if (arg == "--out") o.out = value();
+    } else if (arg == "--out") {
+      o.out = value();
+      // An empty name would quietly mean the default (out/<program>.png).
+      if (o.out.empty()) throw UsageError("--out needs a file name, not '' (without --out: out/" + spec.program + ".png)");
+    }
     else if (arg == "--frames") { o.frames = parse_integer(arg, value(), 1, 1000000); o.frames_given = true; }
     else if (arg == "--bench") o.bench = true;
     else if (arg == "--check") o.check = true;

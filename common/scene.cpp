@@ -5,9 +5,11 @@
 #include "common/scene.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <functional>
@@ -17,7 +19,9 @@
 #include <numbers>
 #include <optional>
 #include <set>
+#include <iomanip>
 #include <sstream>
+#include <string_view>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -60,6 +64,8 @@ std::string number_text(double v) {
 std::string read_problem(const fs::path& path, std::vector<unsigned char>* out, std::size_t max_bytes) {
   std::error_code ec;
   auto status = fs::status(path, ec);
+  // A loop of symbolic links, or a folder that may not be searched, is not "no such file".
+  if (ec && ec != std::errc::no_such_file_or_directory && ec != std::errc::not_a_directory) return ec.message();
   if (ec || !fs::exists(status)) return "no such file";
   if (fs::is_directory(status)) return "it is a directory";
   if (!fs::is_regular_file(status)) return "not a regular file";
@@ -78,14 +84,27 @@ std::string read_problem(const fs::path& path, std::vector<unsigned char>* out, 
 // 2^63 bytes (std::bad_alloc) and says "File not found" for a file it may not read.
 struct FileContext {
   std::size_t max_bytes = 0;
+  std::string base;  // the scene's folder, which tinygltf puts before every URI
   std::vector<std::string> problems;  // "cannot read <path>: <why>", in the order met
 };
 
-bool fs_exists(const std::string& path, void*) {
+bool fs_exists(const std::string& path, void* user) {
   std::error_code ec;
-  return fs::exists(path, ec);
+  if (fs::exists(path, ec)) return true;
+  // Said by us, not as tinygltf's "File not found": which path, and why.
+  std::vector<unsigned char> none;
+  static_cast<FileContext*>(user)->problems.push_back("cannot read '" + path + "': " + read_problem(path, &none, 0));
+  return false;
 }
-std::string fs_expand(const std::string& path, void*) { return path; }  // no ~ or $VAR expansion
+// No ~ or $VAR expansion. A URI that is an absolute path ("/dev/zero") names that path, as a
+// relative reference resolves against the file's folder (RFC 3986); tinygltf joins it to the folder.
+std::string fs_expand(const std::string& path, void* user) {
+  const std::string& base = static_cast<FileContext*>(user)->base;
+  if (!base.empty() && base.back() != '/' && path.size() > base.size() + 1 && path.compare(0, base.size(), base) == 0 &&
+      path[base.size()] == '/' && path[base.size() + 1] == '/')
+    return path.substr(base.size() + 1);
+  return path;
+}
 bool fs_read(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
   std::string why = read_problem(path, out, static_cast<FileContext*>(user)->max_bytes);
   if (why.empty()) return true;
@@ -107,6 +126,11 @@ struct ImageContext {
   SceneLimits limits;
   std::map<int, std::string> problems;   // image index -> why it is empty
   std::vector<std::string> converted;    // 16-bit images read as 8 bits
+  // Images whose bytes equal an earlier image's (one file named by many images): decoded and
+  // counted once, the later ones left empty and pointing at the first.
+  std::map<std::pair<std::size_t, std::size_t>, int> first_of_content;  // (size, hash) -> image
+  std::map<int, int> same_as;
+  std::size_t total_texels = 0;          // of the distinct images decoded so far
 };
 
 bool load_image(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
@@ -132,7 +156,29 @@ bool load_image(tinygltf::Image* image, const int index, std::string* err, std::
   }
   image->image.clear();
   image->width = image->height = 0;
+  // The same bytes again: share the first decode. (A 64-bit hash: a collision, which only a
+  // file made for it could cause, shows one of its images in place of another.)
+  if (size > 0) {
+    const auto key = std::make_pair(std::size_t(size), std::hash<std::string_view>{}(
+                                                           std::string_view(reinterpret_cast<const char*>(bytes), std::size_t(size))));
+    auto [it, fresh] = ctx.first_of_content.emplace(key, index);
+    if (!fresh) {
+      ctx.same_as[index] = it->second;
+      return true;
+    }
+  }
   int w = 0, h = 0, channels = 0;
+  // stb_image refuses a PNG past 2^30 bytes as "unknown image type": its header says the size.
+  if (size >= 24 && std::memcmp(bytes, "\x89PNG\r\n\x1A\n", 8) == 0 && std::memcmp(bytes + 12, "IHDR", 4) == 0) {
+    auto be32 = [&](int at) { return std::uint32_t(bytes[at]) << 24 | std::uint32_t(bytes[at + 1]) << 16 | std::uint32_t(bytes[at + 2]) << 8 | bytes[at + 3]; };
+    const std::uint32_t pw = be32(16), ph = be32(20);
+    if (pw > std::uint32_t(limits.max_image_side) || ph > std::uint32_t(limits.max_image_side) ||
+        std::uint64_t(pw) * ph > limits.max_image_texels) {
+      ctx.problems[index] = "it is " + std::to_string(pw) + "x" + std::to_string(ph) + ", more than the loader accepts (" +
+                            std::to_string(limits.max_image_side) + " a side, " + std::to_string(limits.max_image_texels) + " texels)";
+      return true;
+    }
+  }
   if (size <= 0 || !stbi_info_from_memory(bytes, size, &w, &h, &channels)) {
     const char* why = stbi_failure_reason();
     ctx.problems[index] = std::string("not an image stb_image can read (") + (why ? why : "unknown format") + ")";
@@ -145,6 +191,14 @@ bool load_image(tinygltf::Image* image, const int index, std::string* err, std::
                           std::to_string(limits.max_image_texels) + " texels)";
     return true;
   }
+  const std::size_t texels = std::size_t(w) * std::size_t(h);
+  if (texels > limits.max_total_texels - std::min(limits.max_total_texels, ctx.total_texels)) {
+    ctx.problems[index] = "it is " + std::to_string(w) + "x" + std::to_string(h) + ", and with the scene's other images (" +
+                          std::to_string(ctx.total_texels) + " texels) that is more than the loader accepts in all (" +
+                          std::to_string(limits.max_total_texels) + " texels, each distinct image counted once)";
+    return true;
+  }
+  ctx.total_texels += texels;
   bool sixteen = stbi_is_16_bit_from_memory(bytes, size);
   stbi_uc* pixels = stbi_load_from_memory(bytes, size, &w, &h, &channels, 4);  // 16-bit: converted to 8
   if (!pixels) {
@@ -189,6 +243,68 @@ const std::set<std::string>& supported_extensions() {
   return s;
 }
 
+// Index accessors without a bufferView, taken out of the JSON before tinygltf sees them:
+// (glTF mesh, primitive) -> the accessor. glTF allows an accessor without one (all zeros);
+// tinygltf refuses it where it holds indices.
+using IndexFixups = std::map<std::pair<int, int>, int>;
+
+// Reads the JSON before tinygltf does, for what tinygltf gets wrong first: a compressed mesh's
+// accessors have no bufferView (Draco) or its buffer no data (meshopt's fallback), and tinygltf
+// fails on those with a message of its own before extensionsRequired could name the
+// extension. JSON that does not parse is left to tinygltf, which says where. `glb`: the whole
+// .glb when the JSON came from one, rebuilt around the new JSON when it changes.
+IndexFixups check_before_tinygltf(const unsigned char* text, std::size_t size, const fs::path& path,
+                                  const std::vector<unsigned char>* glb, std::vector<unsigned char>& rewritten) {
+  IndexFixups fixups;
+  nlohmann::json doc = nlohmann::json::parse(text, text + size, nullptr, false);
+  if (doc.is_discarded() || !doc.is_object()) return fixups;
+  if (auto it = doc.find("extensionsRequired"); it != doc.end() && it->is_array())
+    for (const auto& e : *it)
+      if (e.is_string() && !supported_extensions().count(e.get<std::string>()))
+        throw Error("cannot load scene '" + path.string() + "': it requires the extension " + e.get<std::string>() +
+                    ", which lightpass does not support" +
+                    (e == "KHR_draco_mesh_compression" || e == "EXT_meshopt_compression" || e == "KHR_meshopt_compression"
+                         ? " (a compressed mesh: export it uncompressed)"
+                         : ""));
+  auto accessors = doc.find("accessors");
+  auto meshes = doc.find("meshes");
+  if (accessors == doc.end() || !accessors->is_array() || meshes == doc.end() || !meshes->is_array()) return fixups;
+  for (std::size_t m = 0; m < meshes->size(); ++m) {
+    auto& mesh = (*meshes)[m];
+    if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+    auto& prims = mesh["primitives"];
+    for (std::size_t p = 0; p < prims.size(); ++p) {
+      auto& prim = prims[p];
+      if (!prim.is_object() || !prim.contains("indices") || !prim["indices"].is_number_unsigned()) continue;
+      const std::uint64_t a = prim["indices"].get<std::uint64_t>();
+      if (a >= accessors->size() || !(*accessors)[a].is_object() || (*accessors)[a].contains("bufferView")) continue;
+      fixups[{int(m), int(p)}] = int(a);
+      prim.erase("indices");
+    }
+  }
+  if (fixups.empty()) return fixups;
+  std::string json = doc.dump();
+  if (!glb) {
+    rewritten.assign(json.begin(), json.end());
+    return fixups;
+  }
+  // A .glb: header (magic, version, length), the JSON chunk (padded with spaces), the rest as it was.
+  while (json.size() % 4) json += ' ';
+  std::uint32_t old_json = 0;
+  std::memcpy(&old_json, glb->data() + 12, 4);
+  const std::size_t rest = std::min<std::size_t>(glb->size(), 20 + std::size_t(old_json));
+  const std::size_t total = 20 + json.size() + (glb->size() - rest);
+  if (total > std::numeric_limits<std::uint32_t>::max()) return {};
+  auto u32 = [&](std::uint32_t v) { for (int i = 0; i < 4; ++i) rewritten.push_back(static_cast<unsigned char>(v >> (8 * i))); };
+  rewritten.assign(glb->begin(), glb->begin() + 8);
+  u32(static_cast<std::uint32_t>(total));
+  u32(static_cast<std::uint32_t>(json.size()));
+  u32(0x4E4F534Au);  // "JSON"
+  rewritten.insert(rewritten.end(), json.begin(), json.end());
+  rewritten.insert(rewritten.end(), glb->begin() + std::ptrdiff_t(rest), glb->end());
+  return fixups;
+}
+
 // Reads accessor elements as floats (or as indices), checking every byte it touches, so a
 // malformed file becomes an error message rather than an out-of-bounds read.
 class AccessorReader {
@@ -198,15 +314,18 @@ class AccessorReader {
     if (index < 0 || index >= static_cast<int>(m.accessors.size())) fail(name + " does not exist");
     acc_ = &m.accessors[index];
     if (acc_->sparse.isSparse) fail(name + " is sparse; sparse accessors are not supported");
-    if (acc_->bufferView < 0 || acc_->bufferView >= static_cast<int>(m.bufferViews.size()))
-      fail(name + " has no buffer view (a compressed mesh? see extensionsRequired)");
+    components_ = tinygltf::GetNumComponentsInType(acc_->type);
+    component_bytes_ = tinygltf::GetComponentSizeInBytes(acc_->componentType);
+    if (components_ <= 0 || component_bytes_ <= 0) fail(name + " has an unknown type");
+    name_ = name;
+    // glTF: an accessor without a bufferView holds zeros (data_ stays null).
+    if (acc_->bufferView < 0) return;
+    if (acc_->bufferView >= static_cast<int>(m.bufferViews.size()))
+      fail(name + ": its bufferView " + std::to_string(acc_->bufferView) + " does not exist");
     const auto& view = m.bufferViews[acc_->bufferView];
     if (view.buffer < 0 || view.buffer >= static_cast<int>(m.buffers.size()))
       fail(name + ": buffer view " + std::to_string(acc_->bufferView) + " has no buffer");
     const auto& buffer = m.buffers[view.buffer];
-    components_ = tinygltf::GetNumComponentsInType(acc_->type);
-    component_bytes_ = tinygltf::GetComponentSizeInBytes(acc_->componentType);
-    if (components_ <= 0 || component_bytes_ <= 0) fail(name + " has an unknown type");
     const std::size_t elem = std::size_t(components_) * std::size_t(component_bytes_);
     stride_ = view.byteStride ? view.byteStride : elem;
     if (stride_ < elem)
@@ -224,13 +343,16 @@ class AccessorReader {
            std::to_string(acc_->bufferView) + " or its buffer ('" + buffer.uri.substr(0, 64) + "', " +
            std::to_string(buffer.data.size()) + " bytes)");
     data_ = buffer.data.data() + view.byteOffset + acc_->byteOffset;
-    name_ = name;
   }
   size_t count() const { return acc_->count; }
   int components() const { return components_; }
   const std::string& name() const { return name_; }
 
+  int type() const { return acc_->type; }
+  bool zeros() const { return data_ == nullptr; }  // no bufferView: every element is 0
+
   float component(size_t i, int c) const {
+    if (!data_) return 0;
     const unsigned char* p = data_ + i * stride_ + std::size_t(c) * std::size_t(component_bytes_);
     switch (acc_->componentType) {
       case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, p, 4); return f; }
@@ -244,6 +366,12 @@ class AccessorReader {
     }
   }
   std::uint32_t index(size_t i) const {
+    if (!data_) {
+      if (acc_->componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && acc_->componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+          acc_->componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+        fail(name_ + ": indices must be unsigned byte, short or int");
+      return 0;
+    }
     const unsigned char* p = data_ + i * stride_;
     switch (acc_->componentType) {
       case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return *p;
@@ -319,8 +447,9 @@ struct UvTransform {
 
 class Loader {
  public:
-  Loader(const tinygltf::Model& m, Scene& s, const ImageContext& images, const FileContext& files, const SceneLimits& limits)
-      : m_(m), s_(s), images_(images), files_(files), limits(limits) {}
+  Loader(const tinygltf::Model& m, Scene& s, const ImageContext& images, const FileContext& files, const SceneLimits& limits,
+         const IndexFixups& fixups)
+      : m_(m), s_(s), images_(images), files_(files), limits(limits), fixups_(fixups) {}
 
   void load() {
     note_unsupported_document();
@@ -342,18 +471,33 @@ class Loader {
     if (scene.extras.Has("lightpass")) {
       const auto& lp = scene.extras.Get("lightpass");
       if (lp.Has("ambient")) s_.ambient = number3(lp.Get("ambient"), glm::vec3(0));
+      s_.lightpass_json = json_text(lp).dump();
       if (!finite(s_.ambient) || glm::any(glm::lessThan(s_.ambient, glm::vec3(0))))
         throw Error(file() + ": the scene's extras.lightpass.ambient must be three finite numbers >= 0");
     }
     check_expansion(scene.nodes);
     for (int root : scene.nodes) visit(root, glm::mat4(1), 0);
-    std::size_t drawable = 0;
-    for (const auto& inst : s_.instances) drawable += s_.meshes[inst.mesh].primitives.size();
-    if (drawable == 0) {
+    // Triangles, not primitives: a primitive of no indices, or of triangles that all have zero
+    // area (every POSITION the same), draws nothing, and a blank image must not pass silently.
+    std::vector<std::optional<std::pair<std::size_t, std::size_t>>> counted(s_.meshes.size());
+    std::size_t triangles = zero_area_triangles_, with_area = 0;
+    for (const auto& inst : s_.instances) {
+      auto& c = counted[std::size_t(inst.mesh)];
+      if (!c) c = triangle_counts(s_.meshes[std::size_t(inst.mesh)]);
+      triangles += c->first;
+      with_area += c->second;
+    }
+    if (with_area == 0) {
       std::string why = skipped_primitives_ ? " (" + std::to_string(skipped_primitives_) + " primitives are points or lines, which are skipped)" : "";
+      if (triangles > 0) why = " (its " + std::to_string(triangles) + " triangles all have zero area: their corners coincide or lie on a line)";
       throw Error(file() + ": the scene has no triangles to draw" + why);
     }
     compute_bounds();
+    rebase_far_scene();
+    rescale_extreme_scene();
+    usable_depth_ranges();
+    drop_lights_of_no_range();
+    bound_light_work();
     add_auto_view();
     add_default_lights();
     report_unsupported();
@@ -367,6 +511,20 @@ class Loader {
     glm::vec3 r;
     for (int i = 0; i < 3; ++i) r[i] = static_cast<float>(v.Get(i).GetNumberAsDouble());
     return r;
+  }
+
+  // A mesh's triangles, and those of them with an area (in the mesh's own space).
+  std::pair<std::size_t, std::size_t> triangle_counts(const Mesh& mesh) const {
+    std::size_t all = 0, area = 0;
+    for (const auto& p : mesh.primitives)
+      for (std::uint32_t t = p.first_index; t + 2 < p.first_index + p.index_count; t += 3) {
+        // In double: a model a few 1e-20 m across has areas that underflow a float.
+        const glm::dvec3 a = s_.vertices[s_.indices[t]].position, b = s_.vertices[s_.indices[t + 1]].position,
+                         c = s_.vertices[s_.indices[t + 2]].position;
+        ++all;
+        area += glm::any(glm::notEqual(glm::cross(b - a, c - a), glm::dvec3(0)));
+      }
+    return {all, area};
   }
 
   // What the file uses and lightpass does not do, said once for the whole file.
@@ -411,7 +569,13 @@ class Loader {
     int source = -1;
     if (gltf_index < static_cast<int>(m_.textures.size())) {
       source = m_.textures[gltf_index].source;
+      if (auto same = images_.same_as.find(source); same != images_.same_as.end()) source = same->second;
       if (source >= 0 && source < static_cast<int>(m_.images.size())) img = &m_.images[source];
+    }
+    // Textures of one image (or of images of the same bytes) share one Scene texture.
+    if (img) {
+      key = std::make_pair(-1 - source, srgb);
+      if (auto it = texture_of_key_.find(key); it != texture_of_key_.end()) return texture_of_key_[std::make_pair(gltf_index, srgb)] = it->second;
     }
     t.name = img ? (img->uri.empty() ? (img->name.empty() ? "image " + std::to_string(source) : img->name) : img->uri)
                  : "texture " + std::to_string(gltf_index);
@@ -441,7 +605,7 @@ class Loader {
       warn("material '" + material_name + "': texture '" + t.name + "' could not be loaded (" + why + "): using a fallback " +
            (srgb ? "checker" : "flat normal map"));
     }
-    texture_of_key_[key] = static_cast<int>(s_.textures.size());
+    texture_of_key_[key] = texture_of_key_[std::make_pair(gltf_index, srgb)] = static_cast<int>(s_.textures.size());
     s_.textures.push_back(std::move(t));
     return static_cast<int>(s_.textures.size() - 1);
   }
@@ -533,6 +697,19 @@ class Loader {
     if (!finite(mat.specular_color) || glm::any(glm::lessThan(mat.specular_color, glm::vec3(0)))) bad("the specular colour");
     if (!finite(mat.roughness) || mat.roughness < 0) bad("roughnessFactor");
     if (!finite(mat.normal_scale)) bad("normalTexture.scale");
+    // Finite but past what a surface reflects (glTF: baseColorFactor in [0, 1]; the specular
+    // extension clamps its reflectance to 1): the chapters' light cut-offs divide by the
+    // largest reflectance, and 3e38 leaves them nothing. Clamped, the material named.
+    auto clamp_to_one = [&](auto& colour, const char* what) {
+      using V = std::remove_cvref_t<decltype(colour)>;
+      if (!glm::any(glm::greaterThan(colour, V(1)))) return;
+      std::string was;
+      for (int i = 0; i < colour.length(); ++i) was += (i ? ", " : "") + number_text(colour[i]);
+      warn("material '" + label + "': " + what + " (" + was + ") reflects more than all the light: clamped to 1");
+      colour = glm::min(colour, V(1));
+    };
+    clamp_to_one(mat.base_color, "baseColorFactor");
+    clamp_to_one(mat.specular_color, "the specular colour (specularColorFactor times specularFactor)");
     return mat;
   }
 
@@ -682,13 +859,15 @@ class Loader {
         ++skipped_primitives_;
         continue;
       }
-      out.primitives.push_back(primitive(prim, mode, where));
+      auto fixed = fixups_.find({gltf_mesh, int(p)});
+      Primitive drawn = primitive(prim, mode, where, fixed == fixups_.end() ? prim.indices : fixed->second);
+      if (drawn.index_count > 0) out.primitives.push_back(drawn);  // none: nothing to draw
     }
     s_.meshes.push_back(std::move(out));
     return static_cast<int>(s_.meshes.size() - 1);
   }
 
-  Primitive primitive(const tinygltf::Primitive& prim, int mode, const std::string& where) {
+  Primitive primitive(const tinygltf::Primitive& prim, int mode, const std::string& where, int indices) {
     auto attr = [&](const char* name) { auto it = prim.attributes.find(name); return it == prim.attributes.end() ? -1 : it->second; };
     for (const auto& [name, accessor] : prim.attributes)
       if (name != "POSITION" && name != "NORMAL" && name != "TEXCOORD_0" && name != "TANGENT")
@@ -698,15 +877,32 @@ class Loader {
     if (prim.extensions.count("KHR_draco_mesh_compression")) unsupported_once("extension KHR_draco_mesh_compression");
     if (attr("POSITION") < 0) throw Error(where + ": no POSITION attribute");
     AccessorReader pos(m_, attr("POSITION"), where + " POSITION");
+    require_type(pos, "POSITION", TINYGLTF_TYPE_VEC3, where);
     const size_t n = pos.count();
     if (n > limits.max_vertices - std::min(limits.max_vertices, s_.vertices.size()))
       throw Error(where + ": POSITION " + pos.name() + " has " + std::to_string(n) + " vertices; with the scene's " +
                   std::to_string(s_.vertices.size()) + " that is more than the loader accepts (" + std::to_string(limits.max_vertices) + ")");
+    int material = prim.material >= 0 && prim.material < default_material_ ? prim.material : default_material_;
+    // Zeros cost the file nothing (no bufferView): a POSITION or indices of zeros make only
+    // triangles of no area, so they are counted as such, never expanded into memory.
+    std::optional<std::size_t> zero_elements;
+    if (pos.zeros()) zero_elements = n;
+    if (indices >= 0) {
+      AccessorReader idx(m_, indices, where + " indices");
+      require_type(idx, "indices", TINYGLTF_TYPE_SCALAR, where);
+      if (pos.zeros() || idx.zeros()) zero_elements = idx.count();
+    }
+    if (zero_elements) {
+      const std::size_t e = *zero_elements;
+      zero_area_triangles_ += mode == TINYGLTF_MODE_TRIANGLES ? e / 3 : e > 2 ? e - 2 : 0;
+      return Primitive{.first_index = static_cast<std::uint32_t>(s_.indices.size()), .index_count = 0, .material = material};
+    }
     std::vector<Vertex> verts(n);
     for (size_t i = 0; i < n; ++i) verts[i].position = pos.vec<3>(i);
     auto read = [&](const char* name, auto assign) {
       if (attr(name) < 0) return false;
       AccessorReader r(m_, attr(name), where + " " + name);
+      require_type(r, name, std::string(name) == "TANGENT" ? TINYGLTF_TYPE_VEC4 : std::string(name) == "NORMAL" ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC2, where);
       if (r.count() != n) throw Error(where + ": " + name + " (" + r.name() + ") has " + std::to_string(r.count()) + " elements but POSITION has " + std::to_string(n));
       for (size_t i = 0; i < n; ++i) assign(verts[i], r, i);
       return true;
@@ -720,8 +916,9 @@ class Loader {
 
     // Indices of this primitive's own vertices, as triangles.
     std::vector<std::uint32_t> local;
-    if (prim.indices >= 0) {
-      AccessorReader idx(m_, prim.indices, where + " indices");
+    if (indices >= 0) {
+      AccessorReader idx(m_, indices, where + " indices");
+      require_type(idx, "indices", TINYGLTF_TYPE_SCALAR, where);
       if (idx.count() > limits.max_indices)
         throw Error(where + ": indices " + idx.name() + " has " + std::to_string(idx.count()) + " elements, more than the loader accepts (" +
                     std::to_string(limits.max_indices) + ")");
@@ -751,7 +948,6 @@ class Loader {
     too_many(has_normal ? n : local.size(), local.size());
     if (local.size() % 3) throw Error(where + ": " + std::to_string(local.size()) + " indices is not a whole number of triangles");
 
-    int material = prim.material >= 0 && prim.material < default_material_ ? prim.material : default_material_;
     if (has_uv && !uv_transform_[material].identity())
       for (auto& v : verts) v.uv = uv_transform_[material].apply(v.uv);
     if (!has_normal) {
@@ -779,6 +975,25 @@ class Loader {
     out.material = material;
     if (!has_tangent) generate_tangents(s_.vertices, s_.indices, out.first_index, out.index_count, has_uv);
     return out;
+  }
+
+  // glTF fixes each attribute's type: a POSITION of VEC2 or SCALAR would read as points on a
+  // plane or a line (nothing to see), so it is refused by name rather than drawn.
+  void require_type(const AccessorReader& r, const std::string& what, int type, const std::string& where) const {
+    if (r.type() == type) return;
+    auto type_name = [](int t) -> std::string {
+      switch (t) {
+        case TINYGLTF_TYPE_SCALAR: return "SCALAR";
+        case TINYGLTF_TYPE_VEC2: return "VEC2";
+        case TINYGLTF_TYPE_VEC3: return "VEC3";
+        case TINYGLTF_TYPE_VEC4: return "VEC4";
+        case TINYGLTF_TYPE_MAT2: return "MAT2";
+        case TINYGLTF_TYPE_MAT3: return "MAT3";
+        case TINYGLTF_TYPE_MAT4: return "MAT4";
+        default: return "type " + std::to_string(t);
+      }
+    };
+    throw Error(where + ": " + what + " (" + r.name() + ") is " + type_name(r.type()) + "; glTF requires " + type_name(type));
   }
 
   // glTF 2.0 §3.7.2.1: strip triangle i is (i, i+1+i%2, i+2-i%2), fan triangle i (i+1, i+2, 0),
@@ -817,9 +1032,23 @@ class Loader {
     if (p.zfar != 0 && !(p.zfar > p.znear)) bad("zfar " + number_text(p.zfar) + " must be greater than znear " + number_text(p.znear));
     if (node.rotation.size() == 4 && node.rotation[0] == 0 && node.rotation[1] == 0 && node.rotation[2] == 0 && node.rotation[3] == 0)
       bad("its node's rotation is the zero quaternion");
+    // The projection is built in float: a yfov below pi as a double can be pi as a float.
+    if (!(float(p.yfov) < std::numbers::pi_v<float>)) {
+      std::ostringstream y;
+      y << std::setprecision(10) << p.yfov;
+      bad("yfov " + y.str() + " is below pi, but rounds to pi as a float (the projection's number type)");
+    }
     Camera cam{.name = name, .world = world, .yfov = float(p.yfov), .znear = float(p.znear),
                .zfar = p.zfar > 0 ? float(p.zfar) : std::max(1000.f, float(p.znear) * 1e4f)};
     if (!(cam.zfar > cam.znear) || !std::isfinite(cam.zfar)) bad("znear and zfar do not give a depth range in float");
+    // Legal, but no image: near pi the scene shrinks to a speck in the middle (the depth range
+    // is checked with the scene's bounds: usable_depth_ranges()).
+    constexpr float kWidestYfov = 2.8f;  // 160 degrees
+    if (cam.yfov > kWidestYfov) {
+      warn("camera '" + name + "': yfov " + number_text(p.yfov) + " leaves the scene a speck in the middle of the image; using " +
+           number_text(kWidestYfov) + " (160 degrees)");
+      cam.yfov = kWidestYfov;
+    }
     // Remove any scale from the node so view() is a rigid transform.
     for (int i = 0; i < 3; ++i) {
       glm::vec3 axis(cam.world[i]);
@@ -934,18 +1163,23 @@ class Loader {
     for (const auto& c : s_.cameras)
       if (c.name == kAutoView) return;
     const glm::vec3 centre = 0.5f * (s_.bounds_min + s_.bounds_max);
-    float radius = 0.5f * glm::length(s_.bounds_max - s_.bounds_min);
+    // The radius in double: a float's squares overflow past 1e19 m and underflow below 1e-19 m.
+    float radius = static_cast<float>(0.5 * glm::length(glm::dvec3(s_.bounds_max) - glm::dvec3(s_.bounds_min)));
     if (!(radius > 0)) radius = 1;
     Camera cam;
     cam.name = kAutoView;
     cam.yfov = 0.8f;
     const float distance = radius / std::sin(0.5f * cam.yfov) * 1.05f;
-    const glm::vec3 back = glm::normalize(glm::vec3(0.45f, 0.35f, 1.f));  // camera +Z: from the centre towards the eye
+    const bool is_default = s_.cameras.empty();
+    glm::vec3 back = glm::normalize(glm::vec3(0.45f, 0.35f, 1.f));  // camera +Z: from the centre towards the eye
+    if (is_default) back = side_that_sees_front_faces(back);
+    const glm::vec3 up = std::abs(back.y) > 0.99f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
     const glm::vec3 eye = centre + back * distance;
-    cam.world = glm::inverse(glm::lookAt(eye, centre, glm::vec3(0, 1, 0)));
+    cam.world = glm::inverse(glm::lookAt(eye, centre, up));
     cam.znear = std::max(distance - radius, distance * 1e-3f) * 0.5f;
     cam.zfar = (distance + radius) * 2.f;
-    bool is_default = s_.cameras.empty();
+    if (!finite(cam.world) || !(cam.zfar > cam.znear) || !std::isfinite(cam.zfar))
+      throw Error(file() + ": the scene is too large for a view in float (radius " + number_text(radius) + " m); scale it down");
     s_.cameras.push_back(cam);
     if (is_default) {
       std::ostringstream n;
@@ -955,13 +1189,148 @@ class Loader {
     }
   }
 
+  // Far from the origin a float's step is a visible part of the model (1 m at 1e7 m): the
+  // whole scene is moved so that its bounds are centred on the origin, as real viewers do.
+  // Each node's transform already holds its offset in float, so a single model is exact; the
+  // file's own vertex data cannot be made finer than the file stored it.
+  void rebase_far_scene() {
+    const glm::dvec3 lo(s_.bounds_min), hi(s_.bounds_max);
+    const glm::dvec3 centre = 0.5 * (lo + hi);
+    const double radius = 0.5 * glm::length(hi - lo), distance = glm::length(centre);
+    if (!(distance > 1e4 && distance > 1e3 * radius)) return;
+    const glm::vec3 shift(centre);
+    for (auto& i : s_.instances) i.model[3] -= glm::vec4(shift, 0);
+    for (auto& l : s_.lights) l.position -= shift;
+    for (auto& c : s_.cameras) c.world[3] -= glm::vec4(shift, 0);
+    for (auto& e : s_.node_extras) e.world[3] -= glm::vec4(shift, 0);
+    s_.bounds_min -= shift;
+    s_.bounds_max -= shift;
+    std::ostringstream n;
+    n << s_.path.filename().string() << " lies " << distance << " m from the origin, where float positions are coarse: "
+      << "moved by (" << -shift.x << ", " << -shift.y << ", " << -shift.z << ") to centre it";
+    s_.notes.push_back(n.str());
+  }
+
+  // The shaders square distances: a scene 1e-19 m across underflows float (its light is 0), one
+  // 1e19 m across overflows it. Outside [1e-6, 1e15] m the whole scene is scaled by a power of
+  // two (exact) to about 1 m, the lights' intensities by its square and ranges with it, so the
+  // image is the one the file describes. Said in a note.
+  void rescale_extreme_scene() {
+    const double radius = 0.5 * glm::length(glm::dvec3(s_.bounds_max) - glm::dvec3(s_.bounds_min));
+    if (!(radius > 0) || (radius >= 1e-6 && radius <= 1e15)) return;
+    const int exponent = -static_cast<int>(std::lround(std::log2(radius)));
+    const float s = std::ldexp(1.f, exponent);
+    const glm::mat4 scale = glm::scale(glm::mat4(1), glm::vec3(s));
+    for (auto& i : s_.instances) i.model = scale * i.model;
+    for (auto& e : s_.node_extras) e.world = scale * e.world;
+    for (auto& c : s_.cameras) {
+      c.world[3] = glm::vec4(glm::vec3(c.world[3]) * s, 1);
+      c.znear *= s;
+      c.zfar *= s;
+    }
+    for (auto& l : s_.lights) {
+      l.position *= s;
+      l.range *= s;
+      if (l.type != LightType::Directional) l.intensity *= s * s;  // the same irradiance at the scaled distance
+    }
+    s_.bounds_min *= s;
+    s_.bounds_max *= s;
+    std::ostringstream n;
+    n << s_.path.filename().string() << " is " << 2 * radius << " m across, where float lighting " << (radius < 1 ? "underflows" : "overflows")
+      << ": drawn scaled by 2^" << exponent << " (the lights' intensities and ranges with it: the same image)";
+    s_.notes.push_back(n.str());
+  }
+
+  // A far plane millions of near planes away leaves a 24-bit depth buffer no steps for the
+  // scene (past 2^24 znear everything lies at the far plane and the depth test passes nothing):
+  // the far plane is brought in to the scene's far side, then the near plane out, each said.
+  void usable_depth_ranges() {
+    constexpr float kDeepest = 1 << 20;  // zfar / znear
+    for (auto& c : s_.cameras) {
+      if (c.zfar / c.znear <= kDeepest) continue;
+      const float znear = c.znear, zfar = c.zfar;
+      float farthest = 0;
+      for (int k = 0; k < 8; ++k) {
+        const glm::vec3 corner((k & 1) ? s_.bounds_max.x : s_.bounds_min.x, (k & 2) ? s_.bounds_max.y : s_.bounds_min.y,
+                               (k & 4) ? s_.bounds_max.z : s_.bounds_min.z);
+        farthest = std::max(farthest, glm::length(corner - c.position()));
+      }
+      c.zfar = std::min(c.zfar, farthest * 1.01f);
+      if (!(c.zfar > c.znear)) c.zfar = zfar;
+      if (!(c.zfar / c.znear <= kDeepest)) c.znear = c.zfar / kDeepest;
+      warn("camera '" + c.name + "': znear " + number_text(znear) + " beside zfar " + number_text(zfar) +
+           " leaves the depth buffer no precision (everything would lie at the far plane); using znear " + number_text(c.znear) +
+           ", zfar " + number_text(c.zfar));
+    }
+  }
+
+  // A range of a millionth of the scene's size lights nothing that can be seen: left out, said.
+  void drop_lights_of_no_range() {
+    const float size = glm::length(s_.bounds_max - s_.bounds_min);
+    std::erase_if(s_.lights, [&](const Light& l) {
+      if (!(l.range > 0 && l.range < 1e-6f * size)) return false;
+      drop_light(l.name, "its range " + number_text(l.range) + " m is a millionth of the scene's size (" + number_text(size) +
+                             " m across) or less: it lights nothing");
+      return true;
+    });
+  }
+
+  // A small file can name 100 000 lights that each reach every pixel (a DAG of light nodes):
+  // the work a frame does for them is bounded here, in whole scenes lit, and said above 256.
+  void bound_light_work() {
+    const float size = glm::length(s_.bounds_max - s_.bounds_min);
+    double reach = 0;
+    for (const auto& l : s_.lights)
+      reach += l.type == LightType::Directional || !(l.range > 0) || !(size > 0) ? 1.0 : std::min(1.0, std::pow(2.0 * l.range / size, 2.0));
+    std::ostringstream text;
+    text << "its " << s_.lights.size() << " lights reach " << std::setprecision(3) << reach
+         << " times the whole scene (each light counts the share of the scene its range covers; without a range, all of it)";
+    if (reach > limits.max_light_reach)
+      throw Error(file() + ": " + text.str() + ", more work a frame than the loader accepts (" + number_text(limits.max_light_reach) +
+                  "); give the lights a range");
+    if (reach > 256) warn(text.str() + ": every pixel is shaded that many times, expect slow frames");
+  }
+
+  // Where the automatic view looks from: `preferred` (from the front, above, right) unless from
+  // there every face that is drawn one-sided (glTF's default) points away, and the image would
+  // be the background; then the octant that sees the most front-facing area, said in a note.
+  glm::vec3 side_that_sees_front_faces(glm::vec3 preferred) {
+    std::size_t work = 0;
+    for (const auto& inst : s_.instances)
+      for (const auto& p : s_.meshes[std::size_t(inst.mesh)].primitives) work += p.index_count / 3;
+    if (work > 20'000'000) return preferred;  // too many to weigh: keep the usual side
+    std::array<glm::vec3, 8> sides;
+    for (int k = 0; k < 8; ++k) sides[std::size_t(k)] = preferred * glm::vec3((k & 1) ? -1 : 1, (k & 2) ? -1 : 1, (k & 4) ? -1 : 1);
+    std::array<double, 8> seen{};
+    for (const auto& inst : s_.instances)
+      for (const auto& p : s_.meshes[std::size_t(inst.mesh)].primitives) {
+        const bool both = s_.materials[std::size_t(p.material)].double_sided;
+        for (std::uint32_t t = p.first_index; t + 2 < p.first_index + p.index_count; t += 3) {
+          auto at = [&](std::uint32_t i) { return glm::dvec3(inst.model * glm::vec4(s_.vertices[s_.indices[i]].position, 1)); };
+          const glm::dvec3 a = at(t), area = glm::cross(at(t + 1) - a, at(t + 2) - a);
+          for (std::size_t k = 0; k < 8; ++k) {
+            const double facing = glm::dot(area, glm::dvec3(sides[k]));
+            seen[k] += both ? std::abs(facing) : std::max(0.0, facing);
+          }
+        }
+      }
+    const std::size_t best = std::size_t(std::max_element(seen.begin(), seen.end()) - seen.begin());
+    if (seen[0] > 1e-3 * seen[best] || !(seen[best] > 0)) return preferred;
+    std::ostringstream n;
+    n << "every face of " << s_.path.filename().string() << " faces away from the automatic view's usual side (glTF draws "
+      << "one side only): looking from the other side, towards (" << -sides[best].x << ", " << -sides[best].y << ", "
+      << -sides[best].z << ")";
+    s_.notes.push_back(n.str());
+    return sides[best];
+  }
+
   // A scene without lights would be black: a key and a fill light from the default view's
   // side, plus a little ambient. A scene whose lights give no light is only warned about.
   void add_default_lights() {
     bool emissive = false;
     for (const auto& m : s_.materials) emissive |= glm::any(glm::greaterThan(m.emissive, glm::vec3(0)));
     const bool ambient = glm::any(glm::greaterThan(s_.ambient, glm::vec3(0)));
-    if (lights_declared_ == 0) {
+    if (lights_declared_ == 0 || s_.lights.empty()) {
       const Camera& view = s_.cameras.front();
       const glm::vec3 right(view.world[0]), up(view.world[1]), back(view.world[2]);
       auto light = [&](const char* name, glm::vec3 towards, float lux) {
@@ -972,8 +1341,9 @@ class Loader {
       light("default_key", -0.5f * right + 1.0f * up + 0.8f * back, 1.0f);
       light("default_fill", 0.7f * right + 0.1f * up + 0.6f * back, 0.35f);
       if (!ambient) s_.ambient = glm::vec3(0.05f);
-      s_.notes.push_back(s_.path.filename().string() + " has no lights: using a default rig (directional key and fill from view '" +
-                         view.name + "'" + (ambient ? "" : ", ambient 0.05") + ")");
+      const std::string rig = "a default rig (directional key and fill from view '" + view.name + "'" + (ambient ? "" : ", ambient 0.05") + ")";
+      if (lights_declared_ == 0) s_.notes.push_back(s_.path.filename().string() + " has no lights: using " + rig);
+      else warn("none of the scene's " + std::to_string(lights_declared_) + " lights can be used (each is named above): using " + rig);
       return;
     }
     bool lit = false;
@@ -990,6 +1360,7 @@ class Loader {
   const ImageContext& images_;
   const FileContext& files_;
   const SceneLimits limits;
+  const IndexFixups& fixups_;
   int default_material_ = 0;
   std::vector<int> mesh_of_gltf_;
   std::vector<UvTransform> uv_transform_;  // per Scene::materials index
@@ -997,9 +1368,9 @@ class Loader {
   std::vector<std::optional<std::string>> extras_json_;  // per node, once
   std::set<std::string> dropped_lights_;
   std::size_t copied_bytes_ = 0;
-  std::map<std::pair<int, bool>, int> texture_of_key_;
+  std::map<std::pair<int, bool>, int> texture_of_key_;  // (glTF texture, sRGB) and (-1 - image, sRGB) -> Scene texture
   std::map<std::string, int> unsupported_;
-  std::size_t visits_ = 0, skipped_primitives_ = 0, lights_declared_ = 0;
+  std::size_t visits_ = 0, skipped_primitives_ = 0, lights_declared_ = 0, zero_area_triangles_ = 0;
 };
 
 }  // namespace
@@ -1082,30 +1453,49 @@ Scene load_scene_from_memory(const std::vector<unsigned char>& bytes, const std:
   }
   if (json_too_deep(json, json_size))
     throw Error("cannot load scene '" + path.string() + "': its JSON nests deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+  std::vector<unsigned char> rewritten;
+  const IndexFixups fixups = check_before_tinygltf(json, json_size, path, binary && bytes.size() >= 20 ? &bytes : nullptr, rewritten);
+  const std::vector<unsigned char>& input = rewritten.empty() ? bytes : rewritten;
 
   tinygltf::TinyGLTF loader;
   tinygltf::Model model;
-  FileContext files{.max_bytes = limits.max_file_bytes};
+  std::string base = path.parent_path().string();
+  if (base.empty()) base = ".";
+  FileContext files{.max_bytes = limits.max_file_bytes, .base = base};
   ImageContext images{.model = &model, .limits = limits};
   loader.SetFsCallbacks({.FileExists = fs_exists, .ExpandFilePath = fs_expand, .ReadWholeFile = fs_read,
                          .WriteWholeFile = fs_write, .user_data = &files});
   loader.SetImageLoader(load_image, &images);
   std::string err, warn;
-  std::string base = path.parent_path().string();
-  if (base.empty()) base = ".";
-  bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), static_cast<unsigned>(bytes.size()), base)
-                   : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
-                                                static_cast<unsigned>(bytes.size()), base);
+  bool ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, input.data(), static_cast<unsigned>(input.size()), base)
+                   : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(input.data()),
+                                                static_cast<unsigned>(input.size()), base);
   if (!ok) {
-    while (!err.empty() && err.back() == '\n') err.pop_back();
-    throw Error("cannot load scene '" + path.string() + "': " + (err.empty() ? "not valid glTF" : err));
+    // tinygltf quotes the file where its JSON fails: a .glb's bytes reach the terminal as they
+    // are. Control and non-ASCII bytes are shown as \xNN, and the message is cut short.
+    std::string said;
+    for (unsigned char c : err) {
+      if (said.size() > 400) {
+        said += "...";
+        break;
+      }
+      if (c == '\n' || (c >= 0x20 && c < 0x7F)) said += char(c);
+      else {
+        char hex[8];
+        std::snprintf(hex, sizeof hex, "\\x%02X", c);
+        said += hex;
+      }
+    }
+    while (!said.empty() && said.back() == '\n') said.pop_back();
+    if (said.find("File not found") != std::string::npos && !files.problems.empty()) said = files.problems.front();
+    throw Error("cannot load scene '" + path.string() + "': " + (said.empty() ? "not valid glTF" : said));
   }
   for (const auto& e : model.extensionsRequired)
     if (!supported_extensions().count(e))
       throw Error("cannot load scene '" + path.string() + "': it requires the extension " + e + ", which lightpass does not support");
   Scene scene;
   scene.path = path;
-  Loader(model, scene, images, files, limits).load();
+  Loader(model, scene, images, files, limits, fixups).load();
   return scene;
 }
 

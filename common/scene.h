@@ -117,6 +117,9 @@ struct Scene {
   std::vector<Camera> cameras;      // in node order; the first is the default view
   std::vector<NodeExtras> node_extras;  // in node order
   glm::vec3 ambient{0};             // scene extras {"lightpass": {"ambient": [r,g,b]}}
+  // The scene's extras.lightpass, serialised ("{}" when it has none), for what a chapter
+  // defines itself (chapter 06 reads the sun scale the scene asks for).
+  std::string lightpass_json = "{}";
   glm::vec3 bounds_min{0}, bounds_max{0};
   std::vector<std::string> warnings;
   std::vector<std::string> notes;   // what the loader supplied: an automatic view, default lights
@@ -134,12 +137,17 @@ struct SceneLimits {
   std::size_t max_node_visits = 4'000'000;                // nodes visited, meshes or not
   std::size_t max_lights = 100'000;                      // light nodes after expansion
   std::size_t max_cameras = 10'000;                      // camera nodes after expansion
+  // The lights' work: each light counts the share of the scene its range reaches (1 without a
+  // range, as for the sun), for a frame shades every pixel a light reaches.
+  double max_light_reach = 4096;
   std::size_t max_node_extras = 100'000;                  // nodes with extras.lightpass
   std::size_t max_name_bytes = std::size_t(1) << 28;      // names and extras copied (256 MiB)
   std::size_t max_vertices = std::size_t(1) << 26;       // 64 M vertices (3 GiB)
   std::size_t max_indices = std::size_t(1) << 28;        // 256 M indices (1 GiB)
   int max_image_side = 32768;                             // texels, either side
   std::size_t max_image_texels = std::size_t(1) << 26;    // 64 M texels per image
+  std::size_t max_total_texels = std::size_t(1) << 28;    // 256 M texels (1 GiB decoded) for all images, each
+                                                          // distinct file counted once
 };
 
 // The name of the view the loader adds after the file's own cameras (framing the bounds).

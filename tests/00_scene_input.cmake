@@ -131,3 +131,95 @@ foreach(c "huge_length|\"length\": 1e30, \"intensity\": 1|\"length\" must be" "n
     COMMAND ${EXPECT} 1 "neon light 'sign_${name}': ${message}" -- $<TARGET_FILE:04_neon> --headless --size 64x36 --scene ${CMAKE_BINARY_DIR}/neon_extras/neon_${name}.gltf)
   set_tests_properties(common.scene.neon_${name}_names_the_node PROPERTIES TIMEOUT 10)
 endforeach()
+
+# Any scene a reader brings, to the end (issue 30): each file of tests/data/ (README.md there)
+# with the message it must print and its exit code.
+# Compressed meshes as their writers make them: named before tinygltf fails on their accessors.
+scene_test(draco_compressed_is_named 1 "requires the extension KHR_draco_mesh_compression, which lightpass does not support .a compressed mesh"
+  ${PS01} --headless --scene tests/data/draco_compressed.gltf)
+scene_test(meshopt_compressed_is_named 1 "requires the extension EXT_meshopt_compression, which lightpass does not support .a compressed mesh"
+  ${PS01} --headless --scene tests/data/meshopt_compressed.glb)
+# Nothing to draw: an error, never a blank image.
+foreach(f indices_count_zero no_vertices strip_two_indices)
+  scene_test(nothing_to_draw_${f} 1 "${f}.gltf: the scene has no triangles to draw" ${PS01} --headless --scene tests/data/${f}.gltf)
+endforeach()
+foreach(f position_all_zero degenerate_triangles)
+  scene_test(nothing_to_draw_${f} 1 "${f}.gltf: the scene has no triangles to draw .its 2 triangles all have zero area"
+    ${PS01} --headless --scene tests/data/${f}.gltf)
+endforeach()
+scene_test(position_vec2_is_refused 1 "mesh 'plane' primitive 0: POSITION .accessor 0. is VEC2. glTF requires VEC3"
+  ${PS01} --headless --scene tests/data/position_vec2.gltf)
+scene_test(position_scalar_is_refused 1 "mesh 'plane' primitive 0: POSITION .accessor 0. is SCALAR. glTF requires VEC3"
+  ${PS01} --headless --scene tests/data/position_scalar.gltf)
+# Accessors without a bufferView are zeros: the plane is drawn (minimal.gltf's covers 7.5 % of
+# the image), beside a second primitive whose indices are all 0 (no area, nothing drawn).
+foreach(f attribute_no_buffer_view indices_no_buffer_view)
+  scene_render_test(${f}_is_zeros 0 "within bounds"
+    sh -c "'${PS01}' --headless --size 160x90 --scene tests/data/${f}.gltf --out '${SCENE_OUT}/${f}.png' && '$<TARGET_FILE:png_coverage>' '${SCENE_OUT}/${f}.png' --covered 0.07 0.08")
+endforeach()
+# One image file named by 16 images renders without a word (decoded once; the budget test is
+# Scene.ImagesOfTheSameBytesAreCountedOnce).
+add_test(NAME common.scene.image_shared_16_loads_without_a_warning
+  COMMAND ${EXPECT} 0 "wrote" --no-match "warning|could not be loaded" -- ${PS01} --headless --size 64x36 --scene tests/data/image_shared_16.gltf --out ${SCENE_OUT}/shared16.png)
+set_tests_properties(common.scene.image_shared_16_loads_without_a_warning PROPERTIES TIMEOUT 30)
+# Cameras: a yfov that is pi as a float is refused; legal ones that leave no image are made usable, and said.
+scene_test(camera_yfov_float_pi 1 "camera 'view': yfov 3.14159265 is below pi, but rounds to pi as a float"
+  ${PS01} --headless --scene tests/data/camera_yfov_float_pi.gltf)
+scene_render_test(camera_yfov_3_14159_is_narrowed 0 "yfov 3.14159 leaves the scene a speck in the middle of the image. using 2.8"
+  sh -c "'${PS01}' --headless --size 160x90 --scene tests/data/camera_yfov_3_14159.gltf --out '${SCENE_OUT}/yfov.png' 2>&1 && '$<TARGET_FILE:png_coverage>' '${SCENE_OUT}/yfov.png' --covered 0.0003 0.01")
+scene_render_test(camera_znear_tiny_is_raised 0 "znear 1e-30 beside zfar 50 leaves the depth buffer no precision.*using znear"
+  sh -c "'${PS01}' --headless --size 160x90 --scene tests/data/camera_znear_tiny.gltf --out '${SCENE_OUT}/znear.png' 2>&1 && '$<TARGET_FILE:png_coverage>' '${SCENE_OUT}/znear.png' --covered 0.07 0.08")
+# The automatic view of extreme sizes and places: the plane alone framed as offset_0.gltf's (at
+# the origin, 1 m across) frames it, the same image far away, the far ones moved and said.
+add_test(NAME common.scene.auto_view_control_offset_0
+  COMMAND ${PS01} --headless --size 160x90 --scene tests/data/offset_0.gltf --out ${SCENE_OUT}/offset_0.png)
+set_tests_properties(common.scene.auto_view_control_offset_0 PROPERTIES TIMEOUT 30 FIXTURES_SETUP scene_offset_0)
+foreach(c "extent_1e19|is 2.82843e.19 m across, where float lighting overflows: drawn scaled by 2.-64"
+          "extent_1e-19|is 2.82843e-19 m across, where float lighting underflows: drawn scaled by 2.63" "offset_1e6|lies 1e.06 m from the origin.*moved by .-1e.06, -0, -0."
+          "offset_5e6|lies 5e.06 m from the origin" "offset_1e7|lies 1e.07 m from the origin")
+  string(REPLACE "|" ";" parts "${c}")
+  list(GET parts 0 file)
+  list(GET parts 1 message)
+  add_test(NAME common.scene.auto_view_${file}
+    COMMAND ${EXPECT} 0 "${message}" -- ${PS01} --headless --size 160x90 --scene tests/data/${file}.gltf --out ${SCENE_OUT}/${file}.png
+            --and $<TARGET_FILE:image_stats> ${SCENE_OUT}/${file}.png --matches ${SCENE_OUT}/offset_0.png)
+  set_tests_properties(common.scene.auto_view_${file} PROPERTIES TIMEOUT 30 FIXTURES_REQUIRED scene_offset_0)
+endforeach()
+# Chapter 10's whole frame (its speckles were worst at 1e6 m): the same image as at the origin.
+add_test(NAME common.scene.auto_view_control_offset_0_10_frame
+  COMMAND $<TARGET_FILE:10_frame> --headless --size 160x90 --scene tests/data/offset_0.gltf --out ${SCENE_OUT}/offset_0_10.png)
+set_tests_properties(common.scene.auto_view_control_offset_0_10_frame PROPERTIES TIMEOUT 30 FIXTURES_SETUP scene_offset_0_10)
+add_test(NAME common.scene.auto_view_offset_1e6_10_frame
+  COMMAND ${EXPECT} 0 "lies 1e.06 m from the origin" -- $<TARGET_FILE:10_frame> --headless --size 160x90 --scene tests/data/offset_1e6.gltf
+          --out ${SCENE_OUT}/offset_1e6_10.png --and $<TARGET_FILE:image_stats> ${SCENE_OUT}/offset_1e6_10.png --matches ${SCENE_OUT}/offset_0_10.png)
+set_tests_properties(common.scene.auto_view_offset_1e6_10_frame PROPERTIES TIMEOUT 30 FIXTURES_REQUIRED scene_offset_0_10)
+# Every face turned away from the automatic view: it looks from the side that sees them.
+scene_render_test(auto_view_sees_front_faces 0 "every face of back_faces_only.gltf faces away from the automatic view's usual side"
+  sh -c "'${PS01}' --headless --size 160x90 --scene tests/data/back_faces_only.gltf --out '${SCENE_OUT}/back.png' && '$<TARGET_FILE:png_coverage>' '${SCENE_OUT}/back.png' --covered 0.07 0.08 --lit 40")
+# Lights that light nothing: left out by name; when none is left, the default rig, said.
+scene_render_test(light_range_tiny_is_left_out 0 "light 'light' is left out: its range 1e-30 m is a millionth of the scene's size"
+  ${PS01} --headless --size 64x36 --scene tests/data/light_range_tiny.gltf --out ${SCENE_OUT}/range.png)
+scene_render_test(only_light_left_out_gets_the_rig 0 "none of the scene's 1 lights can be used .each is named above.: using a default rig"
+  sh -c "'${PS01}' --headless --size 160x90 --scene tests/data/only_light_left_out.gltf --out '${SCENE_OUT}/rig.png' 2>&1 && '$<TARGET_FILE:png_coverage>' '${SCENE_OUT}/rig.png' --covered 0.07 0.08 --lit 60")
+# Material factors past 1: clamped with the material named, in the chapters whose light cut-off they broke.
+foreach(p 01_forward 03_light_volumes 05_hdr 10_frame)
+  scene_render_test(material_huge_base_color_${p} 0 "material 'grey': baseColorFactor .3e.38, 3e.38, 3e.38, 1. reflects more than all the light: clamped to 1"
+    $<TARGET_FILE:${p}> --headless --size 64x36 --scene tests/data/material_huge_base_color.gltf --out ${SCENE_OUT}/base_${p}.png)
+  scene_render_test(material_huge_specular_${p} 0 "material 'grey': the specular colour .* reflects more than all the light: clamped to 1"
+    $<TARGET_FILE:${p}> --headless --size 64x36 --scene tests/data/material_huge_specular.gltf --out ${SCENE_OUT}/spec_${p}.png)
+endforeach()
+# 100 000 unbounded lights from a 4 KB file: refused up front, naming the bound.
+scene_test(lights_100000_are_bounded 1 "its 100000 lights reach 1e.05 times the whole scene.*more work a frame than the loader accepts .4096."
+  $<TARGET_FILE:03_light_volumes> --headless --scene tests/data/lights_100000.gltf)
+# Messages: what and where, in words.
+scene_test(buffer_dev_zero 1 "cannot read '/dev/zero': not a regular file" ${PS01} --headless --scene tests/data/buffer_dev_zero.gltf)
+scene_render_test(image_huge_header 0 "texture 'huge_header.png' could not be loaded .it is 100000x100000, more than the loader accepts"
+  ${PS01} --headless --size 64x36 --scene tests/data/image_huge_header.gltf --out ${SCENE_OUT}/huge_header.png)
+scene_test(glb_parse_error_shows_bytes_as_hex 1 "cannot load scene '.*glb_bad_json.glb': .*[\\\\]x9B" ${PS01} --headless --scene tests/data/glb_bad_json.glb)
+set(LOOP_DIR ${CMAKE_BINARY_DIR}/scene_loop)
+file(MAKE_DIRECTORY ${LOOP_DIR})
+file(CREATE_LINK loop_b.gltf ${LOOP_DIR}/loop_a.gltf SYMBOLIC)
+file(CREATE_LINK loop_a.gltf ${LOOP_DIR}/loop_b.gltf SYMBOLIC)
+scene_test(symlink_loop 1 "cannot read scene '.*loop_a.gltf': Too many levels of symbolic links" ${PS01} --headless --scene ${LOOP_DIR}/loop_a.gltf)
+scene_test(out_empty_is_refused 2 "--out needs a file name, not ''" sh -c "'${PS01}' --headless --out ''")
+scene_test(scene_empty_is_refused 2 "--scene needs a file name, not ''" sh -c "'${PS01}' --headless --scene ''")

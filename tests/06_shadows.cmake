@@ -22,6 +22,14 @@ lightpass_program_test(06_shadows.bad_taps 2 "--taps must be between 0 and 64, g
 lightpass_program_test(06_shadows.bad_sun_size 2 "--sun-size must be between 0 and 0.2, got 0.5" ${P06} --sun-size 0.5)
 lightpass_program_test(06_shadows.bad_sun 2 "--sun must be between 0 and 1000, got -1" ${P06} --sun -1)
 lightpass_program_test(06_shadows.bad_mode 2 "unknown mode 'stencil'" ${P06} --mode stencil)
+# The sun is scaled only where the scene asks (the atrium's extras: 4): a model without lights,
+# lit by the default rig, keeps its light and does not clip to white (at 4 times, its lit faces do).
+set(P06_OUT ${CMAKE_BINARY_DIR}/out/06_scenes)
+file(MAKE_DIRECTORY ${P06_OUT})
+lightpass_program_test(06_shadows.default_rig_is_not_washed_out 0 "within bounds"
+  sh -c "'${P06}' --headless --size 160x90 --scene tests/data/no_camera_no_lights.gltf --out '${P06_OUT}/rig.png' && '$<TARGET_FILE:png_coverage>' '${P06_OUT}/rig.png' --covered 0.05 0.6 --bright-share 0 0.01")
+lightpass_program_test(06_shadows.atrium_asks_for_its_sun_scale 0 "directional lights x4, as atrium.gltf asks"
+  ${P06} --headless --size 64x36 --out ${P06_OUT}/atrium.png)
 lightpass_program_test(06_shadows.scene_without_sun 1 "no directional light" ${P06} --headless --size 16x16 --scene tests/data/minimal.gltf)
 add_test(NAME 06_shadows.sweep_unknown_option COMMAND ${EXPECT} 2 "unknown option '--fast'" -- $<TARGET_FILE:06_shadows_sweep> --fast)
 # The error view: PCF's visibility against the soft truth on the overview, printed; its mean

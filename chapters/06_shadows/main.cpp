@@ -43,11 +43,6 @@ ImageRGBA8 truth_picture(const ImageF& truth, int channel) {
   return out;
 }
 
-// The sun's default scale: the atrium's sun (0.4 lux) is weak beside its eight point lights, so at
-// 1 the lit overview shows the arches' and columns' shadows only faintly; at 4 they read plainly
-// on the floor (looked at), and the sunlit tiles are not yet washed out.
-constexpr double kSunScale = 4;
-
 // The scene's lights with every directional light's intensity times `sun` (chapter 05's --sun).
 std::vector<Light> scaled_lights(const std::vector<Light>& lights, float sun) {
   std::vector<Light> out = lights;
@@ -77,8 +72,9 @@ const CliSpec kCli{
               {"fit", "1: the map's box fitted to the view; 0: to the whole scene", 1, 0, 1, true},
               {"moments", "vsm, esm: bits per value of the filtered map, 32 (RG32F) or 16 (RG16F, half the bytes)", 32,
                16, 32, true},
-              {"sun", "multiplies directional lights (the atrium's sun: its 0.4 lux beside eight point lights shows "
-                      "the shadows only faintly at 1)", kSunScale, 0, 1000, false},
+              {"sun", "multiplies directional lights, times what the scene asks for (the atrium: 4, its 0.4 lux "
+                      "sun beside eight point lights shows the shadows only faintly at 1; other scenes: 1)", 1, 0, 1000,
+               false},
               choice_knob("show", "the image; the sun's visibility alone (blue: sky or facing away); the depth map "
                                   "itself (near black, far white); the ray-traced hard or soft truth (the sun as a disk of "
                                   "--sun-size; ray traced on the CPU: "
@@ -112,6 +108,12 @@ const Chapter kChapter{.cli = kCli, .references = atrium_shots()};
 int main(int argc, char** argv) {
   return run_chapter(argc, argv, kChapter, [](App& app) {
     const Light& sun = find_sun(app.scene());
+    // The scene's own sun scale (the atrium's 4), never a default for every scene: a model's
+    // sun or the default rig at 4 times would clip to white.
+    const float scene_scale = scene_sun_scale(app.scene());
+    if (scene_scale != 1.f)
+      std::cerr << "06_shadows: directional lights x" << scene_scale << ", as " << app.scene().path.filename().string()
+                << " asks (extras.lightpass.shadows_sun_scale); --sun multiplies that\n";
     ch03::DeferredFrame frame(app.scene_gpu());
     float sun_scale = -1.f;  // the lights are built on the first frame, and again when --sun changes
     ShadowStage shadows(app.scene_gpu(), sun);
@@ -153,7 +155,7 @@ int main(int argc, char** argv) {
       if (float(f.knob("sun")) != sun_scale) {
         const bool first = sun_scale < 0.f;
         sun_scale = float(f.knob("sun"));
-        ch03::use_lights(frame, app.scene(), scaled_lights(app.scene().lights, sun_scale), first);
+        ch03::use_lights(frame, app.scene(), scaled_lights(app.scene().lights, sun_scale * scene_scale), first);
       }
       first_frame = false;
       // [settings]

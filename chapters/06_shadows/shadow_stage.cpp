@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstddef>
 
+#include <nlohmann/json.hpp>
+
 #include "common/error.h"
 #include "common/scene_gpu.h"
 
@@ -36,6 +38,15 @@ const Light& find_sun(const Scene& scene) {
   for (const Light& l : scene.lights)
     if (l.type == LightType::Directional) return l;
   throw Error("the scene has no directional light (the sun) to cast shadows");
+}
+
+float scene_sun_scale(const Scene& scene) {
+  const auto extras = nlohmann::json::parse(scene.lightpass_json, nullptr, false);
+  if (extras.is_discarded() || !extras.is_object() || !extras.contains("shadows_sun_scale")) return 1.f;
+  const auto& v = extras["shadows_sun_scale"];
+  if (!v.is_number() || !(v.get<double>() > 0) || !(v.get<double>() <= 1000))
+    throw Error(scene.path.string() + ": the scene's extras.lightpass.shadows_sun_scale must be a number above 0 and at most 1000");
+  return v.get<float>();
 }
 
 bool casts_shadows(const Scene& scene, std::size_t light) {

@@ -127,6 +127,12 @@ class ShadowStage : public ch03::FrameStage {
 // The first directional light of the scene (the sun), or an Error naming the scene's lights.
 const Light& find_sun(const Scene& scene);
 
+// The factor the scene asks this chapter to apply to its directional lights, so that their
+// shadows read plainly (the scene's extras {"lightpass": {"shadows_sun_scale": 4}}: the
+// atrium's weak sun beside its point lights); 1 where it asks nothing, so any other scene's
+// sun, and the default rig, are shown as they are. An Error names the file for a bad value.
+float scene_sun_scale(const Scene& scene);
+
 // [casts-shadows]
 // Which lights cast shadows in this chapter. A light marked in the scene (the light node's
 // extras {"lightpass": {"casts_shadows": true | false}}, Light::casts_shadows; the format is in

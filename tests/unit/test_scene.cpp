@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <iterator>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
@@ -484,4 +485,75 @@ TEST(Scene, ALightNodeMarksWhetherTheLightCastsShadows) {
   const std::string e = load_error(with(&text));
   EXPECT_TRUE(contains(e, "node 'light': extras.lightpass.casts_shadows must be true or false")) << e;
   std::filesystem::remove_all(dir);
+}
+
+// Memory is bounded for all images together (SceneLimits::max_total_texels), and one file
+// named by many images is decoded and counted once. image_shared_16.gltf names stripes.png
+// (8 x 8 = 64 texels) in 16 images: with a total budget of 64 texels it loads, as one texture.
+TEST(Scene, ImagesOfTheSameBytesAreCountedOnce) {
+  SceneLimits limits;
+  limits.max_total_texels = 64;
+  Scene s = load_scene(from_root("tests/data/image_shared_16.gltf"), limits);
+  EXPECT_TRUE(s.warnings.empty()) << all_warnings(s);
+  ASSERT_EQ(s.textures.size(), 1u);
+  EXPECT_FALSE(s.textures[0].fallback);
+  EXPECT_EQ(s.textures[0].image.width, 8);
+}
+
+// Two distinct images (stripes.png, 64 texels, then rgb16.png, 16) under a total of 70: the
+// first loads, the second gets the fallback checker with a warning that names the budget.
+TEST(Scene, TheTotalTexelBudgetIsNamed) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("lightpass_texel_budget_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  nlohmann::json doc = nlohmann::json::parse(std::ifstream(from_root("tests/data/minimal.gltf")));
+  doc["images"] = {{{"uri", "stripes.png"}}, {{"uri", "rgb16.png"}}};
+  doc["textures"] = {{{"source", 0}}, {{"source", 1}}};
+  doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
+  doc["materials"][0]["emissiveTexture"] = {{"index", 1}};
+  std::ofstream(dir / "minimal.gltf") << doc.dump();
+  for (const char* f : {"minimal.bin", "stripes.png", "rgb16.png"})
+    std::filesystem::copy_file(from_root(std::string("tests/data/") + f), dir / f, std::filesystem::copy_options::overwrite_existing);
+  SceneLimits limits;
+  limits.max_total_texels = 70;
+  Scene tight = load_scene(dir / "minimal.gltf", limits);
+  limits.max_total_texels = 80;
+  Scene enough = load_scene(dir / "minimal.gltf", limits);
+  std::filesystem::remove_all(dir);
+  const Material& m = tight.materials.at(0);
+  EXPECT_FALSE(tight.textures.at(m.base_color_texture).fallback);
+  EXPECT_TRUE(tight.textures.at(m.emissive_texture).fallback);
+  EXPECT_TRUE(contains(all_warnings(tight), "texture 'rgb16.png' could not be loaded (it is 4x4, and with the scene's other images "
+                                            "(64 texels) that is more than the loader accepts in all (70 texels"))
+      << all_warnings(tight);
+  EXPECT_FALSE(enough.textures.at(enough.materials.at(0).emissive_texture).fallback) << all_warnings(enough);
+}
+
+// An index accessor without a bufferView (zeros: glTF allows it, tinygltf refuses it) is taken
+// out of the JSON before tinygltf reads it; in a .glb the file is rebuilt around the new JSON.
+// indices_no_buffer_view.gltf as a .glb (its buffer the BIN chunk) loads like the .gltf: the
+// plane's primitive drawn, the zero one counted as no area and left out.
+TEST(Scene, IndicesWithoutABufferViewLoadFromAGlbToo) {
+  nlohmann::json doc = nlohmann::json::parse(std::ifstream(from_root("tests/data/indices_no_buffer_view.gltf")));
+  doc["buffers"][0].erase("uri");
+  std::ifstream bin_file(from_root("tests/data/minimal.bin"), std::ios::binary);
+  std::vector<unsigned char> bin((std::istreambuf_iterator<char>(bin_file)), std::istreambuf_iterator<char>());
+  std::string text = doc.dump();
+  while (text.size() % 4) text += ' ';
+  while (bin.size() % 4) bin.push_back(0);
+  std::vector<unsigned char> glb = {'g', 'l', 'T', 'F'};
+  auto u32 = [&](std::uint32_t v) { for (int i = 0; i < 4; ++i) glb.push_back(static_cast<unsigned char>(v >> (8 * i))); };
+  u32(2);
+  u32(static_cast<std::uint32_t>(12 + 8 + text.size() + 8 + bin.size()));
+  u32(static_cast<std::uint32_t>(text.size()));
+  u32(0x4E4F534Au);
+  glb.insert(glb.end(), text.begin(), text.end());
+  u32(static_cast<std::uint32_t>(bin.size()));
+  u32(0x004E4942u);
+  glb.insert(glb.end(), bin.begin(), bin.end());
+  Scene s = load_scene_from_memory(glb, from_root("tests/data/indices_no_buffer_view.glb"));
+  Scene gltf = data("indices_no_buffer_view.gltf");
+  ASSERT_EQ(s.meshes.size(), 1u);
+  EXPECT_EQ(s.meshes[0].primitives.size(), 1u);
+  EXPECT_EQ(s.indices, gltf.indices);
+  EXPECT_EQ(s.meshes[0].primitives.size(), gltf.meshes[0].primitives.size());
 }

@@ -277,8 +277,9 @@ json GltfBuilder::document(const std::string& buffer_uri) const {
   json scene_nodes = json::array();
   for (size_t i = 0; i < nodes_.size(); ++i) scene_nodes.push_back(i);
   doc["scene"] = 0;
-  doc["scenes"] = json::array(
-      {{{"name", name_}, {"nodes", scene_nodes}, {"extras", {{"lightpass", {{"ambient", jvec(ambient_)}}}}}}});
+  json lightpass = scene_extras_;
+  lightpass["ambient"] = jvec(ambient_);
+  doc["scenes"] = json::array({{{"name", name_}, {"nodes", scene_nodes}, {"extras", {{"lightpass", lightpass}}}}});
   auto put = [&](const char* key, const json& arr) {
     if (!arr.empty()) doc[key] = arr;  // glTF forbids empty top-level arrays
   };

@@ -60,6 +60,8 @@ class GltfBuilder {
 
   const std::string& name() const { return name_; }
   void set_ambient(const glm::vec3& ambient) { ambient_ = ambient; }
+  // Another key of the scene's extras.lightpass (beside "ambient"), e.g. chapter 06's sun scale.
+  void set_scene_extra(const std::string& key, const json& value) { scene_extras_[key] = value; }
 
   int add_material(const Material& m);
   // An image file next to the .gltf and a texture using it (repeat wrap, trilinear filtering).
@@ -97,6 +99,7 @@ class GltfBuilder {
 
   std::string name_;
   glm::vec3 ambient_{0.03f, 0.03f, 0.035f};
+  json scene_extras_ = json::object();
   std::vector<uint8_t> bin_;
   json buffer_views_ = json::array(), accessors_ = json::array(), meshes_ = json::array();
   json materials_ = json::array(), textures_ = json::array(), images_ = json::array();
