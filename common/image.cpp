@@ -228,6 +228,19 @@ void save_png(const fs::path& path, const ImageRGBA8& image) {
   write_file(path, "PNG", bytes);
 }
 
+fs::path numbered_path(const fs::path& base) {
+  for (int n = 1; n <= 9999; ++n) {
+    char suffix[8];
+    std::snprintf(suffix, sizeof suffix, "-%03d", n);
+    fs::path candidate = base.parent_path() / (base.stem().string() + suffix + base.extension().string());
+    std::error_code ec;
+    const bool taken = fs::exists(candidate, ec);
+    if (ec) throw Error("cannot look at '" + candidate.string() + "': " + ec.message());
+    if (!taken) return candidate;
+  }
+  throw Error("no free numbered name for '" + base.string() + "': -001 to -9999 all exist; move some away");
+}
+
 // ---- PFM ------------------------------------------------------------------------------
 
 ImageF load_pfm(const fs::path& path) {

@@ -35,6 +35,9 @@ void flip_vertically(ImageF& image);
 
 ImageRGBA8 load_png(const std::filesystem::path& path);  // grey, grey+alpha, RGB, RGBA; 8 or 16 bit
 void save_png(const std::filesystem::path& path, const ImageRGBA8& image);  // creates parent dirs
+// `base` with "-001", "-002", ... before its extension: the first such name no file has yet
+// (P in the window: every press a new picture, none overwritten). Throws Error after 9999.
+std::filesystem::path numbered_path(const std::filesystem::path& base);
 
 // PFM: 'PF' (3 channels) and 'Pf' (1 channel); byte order from the sign of the scale.
 // The scale's magnitude is ignored, as nearly every reader does, so round trips are exact.
