@@ -166,8 +166,8 @@ struct App::Gui {
   std::size_t reported_drops = 0;
 };
 
-// GL timestamps around the chapter's frame (prepare_frame to the blit), read two frames later
-// so that the CPU never waits for them.
+// GL timestamps around the chapter's frame (prepare_frame to the blit), read kSlots frames
+// later, when they are done, so that the CPU never waits for them.
 struct App::FrameTimer {
   FrameTimer() { glCreateQueries(GL_TIMESTAMP, 2 * kSlots, ids); }
   ~FrameTimer() { glDeleteQueries(2 * kSlots, ids); }
@@ -195,7 +195,7 @@ struct App::FrameTimer {
     last_ms = b > a ? double(b - a) * 1e-6 : 0.0;
     issued[s] = false;
   }
-  static constexpr int kSlots = 3;
+  static constexpr int kSlots = 2;
   GLuint ids[2 * kSlots] = {};
   bool issued[kSlots] = {};
   int slot = 0;
@@ -340,7 +340,6 @@ bool App::next_frame() {
   float dt = static_cast<float>(std::min(wall, 0.1));
   last_time_ = now;
   if (frame_.index > 0) cpu_frame_ms_ = cpu_frame_ms_ > 0 ? 0.9 * cpu_frame_ms_ + 0.1 * wall * 1e3 : wall * 1e3;
-  if (gpu_timer_->last_ms >= 0) gpu_frame_ms_ = gpu_frame_ms_ >= 0 ? 0.9 * gpu_frame_ms_ + 0.1 * gpu_timer_->last_ms : gpu_timer_->last_ms;
   frame_.dt = dt;
   frame_.new_shot = frame_.index == 0 || frame_.mode != last_mode_ || view_changed_;
   last_mode_ = frame_.mode;
@@ -352,7 +351,8 @@ bool App::next_frame() {
   if (!io.WantCaptureMouse) fly_.update(win, dt);
   ++frame_.index;
   prepare_frame(w, h, fly_.camera());
-  gpu_timer_->start();
+  gpu_timer_->start();  // reads an earlier frame's timestamps when they are done
+  if (gpu_timer_->last_ms >= 0) gpu_frame_ms_ = gpu_frame_ms_ >= 0 ? 0.9 * gpu_frame_ms_ + 0.1 * gpu_timer_->last_ms : gpu_timer_->last_ms;
   return true;
 }
 
@@ -554,11 +554,12 @@ void App::plan_line(const std::string& stage, bool runs, const std::string& why,
       v = on ? 1 : 0;
       knob_changed(*k);
     }
-    tooltip("--" + k->name + ": " + k->help);
+    tooltip(stage + (runs ? "" : " (not run: " + why + ")") + "\n--" + k->name + ": " + k->help);
   } else {
     // Not switched here: a bullet, not a box, so it does not look clickable.
     ImGui::BulletText("%s", stage.c_str());
   }
+  if (k == chapter_.cli.knobs.end() || !is_switch(*k)) tooltip(stage + (runs ? "" : " (not run: " + why + ")"));
   if (!runs && !why.empty()) {
     ImGui::SameLine();
     ImGui::TextDisabled("(%s)", why.c_str());
