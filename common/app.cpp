@@ -634,7 +634,13 @@ void App::finish_job(const Job& job) {
     ++failures_;
     save_png(actual_path, image);
     auto diff_path = out_dir / (job.shot.name(chapter_.cli) + "_diff.png");
-    save_png(diff_path, diff_heatmap(image, load_png(reference), tolerance.threshold));
+    // The difference with its key: what each colour means, and where failing starts.
+    constexpr int kDiffFullScale = 32;  // diff_heatmap's default
+    save_png(diff_path, with_heat_key(diff_heatmap(image, load_png(reference), tolerance.threshold, kDiffFullScale),
+                                      {.full_scale = float(kDiffFullScale),
+                                       .what = "largest channel difference, 8-bit steps; over " +
+                                               std::to_string(tolerance.threshold) + " fails",
+                                       .threshold = float(tolerance.threshold)}));
     std::cout << "         actual " << actual_path.string() << "\n         diff   " << diff_path.string()
               << "\n         expected " << reference.string() << '\n';
   }

@@ -22,6 +22,9 @@ lightpass_program_test(01_forward.bad_size 2 "expects WxH" ${P01} --headless --s
 lightpass_program_test(01_forward.bad_mode 2 "unknown mode 'shiny'" ${P01} --mode shiny)
 lightpass_program_test(01_forward.bad_knob 2 "--lights must be between" ${P01} --lights -3)
 lightpass_program_test(01_forward.unknown_view 1 "no camera named 'nowhere'. views: overview" ${P01} --headless --view nowhere)
+# A mismatch writes the difference as a heat map with its key (a colour bar and its scale) below.
+add_test(NAME 01_forward.check_difference_has_a_key
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/mismatch_key.sh ${P01} $<TARGET_FILE:image_stats> ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR}/mismatch_key)
 # Both places a relative --scene is looked for are named: the current directory, then the source root.
 lightpass_program_test(01_forward.missing_scene 1 "cannot open scene 'nothing.gltf': no such file in the current directory [(]/.*/nothing.gltf[)] nor under the source root [(]/.*/nothing.gltf[)]"
   ${P01} --headless --scene nothing.gltf)
