@@ -7,6 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cfloat>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -14,15 +16,19 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <thread>
 #include <utility>
 
 #include "common/error.h"
+#include "common/input.h"
 #include "common/paths.h"
+#include "common/shader.h"
 
 namespace lp {
 
 namespace {
 constexpr int kBenchFrames = 60;  // measured after measure()'s warm-up (common/measure.h)
+constexpr float kPanelWidth = 330;  // pixels: a quarter of a 1280-wide window, the image beside it
 }  // namespace
 
 std::string Shot::name(const CliSpec& spec) const {
@@ -83,20 +89,116 @@ struct App::Job {
   std::string out;
 };
 
-// Dear ImGui on the GLFW window; exists only in window mode.
+// Dear ImGui on the GLFW window; exists only in window mode. GLFW's callbacks queue the input
+// (common/input.h) and each frame feeds ImGui its share, so a tap or a click shorter than a
+// slow frame still reaches the panel and the shortcuts, at the place it happened.
 struct App::Gui {
-  explicit Gui(GLFWwindow* w) {
+  explicit Gui(GLFWwindow* w) : window(w) {
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the reader's folder
-    ImGui_ImplGlfw_InitForOpenGL(w, true);
+    ImGui_ImplGlfw_InitForOpenGL(w, false);  // no ImGui callbacks: ours queue the events
     ImGui_ImplOpenGL3_Init("#version 450");
+    glfwSetWindowUserPointer(w, this);
+    glfwSetKeyCallback(w, [](GLFWwindow* win, int key, int scancode, int action, int mods) {
+      of(win).push({.kind = InputEvent::Key, .code = key, .action = action, .scancode = scancode, .mods = mods});
+    });
+    glfwSetMouseButtonCallback(w, [](GLFWwindow* win, int button, int action, int mods) {
+      double x = 0, y = 0;
+      glfwGetCursorPos(win, &x, &y);
+      of(win).push({.kind = InputEvent::Button, .code = button, .action = action, .mods = mods, .x = x, .y = y});
+    });
+    glfwSetCursorPosCallback(w, [](GLFWwindow* win, double x, double y) {
+      of(win).push({.kind = InputEvent::Move, .x = x, .y = y});
+    });
+    glfwSetScrollCallback(w, [](GLFWwindow* win, double dx, double dy) {
+      of(win).push({.kind = InputEvent::Scroll, .x = dx, .y = dy});
+    });
+    glfwSetCharCallback(w, [](GLFWwindow* win, unsigned int c) {
+      of(win).push({.kind = InputEvent::Char, .code = static_cast<int>(c)});
+    });
+    glfwSetWindowFocusCallback(w, ImGui_ImplGlfw_WindowFocusCallback);
+    glfwSetCursorEnterCallback(w, [](GLFWwindow* win, int entered) {
+      ImGui_ImplGlfw_CursorEnterCallback(win, entered);
+      // Left the window: the panel is no longer under the cursor (no hover stays behind).
+      if (!entered) of(win).push({.kind = InputEvent::Move, .x = -FLT_MAX, .y = -FLT_MAX});
+    });
   }
   ~Gui() {
+    glfwSetKeyCallback(window, nullptr);
+    glfwSetMouseButtonCallback(window, nullptr);
+    glfwSetCursorPosCallback(window, nullptr);
+    glfwSetScrollCallback(window, nullptr);
+    glfwSetCharCallback(window, nullptr);
+    glfwSetWindowFocusCallback(window, nullptr);
+    glfwSetCursorEnterCallback(window, nullptr);
+    glfwSetWindowUserPointer(window, nullptr);
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
   }
+  static InputQueue& of(GLFWwindow* w) { return static_cast<Gui*>(glfwGetWindowUserPointer(w))->queue; }
+
+  // Starts ImGui's frame with the next share of the queue; returns it for the shortcuts.
+  FrameInput new_frame() {
+    FrameInput in = queue.next_frame();
+    for (const InputEvent& e : in.events) {
+      if (e.kind == InputEvent::Key) ImGui_ImplGlfw_KeyCallback(window, e.code, e.scancode, e.action, e.mods);
+      if (e.kind == InputEvent::Char) ImGui_ImplGlfw_CharCallback(window, static_cast<unsigned int>(e.code));
+      if (e.kind == InputEvent::Scroll) ImGui_ImplGlfw_ScrollCallback(window, e.x, e.y);
+    }
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();  // polls the cursor and buttons as they are now: the queue's state replaces them
+    ImGuiIO& io = ImGui::GetIO();
+    for (int i = 0; i < IM_ARRAYSIZE(io.MouseDown) && i < int(in.mouse_down.size()); ++i) io.MouseDown[i] = in.mouse_down[i];
+    if (in.mouse_known) io.MousePos = ImVec2(static_cast<float>(in.mouse_x), static_cast<float>(in.mouse_y));
+    ImGui::NewFrame();
+    if (queue.dropped() > reported_drops) {
+      std::cerr << "warning: " << queue.dropped() - reported_drops << " input events dropped (more than "
+                << InputQueue::kCapacity << " waiting for a slow frame)\n";
+      reported_drops = queue.dropped();
+    }
+    return in;
+  }
+
+  GLFWwindow* window;
+  InputQueue queue;
+  std::size_t reported_drops = 0;
+};
+
+// GL timestamps around the chapter's frame (prepare_frame to the blit), read kSlots frames
+// later, when they are done, so that the CPU never waits for them.
+struct App::FrameTimer {
+  FrameTimer() { glCreateQueries(GL_TIMESTAMP, 2 * kSlots, ids); }
+  ~FrameTimer() { glDeleteQueries(2 * kSlots, ids); }
+  void start() {
+    read(slot);
+    glQueryCounter(ids[2 * slot], GL_TIMESTAMP);
+  }
+  void stop() {
+    glQueryCounter(ids[2 * slot + 1], GL_TIMESTAMP);
+    issued[slot] = true;
+    slot = (slot + 1) % kSlots;
+  }
+  // Milliseconds of the oldest frame, when its queries are done; <0 when none is known yet.
+  double last_ms = -1;
+
+ private:
+  void read(int s) {
+    if (!issued[s]) return;
+    GLint done = 0;
+    glGetQueryObjectiv(ids[2 * s + 1], GL_QUERY_RESULT_AVAILABLE, &done);
+    if (!done) return;  // a frame older still: keep the last value
+    GLuint64 a = 0, b = 0;
+    glGetQueryObjectui64v(ids[2 * s], GL_QUERY_RESULT, &a);
+    glGetQueryObjectui64v(ids[2 * s + 1], GL_QUERY_RESULT, &b);
+    last_ms = b > a ? double(b - a) * 1e-6 : 0.0;
+    issued[s] = false;
+  }
+  static constexpr int kSlots = 2;
+  GLuint ids[2 * kSlots] = {};
+  bool issued[kSlots] = {};
+  int slot = 0;
 };
 
 App::App(const Chapter& chapter, Options options) : chapter_(chapter), options_(std::move(options)) {
@@ -126,7 +228,10 @@ App::App(const Chapter& chapter, Options options) : chapter_(chapter), options_(
   if (context_->is_window()) {
     // Tests of the panel's scene switch: the scene picked after the second frame.
     if (const char* s = std::getenv("LIGHTPASS_TEST_SWITCH_SCENE")) test_scene_ = s;
+    // Tests of input at any frame rate: every frame made this slow (a sleep before the poll).
+    if (const char* s = std::getenv("LIGHTPASS_TEST_SLOW_FRAME_MS")) slow_frame_ms_ = parse_integer("LIGHTPASS_TEST_SLOW_FRAME_MS", s, 0, 60000);
     gui_ = std::make_unique<Gui>(context_->window());
+    gpu_timer_ = std::make_unique<FrameTimer>();
     fly_to(scene_->camera(view_));
     last_time_ = glfwGetTime();
     return;
@@ -215,6 +320,8 @@ bool App::next_frame() {
     present();
     metrics_.end_frame();
     metrics_.throw_if_error();
+    if (reload_pending_) report_reload();
+    if (slow_frame_ms_ > 0) std::this_thread::sleep_for(std::chrono::milliseconds(slow_frame_ms_));
     context_->swap_and_poll();
   }
   if (!test_scene_.empty() && frame_.index == 2) scene_request_ = std::exchange(test_scene_, {});
@@ -229,52 +336,146 @@ bool App::next_frame() {
   if (context_->should_close()) return false;
   GLFWwindow* win = context_->window();
   double now = glfwGetTime();
-  float dt = static_cast<float>(std::min(now - last_time_, 0.1));
+  const double wall = now - last_time_;
+  float dt = static_cast<float>(std::min(wall, 0.1));
   last_time_ = now;
+  if (frame_.index > 0) cpu_frame_ms_ = cpu_frame_ms_ > 0 ? 0.9 * cpu_frame_ms_ + 0.1 * wall * 1e3 : wall * 1e3;
   frame_.dt = dt;
   frame_.new_shot = frame_.index == 0 || frame_.mode != last_mode_ || view_changed_;
   last_mode_ = frame_.mode;
   view_changed_ = false;
-  ImGui_ImplOpenGL3_NewFrame();
-  ImGui_ImplGlfw_NewFrame();
-  ImGui::NewFrame();
-  const ImGuiIO& io = ImGui::GetIO();
   frame_.reload_shaders = false;
-  if (!io.WantCaptureKeyboard) {
-    if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) glfwSetWindowShouldClose(win, GLFW_TRUE);
-    if (ImGui::IsKeyPressed(GLFW_KEY_R)) frame_.reload_shaders = true;
-    if (ImGui::IsKeyPressed(GLFW_KEY_P)) {
-      save_png(default_output(chapter_.cli.program + ".png"), target_->read());
-      std::cout << "wrote " << default_output(chapter_.cli.program + ".png") << '\n';
-    }
-  }
+  const FrameInput input = gui_->new_frame();
+  const ImGuiIO& io = ImGui::GetIO();
+  if (!io.WantCaptureKeyboard) handle_keys(input.keys_pressed);
   if (!io.WantCaptureMouse) fly_.update(win, dt);
   ++frame_.index;
   prepare_frame(w, h, fly_.camera());
+  gpu_timer_->start();  // reads an earlier frame's timestamps when they are done
+  if (gpu_timer_->last_ms >= 0) gpu_frame_ms_ = gpu_frame_ms_ >= 0 ? 0.9 * gpu_frame_ms_ + 0.1 * gpu_timer_->last_ms : gpu_timer_->last_ms;
   return true;
 }
+
+void App::handle_keys(const std::vector<int>& keys) {
+  for (int key : keys) {
+    if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(context_->window(), GLFW_TRUE);
+    if (key == GLFW_KEY_R && !frame_.reload_shaders) {
+      take_reload_tally();  // count only what this R reloads
+      frame_.reload_shaders = reload_pending_ = true;
+    }
+    if (key == GLFW_KEY_P) save_snapshot();
+  }
+}
+
+// P: the image the window shows (without the panel) in a new numbered file, next to --out's
+// name or out/<program>.png; never over an earlier one.
+void App::save_snapshot() {
+  if (!target_) return;  // nothing drawn yet
+  const std::filesystem::path base = options_.out.empty() ? default_output(chapter_.cli.program + ".png") : options_.out;
+  try {
+    const std::filesystem::path path = numbered_path(base);
+    save_png(path, target_->read());
+    say("P: saved " + path.string() + " (" + std::to_string(target_->width()) + "x" + std::to_string(target_->height()) +
+        ", the image without the panel)");
+  } catch (const Error& e) {
+    say(std::string("P: could not save: ") + e.what());
+  }
+}
+
+void App::report_reload() {
+  reload_pending_ = false;
+  const ReloadTally t = take_reload_tally();
+  if (t.failed == 0) {
+    say("R: reloaded " + std::to_string(t.reloaded) + " shader program" + (t.reloaded == 1 ? "" : "s") + " from disk");
+    return;
+  }
+  // The first failure's first error line names its file and line (common/shader.h); the
+  // whole log was printed above.
+  std::string first = t.first_error;
+  std::istringstream lines(t.first_error);
+  for (std::string line; std::getline(lines, line);)
+    if (line.find("error") != std::string::npos && line.find(':') != std::string::npos && line.rfind("cannot ", 0) != 0) {
+      first = line;
+      break;
+    }
+  if (auto end = first.find('\n'); end != std::string::npos) first = first.substr(0, end);
+  say("R: " + std::to_string(t.failed) + " of " + std::to_string(t.failed + t.reloaded) +
+      " shader programs failed to build (each kept its previous version): " + first);
+}
+
+void App::say(const std::string& message) {
+  std::cout << message << std::endl;
+  status_ = message;
+  status_time_ = glfwGetTime();
+}
+
+void App::knob_changed(const Knob& k) {
+  metrics_.reset();
+  std::cout << "panel: --" << k.name << ' ' << knob_text(chapter_.cli, k.name, frame_.knobs[k.name]) << std::endl;
+}
+
+namespace {
+
+// A tooltip for the item just drawn, wrapped to a readable width.
+void tooltip(const std::string& text) {
+  if (text.empty() || !ImGui::IsItemHovered()) return;
+  ImGui::BeginTooltip();
+  ImGui::PushTextWrapPos(ImGui::GetFontSize() * 30.f);
+  ImGui::TextUnformatted(text.c_str());
+  ImGui::PopTextWrapPos();
+  ImGui::EndTooltip();
+}
+
+// An on/off knob: integer, 0 or 1, not a choice of names. The panel shows it as a checkbox.
+bool is_switch(const Knob& k) { return k.integer && k.choices.empty() && k.min == 0 && k.max == 1; }
+
+}  // namespace
 
 void App::panel(const std::function<void()>& chapter_controls) {
   if (!gui_) return;
   panel_drawn_ = true;
+  // Narrow, and as tall as the window at most: the image stays visible beside it, and what
+  // does not fit scrolls. The title bar's triangle folds it away.
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(430, 0), ImGuiCond_FirstUseEver);
-  ImGui::Begin(chapter_.cli.program.c_str());
-  ImGui::TextWrapped("%s", chapter_.cli.summary.c_str());
-  ImGui::Text("%s", context_->renderer().c_str());
+  const float width = std::max(160.f, std::min(kPanelWidth, display.x - 20.f));
+  ImGui::SetNextWindowSizeConstraints(ImVec2(width, 0), ImVec2(width, std::max(60.f, display.y - 20.f)));
+  ImGui::Begin(chapter_.cli.program.c_str(), nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  ImGui::PushItemWidth(ImGui::GetFontSize() * 11.f);
+  const char* unit = context_->is_software() ? "llvmpipe" : "GPU";
+  ImGui::Text("frame %.1f ms CPU (%.1f fps)", cpu_frame_ms_, cpu_frame_ms_ > 0 ? 1e3 / cpu_frame_ms_ : 0.0);
+  tooltip("CPU: the wall-clock time from one frame to the next, the panel and presenting included.");
+  if (gpu_frame_ms_ >= 0) ImGui::Text("      %.1f ms %s (%.1f fps)", gpu_frame_ms_, unit, gpu_frame_ms_ > 0 ? 1e3 / gpu_frame_ms_ : 0.0);
+  else ImGui::TextDisabled("      GPU time: waiting for the first frame");
+  tooltip(std::string("GPU: GL timestamps around the chapter's frame, the panel left out") +
+          (context_->is_software() ? " (llvmpipe renders on the CPU: this is its time)." : "."));
+  if (ImGui::CollapsingHeader("about", 0)) {
+    ImGui::TextWrapped("%s", chapter_.cli.summary.c_str());
+    ImGui::TextWrapped("%s", context_->renderer().c_str());
+    ImGui::TextDisabled("W/A/S/D/Q/E move, right mouse looks,");
+    ImGui::TextDisabled("R reloads shaders, P saves a PNG, Esc quits");
+  }
   ImGui::Separator();
   if (ImGui::BeginCombo("mode", frame_.mode.c_str())) {
     for (const auto& m : chapter_.cli.modes)
-      if (ImGui::Selectable(m.c_str(), m == frame_.mode)) { frame_.mode = m; metrics_.reset(); }
+      if (ImGui::Selectable(m.c_str(), m == frame_.mode) && m != frame_.mode) {
+        frame_.mode = m;
+        metrics_.reset();
+        std::cout << "panel: --mode " << m << std::endl;
+      }
     ImGui::EndCombo();
   }
+  tooltip(option_help("mode"));
   // The chapter's scenes (those with references), when it has more than one.
   std::vector<std::string> scenes = chapter_.reference_scenes();
   if (std::find(scenes.begin(), scenes.end(), options_.scene) == scenes.end()) scenes.insert(scenes.begin(), options_.scene);
-  if (scenes.size() > 1 && ImGui::BeginCombo("scene", options_.scene.c_str())) {
-    for (const auto& s : scenes)
-      if (ImGui::Selectable(s.c_str(), s == options_.scene) && s != options_.scene) scene_request_ = s;
-    ImGui::EndCombo();
+  if (scenes.size() > 1) {
+    if (ImGui::BeginCombo("scene", options_.scene.c_str())) {
+      for (const auto& sc : scenes)
+        if (ImGui::Selectable(sc.c_str(), sc == options_.scene) && sc != options_.scene) scene_request_ = sc;
+      ImGui::EndCombo();
+    }
+    tooltip(option_help("scene"));
   }
   if (!scene_error_.empty()) ImGui::TextWrapped("%s", scene_error_.c_str());
   if (ImGui::BeginCombo("view", view_.c_str())) {
@@ -283,49 +484,86 @@ void App::panel(const std::function<void()>& chapter_controls) {
         view_ = c.name;
         view_changed_ = true;
         fly_to(c);
+        std::cout << "panel: --view " << c.name << std::endl;
       }
     ImGui::EndCombo();
   }
+  tooltip(option_help("view"));
   for (const auto& k : chapter_.cli.knobs) {
     double& v = frame_.knobs[k.name];
     if (!k.choices.empty()) {
       if (ImGui::BeginCombo(k.name.c_str(), k.choice(v).c_str())) {
         for (std::size_t i = 0; i < k.choices.size(); ++i)
-          if (ImGui::Selectable(k.choices[i].c_str(), std::size_t(v) == i)) { v = double(i); metrics_.reset(); }
+          if (ImGui::Selectable(k.choices[i].c_str(), std::size_t(v) == i) && std::size_t(v) != i) {
+            v = double(i);
+            knob_changed(k);
+          }
         ImGui::EndCombo();
       }
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", k.help.c_str());
-      continue;
-    }
-    ImGuiSliderFlags flags = k.max > 100 * std::max(1.0, k.min) ? ImGuiSliderFlags_Logarithmic : 0;
-    if (k.integer) {
-      int i = static_cast<int>(v);
-      if (ImGui::SliderInt(k.name.c_str(), &i, int(k.min), int(k.max), "%d", flags)) { v = i; metrics_.reset(); }
+    } else if (is_switch(k)) {
+      bool on = v != 0;
+      if (ImGui::Checkbox(k.name.c_str(), &on)) {
+        v = on ? 1 : 0;
+        knob_changed(k);
+      }
     } else {
-      float f = static_cast<float>(v);
-      if (ImGui::SliderFloat(k.name.c_str(), &f, float(k.min), float(k.max), "%.3g", flags)) v = f;
+      ImGuiSliderFlags flags = k.max > 100 * std::max(1.0, k.min) ? ImGuiSliderFlags_Logarithmic : 0;
+      if (k.integer) {
+        int i = static_cast<int>(v);
+        if (ImGui::SliderInt(k.name.c_str(), &i, int(k.min), int(k.max), "%d", flags)) { v = i; metrics_.reset(); }
+      } else {
+        float f = static_cast<float>(v);
+        if (ImGui::SliderFloat(k.name.c_str(), &f, float(k.min), float(k.max), "%.3g", flags)) v = f;
+      }
+      // Said once the slider is let go, not at every step of the drag.
+      if (ImGui::IsItemDeactivatedAfterEdit()) knob_changed(k);
     }
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", k.help.c_str());
+    tooltip(k.help);
   }
   if (chapter_controls) chapter_controls();
+  if (!status_.empty() && glfwGetTime() - status_time_ < 10) {
+    ImGui::Separator();
+    ImGui::TextWrapped("%s", status_.c_str());
+  }
   ImGui::Separator();
-  const char* unit = context_->is_software() ? "ms (llvmpipe)" : "ms (GPU)";
-  if (ImGui::BeginTable("passes", 3)) {
+  if (ImGui::CollapsingHeader("passes", ImGuiTreeNodeFlags_DefaultOpen) && ImGui::BeginTable("passes", 3, ImGuiTableFlags_SizingFixedFit)) {
     ImGui::TableSetupColumn("pass", ImGuiTableColumnFlags_WidthStretch);
-    ImGui::TableSetupColumn(unit, ImGuiTableColumnFlags_WidthFixed, 90);
-    ImGui::TableSetupColumn("fragments", ImGuiTableColumnFlags_WidthFixed, 80);
+    ImGui::TableSetupColumn(context_->is_software() ? "ms (CPU)" : "ms (GPU)");
+    ImGui::TableSetupColumn("fragments");
     ImGui::TableHeadersRow();
-    for (const auto& s : metrics_.stats()) {
+    for (const auto& st : metrics_.stats()) {
       ImGui::TableNextRow();
-      ImGui::TableNextColumn(); ImGui::TextUnformatted(s.name.c_str());
-      ImGui::TableNextColumn(); ImGui::Text("%.3f", s.mean_ms);
-      ImGui::TableNextColumn(); ImGui::Text("%llu", static_cast<unsigned long long>(s.samples));
+      ImGui::TableNextColumn(); ImGui::TextUnformatted(st.name.c_str());
+      ImGui::TableNextColumn(); ImGui::Text("%.3f", st.mean_ms);
+      ImGui::TableNextColumn(); ImGui::Text("%llu", static_cast<unsigned long long>(st.samples));
     }
     ImGui::EndTable();
   }
   ImGui::Text("render targets: %.1f MB", metrics_.allocated_bytes() / 1e6);
-  ImGui::TextDisabled("WASD/QE move, right mouse look, R reload shaders, P save PNG");
+  ImGui::PopItemWidth();
   ImGui::End();
+}
+
+void App::plan_line(const std::string& stage, bool runs, const std::string& why, const std::string& knob) {
+  if (!gui_) return;
+  auto k = std::find_if(chapter_.cli.knobs.begin(), chapter_.cli.knobs.end(), [&](const Knob& x) { return x.name == knob; });
+  if (k != chapter_.cli.knobs.end() && is_switch(*k)) {
+    double& v = frame_.knobs[k->name];
+    bool on = v != 0;
+    if (ImGui::Checkbox(stage.c_str(), &on)) {
+      v = on ? 1 : 0;
+      knob_changed(*k);
+    }
+    tooltip(stage + (runs ? "" : " (not run: " + why + ")") + "\n--" + k->name + ": " + k->help);
+  } else {
+    // Not switched here: a bullet, not a box, so it does not look clickable.
+    ImGui::BulletText("%s", stage.c_str());
+  }
+  if (k == chapter_.cli.knobs.end() || !is_switch(*k)) tooltip(stage + (runs ? "" : " (not run: " + why + ")"));
+  if (!runs && !why.empty()) {
+    ImGui::SameLine();
+    ImGui::TextDisabled("(%s)", why.c_str());
+  }
 }
 
 void App::present() {
@@ -333,6 +571,7 @@ void App::present() {
   int w = 0, h = 0;
   context_->framebuffer_size(w, h);
   glBlitNamedFramebuffer(target_->framebuffer(), 0, 0, 0, target_->width(), target_->height(), 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  gpu_timer_->stop();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
@@ -395,7 +634,13 @@ void App::finish_job(const Job& job) {
     ++failures_;
     save_png(actual_path, image);
     auto diff_path = out_dir / (job.shot.name(chapter_.cli) + "_diff.png");
-    save_png(diff_path, diff_heatmap(image, load_png(reference), tolerance.threshold));
+    // The difference with its key: what each colour means, and where failing starts.
+    constexpr int kDiffFullScale = 32;  // diff_heatmap's default
+    save_png(diff_path, with_heat_key(diff_heatmap(image, load_png(reference), tolerance.threshold, kDiffFullScale),
+                                      {.full_scale = float(kDiffFullScale),
+                                       .what = "largest channel difference, 8-bit steps; over " +
+                                               std::to_string(tolerance.threshold) + " fails",
+                                       .threshold = float(tolerance.threshold)}));
     std::cout << "         actual " << actual_path.string() << "\n         diff   " << diff_path.string()
               << "\n         expected " << reference.string() << '\n';
   }
@@ -517,7 +762,9 @@ int run_chapter(int argc, const char* const* argv, const Chapter& chapter, const
         std::cout << " (none of this scene)";
       std::cout << "\nreference scenes:";
       for (const auto& s : chapter.reference_scenes()) std::cout << ' ' << s;
-      std::cout << '\n';
+      std::cout << "\nknobs:";
+      if (chapter.cli.knobs.empty()) std::cout << " none";
+      std::cout << '\n' << knob_usage(chapter.cli);
       return 0;
     }
     App app(chapter, options);

@@ -107,8 +107,13 @@ class App {
   // prepares the next. False when the window closed or the headless work is done.
   bool next_frame();
   const Frame& frame() const { return frame_; }
-  // The side panel (window only): mode, view, knobs, timings, then the chapter's controls.
+  // The side panel (window only): frame time, mode, view, knobs, then the chapter's
+  // controls, then the passes' timings.
   void panel(const std::function<void()>& chapter_controls = {});
+  // Inside panel()'s chapter controls: one line of a plan of stages. With `knob` (an on/off
+  // knob of the chapter) a checkbox that switches the stage; without, plain text: the stage
+  // is not switched here. `why` says why a stage does not run.
+  void plan_line(const std::string& stage, bool runs, const std::string& why, const std::string& knob = {});
   // Writes what the run produced and returns the exit code.
   int finish();
   // Window only: the reader picked another of the chapter's scenes in the panel, so
@@ -123,6 +128,11 @@ class App {
   void present();
   void fly_to(const Camera& camera);
   void print_bench(const Measurement& m) const;
+  void handle_keys(const std::vector<int>& keys);  // Esc, R, P, in the order pressed
+  void save_snapshot();                             // P
+  void report_reload();                             // after a frame that reloaded the shaders
+  void say(const std::string& message);             // standard output and the panel's status line
+  void knob_changed(const Knob& knob);              // the panel changed a knob: say the command line
 
   Chapter chapter_;
   Options options_;
@@ -143,6 +153,14 @@ class App {
   std::string test_scene_;  // tests: LIGHTPASS_TEST_SWITCH_SCENE, picked as if in the panel
   std::string last_mode_;
   bool view_changed_ = false;
+  bool reload_pending_ = false;  // R pressed: the chapter reloads this frame; report_reload() says how it went
+  std::string status_;           // the panel's last message (P, R)
+  double status_time_ = 0;
+  int slow_frame_ms_ = 0;        // tests: LIGHTPASS_TEST_SLOW_FRAME_MS, sleep per window frame
+  double cpu_frame_ms_ = 0;      // wall clock between frames, smoothed
+  double gpu_frame_ms_ = -1;     // GL timestamps around the chapter's frame, smoothed; <0 unknown
+  struct FrameTimer;
+  std::unique_ptr<FrameTimer> gpu_timer_;
   std::unique_ptr<OutputTarget> target_;
   std::unique_ptr<MeasureLoop> bench_;  // the --bench job being measured
   struct Gui;

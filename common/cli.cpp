@@ -77,15 +77,23 @@ double Options::knob(const std::string& name) const {
   return it->second;
 }
 
+std::string option_help(const std::string& option) {
+  if (option == "scene") return "glTF scene";
+  if (option == "view") return "camera from the scene";
+  if (option == "mode") return "the chapter's variant";
+  if (option == "list") return "list the scene's views, the modes, the references and the knobs";
+  throw Error("internal: no help for --" + option);
+}
+
 std::string usage(const CliSpec& spec) {
   std::ostringstream u;
   u << "usage: " << spec.program << " [options]\n  " << spec.summary << "\n\n"
     << "options:\n"
        "  --headless         render without a window (EGL) and write a PNG\n"
        "  --size WxH         image or window size (default 1280x720)\n"
-       "  --scene FILE       glTF scene (default " << spec.default_scene << ")\n"
-       "  --view NAME        camera from the scene (default: its first camera)\n"
-       "  --mode NAME        one of:";
+       "  --scene FILE       " << option_help("scene") << " (default " << spec.default_scene << ")\n"
+       "  --view NAME        " << option_help("view") << " (default: its first camera)\n"
+       "  --mode NAME        " << option_help("mode") << ", one of:";
   for (const auto& m : spec.modes) u << ' ' << m;
   u << " (default " << spec.modes.front() << ")\n"
        "  --out FILE.png     where to write the image (default out/" << spec.program << ".png)\n"
@@ -94,8 +102,13 @@ std::string usage(const CliSpec& spec) {
        "  --bench            render frames and print timings and fragment counts as JSON\n"
        "  --check            render the reference views and compare them with tests/reference/\n"
        "  --update-references  with --check: overwrite the references (on purpose only)\n"
-       "  --list             list the scene's views, the modes and the knobs\n"
+       "  --list             " << option_help("list") << "\n"
        "  --help             this text\n";
+  return u.str() + knob_usage(spec);
+}
+
+std::string knob_usage(const CliSpec& spec) {
+  std::ostringstream u;
   for (const auto& k : spec.knobs) {
     const bool named = !k.choices.empty();
     u << "  --" << k.name << (named ? " NAME" : k.integer ? " N" : " X")

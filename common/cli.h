@@ -63,5 +63,8 @@ Options parse_cli(int argc, const char* const* argv, const CliSpec& spec);
 int parse_integer(const std::string& option, const std::string& text, int min, int max);
 void parse_size(const std::string& option, const std::string& text, int& width, int& height);
 std::string usage(const CliSpec& spec);
+std::string knob_usage(const CliSpec& spec);  // the chapter's knobs, one line each, as usage() lists them
+// What --help says of a common option ("mode", "view", "scene", ...), for the panel's tooltips.
+std::string option_help(const std::string& option);
 
 }  // namespace lp

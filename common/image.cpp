@@ -1,5 +1,6 @@
 #include "common/image.h"
 
+#include <stb_easy_font.h>
 #include <stb_image.h>
 #include <stb_image_write.h>
 
@@ -228,6 +229,19 @@ void save_png(const fs::path& path, const ImageRGBA8& image) {
   write_file(path, "PNG", bytes);
 }
 
+fs::path numbered_path(const fs::path& base) {
+  for (int n = 1; n <= 9999; ++n) {
+    char suffix[8];
+    std::snprintf(suffix, sizeof suffix, "-%03d", n);
+    fs::path candidate = base.parent_path() / (base.stem().string() + suffix + base.extension().string());
+    std::error_code ec;
+    const bool taken = fs::exists(candidate, ec);
+    if (ec) throw Error("cannot look at '" + candidate.string() + "': " + ec.message());
+    if (!taken) return candidate;
+  }
+  throw Error("no free numbered name for '" + base.string() + "': -001 to -9999 all exist; move some away");
+}
+
 // ---- PFM ------------------------------------------------------------------------------
 
 ImageF load_pfm(const fs::path& path) {
@@ -425,6 +439,77 @@ ImageRGBA8 diff_heatmap(const ImageRGBA8& actual, const ImageRGBA8& expected, in
     if (diff > threshold) t = std::max(t, kFailingRampMin);
     ramp(t, out.pixels.data() + i);
   }
+  return out;
+}
+
+// ---- keys -------------------------------------------------------------------------------
+
+int draw_text(ImageRGBA8& image, int x, int y, const std::string& text, const std::uint8_t rgb[3], int scale) {
+  require_valid(image, "draw_text");
+  scale = std::clamp(scale, 1, 16);
+  std::vector<char> chars(text.begin(), text.end());
+  chars.push_back('\0');
+  // stb_easy_font writes quads (4 vertices of x, y, z and a colour: 16 bytes), axis aligned.
+  std::vector<float> vertices(text.size() * 270 * 4 + 64);  // far more than its worst case per character
+  const int quads = stb_easy_font_print(0, 0, chars.data(), nullptr, vertices.data(), int(vertices.size() * sizeof(float)));
+  for (int q = 0; q < quads; ++q) {
+    const float* v = vertices.data() + q * 16;  // 4 vertices of 4 floats
+    const int x0 = x + int(v[0]) * scale, y0 = y + int(v[1]) * scale;
+    const int x1 = x + int(v[8]) * scale, y1 = y + int(v[9]) * scale;
+    for (int py = std::max(y0, 0); py < std::min(y1, image.height); ++py)
+      for (int px = std::max(x0, 0); px < std::min(x1, image.width); ++px) {
+        std::uint8_t* p = image.at(px, py);
+        p[0] = rgb[0], p[1] = rgb[1], p[2] = rgb[2], p[3] = 255;
+      }
+  }
+  return stb_easy_font_width(chars.data()) * scale;
+}
+
+namespace {
+std::string short_number(float v) {
+  char s[32];
+  std::snprintf(s, sizeof s, "%g", double(v));
+  return s;
+}
+}  // namespace
+
+ImageRGBA8 with_heat_key(const ImageRGBA8& heat, const HeatKey& key) {
+  require_valid(heat, "with_heat_key");
+  if (!(key.full_scale > 0.0f)) throw Error("with_heat_key: full_scale must be positive");
+  const int scale = std::max(1, heat.width / 400);  // text stays readable on large images
+  const int margin = 6 * scale, bar_h = 10 * scale, text_h = 8 * scale;
+  const int strip = margin + bar_h + 3 * scale + text_h + 2 * scale + text_h + margin;
+  ImageRGBA8 out = ImageRGBA8::blank(heat.width, heat.height + strip);
+  std::copy(heat.pixels.begin(), heat.pixels.end(), out.pixels.begin());
+  for (int y = heat.height; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x) {
+      std::uint8_t* p = out.at(x, y);
+      p[0] = p[1] = p[2] = 48, p[3] = 255;
+    }
+  const int x0 = margin, x1 = std::max(x0 + 1, heat.width - margin), bar_y = heat.height + margin;
+  auto x_of = [&](float value) { return x0 + int(std::lround(double(value) / key.full_scale * (x1 - 1 - x0))); };
+  for (int x = x0; x < x1; ++x) {
+    const float value = float(x - x0) / float(std::max(1, x1 - 1 - x0)) * key.full_scale;
+    float t = value / key.full_scale;
+    if (key.threshold >= 0 && value > key.threshold) t = std::max(t, kFailingRampMin);
+    std::uint8_t rgba[4];
+    ramp(t, rgba);
+    for (int y = bar_y; y < bar_y + bar_h; ++y) std::copy_n(rgba, 4, out.at(x, y));
+  }
+  const std::uint8_t white[3] = {255, 255, 255}, grey[3] = {200, 200, 200};
+  const int label_y = bar_y + bar_h + 3 * scale;
+  auto tick = [&](float value, const std::string& label, bool right_aligned) {
+    const int x = x_of(value);
+    for (int y = bar_y + bar_h; y < label_y; ++y)
+      for (int dx = 0; dx < scale && x + dx < out.width; ++dx) std::copy_n(white, 3, out.at(x + dx, y));
+    ImageRGBA8 probe = ImageRGBA8::blank(1, 1);
+    const int w = draw_text(probe, 0, 0, label, white, scale);  // measures
+    draw_text(out, right_aligned ? x - w + scale : x, label_y, label, white, scale);
+  };
+  tick(0, "0", false);
+  tick(key.full_scale, short_number(key.full_scale) + "+", true);
+  if (key.threshold > 0 && key.threshold < key.full_scale) tick(key.threshold, short_number(key.threshold), false);
+  draw_text(out, x0, label_y + text_h + 2 * scale, key.what, grey, scale);
   return out;
 }
 

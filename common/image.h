@@ -35,6 +35,9 @@ void flip_vertically(ImageF& image);
 
 ImageRGBA8 load_png(const std::filesystem::path& path);  // grey, grey+alpha, RGB, RGBA; 8 or 16 bit
 void save_png(const std::filesystem::path& path, const ImageRGBA8& image);  // creates parent dirs
+// `base` with "-001", "-002", ... before its extension: the first such name no file has yet
+// (P in the window: every press a new picture, none overwritten). Throws Error after 9999.
+std::filesystem::path numbered_path(const std::filesystem::path& base);
 
 // PFM: 'PF' (3 channels) and 'Pf' (1 channel); byte order from the sign of the scale.
 // The scale's magnitude is ignored, as nearly every reader does, so round trips are exact.
@@ -84,6 +87,21 @@ CompareResult compare(const ImageRGBA8& actual, const ImageRGBA8& expected, cons
 // single one stands out. Images of different sizes give an all-red image of actual's size.
 ImageRGBA8 diff_heatmap(const ImageRGBA8& actual, const ImageRGBA8& expected, int threshold = 3,
                         int full_scale = 32);
+
+// A heat map's key, for the pictures a program writes for a reader (--check's differences,
+// error maps): the image with a strip below it that holds the ramp from 0 to `full_scale`,
+// its ticks labelled, and a line saying what the values are. With `threshold` >= 0 the bar
+// is diff_heatmap()'s ramp (values above it start at full blue) and the threshold is marked;
+// without, error_heatmap()'s. Never for a reference image: those stay pictures alone.
+struct HeatKey {
+  float full_scale = 1;  // the value drawn red; "+" marks that larger values are red too
+  std::string what;      // e.g. "largest channel difference, 8-bit steps"
+  float threshold = -1;  // diff_heatmap's threshold, or < 0 for error_heatmap's plain ramp
+};
+ImageRGBA8 with_heat_key(const ImageRGBA8& heat, const HeatKey& key);
+// Text drawn into the image (stb_easy_font: about 6 pixels tall times `scale`), top-left at
+// (x, y), clipped to the image. Returns the width in pixels it took.
+int draw_text(ImageRGBA8& image, int x, int y, const std::string& text, const std::uint8_t rgb[3], int scale = 1);
 
 // Per-pixel error against a ground truth: the mean absolute difference over the RGB
 // channels (the one channel of grey images); the channel counts must agree up to alpha.

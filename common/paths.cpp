@@ -22,7 +22,12 @@ std::filesystem::path resolve_input(const std::filesystem::path& given) {
   if (given.is_absolute()) return given;
   std::error_code ec;
   if (std::filesystem::exists(given, ec)) return given;
-  return from_root(given);
+  const auto under_root = from_root(given);
+  if (std::filesystem::exists(under_root, ec)) return under_root;
+  // Neither place has it: name both, so the reader sees where it was looked for.
+  throw Error("cannot open scene '" + given.string() + "': no such file in the current directory (" +
+              (std::filesystem::current_path(ec) / given).lexically_normal().string() + ") nor under the source root (" +
+              under_root.lexically_normal().string() + ")");
 }
 
 std::filesystem::path shader_root() { return source_root() / "chapters"; }

@@ -15,7 +15,7 @@ std::filesystem::path from_root(const std::filesystem::path& relative);
 
 // A file the reader names on the command line (--scene): relative to the current directory
 // when it exists there, else to the source root (so "assets/forward/forward.gltf" works from
-// any folder). The path returned is the one tried last, for the error message.
+// any folder). Throws Error naming both paths when neither has the file.
 std::filesystem::path resolve_input(const std::filesystem::path& given);
 
 // Where shaders are found: #include "01_forward/shaders/x.glsl" is relative to this.

@@ -1324,8 +1324,12 @@ class Loader {
     return sides[best];
   }
 
-  // A scene without lights would be black: a key and a fill light from the default view's
-  // side, plus a little ambient. A scene whose lights give no light is only warned about.
+  // A scene without lights would be black: a key light from the default view's left and
+  // above, so that shadows fall sideways onto what is visible (from behind the camera they
+  // hid behind the model), a dim fill from the right, and a little ambient; together at most
+  // 1 on a surface facing up or facing the view, so a grey floor does not clip.
+  // A scene whose every light was left out gets the same rig, warned; one whose lights give
+  // no light is only warned about.
   void add_default_lights() {
     bool emissive = false;
     for (const auto& m : s_.materials) emissive |= glm::any(glm::greaterThan(m.emissive, glm::vec3(0)));
@@ -1338,10 +1342,11 @@ class Loader {
         l.direction = -glm::normalize(towards);
         s_.lights.push_back(l);
       };
-      light("default_key", -0.5f * right + 1.0f * up + 0.8f * back, 1.0f);
-      light("default_fill", 0.7f * right + 0.1f * up + 0.6f * back, 0.35f);
+      light("default_key", -1.0f * right + 1.1f * up + 0.7f * back, 0.8f);
+      light("default_fill", 0.8f * right + 0.2f * up + 0.6f * back, 0.25f);
       if (!ambient) s_.ambient = glm::vec3(0.05f);
-      const std::string rig = "a default rig (directional key and fill from view '" + view.name + "'" + (ambient ? "" : ", ambient 0.05") + ")";
+      const std::string rig = "a default rig (a directional key from the left of and above view '" + view.name +
+                              "', a fill from the right" + (ambient ? "" : ", ambient 0.05") + ")";
       if (lights_declared_ == 0) s_.notes.push_back(s_.path.filename().string() + " has no lights: using " + rig);
       else warn("none of the scene's " + std::to_string(lights_declared_) + " lights can be used (each is named above): using " + rig);
       return;

@@ -129,12 +129,20 @@ std::string map_shader_log(const std::string& log, const std::vector<std::string
 ShaderProgram::ShaderProgram(std::vector<ShaderStage> stages, std::vector<std::string> defines)
     : stages_(std::move(stages)), defines_(std::move(defines)), program_(build(stages_, defines_)) {}
 
+namespace {
+ReloadTally g_reload_tally;  // the window's one GL thread reloads; nothing else touches it
+}  // namespace
+
+ReloadTally take_reload_tally() { return std::exchange(g_reload_tally, {}); }
+
 bool ShaderProgram::reload() {
   try {
     program_ = build(stages_, defines_);
+    ++g_reload_tally.reloaded;
     return true;
   } catch (const Error& e) {
     std::cerr << e.what() << "\n(kept the previous program)\n";
+    if (g_reload_tally.failed++ == 0) g_reload_tally.first_error = e.what();
     return false;
   }
 }

@@ -34,6 +34,14 @@ ShaderSource preprocess_shader(const std::string& path, const std::vector<std::s
 // reads "01_forward/shaders/forward.frag:12: error".
 std::string map_shader_log(const std::string& log, const std::vector<std::string>& files);
 
+// What ShaderProgram::reload() did since the last call: how many programs were rebuilt, how
+// many failed, and the first failure's message (file and line). R in the window says it.
+struct ReloadTally {
+  int reloaded = 0, failed = 0;
+  std::string first_error;
+};
+ReloadTally take_reload_tally();
+
 class ShaderProgram {
  public:
   ShaderProgram() = default;

@@ -22,7 +22,13 @@ lightpass_program_test(01_forward.bad_size 2 "expects WxH" ${P01} --headless --s
 lightpass_program_test(01_forward.bad_mode 2 "unknown mode 'shiny'" ${P01} --mode shiny)
 lightpass_program_test(01_forward.bad_knob 2 "--lights must be between" ${P01} --lights -3)
 lightpass_program_test(01_forward.unknown_view 1 "no camera named 'nowhere'. views: overview" ${P01} --headless --view nowhere)
-lightpass_program_test(01_forward.missing_scene 1 "cannot open scene .*nothing.gltf': no such file" ${P01} --headless --scene nothing.gltf)
+# A mismatch writes the difference as a heat map with its key (a colour bar and its scale) below.
+add_test(NAME 01_forward.check_difference_has_a_key
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/mismatch_key.sh ${P01} $<TARGET_FILE:image_stats> ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR}/mismatch_key)
+# Both places a relative --scene is looked for are named: the current directory, then the source root.
+lightpass_program_test(01_forward.missing_scene 1 "cannot open scene 'nothing.gltf': no such file in the current directory [(]/.*/nothing.gltf[)] nor under the source root [(]/.*/nothing.gltf[)]"
+  ${P01} --headless --scene nothing.gltf)
+add_test(NAME 01_forward.list_names_the_knobs COMMAND ${EXPECT} 0 "^knobs:$" "^  --lights N +lights to use .*default 0[)]$" -- ${P01} --list)
 lightpass_program_test(01_forward.malformed_scene 1 "cannot load scene .*malformed.gltf" ${P01} --headless --scene tests/data/malformed.gltf)
 lightpass_program_test(01_forward.no_camera 0 "no_camera.gltf has no camera: rendering view 'auto'"
   ${P01} --headless --size 64x36 --scene tests/data/no_camera.gltf --out ${CMAKE_BINARY_DIR}/out/01_no_camera.png)
@@ -42,6 +48,12 @@ lightpass_program_test(01_forward.missing_shader 1 "cannot open shader '.*root_w
 add_test(NAME 01_forward.shader_error_names_file_and_line
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/shader_error.sh ${P01} ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR}/shader_error_root)
 
+# The window's input at 0.7 fps (every frame slowed by a test hook): taps and clicks shorter than
+# a frame, sent by xdotool, are queued and handled in order: P saves numbered files, R says
+# which file and line failed and then that it reloaded, two clicks pick a mode, Esc closes.
+add_test(NAME 01_forward.window_input_at_a_slow_frame_rate
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_input.sh ${P01} ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR}/window_input)
+set_tests_properties(01_forward.window_input_at_a_slow_frame_rate PROPERTIES TIMEOUT 300)
 # The window path (GLFW + the panel) under a virtual X display, closing itself after 3 frames.
 # The screenshot is the scene under the panel, not a black window: 54 % of it is lit on
 # llvmpipe (the scene alone: 59 %, the background alone: 0).

@@ -2,6 +2,7 @@
 //
 //   image_stats IMAGE.png [--size WxH] [--background R,G,B] [--mean LO HI] [--lit LO HI]
 //               [--matches REFERENCE.png] [--differs-from OTHER.png MIN_MEAN_STEPS] [--near OTHER.png MAX_MEAN_STEPS]
+//               [--matches-right-of X REFERENCE.png]
 //
 // Prints the image's statistics, then checks each one asked for:
 //   --mean LO HI       the mean over every pixel's R, G and B, in 8-bit steps, lies in [LO, HI]
@@ -11,6 +12,8 @@
 //   --size WxH         the image has this size
 //   --matches REF      compare() with the defaults of --check: at most 0.1 % of the pixels off
 //                      by more than 3 steps
+//   --matches-right-of X REF   --matches over the columns from X on (a window's screenshot
+//                      beside its panel against the headless image)
 //   --differs-from OTHER MIN   the mean per-pixel difference (largest channel, 8-bit steps)
 //                      from OTHER is at least MIN: two images that must not look the same
 //   --near OTHER MAX   that mean difference is at most MAX: two images that must look the same
@@ -108,6 +111,22 @@ int run(int argc, char** argv) {
       std::printf("against %s: %s\n", value(1).c_str(), r.summary().c_str());
       if (!r.passed) fail("does not match " + value(1));
       i += 1;
+    } else if (a == "--matches-right-of") {
+      const int x0 = static_cast<int>(number(value(1), "--matches-right-of"));
+      const ImageRGBA8 ref = load_png(value(2));
+      if (ref.width != img.width || ref.height != img.height || x0 < 0 || x0 >= img.width) {
+        fail("--matches-right-of " + value(1) + ": " + value(2) + " is not the image's size, or X is outside it");
+      } else {
+        auto crop = [x0](const ImageRGBA8& in) {
+          ImageRGBA8 out = ImageRGBA8::blank(in.width - x0, in.height);
+          for (int y = 0; y < in.height; ++y) std::copy_n(in.at(x0, y), std::size_t(out.width) * 4, out.at(0, y));
+          return out;
+        };
+        const CompareResult r = compare(crop(img), crop(ref));
+        std::printf("columns %d.. against %s: %s\n", x0, value(2).c_str(), r.summary().c_str());
+        if (!r.passed) fail("columns from " + value(1) + " on do not match " + value(2));
+      }
+      i += 2;
     } else if (a == "--differs-from" || a == "--near") {
       const bool differ = a == "--differs-from";
       const double bound = number(value(2), a.c_str());
@@ -131,7 +150,8 @@ int main(int argc, char** argv) {
     return run(argc, argv);
   } catch (const UsageError& e) {
     std::fprintf(stderr, "image_stats: %s\nusage: image_stats IMAGE.png [--size WxH] [--background R,G,B] [--mean LO HI] "
-                         "[--lit LO HI] [--matches REF.png] [--differs-from OTHER.png MIN_MEAN_STEPS] [--near OTHER.png MAX_MEAN_STEPS]\n", e.what());
+                         "[--lit LO HI] [--matches REF.png] [--differs-from OTHER.png MIN_MEAN_STEPS] [--near OTHER.png MAX_MEAN_STEPS] "
+                         "[--matches-right-of X REF.png]\n", e.what());
     return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "image_stats: %s\n", e.what());

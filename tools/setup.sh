@@ -9,7 +9,7 @@ LIGHTPASS_PACKAGES=(
   libglm-dev libstb-dev libtinygltf-dev nlohmann-json3-dev libimgui-dev
   libembree-dev                             # the ray-traced ground truth (common/raytrace.h)
   libgtest-dev python3                      # tests, book excerpt check, plots
-  xvfb xauth                                # the window path is tested under a virtual display
+  xvfb xauth xdotool                        # the window path is tested under a virtual display (xdotool: input)
   clang libclang-rt-14-dev                  # the scene loader's fuzz target (libFuzzer, tools/fuzz-scene)
 )
 
@@ -26,9 +26,24 @@ lightpass_install_packages() {
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 }
 
+# A build/ copied or moved with the tree still names the old source folder in its
+# CMakeCache.txt, and CMake would stop with a raw error about it: say so, and forget that
+# configuration (the cache and CMakeFiles/) so that CMake configures build/ afresh.
+lightpass_check_build_dir() {
+  local root="$1" cache="$1/build/CMakeCache.txt" home
+  [ -f "$cache" ] || return 0
+  home="$(sed -n 's/^CMAKE_HOME_DIRECTORY:INTERNAL=//p' "$cache")"
+  [ -n "$home" ] || return 0
+  [ "$(realpath -m "$home")" = "$(realpath -m "$root")" ] && return 0
+  echo "lightpass: build/ was configured for another source folder ($home), not this one ($root):"
+  echo "lightpass: the tree was copied or moved with its build/. Configuring build/ again from scratch."
+  rm -rf "$root/build/CMakeCache.txt" "$root/build/CMakeFiles"
+}
+
 lightpass_build() {
   local root; root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
   local jobs; jobs="$(nproc 2>/dev/null || echo 2)"
+  lightpass_check_build_dir "$root"
   cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE=Release > "$root/build.log" 2>&1 || { cat "$root/build.log"; return 1; }
   cmake --build "$root/build" -j "$jobs" "$@" >> "$root/build.log" 2>&1 || { tail -n 60 "$root/build.log"; echo "lightpass: build failed (full log: build.log)"; return 1; }
 }

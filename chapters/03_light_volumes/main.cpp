@@ -64,7 +64,7 @@ const lp::Chapter kChapter{
                       {"light", "the light whose stencil mask --show stencil-mask draws (light order)", 0, 0, 100000, true},
                       {"far", "far plane in metres (0: the camera's own); small values cut volumes", 0, 0, 10000, false},
                       {"exposure", "the exposure the light cut is relative to", 1, 0.01, 100, false},
-                      {"cut", "light cut: 1 one sRGB step at black for the brightest material, 0 the sources' 1/256", 1, 0, 1, true},
+                      {"cut", "cut each light where it is one sRGB step at black on the brightest material (off: at 1/256 of the source)", 1, 0, 1, true},
                       {"count", "count fragments shaded and lit (atomic counters, costs a little time)", 1, 0, 1, true}}},
     .references = references(),
 };

@@ -42,7 +42,7 @@ const CliSpec kCli{
     .knobs = {{"samples", "ground-truth: samples along each tube", 256, 1, 65536, true},
               {"points", "points: point lights per tube", 8, 1, 4096, true},
               choice_knob("term", "the whole image, or the neon diffuse or specular alone", {"all", "diffuse", "specular"}),
-              {"forward", "0: capsule volumes over the G-buffer (chapters 02, 03), 1: one forward pass", 0, 0, 1, true},
+              {"forward", "draw the tubes in one forward pass (off: capsule volumes over the G-buffer, chapters 02, 03)", 0, 0, 1, true},
               choice_knob("show", "the result; the capsules as wireframes; and each tube's stencil mask tinted; what the "
                                   "capsules shade: green lit, red not lit, blue kept dark by barn doors (deferred only)",
                           {"result", "capsules", "masks", "waste"}),

@@ -69,7 +69,7 @@ const CliSpec kCli{
               {"pmin", "vsm: light-bleeding reduction (p_max below it is shadow)", 0.2, 0, 0.99, false},
               {"c", "esm: the exponent of exp(c z) (z: window depth in [0, 1]); any c works in log space", 80, 1, 10000,
                false},
-              {"fit", "1: the map's box fitted to the view; 0: to the whole scene", 1, 0, 1, true},
+              {"fit", "fit the map's box to the view (off: to the whole scene)", 1, 0, 1, true},
               {"moments", "vsm, esm: bits per value of the filtered map, 32 (RG32F) or 16 (RG16F, half the bytes)", 32,
                16, 32, true},
               {"sun", "multiplies directional lights, times what the scene asks for (the atrium: 4, its 0.4 lux "

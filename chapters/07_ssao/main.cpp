@@ -32,10 +32,10 @@ const CliSpec kCli{
     .modes = kMethodNames,  // classic, disk, off
     .knobs = {{"samples", "kernel points (classic) or disk samples (disk)", 16, 1, kMaxSamples, true},
               {"radius", "R, world units: how far occluders count (the AO rays' length)", 0.5, 0.01, 100, false},
-              {"noise", "rotate the kernel (classic) or turn the spiral (disk) per pixel by the 4x4 noise tile (1) or not (0)", 1, 0, 1, true},
+              {"noise", "rotate the kernel (classic) or turn the spiral (disk) per pixel by the 4x4 noise tile", 1, 0, 1, true},
               choice_knob("kernel", "classic: the spring-relaxed (energy-minimised) kernel or the random one",
                           {"energy", "random"}),
-              {"blur", "the bilateral 4x4 blur (1) or the raw AO (0)", 1, 0, 1, true},
+              {"blur", "the bilateral 4x4 blur (off: the raw AO)", 1, 0, 1, true},
               {"radii", "classic: 1 radius, or 2 (the source's second kernel at R / 5, A the product: darker in "
                         "contact, twice the depth reads)", 1, 1, 2, true},
               choice_knob("term", "disk: each sample's occlusion, the disk form factor (cosine-weighted) or Bunnell's term",

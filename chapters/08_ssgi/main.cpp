@@ -43,7 +43,7 @@ const CliSpec kCli{
               choice_knob("pattern", "where the samples fall: the regular polar grid (bands), chapter 07's spiral, "
                                      "or the spiral randomised per pixel (then blurred)",
                           {"regular", "spiral", "randomised"}, 2),
-              {"blur", "randomised pattern: the bilateral 5x5 blur (1) or the raw noise (0)", 1, 0, 1, true},
+              {"blur", "randomised pattern: the bilateral 5x5 blur (off: the raw noise)", 1, 0, 1, true},
               choice_knob("gather", "the wide disk's light: the source's disk samples (no visibility) or, beyond "
                                     "the source, slices with a visibility bitmask (Therrien et al. 2023)",
                           {"disk", "bitmask"}, 0),

@@ -10,6 +10,7 @@
 // edges marked in the stencil, lit per sample there only; `--msaa-view` shows the edges or the
 // wrong resolve order).
 #include <chrono>
+#include <map>
 #include <memory>
 #include <optional>
 #include <iostream>
@@ -48,7 +49,7 @@ const CliSpec kCli{
                           {"image", "accumulation", "revealage", "error"}),
               // --mode whole: every stage of the book (whole_frame.h); each can be switched off.
               {"shadows", "whole: the sun's shadow map (chapter 06)", 1, 0, 1, true},
-              {"clustered", "whole: the local lights by chapter 09's clusters (0: chapter 03's stencil volumes)", 1, 0, 1, true},
+              {"clustered", "whole: the local lights by chapter 09's clusters (off: chapter 03's stencil volumes)", 1, 0, 1, true},
               {"ao", "whole: ambient occlusion (chapters 07, 08)", 1, 0, 1, true},
               {"indirect", "whole: one bounce of indirect light (chapter 08)", 1, 0, 1, true},
               {"neon", "whole: chapter 04's tubes", 1, 0, 1, true},
@@ -159,7 +160,12 @@ void draw_whole(App& app, const Frame& f, WholeFrame& whole) {
           << "  [reads " << st.reads << "; writes " << st.writes << "]\n";
   }
   app.panel([&] {
-    for (const PlannedStage& st : plan) ImGui::Text("%s %s", st.runs ? "[x]" : "[ ]", st.stage.c_str());
+    // A box switches its stage (the knob of the same name); a bullet always runs or follows another knob.
+    ImGui::Separator();
+    ImGui::TextDisabled("the frame's stages (a box switches one)");
+    static const std::map<int, std::string> kSwitch = {{kShadowMap, "shadows"}, {kNeon, "neon"}, {kAo, "ao"}, {kIndirect, "indirect"}};
+    for (std::size_t i = 0; i < plan.size(); ++i)
+      app.plan_line(plan[i].stage, plan[i].runs, plan[i].why, kSwitch.contains(int(i)) ? kSwitch.at(int(i)) : "");
     if (which == "exact") ImGui::TextWrapped("%s", exact_note);
   });
 }

@@ -470,3 +470,39 @@ TEST(Flip, RowsSwap) {
   lp::flip_vertically(rgba);
   EXPECT_EQ(rgba.pixels, original.pixels);
 }
+
+// The key under a heat map: the picture unchanged above, the ramp from black to red below,
+// and labels drawn (white text) under the bar.
+TEST(HeatKey, AddsARampAndLabelsBelowThePicture) {
+  lp::ImageRGBA8 heat = lp::ImageRGBA8::blank(320, 180);
+  for (std::size_t i = 0; i < heat.pixels.size(); ++i) heat.pixels[i] = std::uint8_t(i * 7);
+  const lp::ImageRGBA8 keyed = lp::with_heat_key(heat, {.full_scale = 32, .what = "steps", .threshold = 3});
+  ASSERT_EQ(keyed.width, 320);
+  ASSERT_GT(keyed.height, 180 + 20);
+  EXPECT_TRUE(std::equal(heat.pixels.begin(), heat.pixels.end(), keyed.pixels.begin())) << "the picture changed";
+  // The bar's ends: 0 is black, full scale red; just over the threshold, at least full blue.
+  const int bar_y = 180 + 8;
+  const std::uint8_t* left = keyed.at(6, bar_y);
+  const std::uint8_t* right = keyed.at(320 - 7, bar_y);
+  EXPECT_EQ(left[0] + left[1] + left[2], 0);
+  EXPECT_EQ(right[0], 255);
+  EXPECT_EQ(right[1], 0);
+  const int over = 6 + int(3.5 / 32 * (320 - 7 - 6)) + 1;
+  EXPECT_EQ(keyed.at(over, bar_y)[2], 255) << "failing differences start at full blue";
+  int white = 0;
+  for (int y = bar_y + 10; y < keyed.height; ++y)
+    for (int x = 0; x < keyed.width; ++x) white += keyed.at(x, y)[0] == 255 && keyed.at(x, y)[1] == 255;
+  EXPECT_GT(white, 20) << "no labels under the bar";
+}
+
+TEST(HeatKey, TextIsDrawnAndClipped) {
+  lp::ImageRGBA8 image = lp::ImageRGBA8::blank(20, 10);
+  const std::uint8_t white[3] = {255, 255, 255};
+  const int w = lp::draw_text(image, 15, 2, "0123", white);  // runs past the right edge
+  EXPECT_GT(w, 15);
+  int lit = 0;
+  for (int y = 0; y < 10; ++y)
+    for (int x = 0; x < 20; ++x) lit += image.at(x, y)[0] == 255;
+  EXPECT_GT(lit, 3);
+  EXPECT_THROW(lp::with_heat_key(image, {.full_scale = 0}), lp::Error);
+}

@@ -318,6 +318,20 @@ TEST(Scene, AutoViewFramesTheBoundsAndTheDefaultRigLightsThem) {
     EXPECT_EQ(l.type, LightType::Directional);
     EXPECT_LT(glm::dot(l.direction, glm::vec3(c.world[2])), 0.f) << l.name << " shines away from the viewer, onto the visible side";
   }
+  // The key (the brighter light) comes from the side and from above the view, so the
+  // shadows it casts fall sideways, where the view sees them, not behind the model.
+  const glm::vec3 right(c.world[0]), up(c.world[1]), back(c.world[2]);
+  const Light& key = s.lights[0].intensity >= s.lights[1].intensity ? s.lights[0] : s.lights[1];
+  EXPECT_GT(std::abs(glm::dot(-key.direction, right)), 0.5f) << "the key light is not from the side";
+  EXPECT_GT(glm::dot(-key.direction, up), 0.5f) << "the key light is not from above";
+  // Exposure: on a surface facing up, or facing the view, the rig gives at most 1 (an albedo
+  // of 1 does not clip), and at least 0.5 (a grey floor is not dim).
+  for (const glm::vec3 n : {glm::vec3(0, 1, 0), back}) {
+    float e = s.ambient.x;
+    for (const Light& l : s.lights) e += l.intensity * std::max(0.f, glm::dot(n, -l.direction));
+    EXPECT_LE(e, 1.f) << "normal " << n.x << " " << n.y << " " << n.z;
+    EXPECT_GE(e, 0.5f) << "normal " << n.x << " " << n.y << " " << n.z;
+  }
   ASSERT_EQ(s.notes.size(), 2u);
   EXPECT_TRUE(contains(s.notes[1], "has no lights: using a default rig")) << s.notes[1];
 }
