@@ -1091,18 +1091,8 @@ class Loader {
       drop_light(l.name, "its type '" + gl.type + "' is unknown");
       return;
     }
-    // One rule for every chapter: a light glTF does not allow is left out, by name, here.
-    if (!finite(l.color) || glm::any(glm::lessThan(l.color, glm::vec3(0)))) return drop_light(l.name, "its colour is negative or not finite");
-    if (!finite(l.intensity) || l.intensity < 0) return drop_light(l.name, "its intensity " + number_text(l.intensity) + " is negative or not finite");
-    if (!finite(l.range) || l.range < 0) return drop_light(l.name, "its range " + number_text(l.range) + " is negative or not finite");
-    if (l.type != LightType::Directional && !finite(l.position)) return drop_light(l.name, "its position is not finite");
-    if (l.type != LightType::Point && !finite(l.direction)) return drop_light(l.name, "its node's transform gives no direction (zero scale)");
-    // glTF allows outer <= pi/2; a wider spot still has a meaning (chapter 03 draws it with a
-    // sphere, and says so), angles that make no cone do not.
-    if (l.type == LightType::Spot &&
-        !(l.inner_cone >= 0 && l.inner_cone <= l.outer_cone && l.outer_cone > 0 && l.outer_cone < std::numbers::pi_v<float>))
-      return drop_light(l.name, "its cone angles (inner " + number_text(l.inner_cone) + ", outer " + number_text(l.outer_cone) +
-                                    ") are not 0 <= inner <= outer < pi");
+    // One rule for every chapter (light_defect): a light glTF does not allow is left out, by name, here.
+    if (const auto why = light_defect(l)) return drop_light(l.name, *why);
     s_.lights.push_back(l);
   }
 
@@ -1379,6 +1369,22 @@ class Loader {
 };
 
 }  // namespace
+
+std::optional<std::string> light_defect(const Light& l) {
+  if (!finite(l.color) || glm::any(glm::lessThan(l.color, glm::vec3(0)))) return "its colour is negative or not finite";
+  if (!finite(l.intensity) || l.intensity < 0) return "its intensity " + number_text(l.intensity) + " is negative or not finite";
+  if (!finite(l.range) || l.range < 0) return "its range " + number_text(l.range) + " is negative or not finite";
+  if (l.type != LightType::Directional && !finite(l.position)) return "its position is not finite";
+  if (l.type != LightType::Point && !(finite(l.direction) && glm::length(l.direction) > 0))
+    return "it has no direction (zero, or not finite: a node of zero scale)";
+  // glTF allows outer <= pi/2; a wider spot still has a meaning (chapter 03 draws it with a
+  // sphere, and says so), angles that make no cone do not.
+  if (l.type == LightType::Spot &&
+      !(l.inner_cone >= 0 && l.inner_cone <= l.outer_cone && l.outer_cone > 0 && l.outer_cone < std::numbers::pi_v<float>))
+    return "its cone angles (inner " + number_text(l.inner_cone) + ", outer " + number_text(l.outer_cone) +
+           ") are not 0 <= inner <= outer < pi";
+  return std::nullopt;
+}
 
 const Camera& Scene::camera(const std::string& name) const {
   for (const auto& c : cameras)

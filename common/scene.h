@@ -74,6 +74,13 @@ struct Light {
   std::optional<bool> casts_shadows;
 };
 
+// [light-defect]
+// Why a light cannot be used, or nothing: the one rule for every chapter. The loader leaves
+// such a light out, by name; chapter 03's light set does the same with a light made in code.
+// A light that is valid but gives no light (zero intensity or colour) is not a defect.
+std::optional<std::string> light_defect(const Light& light);
+// [/light-defect]
+
 struct Camera {
   std::string name;
   glm::mat4 world{1};  // camera-to-world; the camera looks down -Z

@@ -73,23 +73,23 @@ struct Complaint {
   }
 };
 
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 }  // namespace
 
 LightSet build_light_set(const std::vector<Light>& lights, float threshold, const VolumeShapes& shapes) {
   LightSet set;
-  Complaint dark{"lights that give no light (intensity or colour <= 0, or not a number) are left out"};
-  Complaint broken{"lights whose position or direction is not a number are left out"};
-  Complaint negative_range{"a negative range reads as unbounded (as in chapter 01)"};
+  Complaint dark{"lights that give no light (intensity or colour 0) are left out"};
   Complaint wide{"spots of 90 degrees or more (glTF allows up to 90) are drawn with a sphere"};
+  std::size_t defective = 0;
   for (const Light& l : lights) {
-    if (l.type == LightType::Directional) {
-      set.directional.push_back(ch01::pack_light(l));
+    // The loader's one rule (common/scene.h light_defect), for lights made in code: the same
+    // light is left out, for the same reason, whichever way it came.
+    if (const auto why = light_defect(l)) {
+      if (++defective <= 3) set.warnings.push_back("light '" + l.name + "' is left out: " + *why);
       continue;
     }
-    if (!finite(l.position) || (l.type == LightType::Spot && !(finite(l.direction) && glm::length(l.direction) > 0))) {
-      broken.add(l.name);
+    if (l.type == LightType::Directional) {
+      set.directional.push_back(ch01::pack_light(l));
       continue;
     }
     const float radius = light_radius(l, threshold);
@@ -97,7 +97,6 @@ LightSet build_light_set(const std::vector<Light>& lights, float threshold, cons
       dark.add(l.name);
       continue;
     }
-    if (l.range < 0) negative_range.add(l.name);
     if (l.type == LightType::Point) {
       set.points.push_back(pack_point(l, radius));
     } else if (spot_uses_cone(l.outer_cone, shapes.cone_volume, shapes.sphere_volume)) {
@@ -107,7 +106,8 @@ LightSet build_light_set(const std::vector<Light>& lights, float threshold, cons
       set.wide_spots.push_back(pack_spot(l, radius));
     }
   }
-  for (const Complaint* c : {&dark, &broken, &negative_range, &wide}) c->report(set.warnings);
+  if (defective > 3) set.warnings.push_back(std::to_string(defective - 3) + " more lights are left out for the same reasons");
+  for (const Complaint* c : {&dark, &wide}) c->report(set.warnings);
   return set;
 }
 

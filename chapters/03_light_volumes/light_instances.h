@@ -55,9 +55,9 @@ struct LightSet {
   std::size_t local_count() const { return points.size() + cones.size() + wide_spots.size(); }
 };
 
-// Cuts every light at `threshold` and packs it. Lights that give no light (intensity or
-// colour <= 0, not finite) are left out with a warning; a negative range means unbounded,
-// as in chapter 01; a spot of 90 degrees or more is drawn with a sphere.
+// Cuts every light at `threshold` and packs it. A light that breaks the loader's rule
+// (light_defect: a negative range or intensity, no direction...) and one that gives no light
+// are left out with a warning; a spot of 90 degrees or more is drawn with a sphere.
 LightSet build_light_set(const std::vector<Light>& lights, float threshold, const VolumeShapes& shapes);
 
 }  // namespace lp::ch03

@@ -368,8 +368,8 @@ TEST_F(LightVolumesGl, BadLightsRenderNothingAndBreakNothing) {
 }
 
 TEST_F(LightVolumesGl, WideSpotsAndUnboundedLightsStillMatchTheFullScreenPass) {
-  // A spot of 120 degrees (past glTF's 90: drawn with a sphere) and a light with a
-  // negative range (read as unbounded: its radius comes from its intensity alone).
+  // A spot of 120 degrees (past glTF's 90: drawn with a sphere) and a light with no range
+  // (unbounded: its radius comes from its intensity alone).
   std::vector<Light> lights;
   Light spot;
   spot.name = "wide";
@@ -387,7 +387,7 @@ TEST_F(LightVolumesGl, WideSpotsAndUnboundedLightsStillMatchTheFullScreenPass) {
   unbounded.position = {-3, 2, 35};
   unbounded.color = {0.3f, 0.6f, 1};
   unbounded.intensity = 0.05f;
-  unbounded.range = -1;
+  unbounded.range = 0;
   lights.push_back(unbounded);
   LightSet set = light_set(lights);
   EXPECT_EQ(set.wide_spots.size(), 1u);
