@@ -59,6 +59,23 @@ inline std::vector<LightingCase> lighting_hard_cases() {
       // normal can put it): l + v = 0 has no direction, so normalize(l + v) is 0 / 0.
       {"eye exactly opposite the light", sun({0.3f, 0, 1}), origin, up, -glm::normalize(glm::vec3(0.3f, 0, 1)), 30.f,
        false},
+      // A lamp with a range, 2 m away of its 3: the window (1 - (d / r)^4)^2 = 0.645 and the
+      // inverse square both apply (every other lamp here is unbounded: a window with another
+      // power, or unsquared, would go unseen).
+      {"lamp with a range, two thirds of the way to it",
+       Light{.name = "lamp", .type = LightType::Point, .intensity = 3.f, .position = {0, 0, 2}, .range = 3.f}, origin, up,
+       up, 30.f, false},
+      // A spot whose falloff band holds the point: 0.29 rad off its axis, between the inner
+      // cone's 0.1 and the outer's 0.5, so the cone's factor t^2 has t in (0, 1), not 0 or 1.
+      {"spot, the point in its cone's falloff band",
+       Light{.name = "spot", .type = LightType::Spot, .intensity = 3.f, .position = {0.6f, 0, 2}, .direction = {0, 0, -1},
+             .inner_cone = 0.1f, .outer_cone = 0.5f},
+       {1.2f, 0, 0}, up, up, 30.f, false},
+      // The sun 60 degrees off the normal, the eye at its mirror image: h = n, so the lobe is
+      // its peak and only n . l = 0.5 scales the specular (the cases above with light along
+      // the normal have n . l = 1, where a specular without it is the same).
+      {"sun 60 degrees off the normal, eye at its mirror", sun({0.866f, 0, 0.5f}), origin, up,
+       glm::normalize(glm::vec3(-0.866f, 0, 0.5f)), 30.f, false},
   };
 }
 

@@ -263,7 +263,12 @@ ShadowLeak shadow_leak(const ImageF& v, const ImageF& truth, const std::vector<b
 // VSM's light bleeding in the atrium (arches over columns over the floor: occluders at several
 // depths over one receiver), and P_min cutting it: fewer of the truly shadowed pixels receive
 // more than 10 % of the light with P_min 0.6 than with none (the unit test
-// OverlappingOccludersBleedAndPminRemovesIt has the mechanism).
+// OverlappingOccludersBleedAndPminRemovesIt has the mechanism). And what it keeps: P_min maps
+// Chebyshev's [P_min, 1] onto [0, 1], so a pixel whose bound is p without it gets
+// clamp((p - P) / (1 - P)) >= p - (1 - p) P / (1 - P) with it: it darkens only what was not
+// fully lit, in proportion to what was missing (a pixel at p = 1 keeps 1). Asserted at every
+// pixel (1e-4: the float rounding of the two expressions); P_min subtracted without its
+// rescale darkens a pixel at p near 1 by P, and fails it.
 TEST_F(ShadowsGl, VsmBleedsLightAndPminReducesIt) {
   // Every shadowed pixel counts, edges too: bleeding is strongest next to the occluders' edges.
   const FrameCamera cam = world->camera("overview");
@@ -272,13 +277,27 @@ TEST_F(ShadowsGl, VsmBleedsLightAndPminReducesIt) {
   const ImageF v0 = world->visibility(cam, none);
   std::vector<bool> exclude(std::size_t(kW) * kH, false);
   exclude_raster_mask(v0, exclude);
+  const ImageF v1 = world->visibility(cam, cut);
   const ShadowLeak before = shadow_leak(v0, truth, exclude, 0.1f);
-  const ShadowLeak after = shadow_leak(world->visibility(cam, cut), truth, exclude, 0.1f);
+  const ShadowLeak after = shadow_leak(v1, truth, exclude, 0.1f);
   std::printf("vsm bleeding: %zu of %zu shadowed pixels lit > 0.1 without P_min, %zu with P_min 0.6\n", before.leaking,
               before.shadowed, after.leaking);
   ASSERT_GT(before.shadowed, std::size_t(1000));
   EXPECT_GT(before.leaking, std::size_t(0));   // the bleeding is there to remove
   EXPECT_LT(after.leaking, before.leaking);
+  const float ratio = cut.p_min / (1.f - cut.p_min);
+  std::size_t partly_lit = 0, over = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const float p = v0.at(x, y, 0);
+      partly_lit += p > cut.p_min && p < 1.f;
+      if (v1.at(x, y, 0) < p - (1.f - p) * ratio - 1e-4f) {
+        if (over++ < 5) std::printf("darkened past the rescale at %d %d: %.4f without P_min, %.4f with\n", x, y, p, v1.at(x, y, 0));
+      }
+    }
+  std::printf("%zu pixels with P_min < p < 1, %zu darkened more than the rescale allows\n", partly_lit, over);
+  EXPECT_GT(partly_lit, std::size_t(100));  // pixels where the rescale matters
+  EXPECT_EQ(over, 0u);
 }
 
 // ESM with a large exponent (c = 1000: exp(c z) would overflow fp32 for z > 0.089, most of the
@@ -300,6 +319,43 @@ TEST_F(ShadowsGl, EsmWithAnExponentThatOverflowsFp32StaysFinite) {
   const VisibilityError e = visibility_error(v, truth, 1);
   print("esm c 1000 against the soft truth", e);
   EXPECT_LT(e.mean_abs, penumbra / masked);
+}
+
+// VSM and ESM keep what the hard map lights. Both read the pre-filtered map bilinearly: four
+// texels, each the box of k x k texels around it, and all four boxes hold the texel the hard
+// method compares (the nearest), so the lookup sees a mixture of depths in which that texel
+// weighs at least 1 / k^2. Where the hard method (same map, same bias) lights the pixel, its
+// depth is at or behind the receiver's, so:
+// - VSM (P_min 0): at least 1 / k^2 of the mixture is at or behind q_z, and Chebyshev's
+//   one-sided bound variance / (variance + d^2) is at least that fraction (the variance floor
+//   only raises it; q_z <= mean gives 1);
+// - ESM: the log-sum-exp of each pass is at least its largest value plus log(1 / k), so the
+//   filtered l >= c z_nearest - 2 log k and exp(min(l - c q_z, 0)) >= 1 / k^2, for any c.
+// Asserted at every pixel the hard method lights, VSM and ESM at the default c and at
+// c = 1000 (0.99 of the bound: float rounding). Seen failing: ESM's c z averaged linearly (a
+// nearer texel of the box pulls l down by c times its depth step / k^2), VSM's variance lost
+// (the floor alone) or Chebyshev's distance unsquared.
+TEST_F(ShadowsGl, VsmAndEsmLightWhatTheHardMapLightsByAtLeastOneOverTheKernel) {
+  const FrameCamera cam = world->camera("overview");
+  const ImageF hard = world->visibility(cam, {.method = ShadowMethod::Hard});
+  for (const ShadowSettings& s : {ShadowSettings{.method = ShadowMethod::Vsm, .p_min = 0.f},
+                                  ShadowSettings{.method = ShadowMethod::Esm},
+                                  ShadowSettings{.method = ShadowMethod::Esm, .c = 1000.f}}) {
+    const std::string what = kMethodNames[int(s.method)] + (s.method == ShadowMethod::Esm ? " c " + std::to_string(int(s.c)) : "");
+    const float bound = 0.99f / float(s.kernel * s.kernel);
+    const ImageF v = world->visibility(cam, s);
+    std::size_t lit = 0, below = 0;
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        if (hard.at(x, y, 0) < 1.f) continue;  // shadowed, or show_visibility's sky and facing away
+        ++lit;
+        if (v.at(x, y, 0) < bound && below++ < 5)
+          std::printf("%s at %d %d: %.4f where the hard map lights\n", what.c_str(), x, y, v.at(x, y, 0));
+      }
+    std::printf("%s: %zu of %zu pixels the hard map lights below 1/k^2\n", what.c_str(), below, lit);
+    ASSERT_GT(lit, std::size_t(kW * kH / 4));
+    EXPECT_EQ(below, 0u) << what;
+  }
 }
 
 // Peter-panning: a bias far larger than the texel's depth span (20 texels of normal offset and
