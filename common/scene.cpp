@@ -1326,7 +1326,10 @@ class Loader {
     const bool ambient = glm::any(glm::greaterThan(s_.ambient, glm::vec3(0)));
     if (lights_declared_ == 0 || s_.lights.empty()) {
       const Camera& view = s_.cameras.front();
-      const glm::vec3 right(view.world[0]), up(view.world[1]), back(view.world[2]);
+      // "Above" is the side the view sees from: a view from below (the automatic view turned
+      // to see faces that point down) gets its key from below too, or it lights their backs.
+      const glm::vec3 right(view.world[0]), back(view.world[2]);
+      const glm::vec3 up = glm::vec3(view.world[1]) * (back.y < 0.f ? -1.f : 1.f);
       auto light = [&](const char* name, glm::vec3 towards, float lux) {
         Light l{.name = name, .type = LightType::Directional, .intensity = lux};
         l.direction = -glm::normalize(towards);

@@ -348,8 +348,8 @@ TEST_F(LightVolumesGl, BadLightsRenderNothingAndBreakNothing) {
   const FrameCamera cam = camera("street_level");
   volumes_->set_lights(light_set(lights));
   Render good = render(cam, Strategy::Stencil);
-  // Lights with no light: zero and negative intensity, a black colour. Left out: the image
-  // is the same, bit for bit.
+  // Lights with no light: zero intensity and a black colour (dark), and a negative intensity
+  // (against the loader's rule, light_defect). Left out: the image is the same, bit for bit.
   Light bad = lights[1];
   bad.position = cam.position + glm::vec3(0, 0, -5);
   for (float intensity : {0.f, -3.f}) {
@@ -361,7 +361,9 @@ TEST_F(LightVolumesGl, BadLightsRenderNothingAndBreakNothing) {
   lights.push_back(bad);
   LightSet set = light_set(lights);
   EXPECT_EQ(set.local_count(), volumes_->lights().local_count());
-  ASSERT_EQ(set.warnings.size(), 1u);
+  ASSERT_EQ(set.warnings.size(), 2u);
+  EXPECT_NE(set.warnings[0].find("is left out: its intensity -3 is negative"), std::string::npos) << set.warnings[0];
+  EXPECT_NE(set.warnings[1].find("give no light"), std::string::npos) << set.warnings[1];
   volumes_->set_lights(std::move(set));
   Render same = render(cam, Strategy::Stencil);
   EXPECT_EQ(compare(same.image, good.image, {.threshold = 0, .max_failing_fraction = 0.0}).max_error, 0.0);
