@@ -53,8 +53,8 @@ bool casts_shadows(const Scene& scene, std::size_t light) {
   const Light& l = scene.lights.at(light);
   if (l.casts_shadows) return *l.casts_shadows;
   if (l.type != LightType::Directional) return false;
-  for (std::size_t i = 0; i < light; ++i)
-    if (scene.lights[i].type == LightType::Directional) return false;  // a sun came before it
+  for (std::size_t i = 0; i < light; ++i)  // a sun came before it (one the light set keeps)
+    if (scene.lights[i].type == LightType::Directional && !light_defect(scene.lights[i])) return false;
   return true;
 }
 
@@ -67,8 +67,11 @@ int shadowed_spot(const Scene& scene) {
 }
 
 int shadowed_sun(const Scene& scene) {
+  // The first directional light the light set keeps (it leaves out what light_defect names):
+  // the one at index 0 of chapter 03's directional lights, which the visibility hook maps.
   for (std::size_t i = 0; i < scene.lights.size(); ++i)
-    if (scene.lights[i].type == LightType::Directional) return casts_shadows(scene, i) ? int(i) : -1;
+    if (scene.lights[i].type == LightType::Directional && !light_defect(scene.lights[i]))
+      return casts_shadows(scene, i) ? int(i) : -1;
   return -1;
 }
 

@@ -453,6 +453,26 @@ TEST(ShadowLights, TheSunCastsUnlessMarkedAndOtherLightsOnlyWhenMarked) {
 }
 // [/marked-lights-tests]
 
+// The sun with a map is the first directional light chapter 03's light set keeps: index 0 of
+// its directional lights, which the visibility hook maps. A directional light that breaks the
+// rule every chapter keeps (light_defect: here a negative intensity) is left out of the set,
+// so the next one is the sun, and casts.
+TEST(ShadowLights, TheSunIsTheFirstDirectionalLightTheLightSetKeeps) {
+  Scene s;
+  Light broken, sun;
+  broken.type = sun.type = LightType::Directional;
+  broken.name = "broken", sun.name = "sun";
+  broken.intensity = -1.f;
+  s.lights = {broken, sun};
+  EXPECT_EQ(shadowed_sun(s), 1);
+  EXPECT_TRUE(casts_shadows(s, 1));
+  s.lights[0].intensity = 1.f;  // valid again: it is the sun, the other one is not
+  EXPECT_EQ(shadowed_sun(s), 0);
+  EXPECT_FALSE(casts_shadows(s, 1));
+  s.lights[0].casts_shadows = false;  // the first directional light marked not to cast: no map at all
+  EXPECT_EQ(shadowed_sun(s), -1);
+}
+
 // The view test that decides whether a spot needs its map: a sphere in front of the camera
 // is in view, one behind it or beside the frustum is not, one straddling a plane is.
 TEST(ShadowMath, SphereInViewAgainstTheFrustumsPlanes) {
