@@ -400,6 +400,40 @@ TEST_F(HdrGl, UniformFrameBloomsUniformlyAtOddSizes) {
     }
 }
 
+// Bloom before the curve takes the bright part out of each pixel and puts it back spread out,
+// so the image before the curve keeps its light: with the clamp curve and every exposed value
+// below 1 (the curve is then the identity), the final image's sum is the exposed input's, up to
+// the same fp16 roundings as the bloom's own energy (below). Adding the spread light without
+// taking it out first counts it twice: the sum grows by the bloom's strength, here 100 %.
+TEST_F(HdrGl, BloomBeforeTheCurveKeepsTheImagesLight) {
+  const int w = 160, h = 96;
+  ImageF img = constant_image(w, h, glm::vec3(0.1f));
+  for (int y = 40; y < 52; ++y)
+    for (int x = 70; x < 85; ++x)
+      for (int c = 0; c < 3; ++c) img.at(x, y, c) = 0.2f + 0.02f * float(x - 70);
+  HdrSettings s;
+  s.tonemap.op = Operator::Clamp;
+  s.bloom = BloomMode::BeforeTonemap;
+  s.bloom_strength = 1.f;
+  s.bloom_chain = {.level = 1, .radius = 0.04f, .threshold = 0.f, .limit = 1e4f};  // every pixel's light is spread
+  const Output out = run(img, s);
+  gl::Texture t = upload_radiance(img);
+  const ImageF stored = read_texture(t.id(), w, h);
+  double before = 0, after = 0, brightest = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const double v = double(stored.at(x, y, c)) * out.state.exposure;
+        before += v;
+        brightest = std::max(brightest, v);
+        after += out.image.at(x, y, c);
+      }
+  ASSERT_LT(brightest, 1.0) << "the curve must be the identity for the sums to compare";
+  ASSERT_GT(before, 1000.0);
+  const int stores = 1 + 2;  // as ReducedResolutionBloomKeepsTheEnergy at level 1: each < 2^-10
+  EXPECT_NEAR(after / before, 1.0, stores * 0x1p-10);
+}
+
 TEST_F(HdrGl, ReducedResolutionBloomKeepsTheEnergy) {
   // A bright blob far from the edges: each reduction averages (keeps the sum), the blur's
   // weights sum to 1 away from the edges, and bilinear upsampling by an even factor keeps
