@@ -141,7 +141,9 @@ struct App::Gui {
 
   // Starts ImGui's frame with the next share of the queue; returns it for the shortcuts.
   FrameInput new_frame() {
-    FrameInput in = queue.next_frame();
+    // ImGui finds what is under the cursor among the last frame's windows: in the first frame
+    // there are none, so the input waits a frame for the panel to be there.
+    FrameInput in = frames++ == 0 ? FrameInput{} : queue.next_frame();
     for (const InputEvent& e : in.events) {
       if (e.kind == InputEvent::Key) ImGui_ImplGlfw_KeyCallback(window, e.code, e.scancode, e.action, e.mods);
       if (e.kind == InputEvent::Char) ImGui_ImplGlfw_CharCallback(window, static_cast<unsigned int>(e.code));
@@ -164,6 +166,7 @@ struct App::Gui {
   GLFWwindow* window;
   InputQueue queue;
   std::size_t reported_drops = 0;
+  std::uint64_t frames = 0;
 };
 
 // GL timestamps around the chapter's frame (prepare_frame to the blit), read kSlots frames
@@ -321,7 +324,11 @@ bool App::next_frame() {
     metrics_.end_frame();
     metrics_.throw_if_error();
     if (reload_pending_) report_reload();
-    if (slow_frame_ms_ > 0) std::this_thread::sleep_for(std::chrono::milliseconds(slow_frame_ms_));
+    if (slow_frame_ms_ > 0) {
+      // Said, so that a test sends its input once the panel is on screen.
+      std::cerr << "test: frame " << frame_.index << " presented" << std::endl;
+      std::this_thread::sleep_for(std::chrono::milliseconds(slow_frame_ms_));
+    }
     context_->swap_and_poll();
   }
   if (!test_scene_.empty() && frame_.index == 2) scene_request_ = std::exchange(test_scene_, {});

@@ -12,12 +12,17 @@ program="$1"; size="$2"; x="$3"; y="$4"; regex="$5"; shift 5
 log="$(mktemp)"
 env LIGHTPASS_TEST_SLOW_FRAME_MS=1000 timeout 240 "$program" --size "$size" "$@" >"$log" 2>&1 &
 pid=$!
-window=$(timeout 60 xdotool search --sync --name "lightpass ") || { cat "$log"; echo "FAIL: no window"; exit 1; }
-sleep 3
+wait_frame() {  # until the program has presented frame $1 (LIGHTPASS_TEST_SLOW_FRAME_MS says so)
+  for _ in $(seq 1200); do grep -q "test: frame $1 presented" "$log" && return 0; sleep 0.1; done
+  cat "$log"; echo "FAIL: no frame $1 within 120 s"; kill "$pid"; exit 1
+}
+wait_frame 2  # the panel on screen; then its window (found after: the first one seen may be gone)
+window=$(timeout 60 xdotool search --sync --onlyvisible --name "lightpass " | tail -n 1)
+[ -n "$window" ] || { cat "$log"; echo "FAIL: no window"; kill "$pid"; exit 1; }
 xdotool mousemove --window "$window" "$x" "$y" click 1 mousemove --window "$window" 1 1
 fail=0
-for _ in $(seq 600); do grep -Eq -- "$regex" "$log" && break; sleep 0.1; done
-grep -Eq -- "$regex" "$log" || { echo "FAIL: no /$regex/ within 60 s of the click"; fail=1; }
+for _ in $(seq 1500); do grep -Eq -- "$regex" "$log" && break; sleep 0.1; done
+grep -Eq -- "$regex" "$log" || { echo "FAIL: no /$regex/ within 150 s of the click"; fail=1; }
 xdotool mousemove --window "$window" 1 1 key Escape
 wait "$pid"; code=$?
 cat "$log"; rm -f "$log"

@@ -25,8 +25,9 @@ wait_for() {  # wait_for REGEX SECONDS: until the program's output matches
 }
 env LIGHTPASS_ROOT="$work" LIGHTPASS_TEST_SLOW_FRAME_MS=1500 timeout 240 "$program" --size 640x360 --out "$work/shot.png" >"$log" 2>&1 &
 pid=$!
-window=$(timeout 60 xdotool search --sync --name "lightpass ") || { cat "$log"; echo "FAIL: no window"; exit 1; }
-sleep 4  # the first frames, the panel drawn
+wait_for "test: frame 2 presented" 120 || { cat "$log"; kill "$pid"; exit 1; }  # the panel on screen
+window=$(timeout 60 xdotool search --sync --onlyvisible --name "lightpass " | tail -n 1)
+[ -n "$window" ] || { cat "$log"; echo "FAIL: no window"; kill "$pid"; exit 1; }
 xdotool mousemove --window "$window" 500 300
 
 # Two taps of P inside one slow frame: both saved, to new files.
