@@ -462,7 +462,13 @@ int draw_text(ImageRGBA8& image, int x, int y, const std::string& text, const st
         p[0] = rgb[0], p[1] = rgb[1], p[2] = rgb[2], p[3] = 255;
       }
   }
-  return stb_easy_font_width(chars.data()) * scale;
+  return text_width(text, scale);
+}
+
+int text_width(const std::string& text, int scale) {
+  std::vector<char> chars(text.begin(), text.end());
+  chars.push_back('\0');
+  return stb_easy_font_width(chars.data()) * std::clamp(scale, 1, 16);
 }
 
 namespace {
@@ -502,8 +508,7 @@ ImageRGBA8 with_heat_key(const ImageRGBA8& heat, const HeatKey& key) {
     const int x = x_of(value);
     for (int y = bar_y + bar_h; y < label_y; ++y)
       for (int dx = 0; dx < scale && x + dx < out.width; ++dx) std::copy_n(white, 3, out.at(x + dx, y));
-    ImageRGBA8 probe = ImageRGBA8::blank(1, 1);
-    const int w = draw_text(probe, 0, 0, label, white, scale);  // measures
+    const int w = text_width(label, scale);
     draw_text(out, right_aligned ? x - w + scale : x, label_y, label, white, scale);
   };
   tick(0, "0", false);

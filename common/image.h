@@ -102,6 +102,7 @@ ImageRGBA8 with_heat_key(const ImageRGBA8& heat, const HeatKey& key);
 // Text drawn into the image (stb_easy_font: about 6 pixels tall times `scale`), top-left at
 // (x, y), clipped to the image. Returns the width in pixels it took.
 int draw_text(ImageRGBA8& image, int x, int y, const std::string& text, const std::uint8_t rgb[3], int scale = 1);
+int text_width(const std::string& text, int scale = 1);  // what draw_text returns, drawing nothing
 
 // Per-pixel error against a ground truth: the mean absolute difference over the RGB
 // channels (the one channel of grey images); the channel counts must agree up to alpha.

@@ -111,7 +111,7 @@ std::vector<std::string> gbuffer_defines(const Layout& layout, GLuint first_unit
 
 std::vector<std::string> GBuffer::shader_defines(GLuint first_unit) const { return gbuffer_defines(layout_, first_unit, samples_); }
 
-void GBuffer::set_frame(const FrameCamera& camera, const std::vector<glm::vec3>& palette) {
+void GBuffer::set_frame(const FrameCamera& camera, const std::vector<glm::vec3>& palette, float emissive_scale) {
   camera_ = camera_for(layout_.depth, camera);
   GBufferFrame f;
   f.view_projection = camera_.view_projection();
@@ -119,7 +119,7 @@ void GBuffer::set_frame(const FrameCamera& camera, const std::vector<glm::vec3>&
   f.eye = glm::vec4(camera_.position, 1.f);
   f.size = glm::vec4(width_, height_, 1.f / width_, 1.f / height_);
   f.depth = glm::vec4(camera_.znear, camera_.zfar, sky_depth(), is_reversed_z(layout_) ? 1.f : 0.f);
-  for (std::size_t i = 0; i < palette.size() && i < kPaletteSize; ++i) f.emissive[i] = glm::vec4(palette[i], 0.f);
+  for (std::size_t i = 0; i < palette.size() && i < kPaletteSize; ++i) f.emissive[i] = glm::vec4(palette[i] * emissive_scale, 0.f);
   glNamedBufferSubData(frame_.id(), 0, sizeof(GBufferFrame), &f);
 }
 
@@ -168,13 +168,7 @@ const ShaderProgram& GeometryPass::program_for(const Layout& layout) {
 // [geometry-pass]
 void GeometryPass::draw(GBuffer& gbuffer, const FrameCamera& camera) {
   const ShaderProgram& program = program_for(gbuffer.layout());
-  if (emissive_scale_ == 1.f) {
-    gbuffer.set_frame(camera, palette_);
-  } else {
-    std::vector<glm::vec3> scaled = palette_;
-    for (glm::vec3& e : scaled) e = e * emissive_scale_;
-    gbuffer.set_frame(camera, scaled);
-  }
+  gbuffer.set_frame(camera, palette_, emissive_scale_);
   gbuffer.bind_for_geometry();
   gbuffer.begin_depth_convention();
   glEnable(GL_DEPTH_TEST);
@@ -189,7 +183,7 @@ void GeometryPass::draw(GBuffer& gbuffer, const FrameCamera& camera) {
     ch01::set_surface(program, scene_, inst, m);  // chapter 01's material.h
     program.set("u_emissive_code", emissive_code(static_cast<int>(&m - first_material)));
     float base = std::max({m.base_color.r, m.base_color.g, m.base_color.b, 1e-6f});
-    const glm::vec3 e = emissive_scale_ == 1.f ? m.emissive : m.emissive * emissive_scale_;
+    const glm::vec3 e = m.emissive * emissive_scale_;
     program.set("u_emissive_strength", std::clamp(std::max({e.r, e.g, e.b}) / base, 0.f, 1.f));
   }, SceneGpu::Primitives::Opaque);  // glass (alphaMode BLEND) is drawn after the deferred passes
   GBuffer::restore_default_depth_convention();

@@ -102,7 +102,8 @@ class GBuffer {
   static void restore_default_depth_convention();  // OpenGL's -1..1 and LESS
 
   // Called by GeometryPass::draw: the camera it draws with and the emissive colours.
-  void set_frame(const FrameCamera& camera, const std::vector<glm::vec3>& emissive_palette);
+  // The palette is written times `emissive_scale` (GeometryPass::set_emissive_scale).
+  void set_frame(const FrameCamera& camera, const std::vector<glm::vec3>& emissive_palette, float emissive_scale = 1.f);
 
  private:
   int width_, height_;

@@ -24,6 +24,8 @@ void GiStage::set_picture(const ImageF& picture, float heat_full_scale) {
   heat_ = heat_full_scale;
 }
 
+std::vector<std::string> GiStage::unit_defines() const { return {"GI_UNIT " + std::to_string(slots().unit(0))}; }
+
 // [gi-stage]
 void GiStage::add_light(ch03::DeferredFrame& frame, PassMetrics* metrics) {
   ran_ = mode_ != GiMode::Off;
@@ -49,7 +51,7 @@ void GiStage::add_light(ch03::DeferredFrame& frame, PassMetrics* metrics) {
   if (!add_program_)
     add_program_ = std::make_unique<ShaderProgram>(std::vector<ShaderStage>{
         {GL_VERTEX_SHADER, "02_gbuffer/shaders/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "08_ssgi/shaders/add_indirect.frag"}},
-        std::vector<std::string>{"GI_UNIT " + std::to_string(slots().unit(0))});
+        unit_defines());
   frame.light().bind();
   glViewport(0, 0, frame.light().width(), frame.light().height());
   add_program_->use();
@@ -72,7 +74,7 @@ bool GiStage::composite(ch03::DeferredFrame& frame, PassMetrics* metrics) {
   auto pass = timed(metrics, "composite: the indirect light");
   if (!show_program_) {
     std::vector<std::string> defines = frame.gbuffer().shader_defines(0);
-    defines.push_back("GI_UNIT " + std::to_string(slots().unit(0)));
+    for (const std::string& d : unit_defines()) defines.push_back(d);
     show_program_ = std::make_unique<ShaderProgram>(
         std::vector<ShaderStage>{{GL_VERTEX_SHADER, "02_gbuffer/shaders/fullscreen.vert"},
                                  {GL_FRAGMENT_SHADER, "08_ssgi/shaders/show_gi.frag"}},

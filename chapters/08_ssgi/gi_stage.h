@@ -57,6 +57,7 @@ class GiStage : public ch03::FrameStage {
   bool composite(ch03::DeferredFrame& frame, PassMetrics* metrics) override;
 
  private:
+  std::vector<std::string> unit_defines() const;  // {"GI_UNIT <its first unit>"}
   const SceneGpu& scene_;
   Ssgi ssgi_;
   BackFaceLayer back_;

@@ -153,7 +153,7 @@ void TransparencyStage::draw_surfaces(const ch03::DeferredFrame& frame, Output o
     const Instance& inst = s.instances[d.instance];
     const Material& m = s.materials[s.meshes[inst.mesh].primitives[d.primitive].material];
     ch01::set_surface(program, scene_, inst, m);
-    if (frame.emissive_scale() != 1.f) program.set("u_emissive", m.emissive * frame.emissive_scale());  // chapter 05's glow
+    program.set("u_emissive", m.emissive * frame.emissive_scale());  // chapter 05's glow on set_surface's
     if (ranks) {
       auto same = [&](const BlendedDraw& o) { return o.instance == d.instance && o.primitive == d.primitive; };
       program.set("u_rank", int(std::find_if(back_to_front.begin(), back_to_front.end(), same) - back_to_front.begin()));
