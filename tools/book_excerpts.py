@@ -41,7 +41,8 @@ SOURCE_DIRS = ("chapters", "common", "tools")
 SOURCE_EXTS = {".h", ".hpp", ".cpp", ".glsl", ".vert", ".frag", ".comp", ".geom", ".tesc", ".tese"}
 
 
-def region(file: str, tag: str, root: Path = ROOT) -> str:
+def region_match(file: str, tag: str, root: Path = ROOT) -> re.Match:
+    """The tagged region in its file: group 1 is the code between the tag lines."""
     path = root / file
     if not path.exists():
         raise LookupError(f"{file} does not exist")
@@ -49,7 +50,19 @@ def region(file: str, tag: str, root: Path = ROOT) -> str:
     m = re.search(rf"^[ \t]*//[ \t]*\[{re.escape(tag)}\][^\n]*\n(.*?)^[ \t]*//[ \t]*\[/{re.escape(tag)}\]", text, re.S | re.M)
     if not m:
         raise LookupError(f"{file} has no region // [{tag}] ... // [/{tag}]")
-    return textwrap.dedent(TAG_LINE.sub("", m.group(1)))
+    return m
+
+
+def region(file: str, tag: str, root: Path = ROOT) -> str:
+    return textwrap.dedent(TAG_LINE.sub("", region_match(file, tag, root).group(1)))
+
+
+def region_lines(file: str, tag: str, root: Path = ROOT):
+    """The first and last line (1-based) of a tagged region's code, the tag lines outside it;
+    the HTML book names them under each excerpt."""
+    m = region_match(file, tag, root)
+    first = m.string.count("\n", 0, m.start(1)) + 1
+    return first, first + m.group(1).count("\n") - 1
 
 
 def tagged_regions(root: Path = ROOT):

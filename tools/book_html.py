@@ -1,143 +1,443 @@
 #!/usr/bin/env python3
-"""Builds the book as one HTML page, out/book.html, with pandoc (tools/build-book runs this).
+"""Builds the book as web pages, one per chapter, under out/book/ (tools/build-book runs this).
 
-The chapters are written for a forge, where each is its own page: headings get GitHub's
-identifiers, and links go to other files (`02-gbuffer.md#the-g-buffer`). In one page those
-identifiers would collide (every chapter has "Hard cases"), so each chapter's go in their
-own namespace: heading "## Hard cases" of chapter 3 becomes id `c03-hard-cases`, a link
-`#hard-cases` inside chapter 3 becomes `#c03-hard-cases`, `02-gbuffer.md#x` becomes `#c02-x`,
-`02-gbuffer.md` the chapter's title, and the chapters' "contents" link the table of contents.
-Links to the repository's files (`../chapters/...`) stay relative: out/ sits beside book/, so
-they resolve the same way. tools/check-book-html opens the result in a browser and checks
-every image and link.
+    tools/book_html.py [--out DIR]
 
-    tools/book_html.py [--out out/book.html]
+out/book/index.html is the table of contents; 00-introduction.html, 01-forward.html, ...,
+appendix-*.html and bibliography.html are the pages, each with links to the previous and next
+page and to the contents. Everything a page needs is in out/book/ (book.css, book.js, the
+figures it shows), so the pages open from the file system with no server and no network.
+
+The chapters are written for a forge, so pandoc reads them as GitHub Markdown and gives the
+headings GitHub's identifiers: `02-gbuffer.md#the-g-buffer` becomes `02-gbuffer.html#the-g-buffer`,
+`../README.md#chapters` the contents page, and links to the repository's files
+(`../chapters/...`) go to them from out/book/. On the way:
+  * the forge's own navigation lines (<!-- nav --> ... <!-- /nav -->) give way to the pages';
+  * number markers (<!-- num ... -->1.30<!-- /num -->) leave only the number;
+  * every code excerpt (<!-- excerpt: path#tag -->) names its file and lines above the code;
+  * a table that compares approximations with their truth becomes a slider (below).
+
+Which tables compare with a truth (no marker in the Markdown: the figures' names say it):
+  * a truth is an image whose name has the word `truth` (`04_grazing_truth.png`,
+    `06_overview_truth_soft.png`); an error image's name ends in `_error`;
+  * the error of an image `X.png` is `X_error.png`, or `X` with its last `_word` replaced by
+    `error` (`06_overview_hard_visibility.png` -> `06_overview_hard_error.png`), in the table
+    or in book/figures/; the images claim errors in reading order, each error once;
+  * a table holding one truth compares it with the table's other images that have an error
+    (or, when none has one, with all of them); a table without a truth qualifies when every
+    image in it is such a method or its error, and the truth `NN_view_truth.png` of their
+    common name (`07_cornell_gtao_32.png` -> `07_cornell_truth.png`) exists;
+  * every image of a comparison has the truth's size in pixels.
+The slider shows a method on the left and the truth on the right of a line the reader drags;
+buttons pick the method and put its error image on the right instead of the truth. The table's
+other images and its text stay beside it, under the slider.
+
+tools/check-book-html opens every page in a browser and checks it.
 """
+import html
+import os
+import posixpath
 import re
 import shutil
+import struct
 import subprocess
 import sys
 import tempfile
-import unicodedata
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import book_excerpts  # noqa: E402
+
 ROOT = Path(__file__).resolve().parent.parent
-HEADING = re.compile(r"^(#{1,6})[ \t]+(.+?)[ \t]*#*[ \t]*$")
-LINK = re.compile(r"(?<!!)\[(?:[^\[\]]|\[[^\]]*\])*\]\((?P<target>[^)\s]*)\)")  # links, not images
+BOOK = ROOT / "book"
+ASSETS = ROOT / "tools" / "book_assets"
 TITLE = "lightpass: real-time lighting, measured"
+FROM = "gfm+implicit_figures+raw_attribute"
+LINK = re.compile(r"(?<!!)\[(?P<text>(?:[^\[\]]|\[[^\]]*\])*)\]\((?P<target>[^)\s]*)\)")  # links, not images
+IMAGE = re.compile(r"!\[(?P<alt>[^\]]*)\]\((?P<src>[^)\s]+)\)")
+NAV = re.compile(r"<!-- nav -->\n.*?<!-- /nav -->\n?", re.S)
+NUM = re.compile(r"<!-- num .*? -->|<!-- /num -->")
+EXCERPT = re.compile(r"^<!-- excerpt: (?P<file>[^#\s]+)#(?P<tag>[\w-]+) -->$")
+FENCE = re.compile(r"^\s*```")
 
 
-def plain(text: str) -> str:
-    """The text of a heading as a forge renders it: no code ticks, link targets or emphasis."""
-    text = re.sub(r"!?\[([^\]]*)\]\([^)]*\)", r"\1", text)
-    text = text.replace("`", "")
-    text = re.sub(r"(\*\*|\*)(.+?)\1", r"\2", text)
-    return text
+def pages():
+    """The book's Markdown files in reading order: introduction, chapters, appendices, bibliography."""
+    chapters = sorted(BOOK.glob("[0-9][0-9]-*.md")) + sorted(BOOK.glob("appendix-*.md"))
+    return chapters + [p for p in [BOOK / "bibliography.md"] if p.exists()]
 
 
-def github_slug(text: str) -> str:
-    """GitHub's heading identifier: lower case, letters, marks, digits, '_', '-' and spaces
-    kept, spaces to '-' (github-slugger)."""
+def title_of(md: Path) -> str:
+    for line in md.read_text().split("\n"):
+        if line.startswith("# "):
+            return line[2:].strip()
+    return md.stem
+
+
+def inline(text: str) -> str:
+    """The little Markdown of a table cell or a title as HTML: code, strong, emphasis."""
     out = []
-    for ch in plain(text).lower():
-        cat = unicodedata.category(ch)
-        if ch in " -" or cat[0] in "LMN" or cat == "Pc":
-            out.append("-" if ch == " " else ch)
+    for i, part in enumerate(re.split(r"`([^`]*)`", text)):
+        part = html.escape(part, quote=False)
+        if i % 2:
+            out.append(f"<code>{part}</code>")
+            continue
+        part = re.sub(r"\*\*(.+?)\*\*", r"<strong>\1</strong>", part)
+        part = re.sub(r"(?<![\w*])\*(?!\s)(.+?)(?<!\s)\*(?![\w*])", r"<em>\1</em>", part)
+        out.append(part)
     return "".join(out)
 
 
-def prefix_of(name: str) -> str:
-    """c03- for 03-light-volumes.md; a-scenes- for appendix-scenes.md, a-bibliography- for bibliography.md."""
-    return f"c{name[:2]}-" if re.match(r"\d\d-", name) else "a-" + re.sub(r"^appendix-|\.md$", "", name) + "-"
+def png_size(path: Path):
+    with open(path, "rb") as f:
+        head = f.read(24)
+    if len(head) < 24 or head[:8] != b"\x89PNG\r\n\x1a\n":
+        return None
+    return struct.unpack(">II", head[16:24])
 
 
-def chapter_ids(md: Path):
-    """(the title's id, {forge id: page id}) for one chapter."""
-    prefix = prefix_of(md.name)
-    ids, seen, title_id, fence = {}, {}, None, False
-    for line in md.read_text().split("\n"):
-        if line.startswith("```"):
-            fence = not fence
-        m = None if fence else HEADING.match(line)
-        if not m:
+# --- comparisons with a truth ------------------------------------------------------------
+
+def split_row(line: str):
+    cells = re.split(r"(?<!\\)\|", line.strip())
+    if cells and cells[0] == "":
+        cells = cells[1:]
+    if cells and cells[-1] == "":
+        cells = cells[:-1]
+    return [c.strip() for c in cells]
+
+
+def is_truth(stem: str) -> bool:
+    return "truth" in re.split(r"[_-]", stem) and not stem.endswith("_error")
+
+
+def is_error(stem: str) -> bool:
+    return stem.endswith("_error")
+
+
+def comparison(lines, figures: Path):
+    """The slider's parts for a Markdown table (its lines), or None when it compares nothing
+    with a truth (the rule is in this module's docstring)."""
+    if len(lines) < 3 or not re.fullmatch(r"\|?\s*:?-+:?\s*(\|\s*:?-+:?\s*)*\|?", lines[1].strip()):
+        return None
+    header = split_row(lines[0])
+    rows = [split_row(line) for line in lines[2:]]
+    cells = {}  # (row, col) -> (src, text)
+    for r, row in enumerate(rows):
+        for c, cell in enumerate(row):
+            imgs = IMAGE.findall(cell)
+            if len(imgs) > 1:
+                return None
+            src = imgs[0][1] if imgs else None
+            cells[(r, c)] = (src, IMAGE.sub("", cell).strip())
+    images = [(rc, src) for rc, (src, _) in sorted(cells.items()) if src]
+    if not images or any(not src.startswith("figures/") or not src.endswith(".png") for _, src in images):
+        return None
+    stem = {src: Path(src).stem for _, src in images}
+    truths = [(rc, src) for rc, src in images if is_truth(stem[src])]
+    if len(truths) > 1:
+        return None
+    in_table = {stem[src]: src for _, src in images}
+    claimed, methods, extras = set(), [], []
+    for rc, src in images:
+        s = stem[src]
+        if is_truth(s) or is_error(s):
             continue
-        base = github_slug(m.group(2))
-        n = seen.get(base, 0)
-        seen[base] = n + 1
-        forge = base if n == 0 else f"{base}-{n}"
-        ids[forge] = prefix + forge
-        if title_id is None:
-            title_id = prefix + forge
-    return title_id, ids
+        error = None
+        for cand in [s + "_error"] + ([s.rsplit("_", 1)[0] + "_error"] if "_" in s else []):
+            if cand in claimed:
+                continue
+            if cand in in_table or (figures / f"{cand}.png").exists():
+                error = in_table.get(cand, f"figures/{cand}.png")
+                claimed.add(cand)
+                break
+        (methods if error else extras).append((rc, src, error))
+    unclaimed_errors = [(rc, src, None) for rc, src in images if is_error(stem[src]) and stem[src] not in claimed]
+    if truths:
+        truth_rc, truth = truths[0]
+        if not methods:
+            methods, extras = extras, []
+    else:
+        if extras or unclaimed_errors or not methods:
+            return None
+        prefixes = {"_".join(stem[src].split("_")[:2]) for _, src, _ in methods}
+        if len(prefixes) != 1 or not (figures / f"{prefixes.pop()}_truth.png").exists():
+            return None
+        truth_rc, truth = None, f"figures/{'_'.join(stem[methods[0][1]].split('_')[:2])}_truth.png"
+    extras += unclaimed_errors
+    if not methods:
+        return None
+    size = png_size(figures / Path(truth).name) if (figures / Path(truth).name).exists() else None
+    for _, src, error in methods:
+        for s in [src] + ([error] if error else []):
+            p = figures / Path(s).name
+            if not p.exists() or png_size(p) != size:
+                return None
+
+    used_text = set()
+
+    def label(rc):
+        """The column's header for an image of the first row; below it, the first text under it."""
+        r, c = rc
+        if r > 0:
+            for below in range(r + 1, len(rows)):
+                src, text = cells.get((below, c), (None, ""))
+                if src:
+                    break
+                if text:
+                    used_text.add((below, c))
+                    return text
+        return header[c] if c < len(header) else ""
+
+    result = {
+        "truth": truth, "truth_label": label(truth_rc) if truth_rc else "truth", "size": size,
+        "methods": [(src, error, label(rc)) for rc, src, error in methods],
+        "extras": [(src, label(rc)) for rc, src, _ in extras],
+    }
+    result["notes"] = [text for rc, (src, text) in sorted(cells.items())
+                       if text and not src and rc not in used_text]
+    return result
 
 
-def rewrite(md: Path, titles: dict, all_ids: dict) -> str:
-    own = all_ids[md.name]
-    out, fence, heads = [], False, {}
-    for line in md.read_text().split("\n"):
-        if line.startswith("```"):
-            fence = not fence
-            out.append(line)
-            continue
-        if fence:
-            out.append(line)
-            continue
-        m = HEADING.match(line)
-        if m:
-            base = github_slug(m.group(2))
-            n = heads.get(base, 0)
-            heads[base] = n + 1
-            forge = base if n == 0 else f"{base}-{n}"
-            line = f"{m.group(1)} {m.group(2)} {{#{own[forge]}}}"
+def slider_html(comp, n: int) -> str:
+    """The slider for one comparison; book.js makes it move. No blank line: the Markdown reader
+    passes the block on as it is."""
+    w, h = comp["size"]
+    first_src, first_error, first_label = comp["methods"][0]
+    truth_label = inline(comp["truth_label"]) or "truth"
+    buttons = []
+    for i, (src, error, lab) in enumerate(comp["methods"]):
+        pressed = "true" if i == 0 else "false"
+        err = f' data-error="{html.escape(error)}"' if error else ""
+        buttons.append(f'<button type="button" class="compare-method" data-src="{html.escape(src)}"{err} '
+                       f'aria-pressed="{pressed}">{inline(lab) or html.escape(Path(src).stem)}</button>')
+    first_err = f' data-error="{html.escape(first_error)}"' if first_error else ""
+    parts = [
+        f'<figure class="compare" id="compare-{n}" data-truth="{html.escape(comp["truth"])}">',
+        f'<div class="compare-view" style="aspect-ratio: {w} / {h}; max-width: {max(w, 640)}px">',
+        f'<img class="compare-right" src="{html.escape(comp["truth"])}" alt="{html.escape(comp["truth_label"])}" width="{w}" height="{h}">',
+        f'<img class="compare-left" src="{html.escape(first_src)}"{first_err} alt="{html.escape(first_label)}" width="{w}" height="{h}">',
+        '<div class="compare-line"></div>',
+        f'<span class="compare-tag compare-tag-left">{inline(first_label)}</span>',
+        f'<span class="compare-tag compare-tag-right">{truth_label}</span>',
+        '<input class="compare-range" type="range" min="0" max="1000" value="500" '
+        'aria-label="drag: the method on the left, the truth on the right">',
+        '</div>',
+        '<div class="compare-controls">',
+        ('<span class="compare-methods">' + "".join(buttons) + '</span>') if len(buttons) > 1 else "",
+        '<span class="compare-right-choice">right side: '
+        f'<button type="button" class="compare-show-truth" aria-pressed="true">{truth_label}</button>'
+        '<button type="button" class="compare-show-error" aria-pressed="false">its error</button></span>',
+        '</div>',
+    ]
+    if comp["extras"]:
+        parts.append('<div class="compare-extras">')
+        for src, lab in comp["extras"]:
+            parts.append(f'<figure><img src="{html.escape(src)}" alt="{html.escape(lab)}">'
+                         f'<figcaption>{inline(lab)}</figcaption></figure>')
+        parts.append('</div>')
+    notes = " · ".join(inline(t) for t in comp["notes"])
+    parts.append(f'<figcaption>Drag across the picture (or use the arrow keys).{" " + notes if notes else ""}</figcaption>')
+    parts.append('</figure>')
+    return "\n".join(p for p in parts if p)
 
-        def link(lm):
-            t = lm["target"]
-            file, _, frag = t.partition("#")
-            head = lm.group(0)[:lm.group(0).rindex("](")]
-            if t == "../README.md#chapters":
-                return head + "](#TOC)"
-            if not file and frag:
-                return head + f"](#{own.get(frag, prefix_of(md.name) + frag)})"
-            if re.fullmatch(r"[\w-]+\.md", file):
-                if file not in titles:
-                    return head + f"](../book/{t})"  # a page of the book that is not in this one
-                return head + f"](#{all_ids[file].get(frag, prefix_of(file) + frag) if frag else titles[file]})"
-            if file.startswith("figures/"):
-                return head + f"](../book/{t})"  # a link to a CSV or a picture: out/ is beside book/
-            return lm.group(0)
 
-        out.append(LINK.sub(link, line))
-    return "\n".join(out)
+# --- one page's Markdown -----------------------------------------------------------------
+
+class Page:
+    def __init__(self, md: Path, html_names: dict):
+        self.md, self.html_names = md, html_names
+        self.figures = set()      # files of book/figures/ the page shows or links, or (copy, source) of others
+        self.excerpts = []        # (file, first, last) in order
+        self.comparisons = 0
+
+    def target(self, t: str) -> str:
+        """A link of book/X.md as seen from out/book/X.html."""
+        if re.match(r"^[a-z][a-z0-9+.-]*:", t, re.I) or t.startswith("#") or not t:
+            return t
+        file, hash_, frag = t.partition("#")
+        if file == "../README.md" and frag == "chapters":
+            return "index.html"
+        if file in self.html_names:
+            return self.html_names[file] + hash_ + frag
+        path = posixpath.normpath(posixpath.join("book", file))
+        if path.startswith("book/figures/") and (ROOT / path).is_file():
+            self.figures.add(path[len("book/"):])
+            return path[len("book/"):] + hash_ + frag
+        trailing = "/" if file.endswith("/") else ""
+        return "../../" + path + trailing + hash_ + frag
+
+    def line(self, text: str) -> str:
+        text = NUM.sub("", text)
+
+        def link(m):
+            return f"[{m['text']}]({self.target(m['target'])})"
+
+        def image(m):
+            src = m["src"]
+            if src.startswith("figures/"):
+                self.figures.add(src)
+                return m.group(0)
+            path = posixpath.normpath(posixpath.join("book", src))
+            if re.match(r"^[a-z][a-z0-9+.-]*:", src, re.I) or path.startswith("../"):
+                return m.group(0)
+            # a picture from elsewhere in the repository (tests/reference/...): copied beside the pages
+            self.figures.add(("files/" + path, path))
+            return f"![{m['alt']}](files/{path})"
+
+        return IMAGE.sub(image, LINK.sub(link, text))
+
+    def markdown(self) -> str:
+        lines = NAV.sub("", self.md.read_text()).split("\n")
+        out, i, fence = [], 0, False
+        while i < len(lines):
+            line = lines[i]
+            if FENCE.match(line):
+                fence = not fence
+                out.append(line)
+                i += 1
+                continue
+            if fence:
+                out.append(line)
+                i += 1
+                continue
+            m = EXCERPT.match(line)
+            if m and i + 1 < len(lines) and FENCE.match(lines[i + 1]):
+                first, last = book_excerpts.region_lines(m["file"], m["tag"], ROOT)
+                self.excerpts.append((m["file"], first, last))
+                link = "../../" + m["file"]
+                out += ['<div class="excerpt">', "",
+                        f'<p class="excerpt-source"><a href="{html.escape(link)}">{html.escape(m["file"])}</a>, '
+                        f'lines {first}–{last}</p>', ""]
+                j = i + 1
+                out.append(lines[j])
+                j += 1
+                while j < len(lines) and not FENCE.match(lines[j]):
+                    out.append(lines[j])
+                    j += 1
+                out += [lines[j] if j < len(lines) else "```", "", "</div>"]
+                i = j + 1
+                continue
+            if line.startswith("|"):
+                j = i
+                while j < len(lines) and lines[j].startswith("|"):
+                    j += 1
+                table = [NUM.sub("", t) for t in lines[i:j]]
+                comp = comparison(table, BOOK / "figures")
+                if comp:
+                    self.comparisons += 1
+                    for src in [comp["truth"]] + [s for m_ in comp["methods"] for s in m_[:2] if s] + [e[0] for e in comp["extras"]]:
+                        self.figures.add(src)
+                    out += ["", "```{=html}", slider_html(comp, self.comparisons), "```", ""]
+                else:
+                    out += [self.line(t) for t in table]
+                i = j
+                continue
+            out.append(self.line(line))
+            i += 1
+        return "\n".join(out) + "\n"
+
+
+# --- the pages ---------------------------------------------------------------------------
+
+def nav_html(prev, next_, where: str) -> str:
+    left = f'<a class="prev" rel="prev" href="{prev[0]}">← {inline(prev[1])}</a>' if prev else '<span class="prev"></span>'
+    right = f'<a class="next" rel="next" href="{next_[0]}">{inline(next_[1])} →</a>' if next_ else '<span class="next"></span>'
+    return f'<nav class="book-nav {where}">{left}<a class="contents" href="index.html">contents</a>{right}</nav>'
+
+
+def page_html(title: str, body: str, prev, next_) -> str:
+    return f"""<!DOCTYPE html>
+<html lang="en">
+<head>
+<meta charset="utf-8">
+<meta name="viewport" content="width=device-width, initial-scale=1">
+<title>{html.escape(title)} · lightpass</title>
+<link rel="stylesheet" href="book.css">
+<script src="book.js" defer></script>
+</head>
+<body>
+{nav_html(prev, next_, "top")}
+<main>
+{body}
+</main>
+{nav_html(prev, next_, "bottom")}
+</body>
+</html>
+"""
+
+
+def highlighting_css() -> str:
+    """pandoc's highlighting style as CSS (it writes it only into a standalone page)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        tpl = Path(tmp) / "t.html"
+        tpl.write_text("$highlighting-css$\n")
+        r = subprocess.run(["pandoc", "-f", "markdown", "-t", "html5", "--standalone", "--template", str(tpl),
+                            "--highlight-style=pygments", "--metadata", "title=x"],
+                           input="```cpp\nint x;\n```\n", capture_output=True, text=True, check=True)
+    return r.stdout
+
+
+def render(md_text: str) -> str:
+    r = subprocess.run(["pandoc", "-f", FROM, "-t", "html5", "--section-divs", "--highlight-style=pygments"],
+                       input=md_text, capture_output=True, text=True)
+    if r.returncode != 0:
+        raise RuntimeError(r.stderr)
+    return r.stdout
+
+
+H2 = re.compile(r'<h2 id="(?P<id>[^"]+)">(?P<text>.*?)</h2>', re.S)
 
 
 def main() -> int:
-    out = Path(sys.argv[sys.argv.index("--out") + 1]) if "--out" in sys.argv else ROOT / "out" / "book.html"
+    out = Path(sys.argv[sys.argv.index("--out") + 1]).resolve() if "--out" in sys.argv else ROOT / "out" / "book"
     if not shutil.which("pandoc"):
         print("book_html.py: pandoc is not installed (Debian: sudo apt-get install pandoc)")
         return 1
-    # the numbered chapters, then the appendices and the bibliography
-    chapters = sorted((ROOT / "book").glob("[0-9][0-9]-*.md")) + sorted((ROOT / "book").glob("appendix-*.md"))
-    chapters += [p for p in [ROOT / "book" / "bibliography.md"] if p.exists()]
-    titles, all_ids = {}, {}
-    for md in chapters:
-        titles[md.name], all_ids[md.name] = chapter_ids(md)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    with tempfile.TemporaryDirectory() as tmp:
-        files = []
-        for md in chapters:
-            p = Path(tmp) / md.name
-            p.write_text(rewrite(md, titles, all_ids) + "\n")
-            files.append(str(p))
-        common = ["pandoc", "--standalone", "--toc", "--toc-depth=2", "--section-divs", "-f", "markdown-auto_identifiers",
-                  f"--resource-path={ROOT / 'book'}", "--metadata", f"title={TITLE}", "-o", str(out)]
-        # pandoc 2.19 and later call it --embed-resources; older ones --self-contained
-        r = subprocess.run(common + ["--embed-resources"] + files, capture_output=True, text=True)
-        if r.returncode != 0:
-            r = subprocess.run(common + ["--self-contained"] + files, capture_output=True, text=True)
-        if r.returncode != 0:
-            print(r.stderr)
+    mds = pages()
+    html_names = {md.name: md.stem + ".html" for md in mds}
+    titles = {md.name: title_of(md) for md in mds}
+    book_pages = [Page(md, html_names) for md in mds]
+    try:
+        texts = [p.markdown() for p in book_pages]
+    except LookupError as e:
+        print(f"book_html.py: {e} (tools/book_excerpts.py --check says more)")
+        return 1
+    with ThreadPoolExecutor(max_workers=os.cpu_count() or 2) as pool:
+        try:
+            bodies = list(pool.map(render, texts))
+        except RuntimeError as e:
+            print(f"book_html.py: pandoc failed:\n{e}")
             return 1
-    print(f"wrote {out}")
+
+    if out.exists():
+        shutil.rmtree(out)
+    (out / "figures").mkdir(parents=True)
+    order = [("index.html", "Contents")] + [(html_names[md.name], titles[md.name]) for md in mds]
+    contents = []
+    for k, (page, body) in enumerate(zip(book_pages, bodies), start=1):
+        name = html_names[page.md.name]
+        (out / name).write_text(page_html(titles[page.md.name], body, order[k - 1], order[k + 1] if k + 1 < len(order) else None))
+        sections = "".join(f'<li><a href="{name}#{m["id"]}">{re.sub(r"<[^>]+>", "", m["text"])}</a></li>'
+                           for m in H2.finditer(body))
+        contents.append(f'<li><a href="{name}">{inline(titles[page.md.name])}</a>'
+                        + (f'<ul>{sections}</ul>' if sections else "") + "</li>")
+    index = (f'<h1>{html.escape(TITLE)}</h1>\n<p class="lead">A book with code: every chapter is a program under '
+             f'<a href="../../chapters/">chapters/</a>, and every picture and number in it comes from running them. '
+             f'Pictures that compare a method with its truth are sliders: drag across them.</p>\n'
+             f'<ol class="toc">{"".join(contents)}</ol>')
+    (out / "index.html").write_text(page_html("Contents", index, None, order[1]))
+    for f in sorted(set().union(*(p.figures for p in book_pages)), key=str):
+        copy, source = f if isinstance(f, tuple) else (f, "book/" + f)
+        (out / copy).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy2(ROOT / source, out / copy)
+    (out / "book.css").write_text(highlighting_css() + "\n" + (ASSETS / "book.css").read_text())
+    shutil.copy2(ASSETS / "book.js", out / "book.js")
+    excerpts = sum(len(p.excerpts) for p in book_pages)
+    sliders = sum(p.comparisons for p in book_pages)
+    print(f"wrote {out.relative_to(ROOT) if out.is_relative_to(ROOT) else out}/index.html: "
+          f"{len(book_pages)} pages, {sliders} sliders, {excerpts} excerpts")
     return 0
 
 
