@@ -13,9 +13,11 @@ LIGHTPASS_PACKAGES=(
   clang libclang-rt-14-dev                  # the scene loader's fuzz target (libFuzzer, tools/fuzz-scene)
 )
 
+# lightpass_install_packages [PACKAGE...]: those named (default: LIGHTPASS_PACKAGES) that are missing.
 lightpass_install_packages() {
-  local missing=()
-  for p in "${LIGHTPASS_PACKAGES[@]}"; do
+  local missing=() wanted=("$@")
+  [ ${#wanted[@]} -eq 0 ] && wanted=("${LIGHTPASS_PACKAGES[@]}")
+  for p in "${wanted[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
   done
   [ ${#missing[@]} -eq 0 ] && return 0
