@@ -387,7 +387,7 @@ def render(md_text: str) -> str:
     return r.stdout
 
 
-H2 = re.compile(r'<h2 id="(?P<id>[^"]+)">(?P<text>.*?)</h2>', re.S)
+H2 = re.compile(r'<section id="(?P<id>[^"]+)" class="level2">\s*<h2>(?P<text>.*?)</h2>', re.S)  # --section-divs
 
 
 def main() -> int:
@@ -426,7 +426,7 @@ def main() -> int:
     index = (f'<h1>{html.escape(TITLE)}</h1>\n<p class="lead">A book with code: every chapter is a program under '
              f'<a href="../../chapters/">chapters/</a>, and every picture and number in it comes from running them. '
              f'Pictures that compare a method with its truth are sliders: drag across them.</p>\n'
-             f'<ol class="toc">{"".join(contents)}</ol>')
+             f'<ul class="toc">{"".join(contents)}</ul>')
     (out / "index.html").write_text(page_html("Contents", index, None, order[1]))
     for f in sorted(set().union(*(p.figures for p in book_pages)), key=str):
         copy, source = f if isinstance(f, tuple) else (f, "book/" + f)
