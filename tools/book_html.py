@@ -47,8 +47,9 @@ def github_slug(text: str) -> str:
 
 
 def prefix_of(name: str) -> str:
-    """c03- for 03-light-volumes.md; a-scenes- for appendix-scenes.md, a-bibliography- for bibliography.md."""
-    return f"c{name[:2]}-" if re.match(r"\d\d-", name) else "a-" + re.sub(r"^appendix-|\.md$", "", name) + "-"
+    """c03- for 03-light-volumes.md, c10b- for a chapter's part 10b-transparency.md; a-scenes- for
+    appendix-scenes.md, a-bibliography- for bibliography.md."""
+    return f"c{name.split('-')[0]}-" if re.match(r"\d\d[a-z]?-", name) else "a-" + re.sub(r"^appendix-|\.md$", "", name) + "-"
 
 
 def chapter_ids(md: Path):
@@ -116,7 +117,7 @@ def main() -> int:
         print("book_html.py: pandoc is not installed (Debian: sudo apt-get install pandoc)")
         return 1
     # the numbered chapters, then the appendices and the bibliography
-    chapters = sorted((ROOT / "book").glob("[0-9][0-9]-*.md")) + sorted((ROOT / "book").glob("appendix-*.md"))
+    chapters = sorted((ROOT / "book").glob("[0-9][0-9]*-*.md")) + sorted((ROOT / "book").glob("appendix-*.md"))
     chapters += [p for p in [ROOT / "book" / "bibliography.md"] if p.exists()]
     titles, all_ids = {}, {}
     for md in chapters:
