@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <set>
 #include <sstream>
 
 #include "common/error.h"
@@ -104,7 +105,14 @@ std::string usage(const CliSpec& spec) {
        "  --update-references  with --check: overwrite the references (on purpose only)\n"
        "  --list             " << option_help("list") << "\n"
        "  --help             this text\n";
-  return u.str() + knob_usage(spec);
+  std::string text = u.str() + knob_usage(spec);
+  if (!spec.opening.empty()) {
+    text += "\nWith no --scene or --check it opens as if run with";
+    for (const auto& a : spec.opening) text += ' ' + a;
+    text += ":\nwhat the chapter is about. An option you give wins; the defaults above are the neutral\n"
+            "values the reference images are named against.\n";
+  }
+  return text;
 }
 
 std::string knob_usage(const CliSpec& spec) {
@@ -125,8 +133,26 @@ std::string knob_usage(const CliSpec& spec) {
   return u.str();
 }
 
+namespace {
+
+// The chapter's opening options (CliSpec::opening) where the command line did not give them.
+void apply_opening(Options& o, const CliSpec& spec, const std::set<std::string>& given) {
+  CliSpec plain = spec;
+  plain.opening.clear();
+  std::vector<const char*> argv = {spec.program.c_str()};
+  for (const auto& a : spec.opening) argv.push_back(a.c_str());
+  const Options opening = parse_cli(int(argv.size()), argv.data(), plain);  // a bad opening is the chapter's bug: it throws
+  if (opening.view_given && !o.view_given) o.view = opening.view;
+  if (opening.mode_given && !o.mode_given) o.mode = opening.mode;
+  for (const auto& k : spec.knobs)
+    if (!given.count(k.name) && opening.knobs.at(k.name) != k.default_value) o.knobs[k.name] = opening.knobs.at(k.name);
+}
+
+}  // namespace
+
 Options parse_cli(int argc, const char* const* argv, const CliSpec& spec) {
   Options o;
+  std::set<std::string> given;  // the knobs the command line set
   o.scene = spec.default_scene;
   o.mode = spec.modes.front();
   for (const auto& k : spec.knobs) o.knobs[k.name] = k.default_value;
@@ -177,6 +203,7 @@ Options parse_cli(int argc, const char* const* argv, const CliSpec& spec) {
           throw UsageError(arg + " must be one of:" + known + "; got '" + name + "'");
         }
         o.knobs[knob->name] = double(it - knob->choices.begin());
+        given.insert(knob->name);
         continue;
       }
       double v = parse_number(arg, value());
@@ -185,9 +212,11 @@ Options parse_cli(int argc, const char* const* argv, const CliSpec& spec) {
         throw UsageError(arg + " must be between " + format_number(knob->min) + " and " +
                          format_number(knob->max) + ", got " + format_number(v));
       o.knobs[knob->name] = v;
+      given.insert(knob->name);
     }
   }
   if (o.update_references && !o.check) throw UsageError("--update-references only makes sense with --check");
+  if (!spec.opening.empty() && !o.check && !o.list && o.scene == spec.default_scene) apply_opening(o, spec, given);
   if (!o.out.empty() && !o.check) {
     // Only PNG is written; a name that says otherwise would be a PNG under a wrong name.
     std::string ext = std::filesystem::path(o.out).extension().string();

@@ -30,6 +30,12 @@ struct CliSpec {
   std::string default_scene; // relative to the source root
   std::vector<std::string> modes;  // the first is the default
   std::vector<Knob> knobs;
+  // What the program opens on when the command line does not say (the default scene only, not
+  // --check): options as if typed first, e.g. {"--view", "street_level", "--bloom", "before"},
+  // so that `./run NN` shows the chapter's subject while each knob's default stays the
+  // neutral value the references and tests are named against. An option the command line
+  // gives wins.
+  std::vector<std::string> opening = {};
 };
 
 struct Options {

@@ -63,21 +63,39 @@ void ColourTarget::bind() const {
 
 ImageF ColourTarget::read() const { return read_texture(colour_.id(), width_, height_); }
 
+namespace {
+
+// `picture`'s texels into `texture` (its size), one channel or four.
+void write_picture(GLuint texture, const ImageF& picture, int channels) {
+  if (picture.channels < 1) throw Error("a picture to upload has no channels");
+  ImageF up = picture;
+  flip_vertically(up);  // OpenGL's rows start at the bottom
+  const std::size_t pixels = std::size_t(up.width) * std::size_t(up.height), from = std::size_t(up.channels);
+  std::vector<float> texels(pixels * std::size_t(channels), 1.f);
+  for (std::size_t i = 0; i < pixels; ++i)
+    for (int c = 0; c < std::min(channels, 3); ++c)
+      texels[i * std::size_t(channels) + std::size_t(c)] = up.data[i * from + std::size_t(std::min(c, up.channels - 1))];
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTextureSubImage2D(texture, 0, 0, 0, up.width, up.height, channels == 1 ? GL_RED : GL_RGBA, GL_FLOAT, texels.data());
+}
+
+}  // namespace
+
+gl::Texture upload_picture(const ImageF& picture, GLenum format) {
+  const bool one = format == GL_R16F || format == GL_R32F;
+  if (!one && format != GL_RGBA16F && format != GL_RGBA32F) throw Error("upload_picture: a float format of one or four channels");
+  gl::Texture t = gl::make_texture_2d(format, picture.width, picture.height);
+  write_picture(t.id(), picture, one ? 1 : 4);
+  return t;
+}
+
 void PictureTexture::upload(const ImageF& picture) {
   if (picture.width != width_ || picture.height != height_) {
     texture_ = gl::make_texture_2d(channels_ == 1 ? GL_R32F : GL_RGBA32F, picture.width, picture.height);
     width_ = picture.width;
     height_ = picture.height;
   }
-  ImageF up = picture;
-  flip_vertically(up);  // OpenGL's rows start at the bottom
-  const std::size_t pixels = std::size_t(up.width) * std::size_t(up.height), from = std::size_t(up.channels);
-  std::vector<float> texels(pixels * std::size_t(channels_), 1.f);
-  for (std::size_t i = 0; i < pixels; ++i)
-    for (int c = 0; c < std::min(channels_, 3); ++c)
-      texels[i * std::size_t(channels_) + std::size_t(c)] = up.data[i * from + std::size_t(std::min(c, up.channels - 1))];
-  glTextureSubImage2D(texture_.id(), 0, 0, 0, up.width, up.height, channels_ == 1 ? GL_RED : GL_RGBA, GL_FLOAT,
-                      texels.data());
+  write_picture(texture_.id(), picture, channels_);
 }
 
 ImageF read_texture(GLuint texture, int w, int h) {

@@ -57,10 +57,13 @@ ImageF read_texture(GLuint texture, int width, int height);
 void put_picture(const ImageRGBA8& picture, GLuint framebuffer);
 ImageRGBA8 read_framebuffer(GLuint framebuffer, int width, int height);  // rows top first
 
-// A CPU picture (a ray-traced truth, an error map; rows top first) uploaded into a float
-// texture for a pass to draw: one channel (GL_R32F, the picture's first channel) or four
-// (GL_RGBA32F: its channels, the last repeated into those it lacks, alpha 1). The texture
-// follows the picture's size.
+// A CPU picture (a ray-traced truth, an error map, a hand-made radiance; rows top first) in a
+// new float texture of `format`: one channel (GL_R16F/GL_R32F: the picture's first channel)
+// or four (GL_RGBA16F/GL_RGBA32F: its channels, the last repeated into those it lacks, alpha 1).
+gl::Texture upload_picture(const ImageF& picture, GLenum format);
+
+// The same, kept for a pass that draws a new picture of the same size often: one channel
+// (GL_R32F) or four (GL_RGBA32F); the texture follows the picture's size.
 class PictureTexture {
  public:
   explicit PictureTexture(int channels) : channels_(channels == 1 ? 1 : 4) {}

@@ -27,7 +27,7 @@ lightpass_image_test(03_light_volumes.hundred_thousand_lights "100000 local ligh
 add_test(NAME 03_light_volumes.bad_lights_warn_and_render COMMAND ${EXPECT} 0
   "give no light .*'dark' \\(1\\)" "light 'negative' is left out: its intensity -2" "light 'negative_range' is left out: its range -3"
   "90 degrees or more.*'wide_spot'" "^2 local lights"
-  -- ${P03} --headless --size 160x90 --scene chapters/03_light_volumes/testdata/bad_lights.gltf --out ${CMAKE_BINARY_DIR}/out/03_bad_lights.png)
+  -- ${P03} --headless --size 160x90 --scene tests/data/bad_lights.gltf --out ${CMAKE_BINARY_DIR}/out/03_bad_lights.png)
 lightpass_program_test(03_light_volumes.bad_mode 2 "unknown mode 'tiled'" ${P03} --mode tiled)
 lightpass_program_test(03_light_volumes.bad_show 2 "--show must be one of: result diffuse specular volumes stencil-mask heat-shaded heat-lit. got 'heat'" ${P03} --show heat)
 lightpass_program_test(03_light_volumes.no_such_light_to_show 1 "there is no light 5000 to show the stencil mask of \\(312 local lights\\)"

@@ -64,7 +64,7 @@ FENCE = re.compile(r"^\s*```")
 
 def pages():
     """The book's Markdown files in reading order: introduction, chapters, appendices, bibliography."""
-    chapters = sorted(BOOK.glob("[0-9][0-9]-*.md")) + sorted(BOOK.glob("appendix-*.md"))
+    chapters = sorted(BOOK.glob("[0-9][0-9]*-*.md")) + sorted(BOOK.glob("appendix-*.md"))  # 10-frame.md, 10b-transparency.md
     return chapters + [p for p in [BOOK / "bibliography.md"] if p.exists()]
 
 

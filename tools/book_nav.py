@@ -29,7 +29,7 @@ SOURCE_SUFFIXES = {".h", ".cpp", ".glsl", ".vert", ".frag", ".comp", ".geom", ".
 
 
 def chapters(root: Path):
-    return sorted(p for p in (root / "book").glob("[0-9][0-9]-*.md"))
+    return sorted(p for p in (root / "book").glob("[0-9][0-9]*-*.md"))  # 10-frame.md, 10b-transparency.md, ...
 
 
 def title(md: Path) -> str:

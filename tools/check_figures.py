@@ -3,8 +3,7 @@
 
     tools/check_figures.py [--update]
 
-Runs each chapter's recipe (tools/figures_NN.py; the concept diagrams' tools/diagrams_NN.py,
-and chapters/04_neon/diagrams.py) into a temporary folder holding a copy of the CSVs, then fails (exit 1)
+Runs each chapter's recipe (tools/figures_NN.py; the concept diagrams' tools/diagrams_NN.py) into a temporary folder holding a copy of the CSVs, then fails (exit 1)
 when an SVG of book/figures/ is made by no recipe, or differs from what its recipe makes now
 (a CSV changed and the plots were not redrawn, or a plot was edited by hand). --update
 copies the recipes' SVGs into book/figures/.
@@ -18,8 +17,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 FIGURES = ROOT / "book" / "figures"
-RECIPES = (sorted((ROOT / "tools").glob("figures_[0-9][0-9].py")) + sorted((ROOT / "tools").glob("diagrams_[0-9][0-9].py"))
-           + [ROOT / "chapters" / "04_neon" / "diagrams.py"])
+RECIPES = sorted((ROOT / "tools").glob("figures_[0-9][0-9].py")) + sorted((ROOT / "tools").glob("diagrams_[0-9][0-9].py"))
 
 
 def main() -> int:

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Chapter 04's plots, from the CSVs 04_neon_sweep writes (book/figures/), through tools/plot.py.
-(chapters/04_neon/make_figures.sh runs the sweep and the geometry diagrams, diagrams.py.)
+(chapters/04_neon/make_figures.sh runs the sweep and the concept diagrams, tools/diagrams_04.py.)
 
     python3 tools/figures_04.py [FIGURES_DIR]      (default book/figures)
 """

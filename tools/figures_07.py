@@ -7,7 +7,8 @@ The Pareto plots: each method's mean |A - truth| on the test view against its AO
 untuned (the source's parameters, solid) and tuned on another view (dashed), a point per
 sample count, joined in the order of the sample counts and labelled with them (the tuned
 parameters are in the CSV and the book's table). One plot per scene from the llvmpipe CSV, and
-from the H200's when it is there.
+from the H200's when it is there. The chapter's time-against-error figure: every method at
+1920x1080 on the H200 (07_methods_1080p_h200.svg).
 """
 import sys
 from pathlib import Path
@@ -40,6 +41,30 @@ def pareto(d: Path, csv_name: str, where: str, suffix: str):
              "mean |A - truth| on the test view", xlog=True, width=900, height=480)
 
 
+def methods_1080p(d: Path, csv_name: str, out_name: str):
+    """The chapter's one time-against-error figure: each method's mean |A - truth| against its
+    AO pass's time (blur included) at 1920x1080 on the H200, a point per sample count, with the
+    variants that tell where the time goes (no blur; the source's fixed spiral, no blur)."""
+    if not (d / csv_name).exists():
+        return
+    notes, rows = read_csv(d / csv_name)
+    shown = (("classic", "classic", "#1f77b4", False), ("classic-half", "classic, half res.",
+             "#1f77b4", True), ("disk", "disk (turned, blurred)", "#d62728", False),
+             ("disk-spiral", "disk, fixed spiral, no blur", "#d62728", True),
+             ("gtao", "GTAO", "#2ca02c", False), ("gtao-no-blur", "GTAO, no blur", "#2ca02c", True))
+    series = []
+    for method, label, colour, dashed in shown:
+        pts = sorted((int(r["samples"]), float(r["ao_ms"]), float(r["mean_abs"])) for r in rows if r["method"] == method)
+        if method.startswith("gtao"):
+            pts = [p for p in pts if p[0] >= 16]  # 8 samples read one whole slice, as 16 do: the same pass
+        if pts:
+            series.append(Series(label, [(t, e, str(n)) for n, t, e in pts], dashed=dashed, in_order=True,
+                                 colour=colour))
+    plot(d / out_name, "AO on the Cornell box: error against time, 1920x1080", notes[0] if notes else "", series,
+         "ms, the AO pass (and its blur where it has one; log scale)", "mean |A - truth|", xlog=True, width=900,
+         height=480)
+
+
 def wall(d: Path, csv_name: str, where: str, suffix: str):
     """The source's complaint: frame time as the camera nears a wall. The AO pass's time against
     the camera's distance (as a fraction of the view's), one line per method."""
@@ -59,6 +84,7 @@ def wall(d: Path, csv_name: str, where: str, suffix: str):
 def main(d: Path):
     wall(d, "07_ssao_wall_llvmpipe.csv", "llvmpipe", "_llvmpipe")
     wall(d, "07_ssao_wall_h200.csv", "NVIDIA H200", "_h200")
+    methods_1080p(d, "07_ssao_1080p_h200.csv", "07_methods_1080p_h200.svg")
     pareto(d, "07_ssao_tuned_llvmpipe.csv", "llvmpipe", "")
     pareto(d, "07_ssao_tuned_h200.csv", "NVIDIA H200", "_h200")
 

@@ -35,7 +35,7 @@ void ForwardRenderer::draw_scene(const ShaderProgram& program, const FrameCamera
   program.set("u_light_count", light_count);
   // [per-draw]
   scene_.draw([&](const Instance& inst, const Material& m) {
-    set_surface(program, scene_, inst, m);  // material.h: the same in every pass
+    set_surface(program, scene_, inst, m, emissive_scale_);  // material.h: the same in every pass
   });
   // [/per-draw]
 }

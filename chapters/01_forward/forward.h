@@ -28,12 +28,15 @@ class ForwardRenderer {
   void draw_base(const FrameCamera& camera, const LightBuffer& lights) const;
   // Multi-pass, then one additive pass per light over the same depth (test EQUAL, no writes).
   void draw_additive_lights(const FrameCamera& camera, const LightBuffer& lights) const;
+  // Every material's emitted colour times `scale` (1: the scene's own).
+  void set_emissive_scale(float scale) { emissive_scale_ = scale; }
 
  private:
   void draw_scene(const ShaderProgram& program, const FrameCamera& camera, bool renormalize, bool include_base,
                   int first_light, int light_count) const;
   const SceneGpu& scene_;
   ShaderProgram per_pixel_, per_vertex_;
+  float emissive_scale_ = 1.f;
 };
 
 }  // namespace lp::ch01

@@ -6,13 +6,14 @@
 
 namespace lp::ch01 {
 
-void set_surface(const ShaderProgram& program, const SceneGpu& scene, const Instance& instance, const Material& m) {
+void set_surface(const ShaderProgram& program, const SceneGpu& scene, const Instance& instance, const Material& m,
+                 float emissive_scale) {
   program.set("u_model", instance.model);
   program.set("u_normal_matrix", glm::mat3(glm::transpose(glm::inverse(instance.model))));
   program.set("u_base_color", m.base_color);
   program.set("u_specular", m.specular_color);
   program.set("u_exponent", exponent_from_roughness(m.roughness));
-  program.set("u_emissive", m.emissive);
+  program.set("u_emissive", m.emissive * emissive_scale);
   program.set("u_has_normal_map", int(m.normal_texture >= 0));
   program.set("u_normal_scale", m.normal_scale);
   glBindTextureUnit(0, scene.base_color_texture(m.base_color_texture));

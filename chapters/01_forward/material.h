@@ -17,7 +17,9 @@ namespace lp::ch01 {
 // Uniforms: u_model, u_normal_matrix (the instance), u_base_color, u_specular, u_exponent
 // (from the roughness, blinn_phong.h), u_emissive, u_has_normal_map, u_normal_scale. A
 // program that declares only some of them gets those (OpenGL ignores location -1).
-void set_surface(const ShaderProgram& program, const SceneGpu& scene, const Instance& instance, const Material& material);
+// `emissive_scale` multiplies the material's emitted colour (chapter 05's glow knob).
+void set_surface(const ShaderProgram& program, const SceneGpu& scene, const Instance& instance, const Material& material,
+                 float emissive_scale = 1.f);
 // [/set-surface]
 
 }  // namespace lp::ch01

@@ -113,13 +113,13 @@ std::vector<std::string> GBuffer::shader_defines(GLuint first_unit) const { retu
 
 void GBuffer::set_frame(const FrameCamera& camera, const std::vector<glm::vec3>& palette, float emissive_scale) {
   camera_ = camera_for(layout_.depth, camera);
-  GBufferFrame f;
-  f.view_projection = camera_.view_projection();
-  f.inverse_view_projection = precise_inverse(f.view_projection);
-  f.eye = glm::vec4(camera_.position, 1.f);
-  f.size = glm::vec4(width_, height_, 1.f / width_, 1.f / height_);
-  f.depth = glm::vec4(camera_.znear, camera_.zfar, sky_depth(), is_reversed_z(layout_) ? 1.f : 0.f);
-  for (std::size_t i = 0; i < palette.size() && i < kPaletteSize; ++i) f.emissive[i] = glm::vec4(palette[i] * emissive_scale, 0.f);
+  GBufferFrame f{};
+  f.gb_view_projection = camera_.view_projection();
+  f.gb_inverse_view_projection = precise_inverse(f.gb_view_projection);
+  f.gb_eye = glm::vec4(camera_.position, 1.f);
+  f.gb_size = glm::vec4(width_, height_, 1.f / width_, 1.f / height_);
+  f.gb_depth_info = glm::vec4(camera_.znear, camera_.zfar, sky_depth(), is_reversed_z(layout_) ? 1.f : 0.f);
+  for (std::size_t i = 0; i < palette.size() && i < kPaletteSize; ++i) f.gb_emissive[i] = glm::vec4(palette[i] * emissive_scale, 0.f);
   glNamedBufferSubData(frame_.id(), 0, sizeof(GBufferFrame), &f);
 }
 

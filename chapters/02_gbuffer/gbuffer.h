@@ -33,6 +33,7 @@
 //   leaves OpenGL's defaults (GL_NEGATIVE_ONE_TO_ONE, GL_LESS) behind.
 // - Sky (no geometry): Surface.is_sky; its other fields are finite (zero, position on the
 //   far plane), never NaN.
+#include <cstddef>
 #include <map>
 #include <string>
 #include <vector>
@@ -47,18 +48,19 @@
 
 namespace lp::ch02 {
 
-// [frame-block]
-// Mirrors `uniform GBufferFrame` in shaders/gbuffer.glsl (std140).
-inline constexpr int kPaletteSize = 256;  // emissive codes: 0 = none, 1..255 materials
+// `uniform GBufferFrame` of shaders/gbuffer.glsl, from the header both languages include.
+namespace glsl {
+using glm::mat4;
+using glm::vec4;
 struct GBufferFrame {
-  glm::mat4 view_projection{1};
-  glm::mat4 inverse_view_projection{1};
-  glm::vec4 eye{0};          // xyz: camera position (world)
-  glm::vec4 size{0};         // width, height, 1 / width, 1 / height
-  glm::vec4 depth{0};        // near, far, the depth value that means "sky", 1 if reversed-Z
-  glm::vec4 emissive[kPaletteSize] = {};  // rgb: emissive colour of palette code i
+#include "chapters/02_gbuffer/shaders/gbuffer_frame.h"
 };
-// [/frame-block]
+}  // namespace glsl
+using glsl::GBufferFrame;
+inline constexpr int kPaletteSize = GBUFFER_PALETTE_SIZE;
+static_assert(offsetof(GBufferFrame, gb_eye) == 128 && offsetof(GBufferFrame, gb_emissive) == 176 &&
+                  sizeof(GBufferFrame) == 176 + 16 * kPaletteSize,
+              "std140: two mat4, three vec4, the palette");
 
 // The #defines gbuffer.glsl (and the geometry pass) need for a layout, e.g.
 // {"GBUFFER_FIRST_UNIT 0", "GBUFFER_NORMAL_OCT 16", ...}.

@@ -61,12 +61,12 @@ void LightPrePass::draw_geometry(const FrameCamera& camera, int width, int heigh
       throw Error("the light pre-pass G-buffer is incomplete on this driver");
   }
   camera_ = camera;
-  ch02::GBufferFrame f;
-  f.view_projection = camera.view_projection();
-  f.inverse_view_projection = ch02::precise_inverse(f.view_projection);
-  f.eye = glm::vec4(camera.position, 1.f);
-  f.size = glm::vec4(width_, height_, 1.f / width_, 1.f / height_);
-  f.depth = glm::vec4(camera.znear, camera.zfar, 1.f, 0.f);
+  ch02::GBufferFrame f{};
+  f.gb_view_projection = camera.view_projection();
+  f.gb_inverse_view_projection = ch02::precise_inverse(f.gb_view_projection);
+  f.gb_eye = glm::vec4(camera.position, 1.f);
+  f.gb_size = glm::vec4(width_, height_, 1.f / width_, 1.f / height_);
+  f.gb_depth_info = glm::vec4(camera.znear, camera.zfar, 1.f, 0.f);
   glNamedBufferSubData(frame_.id(), 0, sizeof(f), &f);
 
   glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());

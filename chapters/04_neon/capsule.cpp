@@ -85,7 +85,7 @@ NeonGpu pack_neon(const NeonLight& light, float volume_radius) {
   ri = glm::dot(ri, ri) > 1e-12f ? glm::normalize(ri) : perpendicular(rj);
   glm::vec3 rk = glm::cross(ri, rj);
   glm::vec3 power = light.color * light.intensity;
-  NeonGpu g;
+  NeonGpu g{};
   g.rows[0] = glm::vec4(ri * volume_radius, power.r);
   g.rows[1] = glm::vec4(rj * half_length, power.g);
   g.rows[2] = glm::vec4(rk * light.specular, power.b);

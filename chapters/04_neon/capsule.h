@@ -27,24 +27,13 @@ struct CapsuleMesh {
 CapsuleMesh make_capsule(int segments = 16, int rings = 4);
 // [/capsule-mesh]
 
-// [neon-gpu]
-// One tube as the shaders see it (std430, 96 bytes): the thesis's per-instance matrix M,
-// the barn doors and what it has no room for.
-//
-//   row 0:  Ri x volume radius    | colour.r x intensity       Ri, Rj, Rk: orthonormal and
-//   row 1:  Rj x half length      | colour.g x intensity       right-handed; Rj is the axis,
-//   row 2:  Rk x specular         | colour.b x intensity       Ri the first door's side
-//   row 3:  centre S = (A + B)/2  | caps (1 capsule, 0 cylinder)
-//
-// GLSL's m[i] is a column, so `rows` holds the ROWS of M: rows[0] is row 0 above. As a
-// vertex attribute (mat4, locations k .. k+3) each row arrives as one vec4, as in the thesis.
-struct NeonGpu {
-  glm::mat4 rows{0};
-  glm::vec4 barn_doors{0};  // distance, count, transmittance, softness (count 0: none)
-  glm::vec4 extra{0};       // x: the glass tube's radius; y: the doors' radius; zw: 0
-};
-static_assert(sizeof(NeonGpu) == 96);
-// [/neon-gpu]
+namespace glsl {
+using glm::mat4;
+using glm::vec4;
+#include "chapters/04_neon/shaders/neon_gpu.h"  // struct NeonGpu, shared with GLSL
+}  // namespace glsl
+using glsl::NeonGpu;
+static_assert(sizeof(NeonGpu) == 96, "std430: a mat4 and two vec4");
 
 NeonGpu pack_neon(const NeonLight& light, float volume_radius);
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Chapter 04's figures: the sweep (CSV and images), its plots (SVG, tools/figures_04.py) and the
-# geometry diagrams (diagrams.py), all into book/figures/.
+# concept diagrams (tools/diagrams_04.py), all into book/figures/.
 #
 #   chapters/04_neon/make_figures.sh [BUILD_DIR] [SWEEP OPTIONS...]   (default build/)
 #   chapters/04_neon/make_figures.sh --plots-only                       (from the CSVs there)
@@ -14,7 +14,7 @@ if [ "${1:-}" != "--plots-only" ]; then
 fi
 # Every plot of the chapter, from the CSVs (one recipe, through tools/plot.py).
 python3 "$root/tools/figures_04.py" "$out"
-python3 "$root/chapters/04_neon/diagrams.py" "$out"
+python3 "$root/tools/diagrams_04.py" "$out"
 # The capsule volumes (the program, deferred path): the night street with its signs, the
 # capsules and their stencil masks, and what the capsules shade without lighting.
 if [ "${1:-}" != "--plots-only" ]; then

@@ -271,6 +271,7 @@ Terms improved_terms(const NeonSurface& s, const NeonLight& light) {
   float d = f.d, phi0 = std::atan2(s0, d), phi1 = std::atan2(s1, d), span = phi1 - phi0;
   auto direction = [&](float phi) { return std::cos(phi) * f.w + std::sin(phi) * f.u; };
   auto F = [&](float phi) { return specular_lobe(s, direction(phi)); };
+  // [improved-peak]
   // 1. Where the highlight is. The thesis's idea, asked in angle instead of distance: the
   //    point of the tube whose direction is closest to the reflection ray R. Along the tube
   //    cos(l, R) = (a + b s) / sqrt(d^2 + s^2), whose only maximum is at s = b d^2 / a (a > 0),
@@ -284,6 +285,7 @@ Terms improved_terms(const NeonSurface& s, const NeonLight& light) {
   float phi_n = std::clamp(std::atan2(glm::dot(s.normal, f.u), glm::dot(s.normal, f.w)), phi0, phi1);
   float f_r = F(phi_r), f_n = F(phi_n);
   float peak = f_r >= f_n ? phi_r : phi_n, best = std::max(f_r, f_n);
+  // [/improved-peak]
   // 2. Two Newton steps on log F climb to the peak; its curvature gives the width sigma.
   glm::vec2 slope;
   for (int step = 0;; ++step) {
@@ -298,11 +300,13 @@ Terms improved_terms(const NeonSurface& s, const NeonLight& light) {
     peak = next;
   }
   float sigma = slope.y < 0 ? 1.f / std::sqrt(-slope.y) : span;
+  // [improved-quadrature]
   // 3. Gauss-Legendre on three pieces: 8 nodes on the highlight (peak +- 3.5 sigma), 4 on
   //    each side of it for the tails a wide lobe or a grazing view leaves there.
   float lo = std::max(phi0, peak - 3.5f * sigma), hi = std::min(phi1, peak + 3.5f * sigma);
   float sum = gauss_legendre<8>(lo, hi, F) + gauss_legendre<4>(phi0, lo, F) + gauss_legendre<4>(hi, phi1, F);
   out.specular = sum / (length * d);
+  // [/improved-quadrature]
   return out;
 }
 // [/improved-specular]

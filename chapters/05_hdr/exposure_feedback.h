@@ -78,7 +78,7 @@ class ExposureFeedback {
   };
   struct Reading {
     bool valid = false;
-    ExposureState state;
+    ExposureState state{};
     std::uint64_t frame = 0, generation = 0;
     double decay = 0;
   };

@@ -23,7 +23,7 @@ void EyeAdaptation::update(GLuint log_average_buffer, const AdaptationSettings& 
 }
 
 ExposureState EyeAdaptation::read() const {
-  ExposureState s;
+  ExposureState s{};
   glGetNamedBufferSubData(state_.id(), 0, sizeof(s), &s);
   return s;
 }

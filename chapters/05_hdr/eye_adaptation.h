@@ -3,14 +3,12 @@
 // frame's log-average (hdr_math.h: adapt) and turns it into an exposure, key / adapted.
 // The state lives in a storage buffer that the bloom and tonemapping passes read, so the
 // frame never waits for a read-back.
+#include "chapters/05_hdr/hdr_buffers.h"
 #include "common/gl.h"
 #include "common/shader.h"
 
 namespace lp::ch05 {
 
-struct ExposureState {  // mirrors the GLSL struct in shaders/hdr_math.glsl
-  float target = 0, adapted = 0, exposure = 0, mean_log = 0, count = 0, pad0 = 0, pad1 = 0, pad2 = 0;
-};
 
 struct AdaptationSettings {
   float key = 0.18f;          // the exposed value the average maps to ("middle grey")

@@ -18,8 +18,6 @@
 
 namespace lp::ch05 {
 
-// Storage-buffer bindings of the stage; shaders/hdr_math.glsl has the same numbers.
-inline constexpr GLuint kLogAverageBinding = 5, kExposureBinding = 6, kPartialsBinding = 7;
 
 // [settings]
 struct HdrSettings {

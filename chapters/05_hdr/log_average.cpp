@@ -39,7 +39,7 @@ void LogAverage::ensure_chain(int w, int h) {
 void LogAverage::ensure_partials(std::size_t count) {
   if (count <= partial_capacity_) return;
   partial_capacity_ = count;
-  partials_ = gl::make_buffer(nullptr, count * 8);  // struct Partial { float; uint; }
+  partials_ = gl::make_buffer(nullptr, count * sizeof(Partial));
 }
 
 std::size_t LogAverage::allocated_bytes() const {
@@ -103,7 +103,7 @@ void LogAverage::compute(GLuint radiance, int w, int h, AverageMethod method, fl
 }
 
 LogAverageResult LogAverage::read() const {
-  LogAverageResult r;
+  LogAverageResult r{};
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   glGetNamedBufferSubData(result_.id(), 0, sizeof(r), &r);
   return r;

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "chapters/05_hdr/hdr_buffers.h"
 #include "common/gl.h"
 #include "common/shader.h"
 
@@ -25,9 +26,6 @@ namespace lp::ch05 {
 enum class AverageMethod { MipChain, Compute, NaiveMipChain, GenerateMipmap };
 inline const std::vector<std::string> kAverageMethodNames = {"mip-chain", "compute", "naive-mip-chain", "generate-mipmap"};
 
-struct LogAverageResult {  // mirrors the GLSL struct in shaders/hdr_math.glsl
-  float mean_log = 0, count = 0, pad0 = 0, pad1 = 0;
-};
 
 class LogAverage {
  public:

@@ -36,24 +36,28 @@ gl::Texture upload_radiance(const ImageF& image, GLenum format = GL_RGBA16F);
 // The scene with its lights rescaled for this chapter: directional lights ("the sun") times
 // `sun`, emissive surfaces times `glow`. The assets are tuned for chapters 1-4, which show
 // radiance as it is; a high dynamic range needs a brighter sun and brighter lamps.
+// The tests' truth; the radiance sources below never copy the scene: they apply the same
+// scales where the lights are packed (sun_scaled) and the emissive colours drawn.
 Scene rescaled_scene(const Scene& scene, float sun, float glow);
+// `lights` with the directional ones times `sun`.
+std::vector<Light> sun_scaled(const std::vector<Light>& lights, float sun);
 
 // [forward-radiance]
 // Chapter 01's forward renderer as a radiance source: all lights in one pass, per pixel,
 // uncut. The cross-check for DeferredRadiance.
 class ForwardRadiance {
  public:
-  explicit ForwardRadiance(const Scene& scene);
+  explicit ForwardRadiance(const SceneGpu& scene);
+  explicit ForwardRadiance(const Scene& scene);  // uploads `scene` for itself
   void set_scales(float sun, float glow);  // cheap when unchanged
-  void reload_shaders() { forward_->reload_shaders(); }
+  void reload_shaders() { forward_.reload_shaders(); }
   // Clears `target` to chapter 01's background and draws the scene into it.
   void render(const FrameCamera& camera, const RadianceTarget& target) const;
 
  private:
-  const Scene& original_;
-  std::unique_ptr<Scene> scene_;  // the rescaled copy the GPU scene points at
-  std::unique_ptr<SceneGpu> gpu_;
-  std::unique_ptr<ch01::ForwardRenderer> forward_;
+  std::unique_ptr<SceneGpu> owned_;  // only when constructed from a Scene
+  const SceneGpu& gpu_;
+  ch01::ForwardRenderer forward_;
   ch01::LightBuffer lights_;
   float sun_ = -1, glow_ = -1;
 };

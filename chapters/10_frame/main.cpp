@@ -70,7 +70,7 @@ const CliSpec kCli{
 // The error views draw |method - exact| as a heat map whose first level (one 8-bit step,
 // colour value 64) is most of what they show: half-float and 8-bit rounding of each layer
 // differ by a step between renderers, so another renderer moves many pixels by that one
-// level and a few by more (book/10-frame.md quotes the H200's). Another renderer is held to the structure:
+// level and a few by more (book/10b-transparency.md). Another renderer is held to the structure:
 // differences beyond one heat level (threshold 70) on at most 1 % of the pixels; the
 // renderer that made the references keeps 3 steps and 0.1 %.
 const CompareOptions kOneHeatLevel{.threshold = 70, .max_failing_fraction = 0.01};

@@ -167,6 +167,7 @@ void TransparencyStage::draw_surfaces(const ch03::DeferredFrame& frame, Output o
 }
 
 // [after-composite]
+// [glass-hook]
 void TransparencyStage::after_composite(ch03::DeferredFrame& frame, PassMetrics* metrics) {
   if (settings_.method == Method::Off || draws_.empty()) return;
   resize(frame);
@@ -174,6 +175,7 @@ void TransparencyStage::after_composite(ch03::DeferredFrame& frame, PassMetrics*
   if (settings_.method == Method::Sorted) draw_sorted(frame, metrics);
   else draw_wboit(frame, metrics);
 }
+// [/glass-hook]
 
 // Sorted: each surface blended over the image in the output itself ("over", premultiplied).
 void TransparencyStage::draw_sorted(const ch03::DeferredFrame& frame, PassMetrics* metrics) {

@@ -70,6 +70,7 @@ void WholeFrame::build(const std::vector<PlannedStage>& p) {
   source_ = std::make_unique<ch05::DeferredRadiance>(gpu_);  // the scene stays on the GPU as it is
   ch03::DeferredFrame& frame = source_->frame();
   clustered_ = std::make_unique<ch09::ClusteredLights>(frame.volumes());
+  // [add-stages]
   if (shadows) {
     shadows_ = std::make_unique<ch06::ShadowStage>(gpu_, scene_.lights[std::size_t(ch06::shadowed_sun(scene_))]);
     frame.add_stage(*shadows_);
@@ -88,6 +89,7 @@ void WholeFrame::build(const std::vector<PlannedStage>& p) {
     glass_ = std::make_unique<TransparencyStage>(frame, source_->scene_gpu());
     frame.add_stage(*glass_);
   }
+  // [/add-stages]
   radiance_.reset();
   built_ = key(p);
 }
@@ -134,6 +136,7 @@ void WholeFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outp
     gi_->set(g.indirect ? ch08::GiMode::Ssgi : ch08::GiMode::Ssao, g, ch08::GiShow::Image, source_->scene().ambient);
   }
   if (glass_) glass_->set({.method = s.transparency});
+  // [one-frame]
   // 3. The frame into float radiance: G-buffer, shadow map, lights, tubes, AO + indirect,
   //    composite, glass (chapter 03's DeferredFrame::render with the stages above).
   if (!radiance_ || radiance_->width() != output.width || radiance_->height() != output.height)
@@ -142,6 +145,7 @@ void WholeFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outp
   // 4. Chapter 05's HDR stage into the sRGB8 output.
   hdr_.process(radiance_->texture(), output.width, output.height, hdr, output.framebuffer, metrics);
   feedback_.end_frame(hdr_.adaptation().state_buffer());
+  // [/one-frame]
 }
 // [/render]
 

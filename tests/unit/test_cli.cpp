@@ -84,3 +84,51 @@ TEST(Cli, ChoiceKnobsTakeNames) {
   EXPECT_NE(u.find("--show NAME"), std::string::npos) << u;
   EXPECT_NE(u.find("(result diffuse heat-lit; default result)"), std::string::npos) << u;
 }
+
+// A chapter's opening (CliSpec::opening): what `./run NN` shows with nothing given, while the
+// knobs' defaults stay the neutral values the references are named against.
+namespace {
+Options parse_opening(std::vector<const char*> args) {
+  CliSpec spec = kSpec;
+  spec.opening = {"--view", "street", "--mode", "b", "--show", "heat-lit", "--radius", "2"};
+  args.insert(args.begin(), "test");
+  return parse_cli(static_cast<int>(args.size()), args.data(), spec);
+}
+}  // namespace
+
+TEST(Cli, TheOpeningIsWhatARunWithNothingGivenShows) {
+  Options o = parse_opening({});
+  EXPECT_EQ(o.view, "street");
+  EXPECT_EQ(o.mode, "b");
+  EXPECT_EQ(o.knob("show"), 2);
+  EXPECT_DOUBLE_EQ(o.knob("radius"), 2);
+  EXPECT_EQ(o.knob("lights"), 4);  // not in the opening: its default
+  EXPECT_FALSE(o.view_given || o.mode_given);
+}
+
+TEST(Cli, WhatTheCommandLineGivesWinsOverTheOpening) {
+  Options o = parse_opening({"--view", "aisle", "--radius", "0.5", "--show", "result"});
+  EXPECT_EQ(o.view, "aisle");
+  EXPECT_DOUBLE_EQ(o.knob("radius"), 0.5);  // given as the default value: still given
+  EXPECT_EQ(o.knob("show"), 0);
+  EXPECT_EQ(o.mode, "b");  // not given: the opening's
+}
+
+TEST(Cli, TheOpeningIsNotUsedForTheReferencesOrAnotherScene) {
+  for (auto args : {std::vector<const char*>{"--check"}, std::vector<const char*>{"--list"},
+                    std::vector<const char*>{"--scene", "other.gltf"}}) {
+    Options o = parse_opening(args);
+    EXPECT_EQ(o.view, "") << args[0];
+    EXPECT_EQ(o.mode, "a") << args[0];
+    EXPECT_EQ(o.knob("show"), 0) << args[0];
+    EXPECT_DOUBLE_EQ(o.knob("radius"), 0.5) << args[0];
+  }
+}
+
+TEST(Cli, HelpSaysWhatTheProgramOpensOn) {
+  CliSpec spec = kSpec;
+  spec.opening = {"--view", "street", "--show", "heat-lit"};
+  const std::string text = usage(spec);
+  EXPECT_NE(text.find("opens as if run with --view street --show heat-lit"), std::string::npos) << text;
+  EXPECT_EQ(usage(kSpec).find("opens as if"), std::string::npos);
+}

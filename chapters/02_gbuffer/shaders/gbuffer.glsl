@@ -28,12 +28,7 @@ layout(binding = GBUFFER_FIRST_UNIT + 4) uniform GB_SAMPLER gb_position;  // the
 
 // [frame-block-glsl]
 layout(std140, binding = GBUFFER_FRAME_BINDING) uniform GBufferFrame {
-  mat4 gb_view_projection;          // the camera the G-buffer was drawn with
-  mat4 gb_inverse_view_projection;  // computed in double precision on the CPU
-  vec4 gb_eye;                      // xyz: camera position
-  vec4 gb_size;                     // width, height, 1 / width, 1 / height
-  vec4 gb_depth_info;               // near, far, depth value meaning "sky", 1 if reversed-Z
-  vec4 gb_emissive[256];            // emissive colour of each code (0: none)
+#include "02_gbuffer/shaders/gbuffer_frame.h"
 };
 // [/frame-block-glsl]
 

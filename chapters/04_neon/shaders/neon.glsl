@@ -6,11 +6,7 @@
 
 // [neon-glsl-types]
 // One tube, packed as in capsule.h: rows[i] is ROW i of the thesis's matrix M.
-struct NeonGpu {
-  mat4 rows;        // [0] Ri x volume radius | r   [1] Rj x half length | g
-  vec4 barn_doors;  // [2] Rk x specular      | b   [3] centre           | caps
-  vec4 extra;       // x: the glass tube's radius
-};
+#include "04_neon/shaders/neon_gpu.h"
 
 // What the shading needs of a surface point. (Not "Surface": chapter 02's G-buffer has one
 // of its own, and a light-volume shader includes both; it builds this one from that one.)

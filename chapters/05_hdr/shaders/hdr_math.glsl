@@ -3,27 +3,8 @@
 
 const float HALF_MAX = 65504.0;  // the largest finite half float
 
-// Buffer bindings of the stage (hdr_pipeline.h repeats them for the C++ side).
-#define LOG_AVERAGE_BINDING 5   // LogAverageResult: what the log-average pass found
-#define EXPOSURE_BINDING 6      // ExposureState: adapted luminance and exposure
-#define PARTIALS_BINDING 7      // compute reduction: one partial sum per workgroup
-
-// [exposure-state]
-struct LogAverageResult {
-  float mean_log;   // mean of log(delta + L) over the pixels counted
-  float count;      // pixels counted (NaN pixels are not)
-  float pad0, pad1;
-};
-
-struct ExposureState {
-  float target;     // this frame's log-average luminance, exp(mean_log)
-  float adapted;    // what the eye is adapted to
-  float exposure;   // key / adapted: multiplies the radiance before the curve
-  float mean_log;
-  float count;
-  float pad0, pad1, pad2;
-};
-// [/exposure-state]
+// The stage's storage buffers, their structs and bindings (shared with the C++).
+#include "05_hdr/shaders/hdr_buffers.h"
 
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 

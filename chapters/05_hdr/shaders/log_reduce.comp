@@ -5,7 +5,6 @@
 // and writes the mean. Same policy as the mip chain: NaN pixels are not counted.
 #include "05_hdr/shaders/hdr_math.glsl"
 
-struct Partial { float sum_log; uint count; };
 layout(std430, binding = PARTIALS_BINDING) buffer Partials { Partial partials[]; };
 layout(std430, binding = LOG_AVERAGE_BINDING) writeonly buffer Result { LogAverageResult result; };
 

@@ -52,6 +52,7 @@ float classic_hidden(vec3 p, vec3 t, vec3 b, vec3 n, vec3 r, float radius) {
 #else
     vec3 q = p + radius * (mat3(u_view) * offset);     // both in view space
 #endif
+    // [classic-test]
     vec4 clip = u_projection * vec4(q, 1.0);
     if (clip.w <= 0.0) continue;
     vec2 ndc = clip.xy / clip.w;
@@ -65,6 +66,7 @@ float classic_hidden(vec3 p, vec3 t, vec3 b, vec3 n, vec3 r, float radius) {
     // occluders far in front of the pixel (a column before a distant wall)
     float range = smoothstep(0.0, 1.0, radius / max(abs(-p.z - scene), 1e-6));
     hidden += (scene <= sample_depth - u_bias * radius ? 1.0 : 0.0) * range;
+    // [/classic-test]
   }
   return hidden / float(u_samples);
 }
@@ -88,12 +90,14 @@ float classic_ao(ivec2 pixel, Surface s) {
 // [disk]
 float disk_ao(ivec2 pixel, Surface s) {
   float zr = view_depth(s.position);
+  // [disk-region]
   // R projected at the receiver's depth, in pixels, clamped near the camera
   float scale_px = u_projection[1][1] * 0.5 * gb_size.y / zr;  // pixels per world unit at depth zr
   float radius_px = min(u_radius * scale_px, u_max_screen_radius * gb_size.y);
   float world_radius = radius_px / scale_px;
   // each sample stands for an equal share of the disk: area pi R^2 / N at the receiver's depth
   float share = PI * world_radius * world_radius / float(u_samples);
+  // [/disk-region]
   float occlusion = 0.0;
   // The spiral turned per pixel by the 4x4 noise tile's angle (u_noise_on): the same spiral at
   // every pixel puts its samples on the same offsets everywhere, and where a sample crosses an
@@ -119,6 +123,7 @@ float disk_ao(ivec2 pixel, Surface s) {
       v = e - s.position;
       d2 = dot(v, v);
     }
+    // [disk-term]
     if (d2 > u_radius * u_radius || d2 <= 0.0) continue;  // beyond the rays' length R
     vec3 ne = decode_normal(texelFetch(gb_normal, sp, 0));
     float ze = view_depth(e);
@@ -131,6 +136,7 @@ float disk_ao(ivec2 pixel, Surface s) {
 #else
     occlusion += area * abs(dot(ne, v)) * max(dot(s.normal, v), 0.0) / (PI * d2 + area);
 #endif
+    // [/disk-term]
   }
   return 1.0 - clamp(occlusion, 0.0, 1.0);
 }
@@ -143,11 +149,12 @@ float disk_ao(ivec2 pixel, Surface s) {
 // Horizon-based AO with cosine weighting (GTAO, Jimenez et al. 2016; the shape of XeGTAO's
 // reference code): in each of a few slices through the view vector, march the depth buffer
 // both ways to find the highest horizon within R, then integrate the cosine-weighted
-// visibility between the two horizons analytically. `u_samples` depth reads: 8 steps a side,
-// u_samples / 16 slices (at least 1), the slices' angle and the steps' offset jittered by the
-// 4x4 noise tile (the blur removes the pattern). Unlike XeGTAO, whose falloff starts at 0.385 R
-// (it made the Cornell box's error 0.14), occluders count fully to 0.95 R and not at all beyond
-// R: the truth's rays end at R (u_falloff = 0.05, untuned; the sweep tunes it).
+// visibility between the two horizons analytically. 16 depth reads a slice (8 steps a side),
+// max(1, u_samples / 16) slices: fewer than 16 samples still read one whole slice. The slices'
+// angle and the steps' offset are jittered by the 4x4 noise tile (the blur removes the
+// pattern). Unlike XeGTAO, whose falloff starts at 0.385 R (it made the Cornell box's error
+// 0.14), occluders count fully to 0.95 R and not at all beyond R: the truth's rays end at R
+// (u_falloff = 0.05, untuned; the sweep tunes it).
 float acos_clamped(float x) { return acos(clamp(x, -1.0, 1.0)); }
 // The horizon cosine one occluder point q gives the receiver p: its elevation toward the view
 // vector, blended toward the slice's lowest value `low` by the falloff's weight.
@@ -162,8 +169,10 @@ float gtao_horizon(vec3 p, vec3 q, vec3 normal, vec3 view_vec, float low, float 
   return mix(low, dot(delta / dist, view_vec), weight);
 }
 float gtao_ao(ivec2 pixel, Surface s) {
+  // [gtao-budget]
   const int steps = 8;
   int slices = max(1, u_samples / (2 * steps));
+  // [/gtao-budget]
   vec3 p = (u_view * vec4(s.position, 1.0)).xyz;
   vec3 view_vec = normalize(-p);
   vec3 normal = normalize(mat3(u_view) * s.normal);
@@ -224,6 +233,7 @@ float gtao_ao(ivec2 pixel, Surface s) {
         else horizon1 = max(horizon1, h);
       }
     }
+    // [gtao-arc]
     float h0 = -acos_clamped(horizon1), h1 = acos_clamped(horizon0);  // the - side, the + side
     h0 = n + clamp(h0 - n, -0.5 * PI, 0.5 * PI);
     h1 = n + clamp(h1 - n, -0.5 * PI, 0.5 * PI);
@@ -234,6 +244,7 @@ float gtao_ao(ivec2 pixel, Surface s) {
     // slice angles is exactly 1, over a few it is not (0.94 on a floor seen at 27 degrees with
     // 2 slices); dividing by it makes an open surface exactly 1 at any slice count.
     open += projected_len * (cos_n + n * sin(n));
+    // [/gtao-arc]
   }
   return open > 0.0 ? clamp(visibility / open, 0.0, 1.0) : 1.0;
 }

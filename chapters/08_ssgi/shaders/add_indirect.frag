@@ -7,8 +7,10 @@ uniform vec3 u_ambient;
 uniform int u_gi_on;  // 0: no pass ran (mode off): A = 1, no indirect light
 layout(location = 0) out vec4 out_diffuse;
 layout(location = 1) out vec4 out_specular;
+// [add-indirect]
 void main() {
   vec4 gi = u_gi_on != 0 ? texelFetch(u_gi, ivec2(gl_FragCoord.xy), 0) : vec4(0.0, 0.0, 0.0, 1.0);
   out_diffuse = vec4(u_ambient * gi.a + gi.rgb, 0.0);
   out_specular = vec4(0.0);
 }
+// [/add-indirect]

@@ -176,6 +176,7 @@ void main() {
   Surface s = decode_gbuffer(pixel);
   if (s.is_sky) { imageStore(u_out, pixel, vec4(0.0, 0.0, 0.0, 1.0)); return; }
   float zr = view_depth(s.position);
+  // [ssgi-radii]
   float scale_px = u_projection[1][1] * 0.5 * gb_size.y / zr;  // pixels per world unit at depth zr
   // the wide disk clamped on the screen near the camera, the narrow one kept at its ratio
   float gi_px = min(u_gi_radius * scale_px, u_max_screen_radius * gb_size.y);
@@ -183,6 +184,7 @@ void main() {
   float gi_world = gi_px / scale_px, ao_world = ao_px / scale_px;
   float gi_share = PI * gi_world * gi_world / float(u_samples);
   float ao_share = PI * ao_world * ao_world / float(u_samples);
+  // [/ssgi-radii]
   vec2 jitter = vec2(0.5);
   if (u_pattern == 2) {
     uint a = wang_hash(uint(pixel.x) * 1973u + uint(pixel.y) * 9277u + 26699u), b = wang_hash(a);
@@ -211,20 +213,24 @@ void main() {
         v *= inversesqrt(d2);
         occlusion += area * abs(dot(ne, v)) * max(dot(s.normal, v), 0.0) / (PI * d2 + area);
       } else {
+        // [ssgi-emitter]
         vec3 light = texelFetch(u_light, sp, 0).rgb;
         if (u_bounce == 1) light += texelFetch(u_extra, sp, 0).rgb;
         vec3 albedo = texelFetch(gb_albedo, sp, 0).rgb;  // what the emitter reflects of it
         float f = disk_transfer(s.position, s.normal, e, ne, area);
         indirect += albedo * light * f;
         transfer += f;
+        // [/ssgi-emitter]
       }
     }
   }
   if (u_gather == 1 && u_indirect_on != 0) indirect = bitmask_indirect(pixel, s, gi_px, gi_share, jitter, transfer);
+  // [ssgi-clamp]
   // The form factors from a point to surfaces that do not overlap sum to at most 1 (the whole
   // hemisphere). Large sample disks close to the pixel (a wall beside the floor) overlap and
   // can sum to more: scale them back to 1, as the AO's occlusion is clamped.
   if (transfer > 1.0) indirect /= transfer;
+  // [/ssgi-clamp]
   imageStore(u_out, pixel, vec4(indirect, 1.0 - clamp(occlusion, 0.0, 1.0)));
 }
 // [/ssgi]

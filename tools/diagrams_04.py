@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""The geometry figures of chapter 04 as SVG, computed (not drawn by hand), no dependencies.
+"""Chapter 04's concept diagrams as SVG, computed (not drawn by hand), no dependencies.
 
-  diagrams.py [OUT_DIR]      (default: book/figures)
+    python3 tools/diagrams_04.py [OUT_DIR]      (default book/figures)
 
 04_frame.svg     the tube seen from a shading point: d, s0, s1, the angle phi, the horizon
 04_closest.svg   closest in distance and closest in angle to the reflection ray, nearly parallel
@@ -11,10 +11,10 @@ import math
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools"))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 from svgdraw import Svg, add, unit  # noqa: E402  (the book's diagram primitives)
 
-OUT = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parents[2] / "book" / "figures"
+OUT = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parent.parent / "book" / "figures"
 INK, TUBE, RAY, GOOD, BAD, GREY = "#222", "#d6338a", "#1f77b4", "#2ca02c", "#d62728", "#999"
 
 
