@@ -17,17 +17,19 @@ headings GitHub's identifiers: `02-gbuffer.md#the-g-buffer` becomes `02-gbuffer.
   * every code excerpt (<!-- excerpt: path#tag -->) names its file and lines above the code;
   * a table that compares approximations with their truth becomes a slider (below).
 
-Which tables compare with a truth (no marker in the Markdown: the figures' names say it):
-  * a truth is an image whose name has the word `truth` (`04_grazing_truth.png`,
-    `06_overview_truth_soft.png`); an error image's name ends in `_error`;
+Which tables compare with a truth (no marker in the Markdown: the pictures' names say it):
+  * a truth is a PNG whose name has the word `truth` or `exact` (`04_grazing_truth.png`,
+    `06_overview_truth_soft.png`, `front_frame_transparency-exact.png`); an error image's
+    name ends in `_error`;
   * the error of an image `X.png` is `X_error.png`, or `X` with its last `_word` replaced by
     `error` (`06_overview_hard_visibility.png` -> `06_overview_hard_error.png`), in the table
-    or in book/figures/; the images claim errors in reading order, each error once;
+    or beside the image; the images claim errors in reading order, each error once;
   * a table holding one truth compares it with the table's other images that have an error
     (or, when none has one, with all of them); a table without a truth qualifies when every
     image in it is such a method or its error, and the truth `NN_view_truth.png` of their
-    common name (`07_cornell_gtao_32.png` -> `07_cornell_truth.png`) exists;
-  * every image of a comparison has the truth's size in pixels.
+    common name (`07_cornell_gtao_32.png` -> `07_cornell_truth.png`) is beside them;
+  * every image of a comparison lies in the truth's folder and has its size in pixels (so a
+    row of lit pictures beside a truth of another kind is no comparison).
 The slider shows a method on the left and the truth on the right of a line the reader drags;
 buttons pick the method and put its error image on the right instead of the truth. The table's
 other images and its text stay beside it, under the slider.
@@ -109,14 +111,14 @@ def split_row(line: str):
 
 
 def is_truth(stem: str) -> bool:
-    return "truth" in re.split(r"[_-]", stem) and not stem.endswith("_error")
+    return bool({"truth", "exact"} & set(re.split(r"[_-]", stem))) and not stem.endswith("_error")
 
 
 def is_error(stem: str) -> bool:
     return stem.endswith("_error")
 
 
-def comparison(lines, figures: Path):
+def comparison(lines, book: Path):
     """The slider's parts for a Markdown table (its lines), or None when it compares nothing
     with a truth (the rule is in this module's docstring)."""
     if len(lines) < 3 or not re.fullmatch(r"\|?\s*:?-+:?\s*(\|\s*:?-+:?\s*)*\|?", lines[1].strip()):
@@ -132,7 +134,8 @@ def comparison(lines, figures: Path):
             src = imgs[0][1] if imgs else None
             cells[(r, c)] = (src, IMAGE.sub("", cell).strip())
     images = [(rc, src) for rc, (src, _) in sorted(cells.items()) if src]
-    if not images or any(not src.startswith("figures/") or not src.endswith(".png") for _, src in images):
+    if not images or any(not src.endswith(".png") or not (book / src).is_file()
+                         or not (book / src).resolve().is_relative_to(ROOT) for _, src in images):
         return None
     stem = {src: Path(src).stem for _, src in images}
     truths = [(rc, src) for rc, src in images if is_truth(stem[src])]
@@ -148,8 +151,9 @@ def comparison(lines, figures: Path):
         for cand in [s + "_error"] + ([s.rsplit("_", 1)[0] + "_error"] if "_" in s else []):
             if cand in claimed:
                 continue
-            if cand in in_table or (figures / f"{cand}.png").exists():
-                error = in_table.get(cand, f"figures/{cand}.png")
+            beside = posixpath.join(posixpath.dirname(src), f"{cand}.png")  # in the image's folder
+            if cand in in_table or (book / beside).is_file():
+                error = in_table.get(cand, beside)
                 claimed.add(cand)
                 break
         (methods if error else extras).append((rc, src, error))
@@ -161,18 +165,18 @@ def comparison(lines, figures: Path):
     else:
         if extras or unclaimed_errors or not methods:
             return None
-        prefixes = {"_".join(stem[src].split("_")[:2]) for _, src, _ in methods}
-        if len(prefixes) != 1 or not (figures / f"{prefixes.pop()}_truth.png").exists():
+        names = {posixpath.join(posixpath.dirname(src), "_".join(stem[src].split("_")[:2]) + "_truth.png")
+                 for _, src, _ in methods}
+        if len(names) != 1 or not (book / next(iter(names))).is_file():
             return None
-        truth_rc, truth = None, f"figures/{'_'.join(stem[methods[0][1]].split('_')[:2])}_truth.png"
+        truth_rc, truth = None, names.pop()
     extras += unclaimed_errors
     if not methods:
         return None
-    size = png_size(figures / Path(truth).name) if (figures / Path(truth).name).exists() else None
+    size = png_size(book / truth)
     for _, src, error in methods:
         for s in [src] + ([error] if error else []):
-            p = figures / Path(s).name
-            if not p.exists() or png_size(p) != size:
+            if png_size(book / s) != size or posixpath.dirname(s) != posixpath.dirname(truth):
                 return None
 
     used_text = set()
@@ -268,6 +272,18 @@ class Page:
         trailing = "/" if file.endswith("/") else ""
         return "../../" + path + trailing + hash_ + frag
 
+    def image(self, src: str) -> str:
+        """Where a picture of book/X.md is beside the pages: figures/ as it is, a picture from
+        elsewhere in the repository (tests/reference/...) under files/; both copied there."""
+        path = posixpath.normpath(posixpath.join("book", src))
+        if re.match(r"^[a-z][a-z0-9+.-]*:", src, re.I) or path.startswith("../"):
+            return src
+        if path.startswith("book/figures/"):
+            self.figures.add(path[len("book/"):])
+            return path[len("book/"):]
+        self.figures.add(("files/" + path, path))
+        return "files/" + path
+
     def line(self, text: str) -> str:
         text = NUM.sub("", text)
 
@@ -275,16 +291,7 @@ class Page:
             return f"[{m['text']}]({self.target(m['target'])})"
 
         def image(m):
-            src = m["src"]
-            if src.startswith("figures/"):
-                self.figures.add(src)
-                return m.group(0)
-            path = posixpath.normpath(posixpath.join("book", src))
-            if re.match(r"^[a-z][a-z0-9+.-]*:", src, re.I) or path.startswith("../"):
-                return m.group(0)
-            # a picture from elsewhere in the repository (tests/reference/...): copied beside the pages
-            self.figures.add(("files/" + path, path))
-            return f"![{m['alt']}](files/{path})"
+            return f"![{m['alt']}]({self.image(m['src'])})"
 
         return IMAGE.sub(image, LINK.sub(link, text))
 
@@ -324,11 +331,13 @@ class Page:
                 while j < len(lines) and lines[j].startswith("|"):
                     j += 1
                 table = [NUM.sub("", t) for t in lines[i:j]]
-                comp = comparison(table, BOOK / "figures")
+                comp = comparison(table, BOOK)
                 if comp:
                     self.comparisons += 1
-                    for src in [comp["truth"]] + [s for m_ in comp["methods"] for s in m_[:2] if s] + [e[0] for e in comp["extras"]]:
-                        self.figures.add(src)
+                    comp["truth"] = self.image(comp["truth"])
+                    comp["methods"] = [(self.image(src), error and self.image(error), label)
+                                       for src, error, label in comp["methods"]]
+                    comp["extras"] = [(self.image(src), label) for src, label in comp["extras"]]
                     out += ["", "```{=html}", slider_html(comp, self.comparisons), "```", ""]
                 else:
                     out += [self.line(t) for t in table]
