@@ -135,7 +135,7 @@ def comparison(lines, book: Path):
             cells[(r, c)] = (src, IMAGE.sub("", cell).strip())
     images = [(rc, src) for rc, (src, _) in sorted(cells.items()) if src]
     if not images or any(not src.endswith(".png") or not (book / src).is_file()
-                         or not (book / src).resolve().is_relative_to(ROOT) for _, src in images):
+                         or not (book / src).resolve().is_relative_to(book.parent.resolve()) for _, src in images):
         return None
     stem = {src: Path(src).stem for _, src in images}
     truths = [(rc, src) for rc, src in images if is_truth(stem[src])]
