@@ -100,6 +100,12 @@ def check(root: Path = ROOT, update: bool = False):
             return f"<!-- excerpt: {m['file']}#{m['tag']} -->\n```{m['lang']}\n{code}```"
 
         new = MARKER.sub(replace, text)
+        # A marker with no fenced code right under it shows nothing and checks nothing.
+        held = {m.start() for m in MARKER.finditer(text)}
+        for m in re.finditer(r"<!-- excerpt: ", text):
+            if m.start() not in held:
+                line = text.count("\n", 0, m.start()) + 1
+                problems.append(f"{md.name}:{line}: an excerpt marker with no ``` block right under it")
         new, found, count = book_numbers.process(new, md.name, root / "book" / "figures")
         problems += found
         numbers += count
