@@ -42,7 +42,10 @@ const lp::CliSpec kCli{
               {"bloom-level", "blur at 1/2^N of the resolution", 2, 0, 8, true},
               {"bloom-radius", "Gaussian sigma as a fraction of the image height", 0.02, 0, 0.5},
               {"bloom-threshold", "exposed luminance above which a pixel blooms", 1, 0, 1e6},
-              {"bloom-strength", "how much of the bloom is added", 0.08, 0, 1}}};
+              {"bloom-strength", "how much of the bloom is added", 0.08, 0, 1}},
+    // The street at night from the pavement, through the filmic curve, with bloom spread
+    // before it: the README's picture.
+    .opening = {"--view", "street_level", "--mode", "aces", "--bloom", "before"}};
 
 // The reference images, per scene (a Shot names a view, not a scene): `--check` renders
 // the street's, `--check --scene assets/atrium/atrium.gltf` the atrium's (kChapter below).
@@ -148,23 +151,34 @@ int main(int argc, char** argv) {
         adapted_from = start_scale;
       }
       const HdrSettings settings = settings_for(f, f.dt);
+      auto draw = [&](lp::PassMetrics* metrics) {
+        // 1. The lights' volumes end where a light gives less than one output step after the
+        //    largest exposure this frame can get: read back from an earlier frame, never waiting.
+        cut = feedback.begin_frame(settings.adaptation, settings.delta, start_scale);
+        source.set_cut_exposure(cut.exposure * output_slope(settings.tonemap.op, settings.tonemap.white));
 
-      // 1. The lights' volumes end where a light gives less than one output step after the
-      //    largest exposure this frame can get: read back from an earlier frame, never waiting.
-      cut = feedback.begin_frame(settings.adaptation, settings.delta, start_scale);
-      source.set_cut_exposure(cut.exposure * output_slope(settings.tonemap.op, settings.tonemap.white));
+        // 2. The lit scene as radiance in a float target, by chapter 03's deferred frame:
+        //    G-buffer, light volumes (and chapter 04's tubes) into the float light buffer,
+        //    composite into our target.
+        source.set_scales(float(f.knob("sun")), float(f.knob("glow")));
+        RadianceTarget& radiance = targets.get(f, app.metrics());
+        source.render(f.camera, radiance, metrics);
 
-      // 2. The lit scene as radiance in a float target, by chapter 03's deferred frame:
-      //    G-buffer, light volumes (and chapter 04's tubes) into the float light buffer,
-      //    composite into our target.
-      source.set_scales(float(f.knob("sun")), float(f.knob("glow")));
-      RadianceTarget& radiance = targets.get(f, app.metrics());
-      source.render(f.camera, radiance, &app.metrics());
-
-      // 3. The HDR stage: log-average, eye adaptation, bloom, tonemapping into the sRGB8 output.
-      hdr.process(radiance.texture(), f.width, f.height, settings, f.target, &app.metrics());
-      feedback.end_frame(hdr.adaptation().state_buffer());
+        // 3. The HDR stage: log-average, eye adaptation, bloom, tonemapping into the sRGB8 output.
+        hdr.process(radiance.texture(), f.width, f.height, settings, f.target, metrics);
+        feedback.end_frame(hdr.adaptation().state_buffer());
+      };
       // [/frame]
+      // A still image (headless) would be cut with no reading (a new shot resets the readings):
+      // it is drawn once unmeasured first, whose exposure, read once the GPU finished, cuts the
+      // lights of the picture; the eye is reset in between, so the picture is still the first
+      // frame of a new view.
+      if (app.options().headless && f.new_shot) {
+        draw(nullptr);
+        glFinish();
+        hdr.reset_adaptation(start_scale);
+      }
+      draw(&app.metrics());
       app.metrics().set_allocation("G-buffer (chapter 02) + light buffer (chapter 03)", source.allocated_bytes());
       app.metrics().set_allocation("hdr: log-average chain + bloom chain", hdr.allocated_bytes());
 

@@ -2,8 +2,8 @@
 // after the G-buffer, a compute pass turns the surfaces into the visibility A of each pixel
 // (the classic algorithm, or the source's 2D-disk method with Bunnell's term), and the
 // frame's ambient hook multiplies the ambient light by it; the direct lights are untouched.
-// `--show ao` shows A itself. The scenes' ambient is small (0.03): `--ambient 10` raises it
-// so that the AO shows in the lit image.
+// `--show ao` shows A itself. The scenes' ambient is small (0.03): the program opens with
+// `--ambient 10` so that the AO shows in the lit image.
 #include <chrono>
 #include <iostream>
 
@@ -46,7 +46,10 @@ const CliSpec kCli{
                                   "|A - truth| as a heat map (red: 0.5)",
                           {"image", "ao", "raw", "truth", "error"}),
               {"truth-samples", "--show truth/error: cosine-weighted rays per pixel", 64, 1, 4096, true},
-              {"ambient", "the scene's ambient light times this (AO darkens only the ambient)", 1, 0, 1000, false}}};
+              {"ambient", "the scene's ambient light times this (AO darkens only the ambient)", 1, 0, 1000, false}},
+    // AO darkens only the ambient light, and the scenes' own (0.03) is too faint to show it:
+    // the program opens with ten times as much.
+    .opening = {"--ambient", "10"}};
 
 // [references]
 // On a renderer other than the references' (a reader's GPU), two kinds of pixel may differ by
