@@ -89,7 +89,8 @@ CornerError corner_error(const ImageF& ao, const ImageF& truth, const std::vecto
 // 0.022, so over the 800+ pixels of a quarter its mean is good to 0.002; the rest is room for
 // the pixels' positions, which the closed form takes from the rays' hits). Then each method's
 // mean |A - corner_ao| over the pixels within R of the crease, bounded as the truth bounds are
-// (SsaoTruth): the llvmpipe measurement plus a quarter for another renderer's rounding.
+// (SsaoTruth): regression bounds, the llvmpipe measurement plus a quarter for another renderer's
+// rounding (the truth's check above is derived).
 // Measured: classic 0.018, disk 0.044 (most of it at the crease, where the wall is seen edge-on:
 // the book's inner-corner failure; 0.058 with the source's fixed spiral and no slab), GTAO
 // 0.022. Broken, each fails (measured before the slabs and the disk's turned spiral): the
@@ -130,7 +131,7 @@ TEST(SsaoHardCases, InnerCornerMatchesItsClosedForm) {
 // above). The first crease runs along x: a kernel turned about the world's x axis instead of
 // the normal (a hemisphere tilted towards +x) keeps its points' heights over that crease's
 // other face, and the first corner cannot see it. Same truth check and methods; the bounds as
-// the first corner's are made: the llvmpipe measurement plus a quarter. Measured: classic
+// the first corner's are made (regression bounds): the llvmpipe measurement plus a quarter. Measured: classic
 // 0.040, disk 0.056, GTAO 0.052 (all about twice the first corner's: the right wall is seen at
 // a slant here, not face on); the classic hemisphere tilted towards world +x, 0.067.
 TEST(SsaoHardCases, InnerCornerAlongTheOtherAxisMatchesItsClosedForm) {
@@ -376,7 +377,7 @@ TEST(SsaoHardCases, DepthDiscontinuityIsNotTooBright) {
 // = 0.75 mm up) lie below half a pixel's depth step on the floor 1.8 m away (the grazing test's
 // d theta / 2 = 3.4 mm), so a few of them are hidden by the floor itself (the largest
 // difference, printed, is 0.005); (3) its mean |A - closed form| within R is at most its
-// measurement (0.0228) plus a quarter, 0.0285, as the corner test's bounds. Averaging the two
+// measurement (0.0228) plus a quarter, 0.0285, a regression bound as the corner test's. Averaging the two
 // sets instead of multiplying fails (2).
 TEST(SsaoHardCases, TwoRadiiDarkenContactAndNothingElse) {
   Box& b = cornell();
