@@ -2,8 +2,12 @@
 // (glsl_twin.h): light_instance.glsl's unpack_point, unpack_spot and basis_around.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
+#include "chapters/01_forward/blinn_phong.h"
+#include "chapters/02_gbuffer/gbuffer.h"
+#include "chapters/02_gbuffer/layout.h"
 #include "chapters/03_light_volumes/light_instances.h"
 #include "tests/unit/glsl_twin.h"
 
@@ -87,6 +91,69 @@ TEST(GlslTwins, BasisAroundMatchesItsCppTwin) {
     EXPECT_TRUE(test::twins_agree(gpu, cpu, 3, {ulps(12), 0}, [&](std::size_t i) { return "n = " + test::str(cases[i].a); }))
         << "column " << k;
   }
+}
+
+}  // namespace
+}  // namespace lp::ch03
+
+namespace lp::ch03 {
+namespace {
+
+TEST(GlslTwins, LocalLightsDiffuseMatchesItsCppTwin) {
+  // local_light.glsl's diffuse term for a point light: chapter 01's light_incident and Lambert,
+  // ended at the light's cut (the radius light_radius() gives its volume). Its C++ statement is
+  // chapter 01's incident() and n . l, zero beyond the cut (as chapter 08's direct_diffuse).
+  // The surface at the origin (normal random; translation changes nothing but rounding), the
+  // light at 0 to 2 cuts from it (cuts 0.5 to 20 m, log-uniform; ranges 0 or up to 3 cuts),
+  // plus a light on the surface and one exactly at its cut along the normal. Tolerance: the
+  // radiance's of LightIncidentMatchesItsCppTwin (48 ulp of the window absolutely, 16 relative)
+  // times n . l, plus n . l's 6 ulp of the radiance absolutely. Where the distance is within
+  // rounding of the cut (8 ulp of it: GLSL's length 6, C++'s 2) either side is right.
+  const std::vector<std::string> files = {"01_forward/shaders/lighting.glsl", "02_gbuffer/shaders/gbuffer.glsl",
+                                          "03_light_volumes/shaders/hooks/full_visibility.glsl",
+                                          "03_light_volumes/shaders/local_light.glsl"};
+  const std::string helper =
+      "vec4 twin_local(vec4 a, vec4 b, vec4 c, vec4 d) { Surface s = Surface(vec3(0.0), d.xyz, vec3(1.0), vec3(1.0), 16.0, "
+      "vec3(0.0), false, 0.5); vec3 df, sp; local_light(GpuLight(a, b, vec4(c.rgb, 0.0), vec4(0.0)), c.w, 0, s, df, sp); "
+      "return vec4(df, 0.0); }";
+  test::TwinRandom r(30);
+  std::vector<test::TwinCase> cases;
+  auto add = [&](glm::vec3 at, glm::vec3 radiance, float range, float cut, glm::vec3 n) {
+    cases.push_back({glm::vec4(at, 1.f), glm::vec4(0, 0, -1, range), glm::vec4(radiance, cut), glm::vec4(n, 0)});
+  };
+  add(glm::vec3(0), glm::vec3(1), 0, 1, glm::vec3(0, 1, 0));
+  add(glm::vec3(0, 2, 0), glm::vec3(1), 0, 2, glm::vec3(0, 1, 0));
+  while (cases.size() < 10000 + 2) {
+    const float cut = r.log_uniform(0.5f, 20);
+    glm::vec3 n = r.unit(), to = r.unit();
+    if (glm::dot(n, to) < 0) to = -to;  // most lights above the surface
+    add(to * r.uniform(0, 2 * cut), glm::vec3(r.uniform(0, 5), r.uniform(0, 5), r.uniform(0, 5)),
+        r.uniform(0, 1) < 0.3f ? 0.f : r.uniform(0.5f, 3) * cut, cut, n);
+  }
+  const std::vector<std::string> defines = ch02::gbuffer_defines(ch02::layouts()[0]);  // ours
+  const auto gpu = test::run_glsl_twin({files, "twin_local(a, b, c, d)", defines, helper}, cases);
+  std::vector<glm::vec4> cpu;
+  std::vector<test::TwinTolerance> tolerance;
+  for (const auto& c : cases) {
+    Light l{.type = LightType::Point, .color = glm::vec3(c.c), .intensity = 1.f, .position = glm::vec3(c.a), .range = c.b.w};
+    const ch01::Incident in = ch01::incident(l, glm::vec3(0));
+    const float distance = glm::length(glm::vec3(c.a));
+    const float n_dot_l = glm::dot(glm::vec3(c.d), in.to_light);
+    const glm::vec3 diffuse = distance <= c.c.w && n_dot_l > 0 ? in.radiance * n_dot_l : glm::vec3(0);
+    cpu.push_back(glm::vec4(diffuse, 0));
+    const double peak = std::max({c.c.r, c.c.g, c.c.b});
+    const double d2 = std::max(double(distance) * distance, 1e-4);
+    if (std::abs(double(distance) - c.c.w) <= test::ulps(8) * c.c.w)
+      tolerance.push_back({peak / d2, 0});  // at the cut: lit or not
+    else
+      tolerance.push_back({peak * test::ulps(48) / d2 + glm::length(in.radiance) * test::ulps(6), test::ulps(16)});
+  }
+  EXPECT_TRUE(test::twins_agree(
+      gpu, cpu, 3, [&](std::size_t i) { return tolerance[i]; },
+      [&](std::size_t i) {
+        return "light " + test::str(cases[i].a) + " range " + test::str(cases[i].b) + " radiance, cut " + test::str(cases[i].c) +
+               " normal " + test::str(cases[i].d);
+      }));
 }
 
 }  // namespace
