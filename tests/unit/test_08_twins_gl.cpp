@@ -106,3 +106,68 @@ TEST(GlslTwins, PatternPointsMatchTheirCppTwins) {
 
 }  // namespace
 }  // namespace lp::ch08
+
+namespace lp::ch08 {
+namespace {
+
+TEST(GlslTwins, IncidentMatchesChapterOnesLightIncident) {
+  // gi_math.h's incident() is the truth's copy of chapter 01's light_incident() for a packed
+  // light (the truth evaluates the frame's lights at each hit). Random packed point and spot
+  // lights and points within 10 m; the tolerance as chapter 01's twin test derives it
+  // (test_01_twins_gl.cpp): the direction within 13 ulp of 1, the radiance within 48 + 26 x
+  // the spot's scale ulp of the window over max(d^2, 1e-4) absolutely, 16 ulp relative. And
+  // the distance it returns, a length (GLSL's 6 ulp, C++ 2).
+  test::TwinRandom r(12);
+  std::vector<TwinCase> cases;
+  std::vector<glm::vec3> points;
+  while (cases.size() < 10000) {
+    Light l{.type = r.uniform(0, 1) < 0.5f ? LightType::Point : LightType::Spot, .color = {r.uniform(0, 1), r.uniform(0, 1), r.uniform(0, 1)},
+            .intensity = r.log_uniform(0.01f, 100), .position = {r.uniform(-5, 5), r.uniform(-5, 5), r.uniform(-5, 5)},
+            .direction = r.unit(), .range = r.uniform(0, 1) < 0.3f ? 0.f : r.log_uniform(0.5f, 20)};
+    l.outer_cone = r.uniform(0.05f, 1.5f);
+    l.inner_cone = l.outer_cone * r.uniform(0, 1);
+    const ch01::GpuLight g = ch01::pack_light(l);
+    const glm::vec3 p(r.uniform(-5, 5), r.uniform(-5, 5), r.uniform(-5, 5));
+    cases.push_back({g.position_type, g.direction_range, glm::vec4(glm::vec3(g.radiance), p.x), glm::vec4(g.spot.x, g.spot.y, p.y, p.z)});
+    points.push_back(p);
+  }
+  const std::vector<std::string> files = {"01_forward/shaders/lighting.glsl"};
+  const std::string helper =
+      "vec4 twin_incident(vec4 a, vec4 b, vec4 c, vec4 d, bool dir) { vec3 t, r; "
+      "light_incident(GpuLight(a, b, vec4(c.xyz, 0.0), vec4(d.xy, 0.0, 0.0)), vec3(c.w, d.zw), t, r); "
+      "return vec4(dir ? t : r, length(a.xyz - vec3(c.w, d.zw))); }";
+  const auto to_light = test::run_glsl_twin({files, "twin_incident(a, b, c, d, true)", {}, helper}, cases);
+  const auto radiance = test::run_glsl_twin({files, "twin_incident(a, b, c, d, false)", {}, helper}, cases);
+  std::vector<glm::vec4> cpu_to_light, cpu_radiance;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const auto& c = cases[i];
+    const ch01::GpuLight g{c.a, c.b, glm::vec4(glm::vec3(c.c), 0), glm::vec4(c.d.x, c.d.y, 0, 0)};
+    glm::vec3 t, rad;
+    float distance;
+    incident(g, points[i], t, rad, distance);
+    cpu_to_light.push_back(glm::vec4(t, distance));
+    cpu_radiance.push_back(glm::vec4(rad, distance));
+  }
+  auto describe = [&](std::size_t i) { return test::str(cases[i].a) + " " + test::str(cases[i].b) + " " + test::str(cases[i].c) + " " + test::str(cases[i].d); };
+  std::vector<glm::vec4> gpu_distance, cpu_distance;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    gpu_distance.push_back(glm::vec4(to_light[i].w));
+    cpu_distance.push_back(glm::vec4(cpu_to_light[i].w));
+  }
+  EXPECT_TRUE(test::twins_agree(to_light, cpu_to_light, 3, {ulps(13), 0}, describe)) << "direction";
+  EXPECT_TRUE(test::twins_agree(gpu_distance, cpu_distance, 1, {0, ulps(8)}, describe)) << "distance";
+  EXPECT_TRUE(test::twins_agree(
+      radiance, cpu_radiance, 3,
+      [&](std::size_t i) {
+        const auto& c = cases[i];
+        const double d = cpu_distance[i].x;
+        const double peak = std::max({c.c.x, c.c.y, c.c.z});
+        const double scale = c.a.w == 2.f ? double(c.d.y) : 0;
+        return test::TwinTolerance{peak * ulps(48 + 26 * scale) / std::max(d * d, 1e-4), ulps(16)};
+      },
+      describe))
+      << "radiance";
+}
+
+}  // namespace
+}  // namespace lp::ch08
