@@ -1,7 +1,7 @@
 # Chapter 01: the lighting model on the CPU, the forward renderer on a headless context, and
 # the program itself (reference images, outputs and bad input).
 lightpass_gtests(01_forward unit lightpass_01_forward unit/test_lighting.cpp)
-lightpass_gtests(01_forward gl lightpass_01_forward unit/test_forward_gl.cpp)
+lightpass_gtests(01_forward gl lightpass_01_forward unit/test_forward_gl.cpp unit/test_01_twins_gl.cpp unit/glsl_twin.cpp)
 
 set(P01 $<TARGET_FILE:01_forward>)
 foreach(mode per-pixel per-vertex unnormalized multi-pass)

@@ -1,7 +1,7 @@
 # Chapter 02: the G-buffer's maths on the CPU, the G-buffer on a headless context, and the
 # program itself (reference images of the lit result and of every buffer, outputs, bad input).
 lightpass_gtests(02_gbuffer unit lightpass_02_gbuffer unit/test_02_encoding.cpp)
-lightpass_gtests(02_gbuffer gl lightpass_02_gbuffer unit/test_02_gbuffer_gl.cpp)
+lightpass_gtests(02_gbuffer gl lightpass_02_gbuffer unit/test_02_gbuffer_gl.cpp unit/test_02_twins_gl.cpp unit/glsl_twin.cpp)
 
 # The program: reference images of the lit result and of every buffer, outputs, bad input.
 set(P02 $<TARGET_FILE:02_gbuffer>)

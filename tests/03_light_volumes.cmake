@@ -2,7 +2,8 @@
 # a headless context (cross-checks, exact fragment counts), and the program itself.
 
 lightpass_gtests(03_light_volumes unit lightpass_03_light_volumes unit/test_03_light_volumes.cpp)
-lightpass_gtests(03_light_volumes gl lightpass_03_light_volumes unit/test_03_light_volumes_gl.cpp)
+lightpass_gtests(03_light_volumes gl lightpass_03_light_volumes unit/test_03_light_volumes_gl.cpp
+  unit/test_03_twins_gl.cpp unit/glsl_twin.cpp)
 
 # The program: reference images (every strategy, the hard cases, deferred lighting and the
 # book's pictures), outputs and bad input.

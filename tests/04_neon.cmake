@@ -11,6 +11,8 @@ lightpass_gtests(04_neon unit lightpass_04_neon
 lightpass_gtests(04_neon gl lightpass_04_neon
   unit/test_04_neon_gl.cpp
   unit/test_04_neon_volumes_gl.cpp
+  unit/test_04_twins_gl.cpp
+  unit/glsl_twin.cpp
 )
 
 # The program: reference images per mode (tests/reference/04_neon/, made on llvmpipe), the

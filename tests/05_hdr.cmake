@@ -8,6 +8,8 @@ lightpass_gtests(05_hdr unit lightpass_05_hdr unit/test_05_hdr_math.cpp)
 lightpass_gtests(05_hdr gl lightpass_05_hdr
   unit/test_05_hdr_gl.cpp
   unit/test_05_hdr_radiance_gl.cpp
+  unit/test_05_twins_gl.cpp
+  unit/glsl_twin.cpp
 )
 
 set(P05 $<TARGET_FILE:05_hdr>)

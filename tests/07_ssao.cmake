@@ -2,7 +2,8 @@
 # (each method against the ray-traced truth, the hard cases), and the program: references per
 # method and the AO view, bad input.
 lightpass_gtests(07_ssao unit lightpass_07_ssao unit/test_07_ao_math.cpp)
-lightpass_gtests(07_ssao gl lightpass_07_ssao unit/test_07_ssao_gl.cpp unit/test_07_ssao_hard_gl.cpp)
+lightpass_gtests(07_ssao gl lightpass_07_ssao unit/test_07_ssao_gl.cpp unit/test_07_ssao_hard_gl.cpp
+  unit/test_07_twins_gl.cpp unit/glsl_twin.cpp)
 
 set(P07 $<TARGET_FILE:07_ssao>)
 lightpass_program_test(07_ssao.reference.cornell 0 "10 of 10 references match" ${P07} --check --out ${CHECK_OUT}/07_ssao)

@@ -2,7 +2,7 @@
 # OpenGL), GPU tests (against the ray-traced one-bounce truth, the hard cases), and the program:
 # references per mode and view, bad input.
 lightpass_gtests(08_ssgi unit lightpass_08_ssgi unit/test_08_gi_math.cpp)
-lightpass_gtests(08_ssgi gl lightpass_08_ssgi unit/test_08_ssgi_gl.cpp)
+lightpass_gtests(08_ssgi gl lightpass_08_ssgi unit/test_08_ssgi_gl.cpp unit/test_08_twins_gl.cpp unit/glsl_twin.cpp)
 
 set(P08 $<TARGET_FILE:08_ssgi>)
 lightpass_program_test(08_ssgi.reference.cornell 0 "16 of 16 references match" ${P08} --check --out ${CHECK_OUT}/08_ssgi)

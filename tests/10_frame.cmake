@@ -1,6 +1,7 @@
 # Chapter 10: the whole frame. So far its transparency: GPU tests of the stage against the
 # exact per-pixel order and its hard cases, and the program (references, bad input).
-lightpass_gtests(10_frame gl lightpass_10_frame unit/test_10_transparency_gl.cpp)
+lightpass_gtests(10_frame gl lightpass_10_frame unit/test_10_transparency_gl.cpp
+  unit/test_10_twins_gl.cpp unit/glsl_twin.cpp)
 
 # The program: its references (tests/reference/10_frame/, made on llvmpipe and looked at), what
 # a headless run says, and bad input.

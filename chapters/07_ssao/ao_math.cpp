@@ -121,6 +121,26 @@ float bilateral_weight(float centre_depth, float depth, glm::vec3 centre_normal,
   return near && aligned ? 1.f : 0.f;
 }
 
+float range_weight(float radius, float gap) {
+  const float t = std::clamp(radius / std::max(std::abs(gap), 1e-6f), 0.f, 1.f);
+  return t * t * (3.f - 2.f * t);  // GLSL's smoothstep(0, 1, x)
+}
+
+float gtao_horizon(glm::vec3 p, glm::vec3 q, glm::vec3 normal, glm::vec3 view_vec, float low, float falloff_mul,
+                   float falloff_add, float min_height) {
+  const glm::vec3 delta = q - p;
+  const float dist = glm::length(delta);
+  if (!(dist > 0.f)) return low;
+  float weight = std::clamp(dist * falloff_mul + falloff_add, 0.f, 1.f);
+  if (glm::dot(delta, normal) < min_height) weight = 0.f;
+  const float elevation = glm::dot(delta / dist, view_vec);
+  return low + (elevation - low) * weight;  // GLSL's mix(low, elevation, weight)
+}
+
+float gtao_arc(float h, float n, float cos_n) {
+  return (cos_n + 2.f * h * std::sin(n) - std::cos(2.f * h - n)) / 4.f;
+}
+
 glm::vec2 spiral_point(int i, int n) {
   const float golden = 2.39996323f;  // pi (3 - sqrt 5)
   float r = std::sqrt((float(i) + 0.5f) / float(n));

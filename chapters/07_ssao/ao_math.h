@@ -1,5 +1,6 @@
 #pragma once
-// Chapter 07's maths on the CPU, the twin of shaders/ssao.comp and shaders/blur.comp: the
+// Chapter 07's maths on the CPU, the twin of shaders/ao_math.glsl (which ssao.comp and blur.comp
+// include; tests/unit/test_07_twins_gl.cpp holds them together): the
 // sample kernels of the classic algorithm (random, and energy-minimised by springs), the
 // 4x4 noise that rotates them per pixel by reflection, Bunnell's disk-to-disk occlusion term
 // of the 2D-disk method, and the bilateral blur's similarity weight. Unit tests hold these;
@@ -70,6 +71,23 @@ float form_factor_occlusion(glm::vec3 receiver, glm::vec3 receiver_normal, glm::
 float bilateral_weight(float centre_depth, float depth, glm::vec3 centre_normal, glm::vec3 normal,
                        float depth_threshold, float normal_threshold);
 // [/bilateral]
+
+// The classic's range check (ssao.comp): an occluder `gap` in depth from the pixel counts fully
+// within the radius, and fades as smoothstep(0, 1, radius / |gap|) beyond it.
+float range_weight(float radius, float gap);
+
+// GTAO's horizon and arc (ssao.comp; the GLSL in shaders/ao_math.glsl). gtao_horizon: the
+// horizon cosine an occluder q gives the receiver p (view space, unit normal and view vector):
+// the elevation dot((q - p) / |q - p|, view_vec), blended toward the slice's lowest `low` by
+// the falloff's weight clamp(|q - p| falloff_mul + falloff_add, 0, 1), and `low` when q is less
+// than min_height above the tangent plane. gtao_arc: a slice's cosine-weighted visibility
+// between the view vector and the horizon angle h, for the projected normal at angle n,
+//   integral from 0 to h of sin t cos(t - n) dt = (cos n + 2 h sin n - cos(2h - n)) / 4,
+// which is the integral of |sin t| cos(t - n) between 0 and h for h of either sign; the two
+// sides at the tangent plane, h = n +- pi/2, sum to cos n + n sin n (the open slice).
+float gtao_horizon(glm::vec3 p, glm::vec3 q, glm::vec3 normal, glm::vec3 view_vec, float low, float falloff_mul,
+                   float falloff_add, float min_height);
+float gtao_arc(float h, float n, float cos_n);
 
 // The 2D disk's pattern: sample i of n at radius sqrt((i + 0.5) / n) (equal area per sample)
 // and angle i times the golden angle (a spiral that never repeats a direction).

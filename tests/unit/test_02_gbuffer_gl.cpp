@@ -675,6 +675,39 @@ TEST_F(GBufferGl, FragmentCountsAreExact) {
   EXPECT_EQ(m.find("lighting")->samples, std::uint64_t(kW) * kH);
 }
 
+// The source layout stores an emissive strength s in the albedo target's alpha and decodes the
+// emission as albedo x s: a tint of the albedo (the limit the palette removes). On the street,
+// whose windows and lamps glow, every decoded emissive pixel is the decoded albedo times the
+// alpha the target holds, to float rounding (the decode's product: half an ulp; 2^-23 relative
+// allowed). The street's glowing materials have dark albedos, so a strength not tinted by the
+// albedo (s alone) is far from it.
+TEST_F(GBufferGl, SourceLayoutsEmissiveIsItsAlbedoScaled) {
+  World street("assets/street/street.gltf");
+  FrameCamera camera = street.camera("street_level");
+  GBuffer gbuffer(kW, kH, layout_named("source"));
+  street.geometry.draw(gbuffer, camera);
+  SurfaceImages s = street.probe.read(gbuffer);
+  ImageF stored = ImageF::blank(kW, kH, 4);
+  glGetTextureImage(gbuffer.albedo(), 0, GL_RGBA, GL_FLOAT, GLsizei(stored.data.size() * sizeof(float)), stored.data.data());
+  flip_vertically(stored);  // as the probe's images: rows top to bottom
+  std::size_t glowing = 0, dark = 0, off = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const float strength = stored.at(x, y, 3);
+      if (s.sky(x, y) || strength <= 0.f) continue;
+      ++glowing;
+      dark += std::max({s.albedo.at(x, y, 0), s.albedo.at(x, y, 1), s.albedo.at(x, y, 2)}) < 0.9f;
+      for (int c = 0; c < 3; ++c) {
+        const float want = s.albedo.at(x, y, c) * strength, got = s.emissive.at(x, y, c);
+        if (std::abs(got - want) > 0x1p-23f * std::abs(want) && off++ < 3)
+          ADD_FAILURE() << "(" << x << ", " << y << ") channel " << c << ": emissive " << got << ", albedo x strength " << want;
+      }
+    }
+  std::printf("source layout on the street: %zu emissive pixels, %zu of them with an albedo below 0.9\n", glowing, dark);
+  EXPECT_GT(dark, 100u);
+  EXPECT_EQ(off, 0u);
+}
+
 TEST_F(GBufferGl, StreetEmissiveViewMatchesItsReference) {
   // The atrium has no emissive material; the street's windows and lamps do. Their colours are
   // not tints of their albedo (dark glass glowing orange), which the source's albedo-scaled

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 
 #include "chapters/07_ssao/ao_math.h"
 #include "chapters/07_ssao/ao_truth.h"
@@ -118,3 +119,68 @@ TEST(Spiral, EqualAreaRingsInsideTheUnitDisk) {
     EXPECT_EQ(inner, n / 2);  // half the samples in the inner half of the area
   }
 }
+
+namespace lp::ch07 {
+namespace {
+
+// Simpson's rule with 2000 intervals: its error for these smooth integrands over at most pi is
+// below 1e-12, far under the float evaluation's.
+double simpson(double a, double b, const std::function<double(double)>& f) {
+  const int n = 2000;
+  const double h = (b - a) / n;
+  double sum = f(a) + f(b);
+  for (int i = 1; i < n; ++i) sum += (i % 2 ? 4 : 2) * f(a + i * h);
+  return sum * h / 3;
+}
+
+TEST(GtaoArc, IsTheCosineWeightedIntegralFromTheViewVectorToTheHorizon) {
+  // gtao_arc(h, n) against the integral of |sin t| cos(t - n) between 0 and h, for normals
+  // within the hemisphere about the view vector and horizons within pi/2 of the normal. The
+  // float evaluation's terms are at most (1 + pi + 1) / 4 in size, each within 2 ulp (sin and
+  // cos of std::, correctly rounded nearly), so 8 ulp of 2: 1e-6.
+  Pcg32 rng(7, 1);
+  for (int k = 0; k < 2000; ++k) {
+    const double n = (rng.uniform() - 0.5) * 3.14159265358979;
+    const double h = n + (rng.uniform() - 0.5) * 3.14159265358979;
+    const double truth = simpson(0, h, [n](double t) { return std::abs(std::sin(t)) * std::cos(t - n); }) * (h >= 0 ? 1 : -1);
+    ASSERT_NEAR(gtao_arc(float(h), float(n), float(std::cos(n))), truth, 1e-6) << "h " << h << " n " << n;
+  }
+}
+
+TEST(GtaoArc, BothSidesAtTheTangentPlaneGiveTheOpenSlice) {
+  // h = n - pi/2 and n + pi/2 (nothing above the tangent plane): cos n + n sin n, the open
+  // slice ssao.comp divides by. Within 1e-6 as above.
+  const float half_pi = 1.5707963f;
+  for (float n = -1.5f; n <= 1.5f; n += 0.125f) {
+    const float open = gtao_arc(n - half_pi, n, std::cos(n)) + gtao_arc(n + half_pi, n, std::cos(n));
+    EXPECT_NEAR(open, std::cos(n) + n * std::sin(n), 1e-6) << n;
+  }
+}
+
+TEST(GtaoHorizon, ElevationWhereSeenAndTheSlicesLowestWhereNot) {
+  const glm::vec3 p(0, 0, -2), view(0, 0, 1), normal(0, 1, 0);
+  const float low = -0.25f, falloff_mul = -1.f / 0.05f, falloff_add = 0.95f / 0.05f + 1.f;  // R = 1: full to 0.95
+  // 0.5 up and 0.5 toward the camera: elevation cos 45 degrees = 0.7071, full weight
+  EXPECT_NEAR(gtao_horizon(p, p + glm::vec3(0, 0.5f, 0.5f), normal, view, low, falloff_mul, falloff_add, 0.01f), 0.70710678f, 1e-6f);
+  // beyond R: the falloff's weight 0, the lowest value
+  EXPECT_EQ(gtao_horizon(p, p + glm::vec3(0, 1.f, 1.f), normal, view, low, falloff_mul, falloff_add, 0.01f), low);
+  // below the bias height: the surface itself, not an occluder
+  EXPECT_EQ(gtao_horizon(p, p + glm::vec3(0, 0.005f, 0.5f), normal, view, low, falloff_mul, falloff_add, 0.01f), low);
+  // halfway through the falloff (0.975 R): half the way from low to the elevation
+  const glm::vec3 d = glm::normalize(glm::vec3(0, 1, 1)) * 0.975f;
+  EXPECT_NEAR(gtao_horizon(p, p + d, normal, view, low, falloff_mul, falloff_add, 0.01f), low + 0.5f * (0.70710678f - low), 1e-5f);
+  // the receiver itself: the lowest value
+  EXPECT_EQ(gtao_horizon(p, p, normal, view, low, falloff_mul, falloff_add, 0.01f), low);
+}
+
+TEST(RangeWeight, FullWithinTheRadiusAndFadingBeyond) {
+  EXPECT_EQ(range_weight(1.f, 0.f), 1.f);
+  EXPECT_EQ(range_weight(1.f, -0.9f), 1.f);
+  EXPECT_EQ(range_weight(1.f, 1.f), 1.f);
+  EXPECT_NEAR(range_weight(1.f, 2.f), 0.5f, 1e-7f);     // smoothstep(0.5)
+  EXPECT_NEAR(range_weight(1.f, -4.f), 0.15625f, 1e-7f);  // 0.25^2 (3 - 0.5)
+  EXPECT_LT(range_weight(1.f, 100.f), 1e-3f);
+}
+
+}  // namespace
+}  // namespace lp::ch07

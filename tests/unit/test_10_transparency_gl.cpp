@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -16,7 +17,9 @@
 #include "chapters/03_light_volumes/light_radius.h"
 #include "chapters/06_shadows/shadow_stage.h"
 #include "chapters/10_frame/transparency.h"
+#include "common/gl.h"
 #include "common/paths.h"
+#include "common/shader.h"
 #include "common/target.h"
 #include "tests/unit/book_data.h"
 #include "tests/unit/gl_environment.h"
@@ -410,4 +413,44 @@ TEST(TransparencyGl, TheGlassReadsTheShadowMapWhateverAStageLeftOnItsUnits) {
   EXPECT_TRUE(clobbered.pixels == shadowed.pixels) << compare(clobbered, shadowed).summary();
   EXPECT_GT(compare(unshadowed, shadowed, {.threshold = 3, .max_failing_fraction = 0}).failing_fraction, 0.05)
       << "the sun's map darkens part of the floor";
+}
+
+// Many near layers overflow the half-float accumulation to infinity (w alpha c up to 3e3 a
+// layer: 22 white layers pass 65504). In an 8-bit target that reads as white either way, but
+// an HDR target keeps the infinity and the tone curve turns it into NaN (inf / (1 + inf)). The
+// composite's min() keeps the average finite: with sum.rgb and sum.a both infinite it gives
+// 65504 / 5e4 (the alpha sum's clamp), whatever the colour. Run on the composite shader itself
+// (u_show 0, no blending) into a float target: an overflowed pixel and an ordinary one, whose
+// average is the sum's ratio to half-float rounding (2^-11).
+TEST(TransparencyGl, TheCompositeStaysFiniteWhereTheHalfFloatSumOverflows) {
+  const float inf = std::numeric_limits<float>::infinity();
+  const float accumulation[2][4] = {{inf, inf, 0.f, inf}, {2.f, 1.f, 0.5f, 4.f}};
+  const float revealage[2] = {0.f, 0.5f};
+  gl::Texture accum = gl::make_texture_2d(GL_RGBA16F, 2, 1), reveal = gl::make_texture_2d(GL_R16F, 2, 1);
+  glTextureSubImage2D(accum.id(), 0, 0, 0, 2, 1, GL_RGBA, GL_FLOAT, accumulation);
+  glTextureSubImage2D(reveal.id(), 0, 0, 0, 2, 1, GL_RED, GL_FLOAT, revealage);
+  gl::Texture target = gl::make_texture_2d(GL_RGBA32F, 2, 1);
+  gl::Framebuffer fb;
+  glNamedFramebufferTexture(fb.id(), GL_COLOR_ATTACHMENT0, target.id(), 0);
+  ShaderProgram composite({{GL_VERTEX_SHADER, "02_gbuffer/shaders/fullscreen.vert"},
+                           {GL_FRAGMENT_SHADER, "10_frame/shaders/wboit_composite.frag"}});
+  gl::VertexArray vao;
+  glBindFramebuffer(GL_FRAMEBUFFER, fb.id());
+  glViewport(0, 0, 2, 1);
+  glDisable(GL_BLEND);
+  glDisable(GL_DEPTH_TEST);
+  glBindTextureUnit(0, accum.id());
+  glBindTextureUnit(1, reveal.id());
+  composite.use();
+  composite.set("u_show", 0);
+  glBindVertexArray(vao.id());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  float out[2][4] = {};
+  glGetTextureImage(target.id(), 0, GL_RGBA, GL_FLOAT, sizeof out, out);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  ASSERT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+  for (float v : out[0]) EXPECT_TRUE(std::isfinite(v)) << "the overflowed pixel: " << out[0][0] << " " << out[0][1];
+  EXPECT_NEAR(out[0][0], 65504.f / 5e4f, 1e-3f);
+  const float expected[4] = {0.25f, 0.125f, 0.0625f, 0.5f};  // (2, 1, 0.5) / 4 x (1 - 0.5), alpha 1 - 0.5
+  for (int k = 0; k < 4; ++k) EXPECT_NEAR(out[1][k], expected[k], expected[k] * 0x1p-11f) << k;
 }

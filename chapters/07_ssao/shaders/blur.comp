@@ -5,6 +5,7 @@
 // The sky is never averaged in and stays 1.
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "02_gbuffer/shaders/gbuffer.glsl"
+#include "07_ssao/shaders/ao_math.glsl"
 
 layout(r32f, binding = 0) uniform readonly image2D u_raw;
 layout(r32f, binding = 1) uniform writeonly image2D u_out;
@@ -32,7 +33,7 @@ void main() {
       vec3 pos = reconstruct_position(vec2(np) + 0.5, depth);
       float z = -(u_view * vec4(pos, 1.0)).z;
       vec3 nn = decode_normal(texelFetch(gb_normal, np, 0));
-      float w = (abs(z - zc) <= u_depth_threshold * zc && dot(nn, c.normal) >= u_normal_threshold) ? 1.0 : 0.0;
+      float w = bilateral_weight(zc, z, c.normal, nn, u_depth_threshold, u_normal_threshold);  // ao_math.glsl
       sum += w * imageLoad(u_raw, n).r;
       weight += w;
     }

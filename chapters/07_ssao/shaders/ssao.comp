@@ -22,16 +22,10 @@ uniform float u_max_screen_radius;  // disk: at most this fraction of the image 
 uniform vec4 u_kernel[128];
 uniform vec4 u_noise[16];
 
-const float PI = 3.14159265358979;
-
-// A right-handed orthonormal basis around unit n (Duff et al. 2017): ao_math's twin.
-void basis(vec3 n, out vec3 t, out vec3 b) {
-  float sign_z = n.z >= 0.0 ? 1.0 : -1.0;
-  float a = -1.0 / (sign_z + n.z);
-  float c = n.x * n.y * a;
-  t = vec3(1.0 + sign_z * n.x * n.x * a, sign_z * c, -sign_z * n.x);
-  b = vec3(c, sign_z + n.y * n.y * a, -n.y);
-}
+// The formulas with C++ twins in ao_math.h, in a file of their own so that a test runs them
+// against the twins (tests/unit/test_07_twins_gl.cpp): PI, basis, the noise's reflection, the
+// range check, the disk's terms, the spiral and GTAO's horizon and arcs.
+#include "07_ssao/shaders/ao_math.glsl"
 
 bool sky_depth(float depth) { return depth == gb_depth_info.z; }
 vec3 world_at(ivec2 pixel, float depth) { return reconstruct_position(vec2(pixel) + 0.5, depth); }
@@ -45,7 +39,7 @@ float classic_hidden(vec3 p, vec3 t, vec3 b, vec3 n, vec3 r, float radius) {
   float hidden = 0.0;
   for (int i = 0; i < u_samples; ++i) {
     vec3 k = u_kernel[i].xyz;
-    if (u_noise_on != 0) k = k - 2.0 * dot(k, r) * r;  // reflect: the height above the surface stays
+    if (u_noise_on != 0) k = reflect_about(k, r);      // the height above the surface stays
     vec3 offset = k.x * t + k.y * b + k.z * n;         // world space
 #ifdef AO_TUTORIAL_BUG
     vec3 q = p + radius * offset;                      // the bug: a world offset on a view-space point
@@ -64,7 +58,7 @@ float classic_hidden(vec3 p, vec3 t, vec3 b, vec3 n, vec3 r, float radius) {
     float sample_depth = -q.z;
     // hidden when the stored surface is in front of the point; the range check fades
     // occluders far in front of the pixel (a column before a distant wall)
-    float range = smoothstep(0.0, 1.0, radius / max(abs(-p.z - scene), 1e-6));
+    float range = range_weight(radius, -p.z - scene);
     hidden += (scene <= sample_depth - u_bias * radius ? 1.0 : 0.0) * range;
     // [/classic-test]
   }
@@ -106,9 +100,8 @@ float disk_ao(ivec2 pixel, Surface s) {
   vec3 noise = u_noise[(pixel.x & 3) + 4 * (pixel.y & 3)].xyz;
   float turn = u_noise_on != 0 ? atan(noise.y, noise.x) : 0.0;
   for (int i = 0; i < u_samples; ++i) {
-    float rr = sqrt((float(i) + 0.5) / float(u_samples));
-    float a = 2.39996323 * float(i) + turn;
-    ivec2 sp = pixel + ivec2(round(rr * radius_px * vec2(cos(a), sin(a))));
+    vec2 polar = spiral_polar(i, u_samples, turn);  // radius (of 1), angle
+    ivec2 sp = pixel + ivec2(round(polar.x * radius_px * vec2(cos(polar.y), sin(polar.y))));
     if (sp == pixel || any(lessThan(sp, ivec2(0))) || any(greaterThanEqual(sp, ivec2(gb_size.xy)))) continue;
     float depth = texelFetch(gb_depth, sp, 0).r;
     if (sky_depth(depth)) continue;
@@ -130,11 +123,10 @@ float disk_ao(ivec2 pixel, Surface s) {
     // the share at the emitter's depth, spread over the surface the pixel sees at a slant
     vec3 to_eye = normalize(gb_eye.xyz - e);
     float area = share * (ze / zr) * (ze / zr) / max(abs(dot(ne, to_eye)), 0.2);
-    v *= inversesqrt(d2);
 #ifdef AO_BUNNELL
-    occlusion += (1.0 - inversesqrt(1.0 + area / (PI * d2))) * abs(dot(ne, v)) * clamp(4.0 * dot(s.normal, v), 0.0, 1.0);
+    occlusion += bunnell_occlusion(s.position, s.normal, e, ne, area);
 #else
-    occlusion += area * abs(dot(ne, v)) * max(dot(s.normal, v), 0.0) / (PI * d2 + area);
+    occlusion += form_factor_occlusion(s.position, s.normal, e, ne, area);
 #endif
     // [/disk-term]
   }
@@ -155,19 +147,8 @@ float disk_ao(ivec2 pixel, Surface s) {
 // pattern). Unlike XeGTAO, whose falloff starts at 0.385 R (it made the Cornell box's error
 // 0.14), occluders count fully to 0.95 R and not at all beyond R: the truth's rays end at R
 // (u_falloff = 0.05, untuned; the sweep tunes it).
-float acos_clamped(float x) { return acos(clamp(x, -1.0, 1.0)); }
-// The horizon cosine one occluder point q gives the receiver p: its elevation toward the view
-// vector, blended toward the slice's lowest value `low` by the falloff's weight.
-float gtao_horizon(vec3 p, vec3 q, vec3 normal, vec3 view_vec, float low, float falloff_mul, float falloff_add) {
-  vec3 delta = q - p;
-  float dist = length(delta);
-  if (dist <= 0.0) return low;
-  float weight = clamp(dist * falloff_mul + falloff_add, 0.0, 1.0);
-  // as the classic bias: a point less than bias x R above the tangent plane is the surface
-  // itself, its depth rounded (D24 far from the camera), not an occluder
-  if (dot(delta, normal) < u_bias * u_radius) weight = 0.0;
-  return mix(low, dot(delta / dist, view_vec), weight);
-}
+// gtao_horizon (the horizon cosine one occluder point gives) and gtao_arc (a slice's visibility
+// from its normal to a horizon) are in ao_math.glsl.
 float gtao_ao(ivec2 pixel, Surface s) {
   // [gtao-budget]
   const int steps = 8;
@@ -211,7 +192,7 @@ float gtao_ao(ivec2 pixel, Surface s) {
         float depth = texelFetch(gb_depth, sp, 0).r;
         if (sky_depth(depth)) continue;
         vec3 q = (u_view * vec4(world_at(sp, depth), 1.0)).xyz;
-        float h = gtao_horizon(p, q, normal, view_vec, side == 0 ? low0 : low1, falloff_mul, falloff_add);
+        float h = gtao_horizon(p, q, normal, view_vec, side == 0 ? low0 : low1, falloff_mul, falloff_add, u_bias * u_radius);
         // [thickness]
         // The depth buffer holds only each surface's front. A thickness T (u_thickness x the
         // radius) says what lies behind it: the sample stands for a slab from q to T farther
@@ -226,7 +207,8 @@ float gtao_ao(ivec2 pixel, Surface s) {
         if (u_thickness > 0.0 && c0 > 0.0 && disc >= 0.0) {
           float t_in = -b - sqrt(disc);
           if (t_in >= 0.0 && t_in <= u_thickness * u_radius)
-            h = max(h, gtao_horizon(p, q + t_in * d, normal, view_vec, side == 0 ? low0 : low1, falloff_mul, falloff_add));
+            h = max(h, gtao_horizon(p, q + t_in * d, normal, view_vec, side == 0 ? low0 : low1, falloff_mul, falloff_add,
+                              u_bias * u_radius));
         }
         // [/thickness]
         if (side == 0) horizon0 = max(horizon0, h);
@@ -237,8 +219,7 @@ float gtao_ao(ivec2 pixel, Surface s) {
     float h0 = -acos_clamped(horizon1), h1 = acos_clamped(horizon0);  // the - side, the + side
     h0 = n + clamp(h0 - n, -0.5 * PI, 0.5 * PI);
     h1 = n + clamp(h1 - n, -0.5 * PI, 0.5 * PI);
-    float arc0 = (cos_n + 2.0 * h0 * sin(n) - cos(2.0 * h0 - n)) / 4.0;
-    float arc1 = (cos_n + 2.0 * h1 * sin(n) - cos(2.0 * h1 - n)) / 4.0;
+    float arc0 = gtao_arc(h0, n, cos_n), arc1 = gtao_arc(h1, n, cos_n);
     visibility += projected_len * (arc0 + arc1);
     // the same slice with nothing above the tangent plane: cos n + n sin n. Its mean over all
     // slice angles is exactly 1, over a few it is not (0.94 on a floor seen at 27 degrees with

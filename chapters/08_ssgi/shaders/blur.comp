@@ -6,6 +6,7 @@
 // 07's blur is one channel and 4x4 (its noise tile's size); this noise has no tile.
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "02_gbuffer/shaders/gbuffer.glsl"
+#include "07_ssao/shaders/ao_math.glsl"
 
 layout(rgba16f, binding = 0) uniform readonly image2D u_raw;
 layout(rgba16f, binding = 1) uniform writeonly image2D u_out;
@@ -28,7 +29,7 @@ void main() {
       if (depth == gb_depth_info.z) continue;
       float z = -(u_view * vec4(reconstruct_position(vec2(n) + 0.5, depth), 1.0)).z;
       vec3 nn = decode_normal(texelFetch(gb_normal, n, 0));
-      float w = (abs(z - zc) <= u_depth_threshold * zc && dot(nn, c.normal) >= u_normal_threshold) ? 1.0 : 0.0;
+      float w = bilateral_weight(zc, z, c.normal, nn, u_depth_threshold, u_normal_threshold);  // chapter 07's
       sum += w * imageLoad(u_raw, n);
       weight += w;
     }

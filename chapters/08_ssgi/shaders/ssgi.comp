@@ -30,43 +30,14 @@ layout(binding = 12) uniform sampler2D u_back_normal;  // its own normal (facing
 layout(binding = 13) uniform sampler2D u_back_albedo;
 layout(binding = 14) uniform sampler2D u_back_light;   // its direct diffuse light L1
 
-const float PI = 3.14159265358979;
-
 bool sky_depth(float depth) { return depth == gb_depth_info.z; }
 vec3 world_at(ivec2 pixel, float depth) { return reconstruct_position(vec2(pixel) + 0.5, depth); }
 float view_depth(vec3 world) { return -(u_view * vec4(world, 1.0)).z; }
 
-uint wang_hash(uint h) {
-  h = (h ^ 61u) ^ (h >> 16);
-  h *= 9u;
-  h ^= h >> 4;
-  h *= 0x27d4eb2du;
-  h ^= h >> 15;
-  return h;
-}
-
-// [pattern-glsl]
-vec2 pattern_point(int i, vec2 jitter) {
-  if (u_pattern == 0) {
-    int ring = i / u_spokes, spoke = i % u_spokes;
-    float a = 2.0 * PI * float(spoke) / float(u_spokes);
-    return sqrt((float(ring) + 0.5) / float(u_rings)) * vec2(cos(a), sin(a));
-  }
-  float offset = u_pattern == 2 ? jitter.y : 0.5;
-  float a = 2.39996323 * float(i) + (u_pattern == 2 ? 2.0 * PI * jitter.x : 0.0);
-  return sqrt((float(i) + offset) / float(u_samples)) * vec2(cos(a), sin(a));
-}
-// [/pattern-glsl]
-
-// [transfer-glsl]
-float disk_transfer(vec3 p, vec3 np, vec3 e, vec3 ne, float area) {
-  vec3 v = e - p;
-  float r2 = dot(v, v);
-  if (r2 <= 0.0 || area <= 0.0) return 0.0;
-  v *= inversesqrt(r2);
-  return area * max(-dot(ne, v), 0.0) * max(dot(np, v), 0.0) / (PI * r2 + area);
-}
-// [/transfer-glsl]
+// The pattern, the pixel's jitter and the disk transfer: gi_math.glsl, with their C++ twins'
+// test (tests/unit/test_08_twins_gl.cpp).
+#include "08_ssgi/shaders/gi_math.glsl"
+vec2 pattern_point(int i, vec2 jitter) { return pattern_point(u_pattern, i, u_samples, u_rings, u_spokes, jitter); }
 
 // The area a sample stands for: its share of the disk at the receiver's depth zr, grown to the
 // emitter's depth ze and spread over the surface the pixel sees at a slant (chapter 07's disk).
@@ -187,8 +158,7 @@ void main() {
   // [/ssgi-radii]
   vec2 jitter = vec2(0.5);
   if (u_pattern == 2) {
-    uint a = wang_hash(uint(pixel.x) * 1973u + uint(pixel.y) * 9277u + 26699u), b = wang_hash(a);
-    jitter = vec2(float(a >> 8), float(b >> 8)) / 16777216.0;
+    jitter = pixel_jitter(pixel);
   }
   vec3 indirect = vec3(0.0);
   float occlusion = 0.0, transfer = 0.0;

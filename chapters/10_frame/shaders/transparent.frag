@@ -76,13 +76,8 @@ float view_depth() { return -(u_view * vec4(v_position, 1.0)).z; }
 #if defined(GLASS_WBOIT)
 layout(location = 0) out vec4 out_accumulation;
 layout(location = 1) out vec4 out_revealage;
-// [wboit-weight-glsl]
-// McGuire and Bavoil's first depth weight (transparency.h's wboit_weight, its C++ twin).
-float wboit_weight(float z, float alpha) {
-  float a = z / 5.0, b = z / 200.0;
-  return alpha * clamp(10.0 / (1e-5 + a * a + b * b * b * b * b * b), 1e-2, 3e3);
-}
-// [/wboit-weight-glsl]
+// McGuire and Bavoil's depth weight, in a file of its own that the twin test includes too
+#include "10_frame/shaders/wboit_weight.glsl"
 void main() {
   vec4 c = glass_colour();
   // [wboit-accumulate]

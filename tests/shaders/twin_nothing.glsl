@@ -1,0 +1,1 @@
+// An unused include slot of glsl_twin.comp.
