@@ -60,3 +60,6 @@ set_tests_properties(01_forward.window_input_at_a_slow_frame_rate PROPERTIES TIM
 lightpass_image_test(01_forward.window_screenshot "window screenshot, 640x360" ${CMAKE_BINARY_DIR}/out/01_window.png
   --size 640x360 --background ${BACKGROUND_SRGB8} --lit 0.3 1
   RUN xvfb-run -a -s "-screen 0 640x360x24" ${P01} --size 640x360 --frames 3 --out ${CMAKE_BINARY_DIR}/out/01_window.png)
+
+# The chapter's exercises (main.cpp's list; the book's "Exercises"): solutions pass, stubs fail.
+lightpass_exercise_tests(01_forward 3)
