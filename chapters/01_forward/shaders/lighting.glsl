@@ -8,20 +8,30 @@ const float LIGHT_DIRECTIONAL = 0.0;
 const float LIGHT_POINT = 1.0;
 const float LIGHT_SPOT = 2.0;
 
-// Each function a reader writes in an exercise (chapters/01_forward/exercises/) stands in
+// Each function a reader writes in an exercise (chapters/01_forward/exercises/ and, for the
+// range window, 03_light_volumes/exercises/) stands in
 // for the one here when `--exercise K` defines its name (common/app.h, Exercise).
-#ifdef EXERCISE_DISTANCE_ATTENUATION
-#include EXERCISE_DISTANCE_ATTENUATION
+#ifdef EXERCISE_RANGE_WINDOW
+#include EXERCISE_RANGE_WINDOW
 #else
-float distance_attenuation(float distance, float range) {
-  float d2 = max(distance * distance, 1e-4);
+// glTF's range window: 1 at the light, smoothly 0 at `range` (1 everywhere without one).
+float range_window(float distance, float range) {
   float window = 1.0;
   if (range > 0.0) {
     float ratio = distance / range;
     window = clamp(1.0 - ratio * ratio * ratio * ratio, 0.0, 1.0);
     window *= window;
   }
-  return window / d2;
+  return window;
+}
+#endif
+
+#ifdef EXERCISE_DISTANCE_ATTENUATION
+#include EXERCISE_DISTANCE_ATTENUATION
+#else
+float distance_attenuation(float distance, float range) {
+  float d2 = max(distance * distance, 1e-4);
+  return range_window(distance, range) / d2;
 }
 #endif
 
