@@ -855,6 +855,9 @@ int run_chapter(int argc, const char* const* argv, const Chapter& chapter, const
       std::cout << "exercises:" << (chapter.exercises.empty() ? " none\n" : "\n" + exercise_list(chapter));
       return 0;
     }
+    // An exercise's shots may be of another scene than the chapter's default: it runs on that one.
+    if (options.exercise > 0 && options.scene == chapter.cli.default_scene && !chapter.exercises[options.exercise - 1].scene.empty())
+      options.scene = chapter.exercises[options.exercise - 1].scene;
     App app(chapter, options);
     do body(app);  // again after the reader picks another scene in the window's panel
     while (app.switch_scene());

@@ -72,6 +72,7 @@ struct Exercise {
   std::string define;       // the name the chapter's shader tests with #ifdef and includes
   std::vector<Shot> shots;  // what --check renders, at the chapter's exercise size
   std::string look_at;      // where a wrong answer shows, said when the check fails
+  std::string scene = {};   // the scene its shots are of, when not the chapter's default
 };
 
 struct Chapter {

@@ -17,3 +17,6 @@ lightpass_program_test(07_ssao.bad_radius 2 "--radius must be between 0.01 and 1
 lightpass_program_test(07_ssao.bad_mode 2 "unknown mode 'hbao'" ${P07} --mode hbao)
 lightpass_program_test(07_ssao.bad_radii 2 "--radii must be between 1 and 2, got 3" ${P07} --radii 3)
 add_test(NAME 07_ssao.sweep_unknown_option COMMAND ${EXPECT} 2 "unknown option '--fast'" -- $<TARGET_FILE:07_ssao_sweep> --fast)
+
+# The chapter's exercises (main.cpp's list; the book's "Exercises"): solutions pass, stubs fail.
+lightpass_exercise_tests(07_ssao 3)
