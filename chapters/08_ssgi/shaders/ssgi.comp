@@ -45,6 +45,10 @@ uint wang_hash(uint h) {
   return h;
 }
 
+// Exercises 1-3 (chapters/08_ssgi/exercises/) stand in for the functions so marked.
+#ifdef EXERCISE_PATTERN_POINT
+#include EXERCISE_PATTERN_POINT
+#else
 // [pattern-glsl]
 vec2 pattern_point(int i, vec2 jitter) {
   if (u_pattern == 0) {
@@ -57,7 +61,11 @@ vec2 pattern_point(int i, vec2 jitter) {
   return sqrt((float(i) + offset) / float(u_samples)) * vec2(cos(a), sin(a));
 }
 // [/pattern-glsl]
+#endif
 
+#ifdef EXERCISE_DISK_TRANSFER
+#include EXERCISE_DISK_TRANSFER
+#else
 // [transfer-glsl]
 float disk_transfer(vec3 p, vec3 np, vec3 e, vec3 ne, float area) {
   vec3 v = e - p;
@@ -67,13 +75,18 @@ float disk_transfer(vec3 p, vec3 np, vec3 e, vec3 ne, float area) {
   return area * max(-dot(ne, v), 0.0) * max(dot(np, v), 0.0) / (PI * r2 + area);
 }
 // [/transfer-glsl]
+#endif
 
 // The area a sample stands for: its share of the disk at the receiver's depth zr, grown to the
 // emitter's depth ze and spread over the surface the pixel sees at a slant (chapter 07's disk).
+#ifdef EXERCISE_SAMPLE_AREA
+#include EXERCISE_SAMPLE_AREA
+#else
 float sample_area(float share, float zr, vec3 e, vec3 ne) {
   float ze = view_depth(e);
   return share * (ze / zr) * (ze / zr) / max(abs(dot(ne, normalize(gb_eye.xyz - e))), 0.2);
 }
+#endif
 
 // [back-faces-glsl]
 // The back-face layer's emitter at the sample's pixel sp: the nearest surface there that faces
