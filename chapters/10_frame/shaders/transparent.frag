@@ -76,6 +76,10 @@ float view_depth() { return -(u_view * vec4(v_position, 1.0)).z; }
 #if defined(GLASS_WBOIT)
 layout(location = 0) out vec4 out_accumulation;
 layout(location = 1) out vec4 out_revealage;
+// Exercise 1 (chapters/10_frame/exercises/wboit_weight.glsl) stands in for it.
+#ifdef EXERCISE_WBOIT_WEIGHT
+#include EXERCISE_WBOIT_WEIGHT
+#else
 // [wboit-weight-glsl]
 // McGuire and Bavoil's first depth weight (transparency.h's wboit_weight, its C++ twin).
 float wboit_weight(float z, float alpha) {
@@ -83,6 +87,7 @@ float wboit_weight(float z, float alpha) {
   return alpha * clamp(10.0 / (1e-5 + a * a + b * b * b * b * b * b), 1e-2, 3e3);
 }
 // [/wboit-weight-glsl]
+#endif
 void main() {
   vec4 c = glass_colour();
   // [wboit-accumulate]
