@@ -31,6 +31,37 @@ constexpr int kBenchFrames = 60;  // measured after measure()'s warm-up (common/
 constexpr float kPanelWidth = 330;  // pixels: a quarter of a 1280-wide window, the image beside it
 }  // namespace
 
+namespace {
+
+// The folder of the reader's answers: exercises/ (the stubs), or the one LIGHTPASS_EXERCISE_DIR
+// names; the solutions when making the references, which are theirs.
+std::filesystem::path exercise_file(const Chapter& chapter, const Exercise& exercise, bool solutions) {
+  std::filesystem::path dir = source_root() / "chapters" / chapter.cli.program / "exercises";
+  if (solutions) dir /= "solutions";
+  else if (const char* d = std::getenv("LIGHTPASS_EXERCISE_DIR"); d && *d) dir = from_root(d);
+  const auto path = dir / exercise.file;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw Error("exercise '" + exercise.title + "': no file " + path.string() +
+                (solutions || !std::getenv("LIGHTPASS_EXERCISE_DIR") ? "" : " (LIGHTPASS_EXERCISE_DIR names the folder)"));
+  return std::filesystem::absolute(path, ec);
+}
+
+// tests/reference/<program>/exercises/exercise<K>_<shot>.png
+std::string exercise_shot_name(int k, const Shot& shot, const CliSpec& spec) {
+  return "exercise" + std::to_string(k) + "_" + shot.name(spec);
+}
+
+}  // namespace
+
+std::string exercise_list(const Chapter& chapter) {
+  std::ostringstream s;
+  for (std::size_t i = 0; i < chapter.exercises.size(); ++i)
+    s << "  " << std::setw(2) << i + 1 << "  " << chapter.exercises[i].title << " (chapters/" << chapter.cli.program
+      << "/exercises/" << chapter.exercises[i].file << ")\n";
+  return s.str();
+}
+
 std::string Shot::name(const CliSpec& spec) const {
   std::ostringstream s;
   s << view << '_' << mode;
@@ -239,7 +270,21 @@ App::App(const Chapter& chapter, Options options) : chapter_(chapter), options_(
     last_time_ = glfwGetTime();
     return;
   }
-  if (options_.check) {
+  if (options_.exercise > 0) {
+    exercise_ = &chapter_.exercises.at(options_.exercise - 1);  // run_chapter checked K
+    exercise_path_ = exercise_file(chapter_, *exercise_, options_.update_references).string();
+    // The define is a quoted path: a quote or a line break in it would end it early.
+    if (exercise_path_.find_first_of("\"\n\r\\") != std::string::npos)
+      throw Error("exercise " + std::to_string(options_.exercise) + ": the path " + exercise_path_ +
+                  " holds a quote, a backslash or a line break, which a GLSL define cannot carry; move the tree");
+    set_program_wide_defines({exercise_->define + " \"" + exercise_path_ + "\""});
+    (options_.bench ? std::cerr : std::cout) << "exercise " << options_.exercise << " (" << exercise_->title
+                                             << "): " << exercise_path_ << " stands in for the chapter's function\n";
+  }
+  if (options_.check && exercise_) {
+    for (const auto& shot : exercise_->shots)
+      jobs_.push_back({.kind = Job::Check, .shot = shot, .width = chapter_.exercise_width, .height = chapter_.exercise_height});
+  } else if (options_.check) {
     for (const auto& shot : chapter_.references_for(options_.scene)) {
       if (options_.mode_given && shot.mode != options_.mode) continue;
       if (options_.view_given && shot.view != options_.view) continue;
@@ -610,19 +655,21 @@ void App::finish_job(const Job& job) {
     print_bench(bench_->result());
     return;
   }
-  auto reference = source_root() / "tests" / "reference" / chapter_.cli.program / (job.shot.name(chapter_.cli) + ".png");
-  auto out_dir = options_.out.empty() ? source_root() / "out" / "check" / chapter_.cli.program
+  const std::string name = exercise_ ? exercise_shot_name(options_.exercise, job.shot, chapter_.cli) : job.shot.name(chapter_.cli);
+  auto reference = reference_dir() / (name + ".png");
+  auto out_dir = options_.out.empty() ? source_root() / "out" / "check" / chapter_.cli.program / (exercise_ ? "exercises" : "")
                                       : std::filesystem::path(options_.out);
   std::filesystem::create_directories(out_dir);
-  auto actual_path = out_dir / (job.shot.name(chapter_.cli) + ".png");
+  auto actual_path = out_dir / (name + ".png");
   if (options_.update_references) {
+    std::filesystem::create_directories(reference.parent_path());
     save_png(reference, image);
     std::cout << "updated reference " << reference.string() << '\n';
     return;
   }
   if (!std::filesystem::exists(reference)) {
     save_png(actual_path, image);
-    std::cout << "MISSING " << job.shot.name(chapter_.cli) << ": no reference " << reference.string() << " (render kept at "
+    std::cout << "MISSING " << name << ": no reference " << reference.string() << " (render kept at "
               << actual_path.string() << "; make references on purpose with --check --update-references)\n";
     ++missing_;
     return;
@@ -635,12 +682,12 @@ void App::finish_job(const Job& job) {
   bool other = !made_by.empty() && made_by != context_->renderer();
   if (other && job.shot.other_renderer) tolerance = *job.shot.other_renderer;
   CompareResult r = compare(image, load_png(reference), tolerance);
-  std::cout << (r.passed ? "ok       " : "MISMATCH ") << std::left << std::setw(28) << job.shot.name(chapter_.cli) << ' ' << r.summary()
+  std::cout << (r.passed ? "ok       " : "MISMATCH ") << std::left << std::setw(28) << name << ' ' << r.summary()
             << (other && job.shot.other_renderer ? " [other renderer]" : "") << '\n';
   if (!r.passed) {
     ++failures_;
     save_png(actual_path, image);
-    auto diff_path = out_dir / (job.shot.name(chapter_.cli) + "_diff.png");
+    auto diff_path = out_dir / (name + "_diff.png");
     // The difference with its key: what each colour means, and where failing starts.
     constexpr int kDiffFullScale = 32;  // diff_heatmap's default
     save_png(diff_path, with_heat_key(diff_heatmap(image, load_png(reference), tolerance.threshold, kDiffFullScale),
@@ -696,12 +743,13 @@ void App::print_bench(const Measurement& m) const {
 int App::finish() {
   if (options_.update_references) {
     // Record what made the references: a reader's GPU may differ from them by a few steps.
-    auto dir = source_root() / "tests" / "reference" / chapter_.cli.program;
+    auto dir = reference_dir();
     std::ofstream(dir / "RENDERER.txt") << context_->renderer() << '\n' << context_->version() << '\n';
     std::cout << chapter_.cli.program << ": updated " << jobs_.size() << " references in " << dir.string()
               << " (" << context_->renderer() << ")\n";
     return 0;
   }
+  if (options_.check && exercise_) return finish_exercise_check();
   if (options_.check) {
     if (GLenum e = glGetError(); e != GL_NO_ERROR) std::cerr << "warning: " << gl::error_name(e) << '\n';
     size_t total = jobs_.size();
@@ -713,6 +761,32 @@ int App::finish() {
     if (missing_) return 3;
   }
   return 0;
+}
+
+std::filesystem::path App::reference_dir() const {
+  auto dir = source_root() / "tests" / "reference" / chapter_.cli.program;
+  return exercise_ ? dir / "exercises" : dir;
+}
+
+// The verdict on a reader's answer, in words: it matches, or where to look and what was written.
+int App::finish_exercise_check() {
+  const std::string what = "exercise " + std::to_string(options_.exercise) + " (" + exercise_->title + ")";
+  const size_t total = jobs_.size();
+  if (missing_) {
+    std::cout << what << ": " << missing_ << " of " << total << " expected images are missing (see above)\n";
+    return 3;
+  }
+  if (failures_ == 0) {
+    std::cout << what << ": your answer matches the solution in " << (total == 1 ? "the view" : "all " + std::to_string(total) + " views")
+              << " (" << context_->renderer() << ")\n";
+    return 0;
+  }
+  std::cout << what << ": your answer does not match the solution in " << failures_ << " of " << total << " views ("
+            << context_->renderer() << ").\n  Look at " << exercise_->look_at
+            << ".\n  Each 'diff' picture above marks where it differs (its key says how much); 'actual' is yours, "
+               "'expected' the solution's.\n  Your file: "
+            << exercise_path_ << '\n';
+  return 1;
 }
 
 bool App::switch_scene() {
@@ -750,7 +824,13 @@ int run_chapter(int argc, const char* const* argv, const Chapter& chapter, const
     bool help = std::string(e.what()).empty();
     if (!help) std::cerr << chapter.cli.program << ": " << e.what() << "\n\n";
     (help ? std::cout : std::cerr) << usage(chapter.cli);
+    if (help && !chapter.exercises.empty()) std::cout << "exercises (--exercise K; with --check: is it right?):\n" << exercise_list(chapter);
     return help ? 0 : 2;
+  }
+  if (options.exercise > int(chapter.exercises.size())) {
+    std::cerr << chapter.cli.program << ": no exercise " << options.exercise << "; "
+              << (chapter.exercises.empty() ? "this chapter has none with a check\n" : "its exercises:\n" + exercise_list(chapter));
+    return 2;
   }
   try {
     if (options.list) {
@@ -772,8 +852,12 @@ int run_chapter(int argc, const char* const* argv, const Chapter& chapter, const
       std::cout << "\nknobs:";
       if (chapter.cli.knobs.empty()) std::cout << " none";
       std::cout << '\n' << knob_usage(chapter.cli);
+      std::cout << "exercises:" << (chapter.exercises.empty() ? " none\n" : "\n" + exercise_list(chapter));
       return 0;
     }
+    // An exercise's shots may be of another scene than the chapter's default: it runs on that one.
+    if (options.exercise > 0 && options.scene == chapter.cli.default_scene && !chapter.exercises[options.exercise - 1].scene.empty())
+      options.scene = chapter.exercises[options.exercise - 1].scene;
     App app(chapter, options);
     do body(app);  // again after the reader picks another scene in the window's panel
     while (app.switch_scene());

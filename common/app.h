@@ -11,6 +11,7 @@
 //       app.panel([&] { /* chapter controls */ });
 //     }
 //   });
+#include <filesystem>
 #include <functional>
 #include <iosfwd>
 #include <map>
@@ -54,6 +55,26 @@ struct Shot {
   std::string name(const CliSpec& spec) const;
 };
 
+// An exercise: one function of the chapter's shaders, written by the reader. With `--exercise K`
+// every program is built with the define `define "path of the reader's file"`, and the chapter's
+// shader takes that file in place of its own function:
+//   #ifdef EXERCISE_BLINN_PHONG
+//   #include EXERCISE_BLINN_PHONG
+//   #else
+//   ... the chapter's own function ...
+//   #endif
+// The stub is chapters/<program>/exercises/<file> (LIGHTPASS_EXERCISE_DIR names another folder:
+// the tests point it at exercises/solutions/, whose files answer them); `--check` compares its
+// shots with tests/reference/<program>/exercises/, made from the solutions.
+struct Exercise {
+  std::string title;        // what to write, in a few words
+  std::string file;         // the stub's name, the same in exercises/ and exercises/solutions/
+  std::string define;       // the name the chapter's shader tests with #ifdef and includes
+  std::vector<Shot> shots;  // what --check renders, at the chapter's exercise size
+  std::string look_at;      // where a wrong answer shows, said when the check fails
+  std::string scene = {};   // the scene its shots are of, when not the chapter's default
+};
+
 struct Chapter {
   CliSpec cli;
   std::vector<Shot> references;  // what --check renders for the default scene, at the reference size
@@ -61,6 +82,8 @@ struct Chapter {
   // given to --scene: `--check --scene assets/atrium/atrium.gltf` renders the atrium's.
   std::map<std::string, std::vector<Shot>> scene_references = {};
   int reference_width = 320, reference_height = 180;
+  std::vector<Exercise> exercises = {};  // --exercise K is exercises[K - 1]
+  int exercise_width = 160, exercise_height = 90;
   // The shots of `scene` (matched by file name); throws Error when it has none.
   const std::vector<Shot>& references_for(const std::string& scene) const;
   std::vector<std::string> reference_scenes() const;  // the default scene first
@@ -133,6 +156,8 @@ class App {
   void report_reload();                             // after a frame that reloaded the shaders
   void say(const std::string& message);             // standard output and the panel's status line
   void knob_changed(const Knob& knob);              // the panel changed a knob: say the command line
+  std::filesystem::path reference_dir() const;      // tests/reference/<program>/ (exercises/ under it for --exercise)
+  int finish_exercise_check();
 
   Chapter chapter_;
   Options options_;
@@ -147,6 +172,8 @@ class App {
   int job_frame_ = 0;
   bool started_ = false, panel_drawn_ = false;
   int failures_ = 0, missing_ = 0;
+  const Exercise* exercise_ = nullptr;  // --exercise K
+  std::string exercise_path_;           // the file that stands in for the chapter's function
   double last_time_ = 0;
   std::string view_;
   std::string scene_request_, scene_error_;  // the panel's scene choice; why it did not load
@@ -170,6 +197,9 @@ class App {
 // Parses the command line, builds the App and runs `body`; prints errors and returns the
 // exit code: 0 fine, 1 an error (message says what and where), 2 bad usage.
 int run_chapter(int argc, const char* const* argv, const Chapter& chapter, const std::function<void(App&)>& body);
+
+// The exercises, one line each ("  1  Blinn's ... (exercises/blinn_phong.glsl)"), for --help and --list.
+std::string exercise_list(const Chapter& chapter);
 
 // out/<name> under the source root (created), for default outputs.
 std::string default_output(const std::string& file);

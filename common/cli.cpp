@@ -104,6 +104,8 @@ std::string usage(const CliSpec& spec) {
        "  --check            render the reference views and compare them with tests/reference/\n"
        "  --update-references  with --check: overwrite the references (on purpose only)\n"
        "  --list             " << option_help("list") << "\n"
+       "  --exercise K       run with your answer to exercise K (chapters/" << spec.program << "/exercises/);\n"
+       "                     with --check: say whether it matches the solution (the list: below)\n"
        "  --help             this text\n";
   std::string text = u.str() + knob_usage(spec);
   if (!spec.opening.empty()) {
@@ -190,6 +192,7 @@ Options parse_cli(int argc, const char* const* argv, const CliSpec& spec) {
     else if (arg == "--check") o.check = true;
     else if (arg == "--update-references") o.update_references = true;
     else if (arg == "--list") o.list = true;
+    else if (arg == "--exercise") o.exercise = parse_integer(arg, value(), 1, 1000);
     else {
       auto knob = std::find_if(spec.knobs.begin(), spec.knobs.end(),
                                [&](const Knob& k) { return arg == "--" + k.name; });

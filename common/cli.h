@@ -53,6 +53,7 @@ struct Options {
   bool check = false;
   bool update_references = false;
   bool list = false;
+  int exercise = 0;  // --exercise K: the chapter's K-th exercise (checked against its list by run_chapter)
   std::map<std::string, double> knobs;
 
   double knob(const std::string& name) const;  // throws Error for a knob the spec lacks

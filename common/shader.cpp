@@ -4,12 +4,15 @@
 #include <iostream>
 #include <regex>
 #include <sstream>
+#include <utility>
 
 #include "common/error.h"
 #include "common/paths.h"
 
 namespace lp {
 namespace {
+
+std::vector<std::string> g_program_wide_defines;
 
 struct Preprocessor {
   std::vector<std::string> files;
@@ -29,6 +32,12 @@ struct Preprocessor {
       return m[1];
     }
     throw Error(where + ": #include " + name + ": " + name + " is not defined (the program must pass it as a define)");
+  }
+
+  bool is_defined(const std::string& name) const {
+    return std::any_of(defines.begin(), defines.end(), [&](const std::string& d) {
+      return d.compare(0, name.size(), name) == 0 && (d.size() == name.size() || d[name.size()] == ' ');
+    });
   }
 
   int file_index(const std::string& path) {
@@ -59,6 +68,11 @@ struct Preprocessor {
     static const std::regex include_re(R"(^\s*#\s*include\s+"([^"]+)\"\s*$)");
     static const std::regex computed_include_re(R"(^\s*#\s*include\s+([A-Za-z_][A-Za-z0-9_]*)\s*(//.*)?$)");
     static const std::regex version_re(R"(^\s*#\s*version\b.*)");
+    static const std::regex if_re(R"(^\s*#\s*(ifdef|ifndef|if)\b\s*([A-Za-z_][A-Za-z0-9_]*)?.*)");
+    static const std::regex else_re(R"(^\s*#\s*(else|elif)\b.*)");
+    static const std::regex endif_re(R"(^\s*#\s*endif\b.*)");
+    // The open conditionals: the name of an `#ifdef NAME` whose first branch we are in, else "".
+    std::vector<std::string> ifdefs;
     bool version_seen = false;
     while (std::getline(in, line)) {
       ++number;
@@ -68,6 +82,10 @@ struct Preprocessor {
         out << "#line " << number + 1 << ' ' << id << '\n';
       } else if (std::regex_match(line, m, computed_include_re)) {
         const std::string where = path + ":" + std::to_string(number);
+        if (!is_defined(m[1]) && std::find(ifdefs.begin(), ifdefs.end(), m[1].str()) != ifdefs.end()) {
+          out << "// #include " << m[1] << " (not defined)\n";  // GLSL skips this branch too
+          continue;
+        }
         expand(included_by_define(m[1], where), where, out, false);
         out << "#line " << number + 1 << ' ' << id << '\n';
       } else if (!version_seen && root && std::regex_match(line, version_re)) {
@@ -76,6 +94,9 @@ struct Preprocessor {
         for (const auto& d : defines) out << "#define " << d << '\n';
         out << "#line " << number + 1 << ' ' << id << '\n';
       } else {
+        if (std::regex_match(line, m, if_re)) ifdefs.push_back(m[1] == "ifdef" ? m[2].str() : "");
+        else if (std::regex_match(line, else_re) && !ifdefs.empty()) ifdefs.back() = "";
+        else if (std::regex_match(line, endif_re) && !ifdefs.empty()) ifdefs.pop_back();
         out << line << '\n';
       }
     }
@@ -98,10 +119,13 @@ std::string stage_name(GLenum type) {
 ShaderSource preprocess_shader(const std::string& path, const std::vector<std::string>& defines) {
   Preprocessor p;
   p.defines = defines;
+  p.defines.insert(p.defines.end(), g_program_wide_defines.begin(), g_program_wide_defines.end());
   std::ostringstream out;
   p.expand(path, "", out, true);
   return {out.str(), p.files};
 }
+
+void set_program_wide_defines(std::vector<std::string> defines) { g_program_wide_defines = std::move(defines); }
 
 std::string map_shader_log(const std::string& log, const std::vector<std::string>& files) {
   // Mesa: "0:12(3): error: ..."   NVIDIA: "0(12) : error C1008: ..."

@@ -27,8 +27,13 @@ struct ShaderSource {
 };
 
 // Expands #include (recursively, each file once) and inserts `defines` after #version.
-// `#include NAME` includes the file that the define `NAME "path"` names (an error when none does).
+// `#include NAME` includes the file that the define `NAME "path"` names (an error when none does,
+// except inside `#ifdef NAME`: there an absent NAME leaves the line out, as GLSL would).
 ShaderSource preprocess_shader(const std::string& path, const std::vector<std::string>& defines = {});
+
+// Defines added to every program the process builds from now on, after its own: how
+// `--exercise K` puts a reader's file in place of a chapter's function (common/app.h).
+void set_program_wide_defines(std::vector<std::string> defines);
 
 // Rewrites a driver's info log so that "0:12(3): error" (Mesa) or "0(12) : error" (NVIDIA)
 // reads "01_forward/shaders/forward.frag:12: error".

@@ -60,3 +60,13 @@ set_tests_properties(01_forward.window_input_at_a_slow_frame_rate PROPERTIES TIM
 lightpass_image_test(01_forward.window_screenshot "window screenshot, 640x360" ${CMAKE_BINARY_DIR}/out/01_window.png
   --size 640x360 --background ${BACKGROUND_SRGB8} --lit 0.3 1
   RUN xvfb-run -a -s "-screen 0 640x360x24" ${P01} --size 640x360 --frames 3 --out ${CMAKE_BINARY_DIR}/out/01_window.png)
+
+# The chapter's exercises (main.cpp's list; the book's "Exercises"): solutions pass, stubs fail.
+lightpass_exercise_tests(01_forward 3)
+# An exercise folder without the file (LIGHTPASS_EXERCISE_DIR names the folder): the path tried, exit 1.
+file(MAKE_DIRECTORY ${CMAKE_BINARY_DIR}/empty_exercises)
+lightpass_program_test(01_forward.exercise_missing_file_is_named 1 "exercise .*: no file .*empty_exercises/blinn_phong.glsl [(]LIGHTPASS_EXERCISE_DIR"
+  env LIGHTPASS_EXERCISE_DIR=${CMAKE_BINARY_DIR}/empty_exercises ${P01} --exercise 1 --check)
+# A reader's shader error names the reader's file and line (through the computed include).
+lightpass_program_test(01_forward.exercise_shader_error_names_the_file 1 "bad_exercise/blinn_phong.glsl:3:[0-9]*: error"
+  env LIGHTPASS_EXERCISE_DIR=${CMAKE_SOURCE_DIR}/tests/exercises/bad_exercise ${P01} --exercise 1 --check)

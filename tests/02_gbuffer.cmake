@@ -66,3 +66,6 @@ add_test(NAME 02_gbuffer.sweep_rows_name_renderer_size_and_frames COMMAND ${EXPE
   "^1,deferred,[0-9.e-]+,[0-9.e-]+,[0-9.e-]+,576,[^,]+.*,32,18,2$"
   -- sh -c "$<TARGET_FILE:02_gbuffer_sweep> --out ${SWEEP02_OUT} --only lights --light-size 32x18 --max-lights 1 --frames 2 >/dev/null && cat ${SWEEP02_OUT}/02_lights.csv")
 set_tests_properties(02_gbuffer.sweep_rows_name_renderer_size_and_frames PROPERTIES TIMEOUT 120)
+
+# The chapter's exercises (main.cpp's list; the book's "Exercises"): solutions pass, stubs fail.
+lightpass_exercise_tests(02_gbuffer 3)

@@ -68,3 +68,6 @@ set_tests_properties(03_light_volumes.window_panel_leaves_the_image_visible PROP
 add_test(NAME 03_light_volumes.window_checkbox_at_a_slow_frame_rate
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_click.sh ${P03} 1280x720 27 291 "^panel: --count 0$")
 set_tests_properties(03_light_volumes.window_checkbox_at_a_slow_frame_rate PROPERTIES TIMEOUT 300)
+
+# The chapter's exercises (main.cpp's list; the book's "Exercises"): solutions pass, stubs fail.
+lightpass_exercise_tests(03_light_volumes 3)

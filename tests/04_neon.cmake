@@ -61,3 +61,6 @@ lightpass_program_test(04_neon.malformed_neon 1 "neon light 'broken_sign': \"len
   ${P04} --headless --size 160x90 --scene ${CMAKE_BINARY_DIR}/neon_data/neon_bad_length.gltf)
 # The sweep's options.
 add_test(NAME 04_neon.sweep_unknown_option COMMAND ${EXPECT} 2 "unknown option '--fast'" -- $<TARGET_FILE:04_neon_sweep> --fast)
+
+# The chapter's exercises (main.cpp's list; the book's "Exercises"): solutions pass, stubs fail.
+lightpass_exercise_tests(04_neon 3)

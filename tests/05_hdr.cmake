@@ -69,3 +69,6 @@ add_test(NAME 05_hdr.gl_error_in_a_pass_is_reported_with_the_pass COMMAND ${EXPE
   "^05_hdr: error: OpenGL reported GL_INVALID_ENUM in pass 'hdr: tonemap'$" --no-match "Abort|terminate|wrote "
   -- env "LIGHTPASS_TEST_GL_ERROR_IN_PASS=hdr: tonemap" ${P05} --headless --size 64x36 --out ${CMAKE_BINARY_DIR}/out/05_gl_error.png)
 set_tests_properties(05_hdr.gl_error_in_a_pass_is_reported_with_the_pass PROPERTIES TIMEOUT 120)
+
+# The chapter's exercises (main.cpp's list; the book's "Exercises"): solutions pass, stubs fail.
+lightpass_exercise_tests(05_hdr 3)

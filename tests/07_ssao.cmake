@@ -31,3 +31,6 @@ lightpass_image_test(07_ssao.opening_shows_the_ao_in_the_lit_image "wrote" ${CMA
   --differs-from ${CMAKE_BINARY_DIR}/out/07_opening_off.png 2
   RUN ${P07} --headless --size 320x180 --out ${CMAKE_BINARY_DIR}/out/07_opening.png)
 set_tests_properties(07_ssao.opening_shows_the_ao_in_the_lit_image PROPERTIES FIXTURES_REQUIRED opening07)
+
+# The chapter's exercises (main.cpp's list; the book's "Exercises"): solutions pass, stubs fail.
+lightpass_exercise_tests(07_ssao 3)

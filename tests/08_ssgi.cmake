@@ -33,3 +33,6 @@ lightpass_program_test(08_ssgi.bad_back_faces 2 "--back-faces must be one of: of
 lightpass_program_test(08_ssgi.bad_guard_band 2 "--guard-band must be between 0 and 1080, got 2000" ${P08} --guard-band 2000)
 lightpass_program_test(08_ssgi.guard_band_beyond_the_gl_limit 1 "--guard-band 1000 px makes the frame 18000x2090, larger than the [0-9]+ pixels a side a frame may have here"
   ${P08} --headless --size 16000x90 --guard-band 1000 --mode off --out ${CMAKE_BINARY_DIR}/out/08_big.png)
+
+# The chapter's exercises (main.cpp's list; the book's "Exercises"): solutions pass, stubs fail.
+lightpass_exercise_tests(08_ssgi 3)

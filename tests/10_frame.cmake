@@ -84,3 +84,6 @@ lightpass_program_test(10_frame.sweep_bad_part 2 "--part must be all, transparen
 # street's glass: the note goes to standard error).
 lightpass_program_test(10_frame.bench_output_is_json_beside_scene_notes 0 "^valid JSON of assets/street_shop/street_shop.gltf$"
   python3 ${CMAKE_CURRENT_SOURCE_DIR}/stdout_is_json.py ${P10} --bench --frames 1 --size 64x36)
+
+# The chapter's exercises (main.cpp's list; the book's "Exercises"): solutions pass, stubs fail.
+lightpass_exercise_tests(10_frame 3)

@@ -64,8 +64,10 @@ def source_files(root: Path, md: Path):
     dirs = sorted((root / "chapters").glob(f"{md.name[:2]}_*"))
     known = tracked(root)
     files = []
+    # The exercises' stubs and solutions are linked from the chapter's "Exercises" section, not here.
     for d in dirs:
-        files += sorted(p for p in d.rglob("*") if p.is_file() and p.suffix in SOURCE_SUFFIXES and "testdata" not in p.parts
+        files += sorted(p for p in d.rglob("*") if p.is_file() and p.suffix in SOURCE_SUFFIXES
+                        and "testdata" not in p.parts and "exercises" not in p.parts
                         and (known is None or p.resolve() in known))
     return files
 

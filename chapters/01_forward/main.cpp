@@ -28,6 +28,23 @@ const lp::Chapter kChapter{
     .references = {{"overview", "per-pixel"}, {"overview", "per-vertex"}, {"overview", "unnormalized"},
                    {"overview", "multi-pass"}, {"close_16", "per-pixel"}, {"close_16", "per-vertex"},
                    {"close_16", "unnormalized"}, {"grazing", "per-pixel"}},
+    // [exercises]
+    .exercises = {{.title = "Blinn's half vector and the specular lobe",
+                   .file = "blinn_phong.glsl",
+                   .define = "EXERCISE_BLINN_PHONG",
+                   .shots = {{"overview", "per-pixel"}, {"close_16", "per-pixel"}},
+                   .look_at = "the highlights on the spheres (close_16 shows one large): their size and brightness"},
+                  {.title = "a point light's falloff: the inverse square and the range window",
+                   .file = "distance_attenuation.glsl",
+                   .define = "EXERCISE_DISTANCE_ATTENUATION",
+                   .shots = {{"overview", "per-pixel"}, {"grazing", "per-pixel"}},
+                   .look_at = "the floor around the point lights: how fast the light falls off, and where it ends"},
+                  {.title = "a spot light's cone",
+                   .file = "spot_cone.glsl",
+                   .define = "EXERCISE_SPOT_CONE",
+                   .shots = {{"overview", "per-pixel"}, {"grazing", "per-pixel"}},
+                   .look_at = "the spot's pool of light on the floor: its edge, and that nothing outside it is lit by the spot"}},
+    // [/exercises]
 };
 
 }  // namespace

@@ -66,6 +66,24 @@ const lp::Chapter kChapter{
     // The street's emissive buffer: its windows and lamps (a palette code each), the image
     // the GL test StreetEmissiveViewMatchesItsReference also holds in-process.
     .scene_references = {{"assets/street/street.gltf", {{"street_level", "emissive"}}}},
+    // [exercises]
+    .exercises = {{.title = "the octahedral encoding of a normal (the fold)",
+                   .file = "octahedral_fold.glsl",
+                   .define = "EXERCISE_OCTAHEDRAL_FOLD",
+                   .shots = {{"aisle", "normal", {}, {}, kMinifiedTextureAllowance}, {"overview", "deferred", {}, {}, kMinifiedTextureAllowance}},
+                   .look_at = "the normal buffer (--mode normal): surfaces facing away from +z, and the lighting that follows them"},
+                  {.title = "decoding the octahedral normal (the unfold)",
+                   .file = "octahedral_unfold.glsl",
+                   .define = "EXERCISE_OCTAHEDRAL_UNFOLD",
+                   .shots = {{"aisle", "normal", {}, {}, kMinifiedTextureAllowance}, {"overview", "deferred", {}, {}, kMinifiedTextureAllowance}},
+                   .look_at = "the normal buffer (--mode normal): the colours of walls and floors that face down or away (the folded half)"},
+                  {.title = "the world position from the depth buffer",
+                   .file = "reconstruct_position.glsl",
+                   .define = "EXERCISE_RECONSTRUCT_POSITION",
+                   .shots = {{"overview", "deferred", {}, {}, kMinifiedTextureAllowance},
+                             {"corner", "deferred", {{"layout", 8}}, {}, kMinifiedTextureAllowance}},  // reversed-Z
+                   .look_at = "where the lights fall off and the highlights sit; the second view uses reversed-Z depth (--layout reversed-z)"}},
+    // [/exercises]
 };
 
 const Layout& layout_for(const Frame& f) {

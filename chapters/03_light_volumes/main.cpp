@@ -67,6 +67,23 @@ const lp::Chapter kChapter{
                       {"cut", "cut each light where it is one sRGB step at black on the brightest material (off: at 1/256 of the source)", 1, 0, 1, true},
                       {"count", "count fragments shaded and lit (atomic counters, costs a little time)", 1, 0, 1, true}}},
     .references = references(),
+    // [exercises]
+    .exercises = {{.title = "the window that ends a light at its range",
+                   .file = "range_window.glsl",
+                   .define = "EXERCISE_RANGE_WINDOW",
+                   .shots = {{"street_level", "stencil"}, {"overview", "stencil"}},
+                   .look_at = "the rims of the lamps' pools of light: a light without its window ends in a hard circle where its volume is cut"},
+                  {.title = "the basis that turns a spot's cone to its direction",
+                   .file = "basis_around.glsl",
+                   .define = "EXERCISE_BASIS_AROUND",
+                   .shots = {{"street_level", "stencil"}, {"overview", "stencil", {{"show", 3}}}},  // 3: the volumes
+                   .look_at = "the spots' pools of light and their cones (--show volumes): a cone turned wrong cuts its pool off"},
+                  {.title = "unpacking a light volume's instance record",
+                   .file = "unpack_lights.glsl",
+                   .define = "EXERCISE_UNPACK_LIGHTS",
+                   .shots = {{"street_level", "stencil"}, {"overview", "stencil"}},
+                   .look_at = "the lamps' light and the spots' cones: position, colour, range and direction each show somewhere"}},
+    // [/exercises]
 };
 
 bool is_prepass(const std::string& mode) { return mode == "light-prepass" || mode == "light-prepass-chroma"; }

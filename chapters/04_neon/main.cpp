@@ -76,9 +76,31 @@ std::vector<Shot> street_shots() {
 }
 // [/references]
 
+// [exercises]
+// The exercises (chapters/04_neon/exercises/), in the neon room as the references.
+std::vector<Exercise> exercises() {
+  return {{.title = "the tube as point lights",
+           .file = "neon_points.glsl",
+           .define = "EXERCISE_NEON_POINTS",
+           .shots = {{"overview", "points"}, {"close", "points", {{"points", 32}}}},
+           .look_at = "the light on the floor and walls near the tubes, and the highlights (--mode points)"},
+          {.title = "the exact diffuse light of a line",
+           .file = "analytic_diffuse.glsl",
+           .define = "EXERCISE_ANALYTIC_DIFFUSE",
+           .shots = {{"overview", "analytic-diffuse"}, {"grazing", "improved", {{"term", 1}}}},  // 1: diffuse alone
+           .look_at = "the diffuse light (--term diffuse): its fall-off from the tubes, and surfaces that see a tube only in part"},
+          {.title = "the point of the tube nearest a point",
+           .file = "closest_on_segment.glsl",
+           .define = "EXERCISE_CLOSEST_ON_SEGMENT",
+           .shots = {{"overview", "improved"}, {"overview", "source"}},
+           .look_at = "where the tubes' light ends (the capsule volumes' mask) and the source's method (--mode source)"}};
+}
+// [/exercises]
+
 const Chapter kChapter{.cli = kCli,
                        .references = room_shots(),
-                       .scene_references = {{"assets/street_neon/street_neon.gltf", street_shots()}}};
+                       .scene_references = {{"assets/street_neon/street_neon.gltf", street_shots()}},
+                       .exercises = exercises()};
 
 NeonPicture picture_for(int show) {
   return show == kVolumes ? NeonPicture::Capsules

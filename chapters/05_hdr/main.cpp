@@ -75,9 +75,31 @@ const std::vector<lp::Shot> kAtriumShots = {
     {"aisle", "reinhard", {{"sun", 25}, {"adapt-start", 30}}, {}, kTexturedFloor},
 };
 
+// [exercises]
+// The exercises (chapters/05_hdr/exercises/): each renders the street as the references do.
+const std::vector<lp::Exercise> kExercises = {
+    {.title = "Reinhard's extended curve, with a white point",
+     .file = "reinhard_extended.glsl",
+     .define = "EXERCISE_REINHARD_EXTENDED",
+     .shots = {{"street_level", "reinhard-extended"}, {"street_level", "reinhard-extended", {{"white", 1.5}}}},
+     .look_at = "the bright lamps and windows (white at --white) and the mid-tones (the curve's middle)"},
+    {.title = "the ACES filmic curve (Narkowicz's fit)",
+     .file = "aces_fit.glsl",
+     .define = "EXERCISE_ACES_FIT",
+     .shots = {{"street_level", "aces"}, {"street_level", "aces", {{"key", 0.045}}}},
+     .look_at = "the dark street (the curve's toe) and the lamps (its shoulder)"},
+    {.title = "the bloom's bright pass",
+     .file = "bright_pass.glsl",
+     .define = "EXERCISE_BRIGHT_PASS",
+     .shots = {{"street_level", "bright-pass", {{"bloom", 1}}}, {"street_level", "aces", {{"bloom", 1}}}},
+     .look_at = "what the bright pass keeps (--mode bright-pass): only the lamps and windows, in their own colours"},
+};
+// [/exercises]
+
 const lp::Chapter kChapter{.cli = kCli,
                            .references = kStreetShots,
-                           .scene_references = {{"assets/atrium/atrium.gltf", kAtriumShots}}};
+                           .scene_references = {{"assets/atrium/atrium.gltf", kAtriumShots}},
+                           .exercises = kExercises};
 
 // The chapter's knobs as the stage's settings.
 HdrSettings settings_for(const lp::Frame& f, float dt) {

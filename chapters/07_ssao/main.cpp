@@ -82,9 +82,34 @@ std::vector<Shot> atrium_shots() {
 }
 // [/references]
 
+// [exercises]
+// The exercises (chapters/07_ssao/exercises/), on the Cornell box or the atrium.
+std::vector<Exercise> exercises() {
+  return {{.title = "the classic estimate's range check",
+           .file = "range_check.glsl",
+           .define = "EXERCISE_RANGE_CHECK",
+           .shots = {{"front", "classic", {{"show", kAo}}}, {"front", "classic", {{"show", kRaw}}}},
+           .look_at = "the AO (--show ao, --show raw before the blur) on the walls around the boxes: a dark halo where a box far in front hides the wall's kernel points"},
+          {.title = "placing the classic kernel's points in view space",
+           .file = "kernel_offset.glsl",
+           .define = "EXERCISE_KERNEL_OFFSET",
+           // The atrium's corner view: the Cornell box's camera is not turned, and there a
+           // world offset added unturned (the tutorial's bug) would pass.
+           .shots = {{"corner", "classic", {{"show", kAo}}, {}, kOtherRenderer}, {"aisle", "classic", {{"show", kRaw}}, {}, kOtherRenderer}},
+           .look_at = "the AO (--show ao) where the columns meet the floor and the walls, in the atrium",
+           .scene = "assets/atrium/atrium.gltf"},
+          {.title = "the occlusion of one disk sample (its form factor)",
+           .file = "disk_form_factor.glsl",
+           .define = "EXERCISE_DISK_FORM_FACTOR",
+           .shots = {{"front", "disk", {{"show", kAo}}}, {"front", "disk", {{"ambient", 10}}}},
+           .look_at = "the AO (--mode disk --show ao) in the corners and where the boxes meet the floor"}};
+}
+// [/exercises]
+
 const Chapter kChapter{.cli = kCli,
                        .references = cornell_shots(),
-                       .scene_references = {{"assets/atrium/atrium.gltf", atrium_shots()}}};
+                       .scene_references = {{"assets/atrium/atrium.gltf", atrium_shots()}},
+                       .exercises = exercises()};
 
 AoSettings settings_from(const Frame& f) {
   AoSettings s;

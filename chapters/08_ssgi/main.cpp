@@ -99,9 +99,33 @@ std::vector<Shot> atrium_shots() {
 }
 // [/references]
 
+// [exercises]
+// The exercises (chapters/08_ssgi/exercises/), on the Cornell box as the references.
+std::vector<Exercise> exercises() {
+  return {{.title = "the disk-to-disk transfer",
+           .file = "disk_transfer.glsl",
+           .define = "EXERCISE_DISK_TRANSFER",
+           .shots = {{"front", "ssgi", {{"show", kIndirect}}}, {"front", "ssgi", {}}},
+           .look_at = "the indirect light (--show indirect): the red and green walls' colour bleeding onto the boxes and the floor"},
+          {.title = "the sample patterns: polar grid, spiral, randomised spiral",
+           .file = "pattern_point.glsl",
+           .define = "EXERCISE_PATTERN_POINT",
+           .shots = {{"front", "ssgi", {{"show", kIndirect}, {"pattern", 0}, {"samples", 16}}},
+                     {"front", "ssgi", {{"show", kIndirect}, {"pattern", 1}, {"samples", 16}}},
+                     {"front", "ssgi", {{"show", kIndirect}, {"samples", 16}, {"blur", 0}}}},
+           .look_at = "the indirect light with each --pattern (regular, spiral, randomised with --blur 0): its bands or its noise"},
+          {.title = "the surface a sample stands for",
+           .file = "sample_area.glsl",
+           .define = "EXERCISE_SAMPLE_AREA",
+           .shots = {{"front", "ssgi", {{"show", kIndirect}}}, {"front", "ssgi", {{"show", kAo}}}},
+           .look_at = "the indirect light and the AO (--show ao) far from the camera and on surfaces seen at a slant"}};
+}
+// [/exercises]
+
 const Chapter kChapter{.cli = kCli,
                        .references = cornell_shots(),
-                       .scene_references = {{"assets/atrium/atrium.gltf", atrium_shots()}}};
+                       .scene_references = {{"assets/atrium/atrium.gltf", atrium_shots()}},
+                       .exercises = exercises()};
 
 GiSettings settings_from(const Frame& f) {
   GiSettings s;

@@ -113,10 +113,35 @@ std::vector<Shot> glass_shots() {
   return shots;
 }
 
+// [exercises]
+// The exercises (chapters/10_frame/exercises/): the glass scene's panes, the street's shops.
+// --transparency 1: wboit; --msaa 2: four samples; --msaa-view 1: edges, 2: resolve-first.
+std::vector<Exercise> exercises() {
+  return {{.title = "the depth weight of weighted blended transparency",
+           .file = "wboit_weight.glsl",
+           .define = "EXERCISE_WBOIT_WEIGHT",
+           .shots = {{"front", "frame", {{"transparency", 1}}}, {"crossing", "frame", {{"transparency", 1}}},
+                     {"front", "frame", {{"transparency", 1}, {"show", kAccumulation}}}},
+           .look_at = "the glass panes where they overlap (--transparency wboit, and --show accumulation): the near pane should dominate",
+           .scene = "assets/glass/glass.gltf"},
+          {.title = "MSAA's edge test: which pixels are lit per sample",
+           .file = "edge_test.glsl",
+           .define = "EXERCISE_EDGE_TEST",
+           .shots = {{"shops", "whole", {{"msaa", 2}, {"msaa-view", 1}}}, {"shop_window", "whole", {{"msaa", 2}, {"msaa-view", 1}}}},
+           .look_at = "the edges marked red (--msaa 4 --msaa-view edges): silhouettes, creases and lit windows in their walls"},
+          {.title = "MSAA's resolve, after the tone curve",
+           .file = "resolve.glsl",
+           .define = "EXERCISE_RESOLVE",
+           .shots = {{"shops", "whole", {{"msaa", 2}}}, {"shops", "whole", {{"msaa", 2}, {"msaa-view", 2}}}},
+           .look_at = "the edges against bright lamps and windows (--msaa 4), and --msaa-view resolve-first"}};
+}
+// [/exercises]
+
 const Chapter kChapter{.cli = kCli,
                        .references = street_shots(),
                        .scene_references = {{"assets/glass/glass.gltf", glass_shots()},
-                                            {"assets/atrium/atrium.gltf", whole_shots("aisle", false, kTexturedFloor)}}};
+                                            {"assets/atrium/atrium.gltf", whole_shots("aisle", false, kTexturedFloor)}},
+                       .exercises = exercises()};
 
 // --msaa 2 or 4: MSAA is its own frame (chapter 03's lights over a multisampled G-buffer);
 // the whole frame's other stages are not drawn with it, and the program says so.

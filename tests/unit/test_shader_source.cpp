@@ -116,3 +116,29 @@ TEST(ShaderSource, ComputedIncludeWithoutItsDefineNamesTheLine) {
     EXPECT_NE(std::string(e.what()).find("must be a quoted path"), std::string::npos) << e.what();
   }
 }
+
+// How an exercise stands in for a chapter's function: `#ifdef NAME / #include NAME / #else`.
+// Without the define the include is left out (the #else keeps the chapter's own); with it, or
+// with a program-wide define (set_program_wide_defines, what --exercise sets), the file is in.
+TEST(ShaderSource, ComputedIncludeInsideItsIfdefIsOptional) {
+  TempRoot root;
+  root.write("t/main.frag",
+             "#version 450\n#ifdef EX\n#include EX\n#else\nfloat f() { return 1.0; }\n#endif\nvoid main() {}\n");
+  root.write("t/reader.glsl", "float f() { return 2.0; }\n");
+  ShaderSource plain = preprocess_shader("t/main.frag");
+  EXPECT_EQ(plain.files, (std::vector<std::string>{"t/main.frag"}));
+  // One line out for the one left out: the lines after it keep their numbers.
+  EXPECT_NE(plain.text.find("// #include EX (not defined)\n#else\nfloat f() { return 1.0; }"), std::string::npos) << plain.text;
+  EXPECT_EQ(preprocess_shader("t/main.frag", {"EX \"t/reader.glsl\""}).files[1], "t/reader.glsl");
+  set_program_wide_defines({"EX \"t/reader.glsl\""});
+  ShaderSource wide = preprocess_shader("t/main.frag");
+  set_program_wide_defines({});
+  ASSERT_EQ(wide.files.size(), 2u);
+  EXPECT_NE(wide.text.find("#define EX \"t/reader.glsl\"\n"), std::string::npos) << wide.text;
+  EXPECT_NE(wide.text.find("float f() { return 2.0; }"), std::string::npos) << wide.text;
+  // Outside its #ifdef (in the #else, or under another name's) a missing define is still an error.
+  root.write("t/else.frag", "#version 450\n#ifdef EX\n#else\n#include EX\n#endif\n");
+  EXPECT_THROW(preprocess_shader("t/else.frag"), Error);
+  root.write("t/other.frag", "#version 450\n#ifdef OTHER\n#include EX\n#endif\n");
+  EXPECT_THROW(preprocess_shader("t/other.frag"), Error);
+}

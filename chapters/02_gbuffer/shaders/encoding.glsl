@@ -11,12 +11,20 @@ float gb_code_top(int bits) { return float((1 << bits) - 1); }
 vec2 gb_sign_not_zero(vec2 v) { return vec2(v.x >= 0.0 ? 1.0 : -1.0, v.y >= 0.0 ? 1.0 : -1.0); }
 
 // [octahedral-glsl]
+// Exercises 1 and 2 (chapters/02_gbuffer/exercises/) stand in for these two with --exercise.
+#ifdef EXERCISE_OCTAHEDRAL_FOLD
+#include EXERCISE_OCTAHEDRAL_FOLD
+#else
 vec2 octahedral_fold(vec3 n) {
   vec2 p = n.xy / (abs(n.x) + abs(n.y) + abs(n.z));
   if (n.z < 0.0) p = (1.0 - abs(p.yx)) * gb_sign_not_zero(p);
   return p;
 }
+#endif
 
+#ifdef EXERCISE_OCTAHEDRAL_UNFOLD
+#include EXERCISE_OCTAHEDRAL_UNFOLD
+#else
 vec3 octahedral_unfold(vec2 p) {
   vec3 n = vec3(p, 1.0 - abs(p.x) - abs(p.y));
   float t = max(-n.z, 0.0);
@@ -24,6 +32,7 @@ vec3 octahedral_unfold(vec2 p) {
   n.y += n.y >= 0.0 ? -t : t;
   return normalize(n);
 }
+#endif
 
 vec3 decode_octahedral_codes(vec2 codes, int bits) {
   float m = gb_code_scale(bits);

@@ -45,6 +45,10 @@ struct Surface {
 };
 // [/surface-struct]
 
+// Exercise 3 (chapters/02_gbuffer/exercises/reconstruct_position.glsl) stands in with --exercise 3.
+#ifdef EXERCISE_RECONSTRUCT_POSITION
+#include EXERCISE_RECONSTRUCT_POSITION
+#else
 // [reconstruct-glsl]
 // The world position of a pixel from its depth. The pixel centre and the depth give the
 // point in normalised device coordinates; the inverse view-projection takes it back to
@@ -60,6 +64,7 @@ vec3 reconstruct_position(vec2 pixel_centre, float depth) {
   return world.xyz / world.w;
 }
 // [/reconstruct-glsl]
+#endif
 
 vec3 decode_normal(vec4 stored) {
 #if defined(GBUFFER_NORMAL_FLOAT)

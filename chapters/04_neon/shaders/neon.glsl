@@ -78,12 +78,17 @@ Neon neon_unpack(NeonGpu g) {
 }
 // [/neon-unpack-glsl]
 
+// Exercises 1-3 (chapters/04_neon/exercises/) stand in for the functions so marked.
+#ifdef EXERCISE_CLOSEST_ON_SEGMENT
+#include EXERCISE_CLOSEST_ON_SEGMENT
+#else
 float neon_closest_on_segment(vec3 p, vec3 a, vec3 b) {
   vec3 ab = b - a;
   float len2 = dot(ab, ab);
   if (len2 < 1e-20) return 0.0;
   return clamp(dot(p - a, ab) / len2, 0.0, 1.0);
 }
+#endif
 
 // Chapter 01's Blinn-Phong specular (lobe x N.L) of a unit light in direction l.
 float neon_specular_lobe(NeonSurface s, vec3 l) {
@@ -164,6 +169,9 @@ vec2 neon_ground_truth(NeonSurface s, Neon t, int samples) {
 }
 // [/ground-truth-glsl]
 
+#ifdef EXERCISE_ANALYTIC_DIFFUSE
+#include EXERCISE_ANALYTIC_DIFFUSE
+#else
 // [analytic-diffuse-glsl]
 float neon_analytic_diffuse(NeonSurface s, Neon t) {
   if (t.len < NEON_MIN_LENGTH) return neon_point_light_terms(s, t).x;
@@ -178,6 +186,7 @@ float neon_analytic_diffuse(NeonSurface s, Neon t) {
   return max(0.0, (nw * dsin + nu * dcos) / (t.len * d));
 }
 // [/analytic-diffuse-glsl]
+#endif
 
 // Gauss-Legendre nodes and weights (positive halves of the symmetric 4- and 8-point rules).
 const float NEON_X4[2] = float[2](0.33998104, 0.86113631);
@@ -254,6 +263,9 @@ vec2 neon_improved(NeonSurface s, Neon t) {
 }
 // [/improved-glsl]
 
+#ifdef EXERCISE_NEON_POINTS
+#include EXERCISE_NEON_POINTS
+#else
 // [points-glsl]
 vec2 neon_points(NeonSurface s, Neon t, int count) {
   // count chapter-01 point lights along the tube, sharing its intensity.
@@ -271,6 +283,7 @@ vec2 neon_points(NeonSurface s, Neon t, int count) {
   return vec2(diffuse.x, specular.x);
 }
 // [/points-glsl]
+#endif
 
 vec2 neon_representative_point(NeonSurface s, Neon t) {
   // Karis 2013: closed-form diffuse with "+ 2", specular from the point of the tube nearest

@@ -30,12 +30,26 @@ float log_luminance(vec3 sanitized_rgb, float delta) { return log(delta + lumina
 #define OP_REINHARD_EXTENDED 2
 #define OP_ACES 3
 
+// Each function a reader writes in an exercise (chapters/05_hdr/exercises/) stands in for
+// the one here when `--exercise K` defines its name (common/app.h, Exercise).
+#ifdef EXERCISE_REINHARD_EXTENDED
+#include EXERCISE_REINHARD_EXTENDED
+#else
+vec3 reinhard_extended(vec3 x, float white) { return min(x * (1.0 + x / (white * white)) / (1.0 + x), vec3(1.0)); }
+#endif
+
+#ifdef EXERCISE_ACES_FIT
+#include EXERCISE_ACES_FIT
+#else
+// Narkowicz's fit of the ACES filmic curve.
+vec3 aces_fit(vec3 x) { return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0); }
+#endif
+
 vec3 tonemap(int op, vec3 x, float white) {
   if (op == OP_CLAMP) return min(x, vec3(1.0));
   if (op == OP_REINHARD) return x / (1.0 + x);
-  if (op == OP_REINHARD_EXTENDED) return min(x * (1.0 + x / (white * white)) / (1.0 + x), vec3(1.0));
-  // OP_ACES: Narkowicz's fit of the ACES filmic curve.
-  return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+  if (op == OP_REINHARD_EXTENDED) return reinhard_extended(x, white);
+  return aces_fit(x);  // OP_ACES
 }
 // [/operators-glsl]
 
@@ -44,8 +58,12 @@ float adapt(float adapted, float target, float dt, float tau) {
   return adapted + (target - adapted) * (1.0 - exp(-dt / tau));
 }
 
+#ifdef EXERCISE_BRIGHT_PASS
+#include EXERCISE_BRIGHT_PASS
+#else
 vec3 bright_pass(vec3 x, float threshold, float limit) {
   float y = luminance(x);
   if (y <= threshold || y <= 0.0) return vec3(0.0);
   return x * (min(y - threshold, limit) / y);
 }
+#endif

@@ -32,6 +32,13 @@ vec3 world_at(ivec2 pixel, float depth) { return reconstruct_position(vec2(pixel
 float view_depth(vec3 world) { return -(u_view * vec4(world, 1.0)).z; }
 
 #ifdef AO_CLASSIC
+// Exercises 1 and 2 (chapters/07_ssao/exercises/) stand in for the classic estimate.
+#ifdef EXERCISE_RANGE_CHECK
+#include EXERCISE_RANGE_CHECK
+#else
+#ifdef EXERCISE_KERNEL_OFFSET
+#include EXERCISE_KERNEL_OFFSET
+#else
 // [classic]
 // The fraction of the kernel's points, scaled to `radius` and rotated by the noise vector r,
 // that the depth buffer hides: the classic estimate of 1 - A.
@@ -79,8 +86,14 @@ float classic_ao(ivec2 pixel, Surface s) {
 }
 // [/classic]
 #endif
+#endif
+#endif
 
 #ifdef AO_DISK
+// Exercise 3 (chapters/07_ssao/exercises/disk_form_factor.glsl) stands in for the disk estimate.
+#ifdef EXERCISE_DISK_FORM_FACTOR
+#include EXERCISE_DISK_FORM_FACTOR
+#else
 // [disk]
 float disk_ao(ivec2 pixel, Surface s) {
   float zr = view_depth(s.position);
@@ -133,6 +146,7 @@ float disk_ao(ivec2 pixel, Surface s) {
   return 1.0 - clamp(occlusion, 0.0, 1.0);
 }
 // [/disk]
+#endif
 #endif
 
 

@@ -33,6 +33,10 @@ vec2 pattern_point(int pattern, int i, int samples, int rings, int spokes, vec2 
 }
 // [/pattern-glsl]
 
+// Exercise 1 of chapter 08 (chapters/08_ssgi/exercises/) stands in for the transfer.
+#ifdef EXERCISE_DISK_TRANSFER
+#include EXERCISE_DISK_TRANSFER
+#else
 // [transfer-glsl]
 float disk_transfer(vec3 p, vec3 np, vec3 e, vec3 ne, float area) {
   vec3 v = e - p;
@@ -42,3 +46,4 @@ float disk_transfer(vec3 p, vec3 np, vec3 e, vec3 ne, float area) {
   return area * max(-dot(ne, v), 0.0) * max(dot(np, v), 0.0) / (PI * r2 + area);
 }
 // [/transfer-glsl]
+#endif

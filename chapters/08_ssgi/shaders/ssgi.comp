@@ -35,16 +35,25 @@ vec3 world_at(ivec2 pixel, float depth) { return reconstruct_position(vec2(pixel
 float view_depth(vec3 world) { return -(u_view * vec4(world, 1.0)).z; }
 
 // The pattern, the pixel's jitter and the disk transfer: gi_math.glsl, with their C++ twins'
-// test (tests/unit/test_08_twins_gl.cpp).
+// test (tests/unit/test_08_twins_gl.cpp). Exercises 1-3 (chapters/08_ssgi/exercises/) stand
+// in for the functions so marked (the transfer's in gi_math.glsl).
 #include "08_ssgi/shaders/gi_math.glsl"
+#ifdef EXERCISE_PATTERN_POINT
+#include EXERCISE_PATTERN_POINT
+#else
 vec2 pattern_point(int i, vec2 jitter) { return pattern_point(u_pattern, i, u_samples, u_rings, u_spokes, jitter); }
+#endif
 
 // The area a sample stands for: its share of the disk at the receiver's depth zr, grown to the
 // emitter's depth ze and spread over the surface the pixel sees at a slant (chapter 07's disk).
+#ifdef EXERCISE_SAMPLE_AREA
+#include EXERCISE_SAMPLE_AREA
+#else
 float sample_area(float share, float zr, vec3 e, vec3 ne) {
   float ze = view_depth(e);
   return share * (ze / zr) * (ze / zr) / max(abs(dot(ne, normalize(gb_eye.xyz - e))), 0.2);
 }
+#endif
 
 // [back-faces-glsl]
 // The back-face layer's emitter at the sample's pixel sp: the nearest surface there that faces

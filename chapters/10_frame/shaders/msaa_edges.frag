@@ -10,6 +10,10 @@ uniform float u_cos_normal;       // cos of the largest angle between normals
 uniform bool u_mark_all;          // the cross-check: every pixel is an edge
 uniform vec2 u_sample_positions[MSAA_SAMPLES];  // within the pixel, glGetMultisamplefv
 
+// Exercise 2 (chapters/10_frame/exercises/edge_test.glsl) stands in for it.
+#ifdef EXERCISE_EDGE_TEST
+#include EXERCISE_EDGE_TEST
+#else
 void main() {
   // [edge-test]
   ivec2 pixel = ivec2(gl_FragCoord.xy);
@@ -34,3 +38,4 @@ void main() {
   if (!edge) discard;
   // [/edge-test]
 }
+#endif

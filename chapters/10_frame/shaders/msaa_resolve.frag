@@ -16,6 +16,10 @@ out vec4 out_color;
 
 vec3 display(vec3 radiance) { return min(tonemap(u_operator, radiance * u_exposure, u_white), vec3(1.0)); }
 
+// Exercise 3 (chapters/10_frame/exercises/resolve.glsl) stands in for it.
+#ifdef EXERCISE_RESOLVE
+#include EXERCISE_RESOLVE
+#else
 void main() {
   // [resolve]
   ivec2 pixel = ivec2(gl_FragCoord.xy);
@@ -32,3 +36,4 @@ void main() {
   out_color = vec4(u_resolve_first ? display(mean) : mean, 1.0);
   // [/resolve]
 }
+#endif

@@ -76,8 +76,13 @@ float view_depth() { return -(u_view * vec4(v_position, 1.0)).z; }
 #if defined(GLASS_WBOIT)
 layout(location = 0) out vec4 out_accumulation;
 layout(location = 1) out vec4 out_revealage;
-// McGuire and Bavoil's depth weight, in a file of its own that the twin test includes too
+// McGuire and Bavoil's depth weight, in a file of its own that the twin test includes too;
+// exercise 1 (chapters/10_frame/exercises/wboit_weight.glsl) stands in for it.
+#ifdef EXERCISE_WBOIT_WEIGHT
+#include EXERCISE_WBOIT_WEIGHT
+#else
 #include "10_frame/shaders/wboit_weight.glsl"
+#endif
 void main() {
   vec4 c = glass_colour();
   // [wboit-accumulate]
