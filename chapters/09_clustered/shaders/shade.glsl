@@ -10,7 +10,7 @@
 #include "09_clustered/shaders/grid.glsl"
 #ifdef COUNT_FRAGMENTS
 #include "03_light_volumes/shaders/fragment_counters.glsl"
-const uint kCountEvaluated = 0u, kCountLit = 1u;
+const uint kCountEvaluated = 0u, kCountLit = 1u, kCountSurface = 2u;
 // fragment_counters.glsl's count_fragment() adds 1; a pixel adds its whole count at once.
 void count_add(uint counter, uint n) {
   if (n == 0u) return;
@@ -21,9 +21,10 @@ void count_add(uint counter, uint n) {
 layout(std430, binding = 2) readonly buffer Bounds { uint bounds[]; };
 #endif
 
-// The light at place `at` of the index list, added to the pixel's sums.
-void add_light(Surface s, uint at, inout vec3 diffuse, inout vec3 specular, inout uint lit) {
-  int i = int(light_indices[at]);
+// The k-th light of a cell's list, added to the pixel's sums. A cell whose list did not fit
+// (assign.comp: kEveryLight) is shaded from every light in light order: slower, never wrong.
+void add_light(Surface s, uvec2 list, uint k, inout vec3 diffuse, inout vec3 specular, inout uint lit) {
+  int i = int(list.x == kEveryLight ? k : light_indices[list.x + k]);
   ClusterLight c = cluster_lights[i];
   GpuLight light = c.kind.x > 0.5 ? unpack_spot(c.position_radius, c.radiance_range, c.direction_cone)
                                   : unpack_point(c.position_radius, c.radiance_range);
@@ -51,15 +52,16 @@ void shade_surface(Surface s, ivec2 pixel, out vec3 diffuse, out vec3 specular, 
   // Four lights an iteration: llvmpipe ends a shader's loops after 65 535 iterations in all
   // (gallivm's loop limiter), and a tile's list can hold 100 000 lights (262 140 at most here).
   for (uint k = 0u; k < list.y; k += 4u) {
-    add_light(s, list.x + k, diffuse, specular, lit);
-    if (k + 1u < list.y) add_light(s, list.x + k + 1u, diffuse, specular, lit);
-    if (k + 2u < list.y) add_light(s, list.x + k + 2u, diffuse, specular, lit);
-    if (k + 3u < list.y) add_light(s, list.x + k + 3u, diffuse, specular, lit);
+    add_light(s, list, k, diffuse, specular, lit);
+    if (k + 1u < list.y) add_light(s, list, k + 1u, diffuse, specular, lit);
+    if (k + 2u < list.y) add_light(s, list, k + 2u, diffuse, specular, lit);
+    if (k + 3u < list.y) add_light(s, list, k + 3u, diffuse, specular, lit);
   }
   evaluated = list.y;
 #ifdef COUNT_FRAGMENTS
   count_add(kCountEvaluated, evaluated);
   count_add(kCountLit, lit);
+  count_add(kCountSurface, 1u);
 #endif
 }
 
