@@ -370,6 +370,9 @@ TEST_F(ClusteredGl, ZeroLightsAddNothing) {
     ClusteredLights pass(w.frame_.volumes(), settings_for_mode(mode));
     const Render r = render(w, cam, width, height, &pass, false);
     EXPECT_EQ(r.counts.evaluated, 0u) << mode;
+    // The density's denominator is every surface pixel, lit or not (the street fills most of the view).
+    EXPECT_GT(r.counts.surface, std::uint64_t(width * height / 2)) << mode;
+    EXPECT_LT(r.counts.surface, std::uint64_t(width * height)) << mode << ": the sky is no surface";
     EXPECT_EQ(r.stats.indices, 0u) << mode;
     EXPECT_EQ(r.l1, stencil.l1) << mode << ": the global light alone, untouched";
     EXPECT_EQ(r.l2, stencil.l2) << mode;
