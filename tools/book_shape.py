@@ -41,9 +41,9 @@ MAX_LINE = 300
 
 # Chapters in the shape, and those still to be rewritten into it (issue 22). Move a chapter
 # from PENDING to REWRITTEN when it is rewritten; from then on it is held.
-REWRITTEN = ["01-forward.md", "03-light-volumes.md", "06-shadows.md"]
+REWRITTEN = ["01-forward.md", "03-light-volumes.md", "06-shadows.md", "09-clustered.md"]
 PENDING = ["02-gbuffer.md", "04-neon-light.md", "05-hdr.md",
-           "07-ssao.md", "08-ssgi.md", "09-clustered.md", "10-frame.md"]
+           "07-ssao.md", "08-ssgi.md", "10-frame.md"]
 # Not chapters of a stage: the reader's guide has a shape of its own.
 NOT_CHAPTERS = ["00-introduction.md"]
 

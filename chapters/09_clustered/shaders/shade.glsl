@@ -49,6 +49,7 @@ void shade_surface(Surface s, ivec2 pixel, out vec3 diffuse, out vec3 specular, 
 #else
   uvec2 list = cells[cell_index(tile_of(pixel), 0)];
 #endif
+  // [shade-loop]
   // Four lights an iteration: llvmpipe ends a shader's loops after 65 535 iterations in all
   // (gallivm's loop limiter), and a tile's list can hold 100 000 lights (262 140 at most here).
   for (uint k = 0u; k < list.y; k += 4u) {
@@ -58,6 +59,7 @@ void shade_surface(Surface s, ivec2 pixel, out vec3 diffuse, out vec3 specular, 
     if (k + 3u < list.y) add_light(s, list, k + 3u, diffuse, specular, lit);
   }
   evaluated = list.y;
+  // [/shade-loop]
 #ifdef COUNT_FRAGMENTS
   count_add(kCountEvaluated, evaluated);
   count_add(kCountLit, lit);
