@@ -5,7 +5,7 @@ lightpass_gtests(09_clustered gl lightpass_09_clustered unit/test_09_clustered_g
 
 # The program: reference images (every mode, inside a light, the heat maps and the grid).
 set(P09 $<TARGET_FILE:09_clustered>)
-foreach(mode clustered tiled clustered-fragment tiled-fragment stencil)
+foreach(mode clustered tiled clustered-fragment tiled-fragment tiled-staged stencil)
   lightpass_program_test(09_clustered.reference.${mode} 0 "references match" ${P09} --check --mode ${mode} --out ${CHECK_OUT}/09_clustered)
 endforeach()
 # A headless run reports what it did: the street's 312 lights, lit pairs equal to the stencil
@@ -23,6 +23,10 @@ lightpass_program_test(09_clustered.bench_times_the_three_passes 0
 # A grid too large for its bounds is refused with a message, not allocated.
 lightpass_program_test(09_clustered.huge_grid_is_refused 1 "a grid of 1024 x 1024 x 256 cells is more than 4 194 304"
   ${P09} --headless --size 1024x1024 --clusters-x 1024 --clusters-y 1024 --slices 256 --out ${CMAKE_BINARY_DIR}/out/09_huge.png)
+# The staged pass runs a work group per tile: tiles larger than 32 pixels are refused by name.
+lightpass_program_test(09_clustered.staged_needs_tiles_of_at_most_32_pixels 1
+  "tiled-staged needs square tiles of at most 32 pixels, not 64 x 64"
+  ${P09} --headless --size 160x90 --mode tiled-staged --tile 64 --out ${CMAKE_BINARY_DIR}/out/09_staged64.png)
 # The window path (GLFW + the panel) under a virtual X display, closing itself after 3 frames.
 # A smoke test: at 320x180 the panel covers most of the window, so the lit fraction says the
 # window drew, not that the street is under it (the references check the street).

@@ -19,7 +19,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from plot import Series, plot, read_csv  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
-MODES = ["stencil", "tiled", "tiled-2.5d", "tiled-fragment", "clustered", "clustered-fragment", "clustered-forward"]
+MODES = ["stencil", "tiled", "tiled-2.5d", "tiled-fragment", "tiled-staged", "clustered", "clustered-fragment", "clustered-forward"]
 PASSES = [("depth_bounds_ms", "depth bounds"), ("assign_ms", "assign"), ("prepass_ms", "depth pre-pass"),
           ("shade_ms", "shade")]
 
@@ -73,7 +73,7 @@ def density_plots(d: Path, csv: Path, tag: str, where: str):
     note = notes[0] if notes else ""
     unit = "GPU" if tag != "llvmpipe" else "llvmpipe CPU time"
     densities = sorted({r["target_density"] for r in rows}, key=float)
-    methods = [m for m in ("tiled", "tiled-2.5d", "clustered") if any(r["method"] == m for r in rows)]
+    methods = [m for m in ("tiled", "tiled-2.5d", "tiled-staged", "clustered") if any(r["method"] == m for r in rows)]
 
     def by(col):
         return [Series(f"{m}, {float(t):g} per pixel", [(float(r["lights"]), float(r[col])) for r in rows

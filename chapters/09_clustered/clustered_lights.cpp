@@ -14,15 +14,18 @@ bool is_cluster_mode(const std::string& name) {
 ClusterSettings settings_for_mode(const std::string& name, ClusterSettings s) {
   if (!is_cluster_mode(name)) throw Error("unknown culling mode '" + name + "'");
   s.kind = name.rfind("tiled", 0) == 0 ? CullKind::Tiled : CullKind::Clustered;
-  s.shade = name.find("fragment") != std::string::npos ? ShadeIn::Fragment : ShadeIn::Compute;
+  s.shade = name.find("fragment") != std::string::npos ? ShadeIn::Fragment
+            : name.find("staged") != std::string::npos ? ShadeIn::Staged
+                                                       : ShadeIn::Compute;
   s.depth_mask = name.find("2.5d") != std::string::npos;
   return s;
 }
 
 std::string mode_name(const ClusterSettings& s) {
   const bool mask = s.kind == CullKind::Tiled && s.depth_mask;
+  const bool staged = s.kind == CullKind::Tiled && s.shade == ShadeIn::Staged;
   return std::string(s.kind == CullKind::Tiled ? "tiled" : "clustered") + (mask ? "-2.5d" : "") +
-         (s.shade == ShadeIn::Fragment ? "-fragment" : "");
+         (s.shade == ShadeIn::Fragment ? "-fragment" : "") + (staged ? "-staged" : "");
 }
 
 std::vector<std::string> ClusteredLights::pass_names(const std::string& mode) {
@@ -111,13 +114,24 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
     }
     if (output == ch03::LightVolumes::Output::HeatShaded) d.push_back("HEAT_SHADED 1");
     if (output == ch03::LightVolumes::Output::HeatLit) d.push_back("HEAT_LIT 1");
-    if (settings_.shade == ShadeIn::Compute) {
-      const ShaderProgram& p = program(GL_COMPUTE_SHADER, "09_clustered/shaders/shade.comp", d);
+    // Staged: one work group per tile, so tiled with square tiles of at most 32 pixels
+    // (1 024 invocations, GL's guaranteed minimum); clusters shade per pixel (shade.comp).
+    const bool staged = settings_.shade == ShadeIn::Staged && settings_.kind == CullKind::Tiled;
+    if (staged && (grid_.tile_w != grid_.tile_h || grid_.tile_w > 32))
+      throw Error("clustered lights: tiled-staged needs square tiles of at most 32 pixels, not " +
+                  std::to_string(grid_.tile_w) + " x " + std::to_string(grid_.tile_h));
+    if (settings_.shade != ShadeIn::Fragment) {
+      if (staged) d.push_back("STAGE_TILE " + std::to_string(grid_.tile_w));
+      const ShaderProgram& p = program(GL_COMPUTE_SHADER, staged ? "09_clustered/shaders/shade_staged.comp"
+                                                                 : "09_clustered/shaders/shade.comp", d);
       set_grid_uniforms(p, camera);
       p.use();
       glBindImageTexture(0, light.diffuse(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
       glBindImageTexture(1, light.specular(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
-      glDispatchCompute(GLuint((w + 7) / 8), GLuint((h + 7) / 8), 1);
+      if (staged)
+        glDispatchCompute(GLuint(grid_.tiles_x), GLuint(grid_.tiles_y), 1);
+      else
+        glDispatchCompute(GLuint((w + 7) / 8), GLuint((h + 7) / 8), 1);
       glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     } else {
       const ShaderProgram& p = program(GL_FRAGMENT_SHADER, "09_clustered/shaders/shade.frag", d);

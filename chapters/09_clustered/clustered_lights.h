@@ -27,7 +27,7 @@ namespace lp::ch09 {
 
 // [settings]
 enum class CullKind { Tiled, Clustered };
-enum class ShadeIn { Compute, Fragment };
+enum class ShadeIn { Compute, Fragment, Staged };  // Staged: compute, the tile's lights in shared memory (tiled)
 struct ClusterSettings {
   CullKind kind = CullKind::Clustered;
   ShadeIn shade = ShadeIn::Compute;
@@ -45,10 +45,11 @@ struct ClusterSettings {
   // the G-buffer's surfaces occupy, so that any fragment a forward pass draws finds its lights.
   bool all_cells = false;
 };
-// The five ways of the program's --mode, beside chapter 03's: "tiled", "tiled-2.5d" (with the
-// depth mask), "tiled-fragment", "clustered" (compute), "clustered-fragment".
-inline const std::vector<std::string> kClusterModes = {"tiled", "tiled-2.5d", "tiled-fragment", "clustered",
-                                                       "clustered-fragment"};
+// The six ways of the program's --mode, beside chapter 03's: "tiled", "tiled-2.5d" (with the
+// depth mask), "tiled-fragment", "tiled-staged" (the tile's lights staged in shared memory,
+// tiles of at most 32 pixels), "clustered" (compute), "clustered-fragment".
+inline const std::vector<std::string> kClusterModes = {"tiled", "tiled-2.5d", "tiled-fragment", "tiled-staged",
+                                                       "clustered", "clustered-fragment"};
 bool is_cluster_mode(const std::string& name);
 ClusterSettings settings_for_mode(const std::string& name, ClusterSettings base = {});  // throws Error
 std::string mode_name(const ClusterSettings& s);

@@ -54,7 +54,7 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
   const auto began = std::chrono::steady_clock::now();
   const bool software = context.is_software();
   const std::vector<Camera> views = ch09::views_along(scene.camera(s.view), s.views, 12.f);
-  const std::vector<std::string> methods = {"tiled", "tiled-2.5d", "clustered"};
+  const std::vector<std::string> methods = {"tiled", "tiled-2.5d", "tiled-staged", "clustered"};
   std::vector<int> counts = {1000, 10000, 100000, 1000000};
   std::vector<double> densities = {8, 32, 128};
   if (software) densities = {8, 32};
