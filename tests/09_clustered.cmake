@@ -5,7 +5,7 @@ lightpass_gtests(09_clustered gl lightpass_09_clustered unit/test_09_clustered_g
 
 # The program: reference images (every mode, inside a light, the heat maps and the grid).
 set(P09 $<TARGET_FILE:09_clustered>)
-foreach(mode clustered tiled clustered-fragment tiled-fragment stencil)
+foreach(mode clustered tiled clustered-fragment tiled-fragment tiled-staged stencil)
   lightpass_program_test(09_clustered.reference.${mode} 0 "references match" ${P09} --check --mode ${mode} --out ${CHECK_OUT}/09_clustered)
 endforeach()
 # A headless run reports what it did: the street's 312 lights, lit pairs equal to the stencil
@@ -23,6 +23,10 @@ lightpass_program_test(09_clustered.bench_times_the_three_passes 0
 # A grid too large for its bounds is refused with a message, not allocated.
 lightpass_program_test(09_clustered.huge_grid_is_refused 1 "a grid of 1024 x 1024 x 256 cells is more than 4 194 304"
   ${P09} --headless --size 1024x1024 --clusters-x 1024 --clusters-y 1024 --slices 256 --out ${CMAKE_BINARY_DIR}/out/09_huge.png)
+# The staged pass runs a work group per tile: tiles larger than 32 pixels are refused by name.
+lightpass_program_test(09_clustered.staged_needs_tiles_of_at_most_32_pixels 1
+  "tiled-staged needs square tiles of at most 32 pixels, not 64 x 64"
+  ${P09} --headless --size 160x90 --mode tiled-staged --tile 64 --out ${CMAKE_BINARY_DIR}/out/09_staged64.png)
 # The window path (GLFW + the panel) under a virtual X display, closing itself after 3 frames.
 # A smoke test: at 320x180 the panel covers most of the window, so the lit fraction says the
 # window drew, not that the street is under it (the references check the street).
@@ -31,3 +35,16 @@ lightpass_image_test(09_clustered.window_smoke_screenshot "window screenshot, 32
   RUN xvfb-run -a -s "-screen 0 320x180x24" ${P09} --size 320x180 --frames 3 --out ${CMAKE_BINARY_DIR}/out/09_window.png)
 # Clustered forward: the opaque street drawn forward from the cluster lists equals the deferred.
 lightpass_gtests(09_clustered_forward gl lightpass_09_clustered unit/test_09_clustered_forward_gl.cpp)
+# The fair benchmark (--density): the lights scaled until the surface pixels see the target
+# density (within the fit's 3 %), each method timed on each view, the summary's row naming
+# what measured it; no warning that a density was missed or a list overflowed.
+set(SWEEP09_OUT ${CMAKE_BINARY_DIR}/out/09_density)
+add_test(NAME 09_clustered.density_sweep_reaches_its_density COMMAND ${EXPECT} 0
+  "^target_density,lights,method,range_scale,density,lit,evaluated_per_lit,local_median_ms,local_p95_ms,"
+  "^8,1000,tiled,[0-9.]+,(7\\.(7[6-9]|[89])|8\\.([01]|2[0-4]))[0-9]*,[1-9][0-9]*,[0-9.]+,[0-9.e-]+,[0-9.e-]+,.*,2,[^,]+.*,64,36,1$"
+  "^32,1000,clustered,[0-9.]+,(31\\.|32\\.|30\\.[4-9])[0-9]*,"
+  --no-match "warning: .*(not 8|not 32|overflow|lists over)"
+  -- sh -c "$<TARGET_FILE:09_clustered_sweep> --density --out ${SWEEP09_OUT} --size 64x36 --max-lights 1000 --views 2 --frames 1 2>&1 && cat ${SWEEP09_OUT}/09_density_summary_llvmpipe.csv")
+set_tests_properties(09_clustered.density_sweep_reaches_its_density PROPERTIES TIMEOUT 300)
+add_test(NAME 09_clustered.density_sweep_bad_views COMMAND ${EXPECT} 1 "--views: 1 to 64, not 0"
+  -- $<TARGET_FILE:09_clustered_sweep> --density --views 0)

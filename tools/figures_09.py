@@ -8,6 +8,8 @@ through tools/plot.py, and with --png the heat-map pictures, rendered by the cha
 The plots are drawn for each CSV present: 09_lights_llvmpipe.csv (llvmpipe: times are CPU
 time with a glFinish around each pass, common/metrics.h) and, once the lead has measured it on
 the GPU (tools/device-measure writes 09_lights.csv; named after the GPU), 09_lights_h200.csv.
+The same for the fair case (--density): 09_density_summary_llvmpipe.csv and, from the GPU's
+09_density_summary.csv, 09_density_summary_h200.csv.
 """
 import subprocess
 import sys
@@ -17,7 +19,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from plot import Series, plot, read_csv  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
-MODES = ["stencil", "tiled", "tiled-2.5d", "tiled-fragment", "clustered", "clustered-fragment", "clustered-forward"]
+MODES = ["stencil", "tiled", "tiled-2.5d", "tiled-fragment", "tiled-staged", "clustered", "clustered-fragment", "clustered-forward"]
 PASSES = [("depth_bounds_ms", "depth bounds"), ("assign_ms", "assign"), ("prepass_ms", "depth pre-pass"),
           ("shade_ms", "shade")]
 
@@ -64,6 +66,26 @@ def plots(d: Path, csv: Path, tag: str, where: str):
          xlog=True, ylog=True)
 
 
+def density_plots(d: Path, csv: Path, tag: str, where: str):
+    """The fair case (09_clustered_sweep --density): lights scaled to 8, 32 or 128 lit lights per
+    surface pixel; the median over the views, and the lights evaluated per lit one."""
+    notes, rows = read_csv(csv)
+    note = notes[0] if notes else ""
+    unit = "GPU" if tag != "llvmpipe" else "llvmpipe CPU time"
+    densities = sorted({r["target_density"] for r in rows}, key=float)
+    methods = [m for m in ("tiled", "tiled-2.5d", "tiled-staged", "clustered") if any(r["method"] == m for r in rows)]
+
+    def by(col):
+        return [Series(f"{m}, {float(t):g} per pixel", [(float(r["lights"]), float(r[col])) for r in rows
+                                                         if r["method"] == m and r["target_density"] == t],
+                       dashed=(m != "clustered")) for t in densities for m in methods]
+    plot(d / f"09_density_{tag}.svg", f"Local lights at a stated density ({where}, median over the views)", note,
+         by("local_median_ms"), "local lights (log)", f"ms of the local lights ({unit}, log)", xlog=True, ylog=True)
+    plot(d / f"09_density_evaluated_{tag}.svg", f"Lights evaluated per lit one, at a stated density ({where})",
+         "exact counts over every view", by("evaluated_per_lit"), "local lights (log)", "evaluated / lit (log)",
+         xlog=True, ylog=True)
+
+
 def pictures(build: Path, d: Path):
     exe = build / "chapters" / "09_clustered" / "09_clustered"
     for name, args in PICTURES:
@@ -79,6 +101,10 @@ def main(argv):
                             (d / "09_lights_h200.csv", "h200", "NVIDIA H200")):
         if csv.exists():
             plots(d, csv, tag, where)
+    for csv, tag, where in ((d / "09_density_summary_llvmpipe.csv", "llvmpipe", "llvmpipe"),
+                            (d / "09_density_summary_h200.csv", "h200", "NVIDIA H200")):
+        if csv.exists():
+            density_plots(d, csv, tag, where)
     if png:
         pictures(png, d)
 

@@ -14,15 +14,18 @@ bool is_cluster_mode(const std::string& name) {
 ClusterSettings settings_for_mode(const std::string& name, ClusterSettings s) {
   if (!is_cluster_mode(name)) throw Error("unknown culling mode '" + name + "'");
   s.kind = name.rfind("tiled", 0) == 0 ? CullKind::Tiled : CullKind::Clustered;
-  s.shade = name.find("fragment") != std::string::npos ? ShadeIn::Fragment : ShadeIn::Compute;
+  s.shade = name.find("fragment") != std::string::npos ? ShadeIn::Fragment
+            : name.find("staged") != std::string::npos ? ShadeIn::Staged
+                                                       : ShadeIn::Compute;
   s.depth_mask = name.find("2.5d") != std::string::npos;
   return s;
 }
 
 std::string mode_name(const ClusterSettings& s) {
   const bool mask = s.kind == CullKind::Tiled && s.depth_mask;
+  const bool staged = s.kind == CullKind::Tiled && s.shade == ShadeIn::Staged;
   return std::string(s.kind == CullKind::Tiled ? "tiled" : "clustered") + (mask ? "-2.5d" : "") +
-         (s.shade == ShadeIn::Fragment ? "-fragment" : "");
+         (s.shade == ShadeIn::Fragment ? "-fragment" : "") + (staged ? "-staged" : "");
 }
 
 std::vector<std::string> ClusteredLights::pass_names(const std::string& mode) {
@@ -38,7 +41,7 @@ struct GpuClusterLight {
 static_assert(sizeof(GpuClusterLight) == 64);
 
 struct ListState {
-  std::uint32_t head, capacity, cells_over, dropped_lo, dropped_hi, needed_lo, needed_hi, max_count;
+  std::uint32_t head, capacity, cells_over, over_lo, over_hi, needed_lo, needed_hi, max_count;
 };
 
 template <class T>
@@ -111,13 +114,24 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
     }
     if (output == ch03::LightVolumes::Output::HeatShaded) d.push_back("HEAT_SHADED 1");
     if (output == ch03::LightVolumes::Output::HeatLit) d.push_back("HEAT_LIT 1");
-    if (settings_.shade == ShadeIn::Compute) {
-      const ShaderProgram& p = program(GL_COMPUTE_SHADER, "09_clustered/shaders/shade.comp", d);
+    // Staged: one work group per tile, so tiled with square tiles of at most 32 pixels
+    // (1 024 invocations, GL's guaranteed minimum); clusters shade per pixel (shade.comp).
+    const bool staged = settings_.shade == ShadeIn::Staged && settings_.kind == CullKind::Tiled;
+    if (staged && (grid_.tile_w != grid_.tile_h || grid_.tile_w > 32))
+      throw Error("clustered lights: tiled-staged needs square tiles of at most 32 pixels, not " +
+                  std::to_string(grid_.tile_w) + " x " + std::to_string(grid_.tile_h));
+    if (settings_.shade != ShadeIn::Fragment) {
+      if (staged) d.push_back("STAGE_TILE " + std::to_string(grid_.tile_w));
+      const ShaderProgram& p = program(GL_COMPUTE_SHADER, staged ? "09_clustered/shaders/shade_staged.comp"
+                                                                 : "09_clustered/shaders/shade.comp", d);
       set_grid_uniforms(p, camera);
       p.use();
       glBindImageTexture(0, light.diffuse(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
       glBindImageTexture(1, light.specular(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
-      glDispatchCompute(GLuint((w + 7) / 8), GLuint((h + 7) / 8), 1);
+      if (staged)
+        glDispatchCompute(GLuint(grid_.tiles_x), GLuint(grid_.tiles_y), 1);
+      else
+        glDispatchCompute(GLuint((w + 7) / 8), GLuint((h + 7) / 8), 1);
       glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     } else {
       const ShaderProgram& p = program(GL_FRAGMENT_SHADER, "09_clustered/shaders/shade.frag", d);
@@ -149,7 +163,6 @@ std::vector<std::string> ClusteredLights::build_lists(int w, int h, const ch03::
     throw Error("clustered lights: a grid of " + std::to_string(grid_.tiles_x) + " x " + std::to_string(grid_.tiles_y) +
                 " x " + std::to_string(grid_.slices) + " cells is more than 4 194 304; use larger tiles or fewer slices");
   upload_lights();
-  stats_ = {};
   stats_.cells = grid_.cells();
 
   std::vector<std::string> defines = view.defines;
@@ -168,7 +181,7 @@ std::vector<std::string> ClusteredLights::build_lists(int w, int h, const ch03::
   if (capacity_ == 0) {
     capacity_ = std::max<std::uint32_t>(settings_.initial_indices, 1);
     glNamedBufferData(indices_.id(), GLsizeiptr(capacity_) * 4, nullptr, GL_DYNAMIC_DRAW);
-    glNamedBufferData(state_.id(), sizeof(ListState), nullptr, GL_DYNAMIC_READ);
+    glNamedBufferData(state_.id(), sizeof(ListState), nullptr, GL_DYNAMIC_COPY);
   }
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, lights_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, cells_.id());
@@ -189,7 +202,7 @@ std::vector<std::string> ClusteredLights::build_lists(int w, int h, const ch03::
     glDispatchCompute(GLuint(grid_.tiles_x), GLuint(grid_.tiles_y), 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
-  // 2. Assign: each cell's lights into the index list; grown and run again if it did not fit.
+  // 2. Assign: each cell's lights into the index list (grown first if an earlier draw's did not fit).
   {
     auto pass = timed(metrics_, names[1]);
     assign(defines, camera);
@@ -199,34 +212,63 @@ std::vector<std::string> ClusteredLights::build_lists(int w, int h, const ch03::
 // [/build-lists]
 
 void ClusteredLights::assign(const std::vector<std::string>& defines, const FrameCamera& camera) {
-  const ShaderProgram& p = program(GL_COMPUTE_SHADER, "09_clustered/shaders/assign.comp", defines);
-  set_grid_uniforms(p, camera);
-  for (int attempt = 0;; ++attempt) {
-    const ListState start{0, capacity_, 0, 0, 0, 0, 0, 0};
-    glNamedBufferSubData(state_.id(), 0, sizeof(start), &start);
-    p.use();
-    glDispatchCompute(GLuint(grid_.tiles_x), GLuint(grid_.tiles_y), GLuint(grid_.slices));
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    // [overflow]
-    // The one read-back of the frame: did every cell's list fit? If not, grow the list to
-    // what the frame asked for and assign again (once: the count is exact); past max_indices,
-    // or with growth off, the dropped lights are counted and reported, never lost unseen.
-    ListState s{};
-    glGetNamedBufferSubData(state_.id(), 0, sizeof(s), &s);
-    const std::uint64_t needed = s.needed_lo + (std::uint64_t(s.needed_hi) << 32);
-    stats_.indices = needed;
-    stats_.max_list = s.max_count;
-    stats_.cells_over = s.cells_over;
-    stats_.dropped = s.dropped_lo + (std::uint64_t(s.dropped_hi) << 32);
-    if (s.cells_over == 0 || !settings_.grow || attempt > 0 || capacity_ >= settings_.max_indices) break;
-    capacity_ = std::uint32_t(std::min<std::uint64_t>(needed + needed / 4, settings_.max_indices));
+  // [overflow]
+  // No read-back in the frame: what earlier draws needed is read once the GPU is done with
+  // them. If one overflowed, the list grows now, before this draw's assignment; the draw that
+  // overflowed shaded its full cells from every light (assign.comp), so nothing was lost.
+  read_finished_states(false);
+  if (stats_.frame > 0 && stats_.cells_over > 0 && settings_.grow && capacity_ < settings_.max_indices &&
+      stats_.indices > capacity_) {
+    capacity_ = std::uint32_t(std::min<std::uint64_t>(stats_.indices + stats_.indices / 4, settings_.max_indices));
     glNamedBufferData(indices_.id(), GLsizeiptr(capacity_) * 4, nullptr, GL_DYNAMIC_DRAW);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, indices_.id());
     ++stats_.regrown;
-    // [/overflow]
   }
+  const ShaderProgram& p = program(GL_COMPUTE_SHADER, "09_clustered/shaders/assign.comp", defines);
+  set_grid_uniforms(p, camera);
+  const ListState start{0, capacity_, 0, 0, 0, 0, 0, 0};
+  glNamedBufferSubData(state_.id(), 0, sizeof(start), &start);
+  p.use();
+  glDispatchCompute(GLuint(grid_.tiles_x), GLuint(grid_.tiles_y), GLuint(grid_.slices));
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  // This draw's state, copied on the GPU and fenced: read by a later draw, or wait_stats().
+  PendingState* slot = &pending_[0];
+  for (PendingState& q : pending_)
+    if (q.frame < slot->frame) slot = &q;  // a free slot (frame 0) or the oldest
+  if (slot->frame == 0) glNamedBufferData(slot->copy.id(), sizeof(ListState), nullptr, GL_STREAM_READ);
+  glCopyNamedBufferSubData(state_.id(), slot->copy.id(), 0, 0, sizeof(ListState));
+  slot->fence.reset();
+  slot->fence.sync = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+  slot->frame = ++frame_;
+  // [/overflow]
   stats_.capacity = capacity_;
   stats_.bytes = std::size_t(capacity_) * 4 + cells_bytes_ + bounds_bytes_ + lights_bytes_;
+}
+
+void ClusteredLights::read_finished_states(bool wait_for_last) {
+  for (PendingState& q : pending_) {
+    if (!q.fence.sync) continue;
+    const bool last = q.frame == frame_;
+    GLenum r = glClientWaitSync(q.fence.sync, GL_SYNC_FLUSH_COMMANDS_BIT, 0);
+    while (wait_for_last && last && r == GL_TIMEOUT_EXPIRED)
+      r = glClientWaitSync(q.fence.sync, GL_SYNC_FLUSH_COMMANDS_BIT, 1000000000ull);
+    if (r == GL_TIMEOUT_EXPIRED) continue;
+    if (r == GL_WAIT_FAILED) throw Error("clustered lights: waiting for the lists' state failed");
+    q.fence.reset();
+    if (q.frame <= stats_.frame) continue;  // a newer draw's state was read already
+    ListState s{};
+    glGetNamedBufferSubData(q.copy.id(), 0, sizeof(s), &s);
+    stats_.frame = q.frame;
+    stats_.indices = s.needed_lo + (std::uint64_t(s.needed_hi) << 32);
+    stats_.max_list = s.max_count;
+    stats_.cells_over = s.cells_over;
+    stats_.over_entries = s.over_lo + (std::uint64_t(s.over_hi) << 32);
+  }
+}
+
+const ClusterStats& ClusteredLights::wait_stats() {
+  read_finished_states(true);
+  return stats_;
 }
 
 std::vector<std::string> ClusteredLights::forward_defines(const ch03::SurfaceView& view, bool counting) const {
@@ -256,7 +298,7 @@ void ClusteredLights::bind_for_forward(const ShaderProgram& program, const Frame
 
 EvalCounts ClusteredLights::counts() const {
   const std::vector<std::uint64_t> c = counters_.read();
-  return {c[0], c[1]};
+  return {c[0], c[1], c[2]};
 }
 
 std::vector<glm::uvec2> ClusteredLights::cell_lists() const {
@@ -271,7 +313,8 @@ std::vector<std::uint32_t> ClusteredLights::cell_counts() const {
   return n;
 }
 
-std::vector<std::uint32_t> ClusteredLights::index_list() const {
+std::vector<std::uint32_t> ClusteredLights::index_list() {
+  wait_stats();  // the last draw's entry count (a read-back for tests: it waits anyway)
   std::vector<std::uint32_t> v(std::size_t(std::min<std::uint64_t>(stats_.indices, capacity_)));
   if (!v.empty()) glGetNamedBufferSubData(indices_.id(), 0, GLsizeiptr(v.size() * 4), v.data());
   return v;

@@ -10,6 +10,7 @@
 //
 // The lights, their cut and their lighting are chapter 03's (frame.volumes().lights(), and
 // local_light.glsl): the image equals the stencil volumes' within float rounding.
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -26,16 +27,17 @@ namespace lp::ch09 {
 
 // [settings]
 enum class CullKind { Tiled, Clustered };
-enum class ShadeIn { Compute, Fragment };
+enum class ShadeIn { Compute, Fragment, Staged };  // Staged: compute, the tile's lights in shared memory (tiled)
 struct ClusterSettings {
   CullKind kind = CullKind::Clustered;
   ShadeIn shade = ShadeIn::Compute;
   int tile_px = 16;          // tiled: square tiles of this many pixels
   bool depth_mask = false;   // tiled: Harada's 2.5D culling, 32 depth bins per tile (cluster_grid.h)
   glm::ivec3 clusters{16, 9, 24};  // clustered: tiles across, tiles down, depth slices (DOOM 2016's)
-  // The index list starts this large (indices) and grows to what a frame needs, re-running
-  // the assignment, up to max_indices. grow = false keeps it as it is: a cell that does not
-  // fit gets no lights, and the frame reports how many it dropped.
+  // The index list starts this large (indices) and grows to what a frame needs, up to
+  // max_indices. Growth is found a frame late, never by waiting for the GPU: a cell that does
+  // not fit is shaded from every light that frame (slower, the same image) and counted, and
+  // the next frame's list is large enough. grow = false keeps the list as it is.
   std::uint32_t initial_indices = 1u << 20;
   std::uint32_t max_indices = 1u << 28;  // 1 GiB of indices
   bool grow = true;
@@ -43,32 +45,39 @@ struct ClusterSettings {
   // the G-buffer's surfaces occupy, so that any fragment a forward pass draws finds its lights.
   bool all_cells = false;
 };
-// The five ways of the program's --mode, beside chapter 03's: "tiled", "tiled-2.5d" (with the
-// depth mask), "tiled-fragment", "clustered" (compute), "clustered-fragment".
-inline const std::vector<std::string> kClusterModes = {"tiled", "tiled-2.5d", "tiled-fragment", "clustered",
-                                                       "clustered-fragment"};
+// The six ways of the program's --mode, beside chapter 03's: "tiled", "tiled-2.5d" (with the
+// depth mask), "tiled-fragment", "tiled-staged" (the tile's lights staged in shared memory,
+// tiles of at most 32 pixels), "clustered" (compute), "clustered-fragment".
+inline const std::vector<std::string> kClusterModes = {"tiled", "tiled-2.5d", "tiled-fragment", "tiled-staged",
+                                                       "clustered", "clustered-fragment"};
 bool is_cluster_mode(const std::string& name);
 ClusterSettings settings_for_mode(const std::string& name, ClusterSettings base = {});  // throws Error
 std::string mode_name(const ClusterSettings& s);
 // [/settings]
 
-// What the last draw() did, read back from the GPU.
+// [stats]
+// What a draw() did. The GPU's part (entries, the longest list, overflow) is read when the GPU
+// has finished with it, a frame or two later, without waiting: `frame` says which draw the
+// numbers are of (0: none read yet). wait_stats() waits for the last draw's (tests, reports).
 struct ClusterStats {
   int cells = 0;                 // of the grid
+  std::uint64_t frame = 0;       // the draw (1, 2, ...) the GPU's numbers below are of
   std::uint64_t indices = 0;     // entries in the index list (every cell's list, compacted)
   std::uint32_t max_list = 0;    // the longest cell list
-  std::uint32_t capacity = 0;    // the index list's size, after any growth
-  int regrown = 0;               // times this frame grew the list and assigned again
-  std::uint32_t cells_over = 0;  // cells that did not fit (after any growth)
-  std::uint64_t dropped = 0;     // lights those cells left out: not 0 only when grow is off
-                                 // or max_indices is reached, and then reported
-  std::size_t bytes = 0;         // the lists' memory: index list, cells, bounds, lights
+  std::uint32_t capacity = 0;    // the index list's size now
+  int regrown = 0;               // times the list has grown
+  std::uint32_t cells_over = 0;  // cells that did not fit: shaded from every light in that draw
+  std::uint64_t over_entries = 0;  // the entries those cells asked for
+  std::size_t bytes = 0;         // the lists' memory now: index list, cells, bounds, lights
 };
+// [/stats]
 
 // Exact per-pixel counts over the frame (with counting on).
 struct EvalCounts {
   std::uint64_t evaluated = 0;  // (pixel, light) pairs the shading looked at
   std::uint64_t lit = 0;        // of those, the ones where the light added anything
+  std::uint64_t surface = 0;    // pixels shaded (not sky): lit / surface is the density
+  double density() const { return surface ? double(lit) / double(surface) : 0.0; }
   double evaluated_per_lit() const { return lit ? double(evaluated) / double(lit) : 0.0; }
 };
 
@@ -88,14 +97,15 @@ class ClusteredLights : public ch03::LocalLightPass {
   const ClusterSettings& settings() const { return settings_; }
   void set_settings(const ClusterSettings& s) { settings_ = s; }
   void set_counting(bool on) { counting_ = on; }
-  const ClusterStats& stats() const { return stats_; }
+  const ClusterStats& stats() const { return stats_; }  // never waits: the GPU's part is late
+  const ClusterStats& wait_stats();                     // waits for the last draw's
   EvalCounts counts() const;  // of the last draw (waits for the GPU)
   const Grid& grid() const { return grid_; }
   // Every cell's light count in the last draw (cell_index order: x fastest, then y, then slice).
   std::vector<std::uint32_t> cell_counts() const;
   // Every cell's list as stored: (offset, count) per cell and the index list, for the tests.
   std::vector<glm::uvec2> cell_lists() const;
-  std::vector<std::uint32_t> index_list() const;
+  std::vector<std::uint32_t> index_list();  // waits for the last draw
   void reload_shaders() { programs_.clear(); }
 
   // [forward-api]
@@ -111,6 +121,7 @@ class ClusteredLights : public ch03::LocalLightPass {
  private:
   void upload_lights();
   void assign(const std::vector<std::string>& defines, const FrameCamera& camera);
+  void read_finished_states(bool wait_for_last);
   void set_grid_uniforms(const ShaderProgram& p, const FrameCamera& camera) const;
   const ShaderProgram& program(GLenum stage, const std::string& file, const std::vector<std::string>& defines);
 
@@ -128,7 +139,27 @@ class ClusteredLights : public ch03::LocalLightPass {
   gl::Buffer lights_, cells_, bounds_, indices_, state_;
   std::size_t lights_bytes_ = 0, cells_bytes_ = 0, bounds_bytes_ = 0;
   std::uint32_t capacity_ = 0;
-  ch03::FragmentCounters counters_{2};
+  // Each draw's list state, copied when its assignment ends and read once the GPU has passed
+  // the fence: a few draws may be in flight, the oldest slot is reused.
+  struct Fence {
+    GLsync sync = nullptr;
+    Fence() = default;
+    Fence(const Fence&) = delete;
+    Fence& operator=(const Fence&) = delete;
+    ~Fence() { reset(); }
+    void reset() {
+      if (sync) glDeleteSync(sync);
+      sync = nullptr;
+    }
+  };
+  struct PendingState {
+    gl::Buffer copy;
+    Fence fence;
+    std::uint64_t frame = 0;
+  };
+  std::array<PendingState, 4> pending_;
+  std::uint64_t frame_ = 0;
+  ch03::FragmentCounters counters_{3};
   ch02::FullScreenPass full_screen_;
   ProgramCache programs_;
 };

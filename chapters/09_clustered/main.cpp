@@ -90,6 +90,7 @@ int main(int argc, char** argv) {
     ClusteredForward forward(frame, app.scene_gpu());
     ClusterPicture picture;
     double lights_key = -1;
+    std::uint64_t warned_frame = 0;
 
     while (app.next_frame()) {
       const lp::Frame& f = app.frame();
@@ -155,15 +156,21 @@ int main(int argc, char** argv) {
         app.metrics().count(shade, "evaluated", evaluated);
         app.metrics().count(shade, "lit", lit);
       }
-      const ClusterStats& st = lists.stats();
+      // The lists' state of an earlier frame (never waited for), but the report's of this one.
+      std::ostream& report = app.report();
+      const ClusterStats& st = report && ours ? lists.wait_stats() : lists.stats();
       if (ours) {
         app.metrics().set_allocation("light lists (index list, cells, bounds, lights)", st.bytes);
-        if (st.dropped) std::cerr << "warning: " << st.dropped << " light entries dropped in " << st.cells_over
-                                  << " cells: the index list is full (" << st.capacity << " entries)\n";
+        if (st.cells_over && st.frame != warned_frame) {
+          warned_frame = st.frame;
+          std::cerr << "warning: frame " << st.frame << ": " << st.cells_over << " cells did not fit the index list ("
+                    << st.capacity << " entries): shaded from every light"
+                    << (lists.settings().grow ? " until the list grows" : " (growth off)") << "\n";
+        }
       }
       app.metrics().set_allocation("G-buffer (chapter 02) + light buffer L1 + L2 RGBA16F + depth-stencil",
                                    frame.allocated_bytes());
-      if (std::ostream& out = app.report()) {
+      if (std::ostream& out = report) {
         glFinish();
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         out << frame.volumes().lights().local_count() << " local lights, " << f.mode << ": frame took " << ms
@@ -173,7 +180,8 @@ int main(int argc, char** argv) {
               << (lit ? double(evaluated) / double(lit) : 0.0);
         if (ours)
           out << "; " << st.cells << " cells, " << st.indices << " list entries (longest " << st.max_list << "), "
-              << st.bytes << " bytes of lists, regrown " << st.regrown << ", dropped " << st.dropped;
+              << st.bytes << " bytes of lists, regrown " << st.regrown << ", cells over " << st.cells_over
+              << ", dropped 0";  // a full cell is shaded from every light: nothing is dropped
         out << '\n';
       }
       app.panel([&] {
@@ -185,8 +193,8 @@ int main(int argc, char** argv) {
         if (ours) {
           ImGui::Text("%d cells (%d x %d x %d), %llu entries, longest %u", st.cells, lists.grid().tiles_x,
                       lists.grid().tiles_y, lists.grid().slices, (unsigned long long)st.indices, st.max_list);
-          ImGui::Text("lists: %.2f MiB, regrown %d, dropped %llu", double(st.bytes) / (1 << 20), st.regrown,
-                      (unsigned long long)st.dropped);
+          ImGui::Text("lists: %.2f MiB, regrown %d, cells over %u (frame %llu)", double(st.bytes) / (1 << 20), st.regrown,
+                      st.cells_over, (unsigned long long)st.frame);
         }
       });
     }

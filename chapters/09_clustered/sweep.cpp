@@ -2,11 +2,20 @@
 // the street at 1920x1080, for chapter 03's stencil volumes, the five deferred ways of this
 // chapter and clustered forward, each split into its passes (depth bounds, assign, the
 // forward depth pre-pass, shade), with the lists' memory and the exact evaluated-per-lit ratio. On llvmpipe (no --size) it runs a small size and
-// fewer lights so that it ends in minutes; on a GPU, the full sweep.
-//   09_clustered_sweep [--out DIR] [--size WxH] [--frames N] [--max-lights N] [--stencil-max N]
+// fewer lights so that it ends in minutes; on a GPU, the full sweep. This is the "dense"
+// case: the extra lights copy the street's lamps into the same street, so the lit lights per
+// pixel grow with the count.
+// --density: the fair case instead (density.h): lights scaled so that every surface pixel
+// sees 8, 32 or 128 lit lights on average, 1 000 to 1 000 000 lights, several views along the
+// street, the median and 95th percentile over the views (09_density*.csv).
+//   09_clustered_sweep [--out DIR] [--size WxH] [--frames N] [--max-lights N] [--stencil-max N] [--density] [--views N]
+#include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
+#include <memory>
 #include <string>
 
 #include "chapters/03_light_volumes/deferred_frame.h"
@@ -14,7 +23,9 @@
 #include "chapters/03_light_volumes/light_radius.h"
 #include "chapters/09_clustered/clustered_forward.h"
 #include "chapters/09_clustered/clustered_lights.h"
+#include "chapters/09_clustered/density.h"
 #include "common/context.h"
+#include "common/error.h"
 #include "common/measure.h"
 #include "common/paths.h"
 #include "common/sweep.h"
@@ -28,22 +39,165 @@ struct Settings {
   int width = 1920, height = 1080;
   bool size_given = false;
   int frames = 20;
-  int max_lights = 100000;
+  int max_lights = 0;  // 0: the case's own (dense 100 000, density 1 000 000)
   int stencil_max = 100000;  // the stencil volumes cost a draw per light: where to stop them
   std::string view = "street_level";
+  bool density = false;
+  int views = 6;
 };
+
+// [density-sweep]
+// The fair case. For each target density and light count: the street's lights_for_count(n)
+// scaled (density.h) until the lit pairs per surface pixel over the views are the target,
+// then each method timed on each view; a row per view and a summary per (density, n, method).
+void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03::DeferredFrame& frame, OutputTarget& target) {
+  const auto began = std::chrono::steady_clock::now();
+  const bool software = context.is_software();
+  const std::vector<Camera> views = ch09::views_along(scene.camera(s.view), s.views, 12.f);
+  const std::vector<std::string> methods = {"tiled", "tiled-2.5d", "tiled-staged", "clustered"};
+  std::vector<int> counts = {1000, 10000, 100000, 1000000};
+  std::vector<double> densities = {8, 32, 128};
+  if (software) densities = {8, 32};
+  const float threshold = ch03::cut_threshold(1.f, ch03::peak_reflectance(scene));
+  const std::string label = software ? "_llvmpipe" : "";
+  const std::string rows_file = s.out + "/09_density" + label + ".csv", summary_file = s.out + "/09_density_summary" + label + ".csv";
+  std::ofstream rows(rows_file), summary(summary_file);
+  const std::string header = std::string("# ") + (software ? "llvmpipe CPU time: " : "GPU time: ") + context.renderer() + ", " +
+                             std::to_string(s.width) + "x" + std::to_string(s.height) + ", street, " + std::to_string(views.size()) +
+                             " views along it from " + s.view + ", lights scaled to a density (chapters/09_clustered/density.h)\n";
+  rows << header << "target_density,lights,view,method,range_scale,surface_pixels,lit,density,evaluated,evaluated_per_lit,"
+       << "depth_bounds_ms,assign_ms,shade_ms,local_ms,list_bytes,list_entries,cells_over," << csv_measure_columns() << "\n";
+  summary << header << "target_density,lights,method,range_scale,density,lit,evaluated_per_lit,local_median_ms,local_p95_ms,"
+          << "assign_median_ms,assign_p95_ms,shade_median_ms,shade_p95_ms,list_bytes_max,views," << csv_measure_columns() << "\n";
+  std::map<std::string, std::unique_ptr<ch09::ClusteredLights>> passes;
+  // A cell that overflows is shaded from every light for a frame, very slow with a million
+  // lights: on a GPU the lists start at 2^26 entries (256 MiB), so they rarely grow.
+  ch09::ClusterSettings base_settings;
+  if (!software) base_settings.initial_indices = 1u << 26;
+  for (const auto& m : methods)
+    passes[m] = std::make_unique<ch09::ClusteredLights>(frame.volumes(), ch09::settings_for_mode(m, base_settings));
+  auto render = [&](const Camera& view, ch09::ClusteredLights& pass, PassMetrics* m) {
+    frame.set_local_lights(&pass);
+    frame.render(frame_camera(view, float(s.width) / float(s.height)), {target.framebuffer(), s.width, s.height}, m);
+  };
+  // A frame whose lists did not fit is shaded from every light: draw until they fit (the
+  // list grows a frame after it overflowed), so that counts and times are of fitting lists.
+  auto settle = [&](const Camera& view, ch09::ClusteredLights& pass) {
+    for (int k = 0; k < 4; ++k) {
+      render(view, pass, nullptr);
+      if (pass.wait_stats().cells_over == 0) return true;
+    }
+    std::cerr << "warning: the lists still overflow after 4 frames (" << pass.stats().capacity << " entries)\n";
+    return false;
+  };
+  auto counted = [&](const Camera& view, ch09::ClusteredLights& pass) {
+    settle(view, pass);
+    pass.set_counting(true);
+    render(view, pass, nullptr);
+    pass.set_counting(false);
+    return pass.counts();
+  };
+  for (const double target_density : densities) {
+    float start = 1.f;
+    int previous = 0;
+    for (const int n : counts) {
+      if (n > s.max_lights) break;
+      if (previous) start *= std::cbrt(float(previous) / float(n));  // the same density: volume per light x previous / n
+      previous = n;
+      const std::vector<Light> base = ch03::lights_for_count(scene, n);
+      auto use = [&](float scale) {
+        frame.volumes().set_lights(ch03::build_light_set(ch09::scaled_lights(base, scale), threshold, frame.volumes().shapes()));
+      };
+      ch09::ClusteredLights& clustered = *passes["clustered"];
+      const ch09::DensityFit fit = ch09::fit_density(target_density, start, [&](float scale) {
+        use(scale);
+        std::uint64_t lit = 0, surface = 0;
+        for (const Camera& v : views) {
+          const ch09::EvalCounts c = counted(v, clustered);
+          lit += c.lit;
+          surface += c.surface;
+        }
+        const double d = surface ? double(lit) / double(surface) : 0.0;
+        std::cout << "  " << n << " lights, scale " << scale << ": " << d << " lit lights per surface pixel" << std::endl;
+        return d;
+      });
+      start = fit.scale;
+      use(fit.scale);
+      if (!fit.met) std::cerr << "warning: " << n << " lights: density " << fit.density << " not " << target_density << "\n";
+      for (const std::string& method : methods) {
+        ch09::ClusteredLights& pass = *passes[method];
+        std::vector<double> local, assign, shade;
+        std::uint64_t lit = 0, surface = 0, evaluated = 0;
+        std::size_t bytes = 0;
+        int frames = 0;
+        for (const Camera& view : views) {
+          const ch09::EvalCounts c = counted(view, pass);
+          if (pass.wait_stats().cells_over) {  // lists past max_indices: every light everywhere, no time worth taking
+            std::cerr << "warning: " << method << " at " << n << " lights: lists over " << pass.stats().capacity
+                      << " entries; not timed\n";
+            continue;
+          }
+          PassMetrics metrics;
+          MeasureOptions options{.frames = s.frames};
+          options.warmup = {.block_frames = 2, .block_seconds = 0.05, .min_seconds = 0.1, .tolerance = 0.03, .max_seconds = 2};
+          const Measurement t = measure(metrics, [&] { render(view, pass, &metrics); }, options);
+          const auto names = ch09::ClusteredLights::pass_names(method);
+          const double parts[3] = {t.pass(names[0]).mean_ms, t.pass(names[1]).mean_ms, t.pass(names[2]).mean_ms};
+          const ch09::ClusterStats& st = pass.wait_stats();
+          local.push_back(parts[0] + parts[1] + parts[2]);
+          assign.push_back(parts[1]);
+          shade.push_back(parts[2]);
+          lit += c.lit;
+          surface += c.surface;
+          evaluated += c.evaluated;
+          bytes = std::max(bytes, st.bytes);
+          frames = t.frames;
+          rows << target_density << ',' << n << ',' << view.name << ',' << method << ',' << fit.scale << ',' << c.surface << ','
+               << c.lit << ',' << c.density() << ',' << c.evaluated << ',' << c.evaluated_per_lit() << ',' << parts[0] << ','
+               << parts[1] << ',' << parts[2] << ',' << local.back() << ',' << st.bytes << ',' << st.indices << ','
+               << st.cells_over << ',' << csv_measure_values(context.renderer(), s.width, s.height, t.frames) << std::endl;
+        }
+        summary << target_density << ',' << n << ',' << method << ',' << fit.scale << ','
+                << (surface ? double(lit) / double(surface) : 0.0) << ',' << lit << ','
+                << (lit ? double(evaluated) / double(lit) : 0.0) << ',' << ch09::quantile(local, 0.5) << ','
+                << ch09::quantile(local, 0.95) << ',' << ch09::quantile(assign, 0.5) << ',' << ch09::quantile(assign, 0.95)
+                << ',' << ch09::quantile(shade, 0.5) << ',' << ch09::quantile(shade, 0.95) << ',' << bytes << ','
+                << views.size() << ',' << csv_measure_values(context.renderer(), s.width, s.height, frames) << std::endl;
+        std::cout << target_density << " per pixel, " << n << " lights, " << method << ": local lights "
+                  << ch09::quantile(local, 0.5) << " ms median, " << ch09::quantile(local, 0.95) << " p95; evaluated per lit "
+                  << (lit ? double(evaluated) / double(lit) : 0.0) << std::endl;
+      }
+    }
+  }
+  frame.set_local_lights(nullptr);
+  std::cout << "took " << std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count() << " s\n";
+  std::cout << "wrote " << rows_file << " and " << summary_file << '\n';
+}
+// [/density-sweep]
 }  // namespace
 
 int main(int argc, char** argv) {
   Settings s;
   return run_sweep(argc, argv, "09_clustered_sweep", [&](SweepArgs& args) {
     args.text("--out", s.out).size("--size", s.width, s.height, &s.size_given).integer("--frames", s.frames)
-        .integer("--max-lights", s.max_lights).integer("--stencil-max", s.stencil_max).text("--view", s.view);
+        .integer("--max-lights", s.max_lights).integer("--stencil-max", s.stencil_max).text("--view", s.view)
+        .flag("--density", s.density).integer("--views", s.views);
   }, [&] {
     std::filesystem::create_directories(s.out);
+    if (s.views < 1 || s.views > 64) throw Error("--views: 1 to 64, not " + std::to_string(s.views));
+    if (s.density) {  // many configurations: fewer frames each
+      s.frames = std::min(s.frames, 10);
+    }
+    if (s.max_lights <= 0) s.max_lights = s.density ? 1000000 : 100000;
     auto context = Context::create({.headless = true, .width = s.width, .height = s.height});
     const bool software = context->is_software();
-    if (software && !s.size_given) {  // a CPU: small, few lights, few frames
+    if (software && !s.size_given && s.density) {  // a CPU: a small image, up to 10 000 lights, three views
+      s.width = 160;
+      s.height = 90;
+      s.frames = std::min(s.frames, 2);
+      s.max_lights = std::min(s.max_lights, 10000);
+      s.views = std::min(s.views, 3);
+    } else if (software && !s.size_given) {  // a CPU: small, few lights, few frames
       s.width = 320;
       s.height = 180;
       s.frames = std::min(s.frames, 3);
@@ -54,6 +208,7 @@ int main(int argc, char** argv) {
     SceneGpu gpu(scene);
     ch03::DeferredFrame frame(gpu);
     OutputTarget target(s.width, s.height);
+    if (s.density) return density_sweep(s, *context, scene, frame, target);
     const FrameCamera camera = frame_camera(scene.camera(s.view), float(s.width) / float(s.height));
     const std::string timer = (software ? "llvmpipe CPU time: " : "GPU time: ") + context->renderer();
     // On a GPU 09_lights.csv (the lead names it after the GPU: 09_lights_h200.csv), on llvmpipe 09_lights_llvmpipe.csv.
@@ -61,7 +216,7 @@ int main(int argc, char** argv) {
     std::ofstream csv(file);
     csv << "# " << timer << ", " << s.width << "x" << s.height << ", street, view " << s.view << "\n"
         << "lights,method,total_ms,local_ms,depth_bounds_ms,assign_ms,prepass_ms,shade_ms,list_bytes,list_entries,regrown,"
-        << "dropped,evaluated,lit,evaluated_per_lit," << csv_measure_columns() << "\n";
+        << "cells_over,evaluated,lit,evaluated_per_lit," << csv_measure_columns() << "\n";
     const float threshold = ch03::cut_threshold(1.f, ch03::peak_reflectance(scene));
     for (int n : {1, 10, 100, 1000, 10000, 100000}) {
       if (n > s.max_lights) break;
@@ -79,7 +234,14 @@ int main(int argc, char** argv) {
         ch09::ClusteredLights& pass = forward ? forward_pass.lists() : deferred_pass;
         frame.set_local_lights(method == "stencil" ? nullptr : forward ? static_cast<ch03::LocalLightPass*>(&forward_pass) : &pass);
         frame.set_strategy(ch03::Strategy::Stencil);
-        // One counted frame for the exact counts, then the timed frames without counting.
+        // Lists that fit first (they grow a frame after they overflow; a full cell is shaded
+        // from every light meanwhile), then one counted frame for the exact counts, then the
+        // timed frames without counting.
+        if (method != "stencil")
+          for (int k = 0; k < 4; ++k) {
+            frame.render(camera, {target.framebuffer(), s.width, s.height}, nullptr);
+            if (pass.wait_stats().cells_over == 0) break;
+          }
         std::uint64_t evaluated = 0, lit = 0;
         frame.volumes().set_counting(method == "stencil");
         pass.set_counting(method != "stencil" && !forward);
@@ -120,15 +282,15 @@ int main(int argc, char** argv) {
           const auto names = ch09::ClusteredLights::pass_names(method);
           for (int k = 0; k < 3; ++k) local += parts[k == 2 ? 3 : k] = t.pass(names[k]).mean_ms;
         }
-        const ch09::ClusterStats& st = pass.stats();
         const bool ours = method != "stencil";
+        const ch09::ClusterStats& st = ours ? pass.wait_stats() : pass.stats();
         csv << n << ',' << method << ',' << t.total_ms() << ',' << local << ',' << parts[0] << ',' << parts[1] << ','
             << parts[2] << ',' << parts[3] << ',' << (ours ? st.bytes : 0) << ',' << (ours ? st.indices : 0) << ',' << (ours ? st.regrown : 0)
-            << ',' << (ours ? st.dropped : 0) << ',' << evaluated << ',' << lit << ','
+            << ',' << (ours ? st.cells_over : 0) << ',' << evaluated << ',' << lit << ','
             << (lit ? double(evaluated) / double(lit) : 0.0) << ',' << csv_measure_values(context->renderer(), s.width, s.height, t.frames)
             << std::endl;  // a row at a time: a long GPU run cut short keeps what it measured
         std::cout << n << " lights, " << method << ": " << t.total_ms() << " ms (local lights " << local << "), evaluated "
-                  << evaluated << ", lit " << lit << (ours && st.dropped ? ", DROPPED " + std::to_string(st.dropped) : "")
+                  << evaluated << ", lit " << lit << (ours && st.cells_over ? ", CELLS OVER " + std::to_string(st.cells_over) : "")
                   << std::endl;
         frame.set_local_lights(nullptr);
       }

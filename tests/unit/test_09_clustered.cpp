@@ -126,3 +126,72 @@ TEST(ClusterGrid, TheDepthMaskDropsALightInTheGapOfADepthDiscontinuity) {
   EXPECT_EQ(light_depth_bits(lo, hi, 2.f + bin + 1.01f + 0.01f, 1.f) & 1u, 0u);
   EXPECT_NE(light_depth_bits(lo, hi, 2.f + bin + 1.f - 0.002f, 1.f) & 1u, 0u);
 }
+
+// The density knob (density.h): a scaled light's cut is s times as far, so the lit pairs at
+// a stated density come from lights of a stated size; the fit reaches its target or says not.
+#include "chapters/03_light_volumes/light_radius.h"
+#include "chapters/09_clustered/density.h"
+#include "common/error.h"
+
+TEST(Density, AScaledLightsCutScalesWithIt) {
+  Light lamp;
+  lamp.intensity = 40.f;
+  lamp.range = 6.f;
+  lamp.color = glm::vec3(1.f, 0.8f, 0.5f);
+  Light sun;
+  sun.type = LightType::Directional;
+  sun.intensity = 3.f;
+  const float threshold = 1e-3f;
+  const float cut = ch03::light_radius(lamp, threshold);
+  ASSERT_GT(cut, 1.f);
+  ASSERT_LT(cut, lamp.range);
+  for (const float s : {0.177f, 0.5f, 2.f, 7.f}) {
+    const std::vector<Light> scaled = scaled_lights({lamp, sun}, s);
+    EXPECT_NEAR(ch03::light_radius(scaled[0], threshold), s * cut, 1e-4f * s * cut) << s;
+    EXPECT_EQ(scaled[1].intensity, sun.intensity) << "a directional light has no size";
+  }
+  EXPECT_THROW(scaled_lights({lamp}, 0.f), Error);
+  EXPECT_THROW(scaled_lights({lamp}, std::nanf("")), Error);
+}
+
+TEST(Density, TheFitReachesItsTargetOrSaysItDidNot) {
+  int calls = 0;
+  // Small lights in a big scene: density ~ s^3; the first step alone lands on it.
+  DensityFit f = fit_density(32, 1.f, [&](float s) { ++calls; return 3.0 * s * s * s; });
+  EXPECT_TRUE(f.met);
+  EXPECT_NEAR(f.density, 32.0, 32 * 0.03);
+  EXPECT_EQ(f.steps, calls);
+  EXPECT_LE(f.steps, 3);
+  // Lights as large as a slab: density ~ s^1.5 past s = 1; the secant finds the exponent.
+  f = fit_density(128, 0.5f, [](float s) { return s < 1 ? 10.0 * s * s * s : 10.0 * std::pow(double(s), 1.5); });
+  EXPECT_TRUE(f.met);
+  EXPECT_NEAR(f.density, 128.0, 128 * 0.03);
+  EXPECT_LE(f.steps, 8);
+  // Unreachable (the density saturates at 20): bounded, the best found, and not met.
+  calls = 0;
+  f = fit_density(128, 1.f, [&](float s) { ++calls; return std::min(20.0, 5.0 * s); });
+  EXPECT_FALSE(f.met);
+  EXPECT_EQ(f.density, 20.0);
+  EXPECT_LE(calls, 8);
+  EXPECT_THROW(fit_density(0, 1.f, [](float) { return 1.0; }), Error);
+}
+
+TEST(Density, MedianAndPercentile) {
+  EXPECT_EQ(quantile({5, 1, 4, 2, 3}, 0.5), 3.0);
+  EXPECT_NEAR(quantile({5, 1, 4, 2, 3}, 0.95), 4.8, 1e-12);
+  EXPECT_EQ(quantile({7}, 0.95), 7.0);
+  EXPECT_EQ(quantile({}, 0.5), 0.0);
+}
+
+TEST(Density, ViewsAlongTheStreetKeepTheirDirection) {
+  Camera c;
+  c.name = "v";
+  c.world = glm::translate(glm::mat4(1.f), glm::vec3(2, 1.7f, 55)) * glm::rotate(glm::mat4(1.f), 0.3f, glm::vec3(0, 1, 0));
+  const std::vector<Camera> v = views_along(c, 3, 10.f);
+  ASSERT_EQ(v.size(), 3u);
+  const glm::vec3 forward = -glm::vec3(c.world[2]);
+  EXPECT_NEAR(glm::distance(v[2].position(), c.position()), 20.f, 1e-4f);
+  EXPECT_NEAR(v[1].position().y, c.position().y, 1e-5f) << "moved along the ground";
+  EXPECT_GT(glm::dot(v[1].position() - c.position(), forward), 9.f);
+  EXPECT_EQ(glm::vec3(v[2].world[2]), glm::vec3(c.world[2]));
+}

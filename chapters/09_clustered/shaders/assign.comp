@@ -3,7 +3,8 @@
 // Each invocation tests a contiguous block of the lights, the work group counts its hits,
 // takes that many places from the shared index list with one atomic add, and then writes
 // the hits in light order (so every pixel adds its lights in chapter 03's order). The list
-// is bounded: a cell that does not fit stores nothing and is counted, never dropped silently.
+// is bounded: a cell that does not fit stores no list and is counted; it is shaded from every
+// light (kEveryLight), so no light is lost while the list grows a frame later.
 #include "01_forward/shaders/lighting.glsl"
 #include "09_clustered/shaders/grid.glsl"
 
@@ -13,8 +14,8 @@ layout(std430, binding = 2) readonly buffer Bounds { uint bounds[]; };
 layout(std430, binding = 5) buffer ListState {
   uint head;            // places taken in light_indices
   uint capacity;        // its size
-  uint cells_over;      // cells that did not fit
-  uint dropped_lo, dropped_hi;  // lights those cells left out (64-bit, as fragment_counters.glsl)
+  uint cells_over;      // cells that did not fit: shaded from every light this frame
+  uint over_lo, over_hi;  // the entries those cells asked for (64-bit, as fragment_counters.glsl)
   uint needed_lo, needed_hi;    // places every cell together asked for
   uint max_count;       // the longest list
 } state;
@@ -95,10 +96,10 @@ void main() {
       }
       if (!s_stored) {
         atomicAdd(state.cells_over, 1u);
-        if (atomicAdd(state.dropped_lo, total) > 0xFFFFFFFFu - total) atomicAdd(state.dropped_hi, 1u);
+        if (atomicAdd(state.over_lo, total) > 0xFFFFFFFFu - total) atomicAdd(state.over_hi, 1u);
       }
     }
-    cells[cell] = s_stored ? uvec2(s_offset, total) : uvec2(0u, 0u);
+    cells[cell] = s_stored ? uvec2(s_offset, total) : uvec2(kEveryLight, uint(u_tiles.w));
   }
   barrier();
   if (!s_stored || hits == 0u) return;

@@ -84,3 +84,6 @@ layout(std430, binding = 0) readonly buffer Lights { ClusterLight cluster_lights
 // Each cell's list: where it starts in the index list and how many lights it holds.
 layout(std430, binding = 1) buffer Cells { uvec2 cells[]; };
 layout(std430, binding = 4) buffer Indices { uint light_indices[]; };
+// A cell whose list did not fit in the index list: (kEveryLight, lights), shaded from every
+// light until the list grows (a frame later: ClusteredLights reads the overflow late).
+const uint kEveryLight = 0xFFFFFFFFu;

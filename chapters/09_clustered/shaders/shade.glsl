@@ -10,7 +10,7 @@
 #include "09_clustered/shaders/grid.glsl"
 #ifdef COUNT_FRAGMENTS
 #include "03_light_volumes/shaders/fragment_counters.glsl"
-const uint kCountEvaluated = 0u, kCountLit = 1u;
+const uint kCountEvaluated = 0u, kCountLit = 1u, kCountSurface = 2u;
 // fragment_counters.glsl's count_fragment() adds 1; a pixel adds its whole count at once.
 void count_add(uint counter, uint n) {
   if (n == 0u) return;
@@ -21,10 +21,10 @@ void count_add(uint counter, uint n) {
 layout(std430, binding = 2) readonly buffer Bounds { uint bounds[]; };
 #endif
 
-// The light at place `at` of the index list, added to the pixel's sums.
-void add_light(Surface s, uint at, inout vec3 diffuse, inout vec3 specular, inout uint lit) {
-  int i = int(light_indices[at]);
-  ClusterLight c = cluster_lights[i];
+// The k-th light of a cell's list, added to the pixel's sums. A cell whose list did not fit
+// (assign.comp: kEveryLight) is shaded from every light in light order: slower, never wrong.
+// Light i of the light order (record c), added to the pixel's sums.
+void add_record(Surface s, int i, ClusterLight c, inout vec3 diffuse, inout vec3 specular, inout uint lit) {
   GpuLight light = c.kind.x > 0.5 ? unpack_spot(c.position_radius, c.radiance_range, c.direction_cone)
                                   : unpack_point(c.position_radius, c.radiance_range);
   vec3 d, sp;
@@ -32,6 +32,22 @@ void add_light(Surface s, uint at, inout vec3 diffuse, inout vec3 specular, inou
   diffuse += d;
   specular += s.specular * sp;
   if (any(greaterThan(d + sp, vec3(0.0)))) ++lit;
+}
+
+uint light_of(uvec2 list, uint k) { return list.x == kEveryLight ? k : light_indices[list.x + k]; }
+
+void add_light(Surface s, uvec2 list, uint k, inout vec3 diffuse, inout vec3 specular, inout uint lit) {
+  int i = int(light_of(list, k));
+  add_record(s, i, cluster_lights[i], diffuse, specular, lit);
+}
+
+// With counting on, one surface pixel's counts (shade_staged.comp calls it too).
+void count_pixel(uint evaluated, uint lit) {
+#ifdef COUNT_FRAGMENTS
+  count_add(kCountEvaluated, evaluated);
+  count_add(kCountLit, lit);
+  count_add(kCountSurface, 1u);
+#endif
 }
 
 // [shade-pixel]
@@ -48,19 +64,18 @@ void shade_surface(Surface s, ivec2 pixel, out vec3 diffuse, out vec3 specular, 
 #else
   uvec2 list = cells[cell_index(tile_of(pixel), 0)];
 #endif
+  // [shade-loop]
   // Four lights an iteration: llvmpipe ends a shader's loops after 65 535 iterations in all
   // (gallivm's loop limiter), and a tile's list can hold 100 000 lights (262 140 at most here).
   for (uint k = 0u; k < list.y; k += 4u) {
-    add_light(s, list.x + k, diffuse, specular, lit);
-    if (k + 1u < list.y) add_light(s, list.x + k + 1u, diffuse, specular, lit);
-    if (k + 2u < list.y) add_light(s, list.x + k + 2u, diffuse, specular, lit);
-    if (k + 3u < list.y) add_light(s, list.x + k + 3u, diffuse, specular, lit);
+    add_light(s, list, k, diffuse, specular, lit);
+    if (k + 1u < list.y) add_light(s, list, k + 1u, diffuse, specular, lit);
+    if (k + 2u < list.y) add_light(s, list, k + 2u, diffuse, specular, lit);
+    if (k + 3u < list.y) add_light(s, list, k + 3u, diffuse, specular, lit);
   }
   evaluated = list.y;
-#ifdef COUNT_FRAGMENTS
-  count_add(kCountEvaluated, evaluated);
-  count_add(kCountLit, lit);
-#endif
+  // [/shade-loop]
+  count_pixel(evaluated, lit);
 }
 
 void shade_pixel(ivec2 pixel, out vec3 diffuse, out vec3 specular, out uint evaluated, out uint lit) {
@@ -70,10 +85,7 @@ void shade_pixel(ivec2 pixel, out vec3 diffuse, out vec3 specular, out uint eval
 
 // What the pass adds into L1 and L2: the light, or a heat map's count (chapter 03's
 // Output::HeatShaded / HeatLit: lights evaluated, or lights that lit the pixel).
-void pixel_output(ivec2 pixel, out vec4 l1, out vec4 l2) {
-  vec3 diffuse, specular;
-  uint evaluated, lit;
-  shade_pixel(pixel, diffuse, specular, evaluated, lit);
+void output_of(vec3 diffuse, vec3 specular, uint evaluated, uint lit, out vec4 l1, out vec4 l2) {
 #if defined(HEAT_SHADED)
   l1 = vec4(float(evaluated));
   l2 = vec4(0.0);
@@ -84,4 +96,11 @@ void pixel_output(ivec2 pixel, out vec4 l1, out vec4 l2) {
   l1 = vec4(diffuse, 0.0);
   l2 = vec4(specular, 0.0);
 #endif
+}
+
+void pixel_output(ivec2 pixel, out vec4 l1, out vec4 l2) {
+  vec3 diffuse, specular;
+  uint evaluated, lit;
+  shade_pixel(pixel, diffuse, specular, evaluated, lit);
+  output_of(diffuse, specular, evaluated, lit, l1, l2);
 }
