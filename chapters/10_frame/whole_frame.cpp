@@ -88,6 +88,7 @@ void WholeFrame::build(const std::vector<PlannedStage>& p) {
     glass_ = std::make_unique<TransparencyStage>(frame, source_->scene_gpu());
     frame.add_stage(*glass_);
   }
+  for (ch03::FrameStage* stage : later_) frame.add_stage(*stage);
   radiance_.reset();
   built_ = key(p);
 }
