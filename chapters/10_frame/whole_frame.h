@@ -76,6 +76,7 @@ class WholeFrame {
   // The float radiance the last render() tonemapped (nullptr before the first).
   const ch05::RadianceTarget* radiance() const { return radiance_.get(); }
   ch05::DeferredRadiance& source() { return *source_; }
+  const ch05::HdrPipeline& hdr() const { return hdr_; }  // its eye's state: the exposure it tonemapped with
 
  private:
   void build(const std::vector<PlannedStage>& p);  // the radiance source with the stages the plan runs

@@ -22,11 +22,21 @@ inline float radical_inverse(unsigned i, unsigned base) {
   return r;
 }
 
-// Frame `frame`'s offset in pixels, in [-0.5, 0.5)^2: Halton(2, 3) from index 1 (index 0 is
-// the corner), repeating every `period` frames.
+// The mean of Halton(base) over indices 1..period: the first b^k - 1 points are exactly
+// {1 .. b^k - 1} / b^k, mean 1/2, but a period of 8 in base 2 adds 1/16 and moves the
+// mean to 57/128. The offsets subtract it, so the history converges on the pixel's centre.
+inline float halton_mean(unsigned period, unsigned base) {
+  float sum = 0.f;
+  for (unsigned i = 1; i <= period; ++i) sum += radical_inverse(i, base);
+  return sum / float(period);
+}
+
+// Frame `frame`'s offset in pixels: Halton(2, 3) from index 1 (index 0 is the corner),
+// repeating every `period` frames, centred on the period's mean.
 inline glm::vec2 jitter_offset(unsigned frame, unsigned period = 8) {
+  if (period == 0) period = 1;
   const unsigned i = frame % period + 1;
-  return {radical_inverse(i, 2) - 0.5f, radical_inverse(i, 3) - 0.5f};
+  return {radical_inverse(i, 2) - halton_mean(period, 2), radical_inverse(i, 3) - halton_mean(period, 3)};
 }
 // [/halton]
 

@@ -64,7 +64,8 @@ void TaaStage::after_composite(ch03::DeferredFrame& frame, PassMetrics* metrics)
   resolve_.set("u_reject_disocclusion", int(settings_.reject_disocclusion));
   resolve_.set("u_depth_tolerance", settings_.depth_tolerance);
   resolve_.set("u_tonemapped", int(settings_.tonemapped));
-  resolve_.set("u_exposure", exposure_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, exposure_state_);
+  resolve_.set("u_has_exposure", int(exposure_state_ != 0));
   resolve_.set("u_reset", int(reset));
   glBindVertexArray(empty_.id());
   glDrawArrays(GL_TRIANGLES, 0, 3);

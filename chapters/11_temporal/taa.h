@@ -33,10 +33,11 @@ class TaaStage : public ch03::FrameStage {
  public:
   explicit TaaStage(const MotionStage& motion);
   void reload_shaders() { resolve_.reload(); }
-  // `exposure`: what the tonemap will multiply the radiance by (for the tonemapped blend).
-  void set(const TaaSettings& settings, float exposure) {
+  // `exposure_state`: chapter 05's eye (ExposureState), whose exposure the tonemapped blend
+  // uses: the last frame's, read on the GPU (0: none yet, the blend uses 1).
+  void set(const TaaSettings& settings, GLuint exposure_state) {
     settings_ = settings;
-    exposure_ = exposure;
+    exposure_state_ = exposure_state;
   }
   void reset() { reset_ = true; }  // the next frame starts the history again (a camera cut)
 
@@ -52,7 +53,7 @@ class TaaStage : public ch03::FrameStage {
   const MotionStage& motion_;
   ShaderProgram resolve_;
   TaaSettings settings_;
-  float exposure_ = 1.f;
+  GLuint exposure_state_ = 0;
   bool reset_ = true;
   gl::Texture history_[2] = {gl::Texture(GL_TEXTURE_2D), gl::Texture(GL_TEXTURE_2D)}, rejected_{GL_TEXTURE_2D};  // sized by resize()
   gl::Framebuffer fbo_[2];

@@ -22,12 +22,12 @@ void TemporalFrame::render(const FrameCamera& camera, const ch03::FrameOutput& o
                            float dt, bool cut, PassMetrics* metrics) {
   const bool new_shot = cut || !sequence_;
   const bool taa = s.taa.enabled;
-  jitter_ = taa ? jitter_offset(index_, s.jitter_period) : glm::vec2(0);
+  jitter_ = taa || s.jitter_alone ? jitter_offset(index_, s.jitter_period) : glm::vec2(0);
   motion_.set_enabled(taa);
   motion_.set_cameras(camera, new_shot ? camera : previous_);
   if (new_shot) taa_.reset();
-  // The tonemap's exposure as the frame last cut its lights for (the blend's weights).
-  taa_.set(s.taa, whole_.radiance() ? whole_.source().cut_exposure() : 1.f);
+  // The blend's weights use the exposure chapter 05's eye last tonemapped with.
+  taa_.set(s.taa, whole_.radiance() ? whole_.hdr().adaptation().state_buffer() : 0);
   whole_.render(jittered(camera, jitter_, output.width, output.height), output, s.whole, dt, new_shot, metrics);
   previous_ = camera;
   sequence_ = true;
@@ -40,7 +40,7 @@ void TemporalFrame::render_still(const FrameCamera& camera, glm::vec2 offset, co
   TemporalSettings still = s;
   still.taa.enabled = false;
   motion_.set_enabled(false);
-  taa_.set(still.taa, 1.f);
+  taa_.set(still.taa, 0);
   jitter_ = offset;
   whole_.render(jittered(camera, offset, output.width, output.height), output, still.whole, 1.f / 30.f, true);
   sequence_ = false;

@@ -18,6 +18,7 @@ struct TemporalSettings {
   ch10::WholeFrameSettings whole;  // chapter 10's stages
   TaaSettings taa;                 // taa.enabled false: chapter 10's frame, no jitter, no motion
   unsigned jitter_period = 8;      // Halton(2, 3) points before the pattern repeats
+  bool jitter_alone = false;       // jitter without TAA too (tests: the frames TAA would blend)
 };
 // [/temporal-settings]
 

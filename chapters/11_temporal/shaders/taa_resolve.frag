@@ -13,7 +13,9 @@ uniform int u_clip;    // 0 off, 1 clamp in RGB, 2 clip in YCoCg
 uniform int u_reject_disocclusion;
 uniform float u_depth_tolerance;
 uniform int u_tonemapped;
-uniform float u_exposure;
+uniform int u_has_exposure;
+// Chapter 05's eye (its ExposureState): the exposure the last frame was tonemapped with.
+layout(std430, binding = 0) readonly buffer Eye { float eye_target, eye_adapted, eye_exposure, eye_mean_log, eye_count; };
 uniform int u_reset;
 
 layout(location = 0) out vec4 out_color;
@@ -23,15 +25,16 @@ layout(location = 1) out float out_rejected;
 // The blend runs on exposed colour compressed by c / (1 + luminance): a bright sample then
 // weighs no more than a tonemapped pixel would, so one firefly cannot smear over frames.
 float luma(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
+float exposure() { return u_has_exposure != 0 && eye_exposure > 0.0 ? eye_exposure : 1.0; }
 vec3 to_space(vec3 c) {
   c = max(c, vec3(0.0));
   if (u_tonemapped == 0) return c;
-  c *= u_exposure;
+  c *= exposure();
   return c / (1.0 + luma(c));
 }
 vec3 from_space(vec3 t) {
   if (u_tonemapped == 0) return t;
-  return t / (max(1.0 - luma(t), 1e-4) * u_exposure);
+  return t / (max(1.0 - luma(t), 1e-7) * exposure());
 }
 vec3 rgb_to_ycocg(vec3 c) {
   return vec3(0.25 * c.r + 0.5 * c.g + 0.25 * c.b, 0.5 * c.r - 0.5 * c.b, -0.25 * c.r + 0.5 * c.g - 0.25 * c.b);
@@ -71,7 +74,7 @@ vec3 history_catmull_rom(vec2 uv) {
 // Moves q towards the box's centre until it lies inside (Playdead's clip; a clamp per axis
 // would also move its hue).
 vec3 clip_to_box(vec3 lo, vec3 hi, vec3 q) {
-  vec3 c = 0.5 * (hi + lo), e = 0.5 * (hi - lo) + 1e-6;
+  vec3 c = 0.5 * (hi + lo), e = 0.5 * (hi - lo);
   vec3 v = q - c;
   vec3 a = abs(v / e);
   float m = max(a.x, max(a.y, a.z));
@@ -117,6 +120,12 @@ void main() {
       float d = texelFetch(u_motion, q, 0).w;
       if (d < nearest) { nearest = d; nearest_p = q; }
     }
+  // The history is stored in half floats (a relative step of 2^-11): a box narrower than twice
+  // that (a flat colour) would clip the history's own rounding, and the clip's shrink towards
+  // the centre would move its brightness with it.
+  float slack = max(max(hi.x, hi.y), max(hi.z, 1e-6)) / 1024.0;
+  lo -= slack;
+  hi += slack;
   // [/neighbourhood]
   // [reproject]
   vec4 own = texelFetch(u_motion, p, 0);
