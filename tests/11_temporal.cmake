@@ -9,3 +9,6 @@ lightpass_program_test(11_temporal.path_the_scene_lacks 1 "no camera path named 
   ${P11} --headless --size 160x90 --scene assets/cornell/cornell.gltf --path walk --out ${CMAKE_BINARY_DIR}/out/11_cornell.png)
 lightpass_program_test(11_temporal.headless_path_writes_a_strip 0 "wrote a strip of 2 frames"
   ${P11} --headless --size 160x90 --path walk --frames 4 --strip 2 --ao 0 --indirect 0 --out ${CMAKE_BINARY_DIR}/out/11_walk.png)
+# The references (tests/reference/11_temporal/, made on llvmpipe and looked at): the first frame,
+# the walk's frame 12 with TAA, without, and where TAA dropped its history.
+lightpass_program_test(11_temporal.reference.street_shop 0 "4 of 4 references match" ${P11} --check --out ${CHECK_OUT}/11_temporal)

@@ -63,21 +63,17 @@ int path_index(const char* name) {
   return int(std::find(names.begin(), names.end(), name) - names.begin());
 }
 
-// The references: the first frame (jitter only), the walk after a dozen frames with TAA and
-// without, its rejected pixels, and the cut just after the jump.
+// The references: the first frame (one jittered frame), and the walk after a dozen frames with
+// TAA, without, and where its history was dropped.
 std::vector<Shot> shots(const char* view) {
-  const double walk = path_index("walk"), cut = path_index("cut");
+  const double walk = path_index("walk");
   return {{view, "whole", {}},
           {view, "whole", {{"path", walk}, {"at", 12}}},
           {view, "whole", {{"path", walk}, {"at", 12}, {"taa", 0}}},
-          {view, "whole", {{"path", walk}, {"at", 12}, {"show", kRejected}}},
-          {view, "whole", {{"path", walk}, {"at", 12}, {"show", kMotion}}},
-          {view, "whole", {{"path", cut}, {"at", 32}}}};
+          {view, "whole", {{"path", walk}, {"at", 12}, {"show", kRejected}}}};
 }
 
-const Chapter kChapter{.cli = kCli,
-                       .references = shots("shops"),
-                       .scene_references = {{"assets/atrium/atrium.gltf", shots("aisle")}}};
+const Chapter kChapter{.cli = kCli, .references = shots("shops")};
 
 TemporalSettings settings_of(const Frame& f) {
   TemporalSettings s;
