@@ -12,3 +12,6 @@ lightpass_program_test(11_temporal.headless_path_writes_a_strip 0 "wrote a strip
 # The references (tests/reference/11_temporal/, made on llvmpipe and looked at): the first frame,
 # the walk's frame 12 with TAA, without, and where TAA dropped its history.
 lightpass_program_test(11_temporal.reference.street_shop 0 "4 of 4 references match" ${P11} --check --out ${CHECK_OUT}/11_temporal)
+# The sweep's options (the sweep itself is long on llvmpipe: 16 truth frames per path frame).
+lightpass_program_test(11_temporal.sweep_unknown_option 2 "unknown option '--fast'" $<TARGET_FILE:11_temporal_sweep> --fast)
+lightpass_program_test(11_temporal.sweep_bad_frames 2 "--frames must be at least 1" $<TARGET_FILE:11_temporal_sweep> --frames 0)
