@@ -197,3 +197,39 @@ TEST(TemporalGl, OnAStillCameraTaaEdgesAreNearerTheTruthThanNoAa) {
               without[0].edge_error, with[0].edge_pixels, with[0].error, without[0].error);
   EXPECT_LT(with[0].edge_error, 0.8 * without[0].edge_error);
 }
+
+// Disocclusion: along the walk, every pixel whose surface was hidden last frame by the stated
+// rule (measure.h's C++ twin of the resolve's test, on the motion targets read back) has its
+// history dropped by the resolve, and every other pixel keeps it. The two compute the same rule
+// in float on the same data: only a pixel whose depth difference lies within float rounding
+// (10^-6 relative) of the tolerance may go either way; of 14 400 pixels we allow two each way.
+TEST(TemporalGl, TheResolveDropsTheHistoryOfEveryDisoccludedPixel) {
+  const CameraPath& path = path_named("assets/street_shop/street_shop.gltf", "walk");
+  TemporalSettings s = defaults();
+  s.whole.indirect = s.whole.ao = false;
+  TemporalFrame frame(street_gpu());
+  OutputTarget target(kW, kH);
+  for (int i = 0; i < 8; ++i)
+    frame.render(frame_camera(path.camera(street(), i), float(kW) / float(kH)), {target.framebuffer(), kW, kH}, s, 1.f / 30.f,
+                 path.cut_at(i));
+  const ImageF now = read_texture_rgba(frame.motion().current(), kW, kH);
+  const ImageF then = read_texture_rgba(frame.motion().previous(), kW, kH);
+  const ImageF rejected = read_texture_rgba(frame.taa().rejected(), kW, kH);
+  const std::vector<std::uint8_t> hidden = disocclusion_mask(now, then, s.taa.depth_tolerance);
+  int disoccluded = 0, dropped = 0, kept_elsewhere = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const bool r = rejected.at(x, y, 0) > 0.5f;
+      if (hidden[std::size_t(y) * kW + x]) {
+        ++disoccluded;
+        dropped += r;
+      } else {
+        kept_elsewhere += !r;
+      }
+    }
+  std::printf("%d disoccluded, %d of them dropped; %d of %d others kept\n", disoccluded, dropped, kept_elsewhere,
+              kW * kH - disoccluded);
+  EXPECT_GT(disoccluded, 20);  // the walk uncovers something every frame
+  EXPECT_GE(dropped, disoccluded - 2);
+  EXPECT_GE(kept_elsewhere, kW * kH - disoccluded - 2);
+}
