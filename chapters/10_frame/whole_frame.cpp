@@ -90,6 +90,7 @@ void WholeFrame::build(const std::vector<PlannedStage>& p) {
     frame.add_stage(*glass_);
   }
   // [/add-stages]
+  for (ch03::FrameStage* stage : later_) frame.add_stage(*stage);  // added by a later chapter (11)
   radiance_.reset();
   built_ = key(p);
 }

@@ -63,6 +63,9 @@ class WholeFrame {
   explicit WholeFrame(const SceneGpu& scene);  // the program's scene, as uploaded
   explicit WholeFrame(const Scene& scene);     // uploads it once (tests)
   void reload_shaders();
+  // A later chapter's stage (chapter 11's motion vectors and TAA): added to chapter 03's frame
+  // after this chapter's own, on every rebuild, so its after_composite sees the glass drawn.
+  void add_stage(ch03::FrameStage& stage) { later_.push_back(&stage); built_.clear(); }
   std::vector<PlannedStage> plan(const WholeFrameSettings& s) const;
   // The frame into `output` (sRGB8, any size); each pass timed in `metrics`. `dt`: seconds
   // since the last frame (eye adaptation); `new_shot`: the eye starts adapted.
@@ -73,6 +76,7 @@ class WholeFrame {
   // The float radiance the last render() tonemapped (nullptr before the first).
   const ch05::RadianceTarget* radiance() const { return radiance_.get(); }
   ch05::DeferredRadiance& source() { return *source_; }
+  const ch05::HdrPipeline& hdr() const { return hdr_; }  // its eye's state: the exposure it tonemapped with
 
  private:
   void build(const std::vector<PlannedStage>& p);  // the radiance source with the stages the plan runs
@@ -91,6 +95,7 @@ class WholeFrame {
   std::unique_ptr<ch08::GiStage> gi_;
   std::unique_ptr<ch09::ClusteredLights> clustered_;
   std::unique_ptr<TransparencyStage> glass_;
+  std::vector<ch03::FrameStage*> later_;
   std::unique_ptr<ch05::RadianceTarget> radiance_;
   ch05::HdrPipeline hdr_;
   ch05::ExposureFeedback feedback_;

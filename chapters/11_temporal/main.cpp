@@ -1,0 +1,205 @@
+// Chapter 11: time. Chapter 10's whole frame, each frame's projection moved by a sub-pixel
+// jitter (Halton 2, 3), motion vectors drawn after the G-buffer, and temporal anti-aliasing
+// after the composite: the history moved by the motion, read through a Catmull-Rom filter,
+// clipped to this frame's neighbourhood in YCoCg, dropped where the surface was hidden last
+// frame, blended in a tonemapped space (taa.h). `--path walk` plays a camera path of the scene
+// (camera_path.h) frame by frame, in the window and headless (`--frames N` plays N frames,
+// `--at F` starts at the path's frame F after drawing the frames before it, `--strip K` writes
+// every K-th frame into a strip PNG). `--show motion` draws the motion vectors, `--show
+// rejected` where the history was dropped.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include <imgui.h>
+
+#include "chapters/11_temporal/camera_path.h"
+#include "chapters/11_temporal/temporal_frame.h"
+#include "common/app.h"
+#include "common/error.h"
+#include "common/target.h"
+
+namespace {
+
+using namespace lp;
+using namespace lp::ch11;
+
+enum Show { kImage, kMotion, kRejected };
+constexpr int kMaxStripFrames = 16;
+constexpr float kMotionFullScalePixels = 8.f;  // --show motion: this many pixels a frame is full colour
+
+const CliSpec kCli{
+    .program = "11_temporal",
+    .summary = "Time: chapter 10's whole frame with sub-pixel jitter, motion vectors and temporal anti-aliasing; "
+               "--path plays a camera path of the scene frame by frame.",
+    .default_scene = "assets/street_shop/street_shop.gltf",
+    .modes = {"whole"},
+    .knobs = {choice_knob("path", "a camera path of the scene, one path frame per frame (off: the view, or the "
+                                  "window's fly camera)",
+                          path_names()),
+              {"at", "with --path: the first frame shown is the path's frame AT (the frames before it drawn first)", 0, 0, 1000, true},
+              {"strip", "headless, with --path: every STRIP-th path frame drawn goes into <out>_strip.png (0: none)", 0, 0, 1000, true},
+              {"taa", "temporal anti-aliasing (off: chapter 10's frame, no jitter)", 1, 0, 1, true},
+              choice_knob("filter", "how the history is read between its texels", {"bilinear", "catmull-rom"}, 1),
+              choice_knob("clip", "the history held to this frame's 3x3 neighbourhood: not, clamped per RGB channel, "
+                                  "or clipped towards the box's centre in YCoCg",
+                          {"off", "rgb-clamp", "ycocg-clip"}, 2),
+              {"reject", "drop the history where the surface was hidden last frame (depth test)", 1, 0, 1, true},
+              {"alpha", "this frame's weight in the blend", 0.1, 0.01, 1},
+              choice_knob("show", "the image; the motion vectors (hue: direction, full colour: 8 pixels a frame); "
+                                  "where the history was dropped (red)",
+                          {"image", "motion", "rejected"}),
+              {"shadows", "the sun's shadow map (chapter 06)", 1, 0, 1, true},
+              {"ao", "ambient occlusion (chapters 07, 08)", 1, 0, 1, true},
+              {"indirect", "one bounce of indirect light (chapter 08)", 1, 0, 1, true},
+              {"neon", "chapter 04's tubes", 1, 0, 1, true},
+              {"glow", "multiplies emissive surfaces (chapter 05)", 8, 0, 10000},
+              choice_knob("bloom", "chapter 05's bloom: off, after tonemapping, or before", {"off", "after", "before"}, 2)}};
+
+int path_index(const char* name) {
+  const std::vector<std::string> names = path_names();
+  return int(std::find(names.begin(), names.end(), name) - names.begin());
+}
+
+// The references: the first frame (one jittered frame), and the walk after a dozen frames with
+// TAA, without, and where its history was dropped.
+std::vector<Shot> shots(const char* view) {
+  const double walk = path_index("walk");
+  return {{view, "whole", {}},
+          {view, "whole", {{"path", walk}, {"at", 12}}},
+          {view, "whole", {{"path", walk}, {"at", 12}, {"taa", 0}}},
+          {view, "whole", {{"path", walk}, {"at", 12}, {"show", kRejected}}}};
+}
+
+const Chapter kChapter{.cli = kCli, .references = shots("shops")};
+
+TemporalSettings settings_of(const Frame& f) {
+  TemporalSettings s;
+  s.whole = {.shadows = f.knob_int("shadows") != 0, .ao = f.knob_int("ao") != 0, .indirect = f.knob_int("indirect") != 0,
+             .neon = f.knob_int("neon") != 0, .glow = float(f.knob("glow"))};
+  s.whole.hdr.bloom = static_cast<ch05::BloomMode>(f.knob_int("bloom"));
+  s.taa = {.enabled = f.knob_int("taa") != 0,
+           .alpha = float(f.knob("alpha")),
+           .filter = static_cast<HistoryFilter>(f.knob_int("filter")),
+           .clip = static_cast<HistoryClip>(f.knob_int("clip")),
+           .reject_disocclusion = f.knob_int("reject") != 0};
+  return s;
+}
+
+// --show motion: each pixel's motion in pixels a frame, its direction as hue.
+ImageRGBA8 motion_picture(GLuint motion, int w, int h) {
+  std::vector<float> m(std::size_t(w) * h * 4);
+  glGetTextureImage(motion, 0, GL_RGBA, GL_FLOAT, GLsizei(m.size() * sizeof(float)), m.data());
+  ImageRGBA8 out = ImageRGBA8::blank(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float* v = &m[(std::size_t(h - 1 - y) * w + x) * 4];  // GL rows bottom first
+      const float dx = v[0] * float(w), dy = v[1] * float(h);
+      const float len = std::min(std::sqrt(dx * dx + dy * dy) / kMotionFullScalePixels, 1.f);
+      const float a = std::atan2(dy, dx);
+      std::uint8_t* p = out.at(x, y);
+      for (int c = 0; c < 3; ++c) {
+        const float hue = 0.5f + 0.5f * std::cos(a - float(c) * 2.0944f);
+        p[c] = std::uint8_t(std::lround(255.f * linear_to_srgb(len * hue)));
+      }
+      p[3] = 255;
+    }
+  return out;
+}
+
+// --show rejected: the image darkened, the pixels whose history was dropped red.
+void mark_rejected(GLuint rejected, GLuint target, int w, int h) {
+  std::vector<std::uint8_t> r(std::size_t(w) * h);
+  glGetTextureImage(rejected, 0, GL_RED, GL_UNSIGNED_BYTE, GLsizei(r.size()), r.data());
+  ImageRGBA8 image = read_framebuffer(target, w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      std::uint8_t* p = image.at(x, y);
+      const bool dropped = r[std::size_t(h - 1 - y) * w + x] > 127;
+      for (int c = 0; c < 3; ++c) p[c] = dropped ? (c == 0 ? 255 : 0) : std::uint8_t(p[c] / 3);
+    }
+  put_picture(image, target);
+}
+
+std::string strip_path(const Options& o, const std::string& program) {
+  std::filesystem::path out = o.out.empty() ? std::filesystem::path(default_output(program + ".png")) : std::filesystem::path(o.out);
+  return (out.parent_path() / (out.stem().string() + "_strip.png")).string();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return run_chapter(argc, argv, kChapter, [](App& app) {
+    // 1. Chapter 10's whole frame with this chapter's two stages: motion and TAA.
+    TemporalFrame frame(app.scene_gpu());
+    int path_frame = 0;            // the next frame of the path to draw
+    std::vector<ImageRGBA8> strip; // --strip: the frames kept, left to right
+    bool strip_full = false;
+
+    while (app.next_frame()) {
+      const Frame& f = app.frame();
+      if (f.reload_shaders) frame.reload_shaders();
+      const TemporalSettings s = settings_of(f);
+      const ch03::FrameOutput output{f.target, f.width, f.height};
+      const std::string& path_name = f.choice("path");
+      const int strip_every = f.knob_int("strip");
+      // 2. The camera: the path's frame (and whether it cuts), or the view / fly camera.
+      if (path_name == "off") {
+        frame.render(f.camera, output, s, f.dt, f.new_shot, &app.metrics());
+      } else {
+        const CameraPath& path = path_named(app.options().scene, path_name);
+        auto camera_at = [&](int i) {
+          return frame_camera(path.camera(app.scene(), i), float(f.width) / float(f.height));
+        };
+        auto keep = [&](int i) {  // --strip: this path frame, read back
+          if (strip_every <= 0 || app.context().is_window() || app.options().check || i % strip_every != 0) return;
+          if (int(strip.size()) >= kMaxStripFrames) { strip_full = true; return; }
+          strip.push_back(read_framebuffer(f.target, f.width, f.height));
+        };
+        if (f.new_shot) {
+          // The frames before --at, drawn as they would have been, so the history is theirs.
+          const int at = std::min(f.knob_int("at"), path.frames() - 1);
+          for (int i = 0; i < at; ++i) {
+            frame.render(camera_at(i), output, s, 1.f / path.fps, path.cut_at(i));
+            keep(i);
+          }
+          path_frame = at;
+        }
+        const int i = path_frame % path.frames();  // the window plays it again and again
+        frame.render(camera_at(i), output, s, 1.f / path.fps, path.cut_at(i) || (i == 0 && !f.new_shot), &app.metrics());
+        keep(i);
+        if (std::ostream& out = app.report())
+          out << "path " << path.name << ": frame " << i << " of " << path.frames() << " (" << path.fps << " fps)"
+              << (path.cut_at(i) ? ", a cut" : "") << '\n';
+        ++path_frame;
+      }
+      // 3. The pictures: the motion vectors, or where the history was dropped.
+      const int show = f.knob_int("show");
+      const bool taa = s.taa.enabled;
+      if (show == kMotion && taa) put_picture(motion_picture(frame.motion().current(), f.width, f.height), f.target);
+      if (show == kRejected && taa) mark_rejected(frame.taa().rejected(), f.target, f.width, f.height);
+      if (show != kImage && !taa) app.report() << "note: --show " << f.choice("show") << " needs --taa 1\n";
+      app.metrics().set_allocation("the whole frame's targets (chapter 10)", frame.whole().allocated_bytes());
+      app.metrics().set_allocation("motion RGBA32F x 2 + history RGBA16F x 2 + rejected R8", frame.allocated_bytes() - frame.whole().allocated_bytes());
+      if (std::ostream& out = app.report())
+        out << "jitter (" << frame.last_jitter().x << ", " << frame.last_jitter().y << ") px, TAA " << (taa ? "on" : "off") << '\n';
+      app.panel([&] {
+        ImGui::Text("jitter %.3f, %.3f px", frame.last_jitter().x, frame.last_jitter().y);
+        if (path_name != "off") ImGui::Text("path %s, frame %d", path_name.c_str(), (path_frame - 1));
+      });
+    }
+    // 4. --strip: the kept frames side by side.
+    if (!strip.empty()) {
+      const int w = strip.front().width, h = strip.front().height;
+      ImageRGBA8 all = ImageRGBA8::blank(w * int(strip.size()), h);
+      for (std::size_t k = 0; k < strip.size(); ++k)
+        for (int y = 0; y < h; ++y) std::copy_n(strip[k].at(0, y), std::size_t(w) * 4, all.at(int(k) * w, y));
+      const std::string where = strip_path(app.options(), "11_temporal");
+      save_png(where, all);
+      std::cout << "wrote a strip of " << strip.size() << " frames: " << where << '\n';
+      if (strip_full) std::cout << "note: the strip keeps the first " << kMaxStripFrames << " frames asked for\n";
+    }
+  });
+}

@@ -1,0 +1,159 @@
+#include "chapters/11_temporal/measure.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "common/error.h"
+#include "common/target.h"
+
+namespace lp::ch11 {
+
+ImageF read_texture_rgba(GLuint texture, int width, int height) {
+  ImageF rows = ImageF::blank(width, height, 4);
+  glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, GLsizei(rows.data.size() * sizeof(float)), rows.data.data());
+  flip_vertically(rows);  // GL's rows are bottom first
+  return rows;
+}
+
+ImageF encode_srgb(const ImageF& linear) {
+  ImageF out = ImageF::blank(linear.width, linear.height, 3);
+  for (int y = 0; y < linear.height; ++y)
+    for (int x = 0; x < linear.width; ++x)
+      for (int c = 0; c < 3; ++c) out.at(x, y, c) = linear_to_srgb(std::clamp(linear.at(x, y, c), 0.f, 1.f));
+  return out;
+}
+
+namespace {
+// to_srgb8 encodes linear values: the measured images are sRGB-encoded already.
+ImageF decode_srgb_for_png(const ImageF& encoded) {
+  ImageF out = encoded;
+  for (float& v : out.data) v = srgb_to_linear(v);
+  return out;
+}
+}  // namespace
+
+// [disocclusion-twin-body]
+std::vector<std::uint8_t> disocclusion_mask(const ImageF& now, const ImageF& then, float tolerance) {
+  const int w = now.width, h = now.height;
+  std::vector<std::uint8_t> mask(std::size_t(w) * h, 0);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      // Rows top first here; the motion's uv has v up.
+      const float u = (float(x) + 0.5f) / float(w) - now.at(x, y, 0);
+      const float v = 1.f - (float(y) + 0.5f) / float(h) - now.at(x, y, 1);  // uv then = uv now - motion
+      const float depth_then = now.at(x, y, 2);
+      bool hidden = u < 0.f || u > 1.f || v < 0.f || v > 1.f;
+      if (!hidden) {
+        const int bx = int(std::floor(u * float(w) - 0.5f)), by = int(std::floor(v * float(h) - 0.5f));
+        float nearest = 1e30f;
+        for (int j = 0; j <= 1; ++j)
+          for (int i = 0; i <= 1; ++i) {
+            const int qx = std::clamp(bx + i, 0, w - 1), qy = std::clamp(by + j, 0, h - 1);
+            nearest = std::min(nearest, std::abs(then.at(qx, h - 1 - qy, 3) - depth_then));
+          }
+        hidden = nearest > tolerance * depth_then;
+      }
+      mask[std::size_t(y) * w + x] = hidden ? 1 : 0;
+    }
+  return mask;
+}
+// [/disocclusion-twin-body]
+
+std::vector<std::uint8_t> edge_mask(const ImageF& truth, float range) {
+  const int w = truth.width, h = truth.height;
+  auto luma = [&](int x, int y) {
+    x = std::clamp(x, 0, w - 1);
+    y = std::clamp(y, 0, h - 1);
+    return 0.2126f * truth.at(x, y, 0) + 0.7152f * truth.at(x, y, 1) + 0.0722f * truth.at(x, y, 2);
+  };
+  std::vector<std::uint8_t> mask(std::size_t(w) * h, 0);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      float lo = 1e30f, hi = -1e30f;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const float l = luma(x + dx, y + dy);
+          lo = std::min(lo, l);
+          hi = std::max(hi, l);
+        }
+      mask[std::size_t(y) * w + x] = hi - lo > range ? 1 : 0;
+    }
+  return mask;
+}
+
+double mean_error(const ImageF& image, const ImageF& truth, const std::vector<std::uint8_t>& mask, std::size_t* pixels) {
+  if (image.width != truth.width || image.height != truth.height) throw Error("mean_error: images of different sizes");
+  double sum = 0;
+  std::size_t n = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      if (!mask.empty() && !mask[std::size_t(y) * image.width + x]) continue;
+      double e = 0;
+      for (int c = 0; c < 3; ++c) e += std::abs(double(image.at(x, y, c)) - double(truth.at(x, y, c)));
+      sum += e / 3.0;
+      ++n;
+    }
+  if (pixels) *pixels = n;
+  return n ? sum / double(n) : 0.0;
+}
+
+// [measure-path]
+std::vector<PathFrame> measure_path(const SceneGpu& scene, const CameraPath& path, const TemporalSettings& settings,
+                                    const PathRunOptions& o) {
+  const int w = o.width, h = o.height;
+  if (w < 1 || h < 1 || w > 4096 || h > 4096) throw Error("measure_path: a size of " + std::to_string(w) + "x" + std::to_string(h));
+  const int end = o.count < 0 ? path.frames() : std::min(path.frames(), o.first + o.count);
+  TemporalFrame frame(scene), truth_frame(scene);
+  OutputTarget target(w, h);
+  TemporalSettings truth_settings = settings;
+  truth_settings.taa.enabled = false;
+  std::vector<PathFrame> out;
+  std::vector<int> since_disocclusion(std::size_t(w) * h, 1 << 20);  // frames since each pixel was hidden
+  ImageF last_image, last_truth, last_motion;
+  for (int i = 0; i < end; ++i) {
+    const FrameCamera camera = frame_camera(path.camera(scene.scene(), i), float(w) / float(h));
+    const bool cut = path.cut_at(i);
+    frame.render(camera, {target.framebuffer(), w, h}, settings, 1.f / path.fps, cut);
+    // Disocclusion from the motion alone (the C++ twin), whatever the resolve did with it.
+    const ImageF motion = read_texture_rgba(frame.motion().current(), w, h);
+    std::vector<std::uint8_t> hidden;
+    if (!cut && last_motion.width == w) hidden = disocclusion_mask(motion, last_motion, o.disocclusion_tolerance);
+    for (std::size_t k = 0; k < since_disocclusion.size(); ++k)
+      since_disocclusion[k] = cut ? (1 << 20) : hidden.empty() ? since_disocclusion[k] + 1 : hidden[k] ? 0 : since_disocclusion[k] + 1;
+    last_motion = motion;
+    if (i < o.first) continue;
+    const ImageF image = encode_srgb(read_linear(target.framebuffer(), w, h));
+    const ImageF truth = encode_srgb(supersampled(truth_frame, camera, w, h, truth_settings, o.truth_grid));
+    PathFrame f{.frame = i, .cut = cut};
+    if (!o.dump_prefix.empty()) {
+      char n[16];
+      std::snprintf(n, sizeof n, "%03d", i);
+      save_png(o.dump_prefix + n + "_image.png", to_srgb8(decode_srgb_for_png(image)));
+      save_png(o.dump_prefix + n + "_truth.png", to_srgb8(decode_srgb_for_png(truth)));
+    }
+    f.error = mean_error(image, truth);
+    f.edge_error = mean_error(image, truth, edge_mask(truth), &f.edge_pixels);
+    std::vector<std::uint8_t> ghost(since_disocclusion.size());
+    for (std::size_t k = 0; k < ghost.size(); ++k) ghost[k] = since_disocclusion[k] < o.ghost_frames ? 1 : 0;
+    f.ghost_error = mean_error(image, truth, ghost, &f.ghost_pixels);
+    if (!cut && last_truth.width == w) {
+      std::vector<std::uint8_t> still(std::size_t(w) * h, 0);
+      std::vector<std::uint8_t> all(std::size_t(w) * h, 1);
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+          float change = 0;
+          for (int c = 0; c < 3; ++c) change = std::max(change, std::abs(truth.at(x, y, c) - last_truth.at(x, y, c)));
+          still[std::size_t(y) * w + x] = change < o.still_change ? 1 : 0;
+        }
+      f.flicker = mean_error(image, last_image, still, &f.still_pixels);
+    }
+    last_image = image;
+    last_truth = truth;
+    out.push_back(f);
+  }
+  return out;
+}
+// [/measure-path]
+
+}  // namespace lp::ch11

@@ -1,0 +1,63 @@
+#pragma once
+// Measuring a temporal frame along a camera path against its supersampled truth: each
+// frame's error overall and on edges, ghosting (error where the surface was hidden a few
+// frames ago) and flicker (change from the last frame where the truth did not change).
+// Errors are mean absolute differences of sRGB-encoded values in [0, 1] (display values: an
+// 8-bit step is 1/255), over RGB.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "chapters/11_temporal/camera_path.h"
+#include "chapters/11_temporal/temporal_frame.h"
+#include "common/image.h"
+
+namespace lp::ch11 {
+
+// A texture's level 0 as floats, rows top first (RGBA32F motion, RGBA16F radiance: 4 channels).
+ImageF read_texture_rgba(GLuint texture, int width, int height);
+// Linear RGB to sRGB-encoded RGB, each channel in [0, 1].
+ImageF encode_srgb(const ImageF& linear);
+
+// [disocclusion-twin]
+// The C++ twin of taa_resolve.frag's disocclusion test, on motion targets read back (motion.h):
+// 1 where none of the four last-frame depths around where the pixel's surface was lies within
+// `tolerance` (relative) of the depth it had there, or where it was outside the last image.
+std::vector<std::uint8_t> disocclusion_mask(const ImageF& motion_now, const ImageF& motion_then, float tolerance);
+// [/disocclusion-twin]
+
+// 1 where the 3x3 neighbourhood of the (sRGB-encoded) truth spans more than `range` in luma:
+// the pixels where aliasing shows.
+std::vector<std::uint8_t> edge_mask(const ImageF& truth_srgb, float range = 0.1f);
+
+// Mean absolute error of `image` against `truth` over `mask` (empty: every pixel); 0 for an
+// empty selection, with `pixels` saying how many were counted.
+double mean_error(const ImageF& image, const ImageF& truth, const std::vector<std::uint8_t>& mask = {},
+                  std::size_t* pixels = nullptr);
+
+// One frame of a path, measured.
+struct PathFrame {
+  int frame = 0;
+  bool cut = false;
+  double error = 0, edge_error = 0, ghost_error = 0, flicker = 0;
+  std::size_t edge_pixels = 0, ghost_pixels = 0, still_pixels = 0;
+};
+
+struct PathRunOptions {
+  int width = 160, height = 90;
+  int first = 0, count = -1;  // the path's frames [first, first + count); -1: to the end
+  int ghost_frames = 4;       // a pixel counts for ghosting this many frames after its disocclusion
+  float disocclusion_tolerance = 0.05f;
+  float still_change = 1.f / 255.f;  // flicker: pixels whose truth changed less than this
+  int truth_grid = 4;
+  std::string dump_prefix;  // non-empty: each measured frame and its truth written as <prefix>NNN_{image,truth}.png
+};
+
+// Plays `path` with `settings` from its frame 0 (the frames before `first` drawn, not
+// measured) and measures each frame against its supersampled truth (settings without TAA,
+// 16 jittered frames). The truth's frames are drawn by a second TemporalFrame, so the
+// measured one's history is never disturbed.
+std::vector<PathFrame> measure_path(const SceneGpu& scene, const CameraPath& path, const TemporalSettings& settings,
+                                    const PathRunOptions& options);
+
+}  // namespace lp::ch11

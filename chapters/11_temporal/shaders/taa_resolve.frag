@@ -1,0 +1,145 @@
+#version 450
+// Temporal anti-aliasing, one pixel: this frame's jittered sample blended into the history
+// moved by the motion vectors, the history read with a Catmull-Rom filter, clipped to this
+// frame's 3x3 neighbourhood in YCoCg, and dropped where the surface was hidden last frame.
+layout(binding = 0) uniform sampler2D u_current;          // this frame's radiance (jittered)
+layout(binding = 1) uniform sampler2D u_history;          // the last result (bilinear sampler)
+layout(binding = 2) uniform sampler2D u_motion;           // motion.h: xy uv motion, z depth then, w depth now
+layout(binding = 3) uniform sampler2D u_previous_motion;  // the last frame's (its w: the last depths)
+
+uniform float u_alpha;
+uniform int u_filter;  // 0 bilinear, 1 Catmull-Rom
+uniform int u_clip;    // 0 off, 1 clamp in RGB, 2 clip in YCoCg
+uniform int u_reject_disocclusion;
+uniform float u_depth_tolerance;
+uniform int u_tonemapped;
+uniform int u_has_exposure;
+// Chapter 05's eye (its ExposureState): the exposure the last frame was tonemapped with.
+layout(std430, binding = 0) readonly buffer Eye { float eye_target, eye_adapted, eye_exposure, eye_mean_log, eye_count; };
+uniform int u_reset;
+
+layout(location = 0) out vec4 out_color;
+layout(location = 1) out float out_rejected;
+
+// [resolve-space]
+// The blend runs on exposed colour compressed by c / (1 + luminance): a bright sample then
+// weighs no more than a tonemapped pixel would, so one firefly cannot smear over frames.
+float luma(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
+float exposure() { return u_has_exposure != 0 && eye_exposure > 0.0 ? eye_exposure : 1.0; }
+vec3 to_space(vec3 c) {
+  c = max(c, vec3(0.0));
+  if (u_tonemapped == 0) return c;
+  c *= exposure();
+  return c / (1.0 + luma(c));
+}
+vec3 from_space(vec3 t) {
+  if (u_tonemapped == 0) return t;
+  return t / (max(1.0 - luma(t), 1e-7) * exposure());
+}
+vec3 rgb_to_ycocg(vec3 c) {
+  return vec3(0.25 * c.r + 0.5 * c.g + 0.25 * c.b, 0.5 * c.r - 0.5 * c.b, -0.25 * c.r + 0.5 * c.g - 0.25 * c.b);
+}
+vec3 ycocg_to_rgb(vec3 y) {
+  float t = y.x - y.z;
+  return vec3(t + y.y, y.x + y.z, t - y.y);
+}
+// [/resolve-space]
+
+// [catmull-rom]
+// Catmull-Rom through 4x4 texels in 9 bilinear reads: the middle two weights of each axis
+// merged into one read between their texels (their sum is positive).
+vec3 history_catmull_rom(vec2 uv) {
+  vec2 size = vec2(textureSize(u_history, 0));
+  vec2 pos = uv * size;
+  vec2 p1 = floor(pos - 0.5) + 0.5;
+  vec2 f = pos - p1;
+  vec2 w0 = f * (-0.5 + f * (1.0 - 0.5 * f));
+  vec2 w1 = 1.0 + f * f * (-2.5 + 1.5 * f);
+  vec2 w2 = f * (0.5 + f * (2.0 - 1.5 * f));
+  vec2 w3 = f * f * (-0.5 + 0.5 * f);
+  vec2 w12 = w1 + w2;
+  vec2 t0 = (p1 - 1.0) / size, t3 = (p1 + 2.0) / size, t12 = (p1 + w2 / w12) / size;
+  vec3 r = vec3(0.0);
+  r += (texture(u_history, vec2(t0.x, t0.y)).rgb * w0.x + texture(u_history, vec2(t12.x, t0.y)).rgb * w12.x +
+        texture(u_history, vec2(t3.x, t0.y)).rgb * w3.x) * w0.y;
+  r += (texture(u_history, vec2(t0.x, t12.y)).rgb * w0.x + texture(u_history, vec2(t12.x, t12.y)).rgb * w12.x +
+        texture(u_history, vec2(t3.x, t12.y)).rgb * w3.x) * w12.y;
+  r += (texture(u_history, vec2(t0.x, t3.y)).rgb * w0.x + texture(u_history, vec2(t12.x, t3.y)).rgb * w12.x +
+        texture(u_history, vec2(t3.x, t3.y)).rgb * w3.x) * w3.y;
+  return max(r, vec3(0.0));  // its negative lobes can undershoot below black
+}
+// [/catmull-rom]
+
+// [clip-box]
+// Moves q towards the box's centre until it lies inside (Playdead's clip; a clamp per axis
+// would also move its hue).
+vec3 clip_to_box(vec3 lo, vec3 hi, vec3 q) {
+  vec3 c = 0.5 * (hi + lo), e = 0.5 * (hi - lo);
+  vec3 v = q - c;
+  vec3 a = abs(v / e);
+  float m = max(a.x, max(a.y, a.z));
+  return m > 1.0 ? c + v / m : q;
+}
+// [/clip-box]
+
+// [disocclusion]
+// Hidden last frame: none of the four last-frame depths around where this surface was lies
+// within the tolerance of the depth it had there.
+bool disoccluded(vec2 uv_then, float depth_then) {
+  vec2 size = vec2(textureSize(u_previous_motion, 0));
+  ivec2 base = ivec2(floor(uv_then * size - 0.5));
+  float nearest = 1e30;
+  for (int j = 0; j <= 1; ++j)
+    for (int i = 0; i <= 1; ++i) {
+      ivec2 q = clamp(base + ivec2(i, j), ivec2(0), ivec2(size) - 1);
+      nearest = min(nearest, abs(texelFetch(u_previous_motion, q, 0).w - depth_then));
+    }
+  return nearest > u_depth_tolerance * depth_then;
+}
+// [/disocclusion]
+
+void main() {
+  ivec2 size = textureSize(u_current, 0);
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  vec2 uv = (vec2(p) + 0.5) / vec2(size);
+  vec4 here = texelFetch(u_current, p, 0);
+  vec3 centre = to_space(here.rgb);
+  // [neighbourhood]
+  // This frame's 3x3: the box the history must fall in, and the nearest surface, whose
+  // motion an edge pixel takes (the edge moves with the object in front).
+  vec3 lo = vec3(1e30), hi = vec3(-1e30);
+  float nearest = 1e30;
+  ivec2 nearest_p = p;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      ivec2 q = clamp(p + ivec2(dx, dy), ivec2(0), size - 1);
+      vec3 c = to_space(texelFetch(u_current, q, 0).rgb);
+      vec3 y = u_clip == 2 ? rgb_to_ycocg(c) : c;
+      lo = min(lo, y);
+      hi = max(hi, y);
+      float d = texelFetch(u_motion, q, 0).w;
+      if (d < nearest) { nearest = d; nearest_p = q; }
+    }
+  // The history is stored in half floats (a relative step of 2^-11): a box narrower than twice
+  // that (a flat colour) would clip the history's own rounding, and the clip's shrink towards
+  // the centre would move its brightness with it.
+  float slack = max(max(hi.x, hi.y), max(hi.z, 1e-6)) / 1024.0;
+  lo -= slack;
+  hi += slack;
+  // [/neighbourhood]
+  // [reproject]
+  vec4 own = texelFetch(u_motion, p, 0);
+  vec2 uv_then = uv - texelFetch(u_motion, nearest_p, 0).xy;
+  bool rejected = u_reset != 0 || any(lessThan(uv_then, vec2(0.0))) || any(greaterThan(uv_then, vec2(1.0)));
+  if (!rejected && u_reject_disocclusion != 0) rejected = disoccluded(uv - own.xy, own.z);
+  vec3 result = centre;
+  if (!rejected) {
+    vec3 history = to_space(u_filter == 1 ? history_catmull_rom(uv_then) : texture(u_history, uv_then).rgb);
+    if (u_clip == 1) history = clamp(history, lo, hi);
+    if (u_clip == 2) history = ycocg_to_rgb(clip_to_box(lo, hi, rgb_to_ycocg(history)));
+    result = mix(history, centre, u_alpha);
+  }
+  // [/reproject]
+  out_color = vec4(from_space(result), here.a);
+  out_rejected = rejected ? 1.0 : 0.0;
+}

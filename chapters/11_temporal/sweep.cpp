@@ -1,0 +1,136 @@
+// Chapter 11's sweep: a camera path of the scene played with no AA and with TAA (and TAA with
+// each of its parts switched off), each frame measured against its supersampled truth
+// (measure.h: 16 frames on a 4x4 grid of jitter, without history, averaged): the error overall
+// and on edges, ghosting (on pixels disoccluded in the last 4 frames) and flicker (change from
+// the last frame where the truth changed less than an 8-bit step). Then the cost: each pass's
+// time (the one measurement, common/measure.h) of the frame with and without TAA at the path's
+// first view. Writes <out>/11_path_<scene>_<path>[_llvmpipe].csv and
+// <out>/11_cost[_llvmpipe].csv; llvmpipe's times are CPU times and the file says so. The
+// error over the path's frames as a plot:
+//   tools/plot.py --csv out/11_temporal/11_path_street_shop_walk_llvmpipe.csv --x frame
+//                 --y edge_error --group method --title "Edge error along the walk" --out walk.svg
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "chapters/11_temporal/camera_path.h"
+#include "chapters/11_temporal/measure.h"
+#include "chapters/11_temporal/temporal_frame.h"
+#include "common/context.h"
+#include "common/error.h"
+#include "common/measure.h"
+#include "common/paths.h"
+#include "common/sweep.h"
+#include "common/target.h"
+
+namespace {
+
+using namespace lp;
+using namespace lp::ch11;
+
+struct Settings {
+  std::string out = (source_root() / "out" / "11_temporal").string();
+  std::string scene = "assets/street_shop/street_shop.gltf";
+  std::string path = "walk";
+  int width = 160, height = 90;
+  int first = 0, count = -1;  // the path's frames measured; -1: to its end
+  int frames = 10;            // the cost's measured frames
+};
+
+// [variants]
+struct Variant {
+  std::string name;
+  TemporalSettings settings;
+};
+std::vector<Variant> variants() {
+  TemporalSettings base;
+  base.whole.hdr.adaptation.tau = 0.f;  // the truth's frames are each a new shot: the eye adapts at once in both
+  std::vector<Variant> v;
+  v.push_back({"no AA", base});
+  v.back().settings.taa.enabled = false;
+  v.push_back({"TAA", base});
+  v.push_back({"TAA, no disocclusion test", base});
+  v.back().settings.taa.reject_disocclusion = false;
+  v.push_back({"TAA, no clip", base});
+  v.back().settings.taa.clip = HistoryClip::Off;
+  v.push_back({"TAA, RGB clamp", base});
+  v.back().settings.taa.clip = HistoryClip::ClampRgb;
+  v.push_back({"TAA, bilinear history", base});
+  v.back().settings.taa.filter = HistoryFilter::Bilinear;
+  v.push_back({"TAA, linear blend", base});
+  v.back().settings.taa.tonemapped = false;
+  return v;
+}
+// [/variants]
+
+void sweep_path(const Settings& s, const SceneGpu& gpu, const std::string& renderer, bool software) {
+  const CameraPath& path = path_named(s.scene, s.path);
+  const std::string stem = std::filesystem::path(s.scene).stem().string();
+  const std::string file = s.out + "/11_path_" + stem + "_" + s.path + (software ? "_llvmpipe" : "") + ".csv";
+  std::ofstream csv(file);
+  csv << "# " << renderer << ", " << s.width << "x" << s.height << ", path " << s.path << " of " << stem << " at " << path.fps
+      << " fps; errors: mean |image - truth| of sRGB values in [0, 1] (an 8-bit step is 0.0039)\n"
+      << "# truth: 16 frames on a 4x4 grid of jitter, no history, averaged in linear light\n"
+      << "method,frame,cut,error,edge_error,edge_pixels,ghost_error,ghost_pixels,flicker,still_pixels," << csv_measure_columns()
+      << "\n";
+  for (const Variant& v : variants()) {
+    const std::vector<PathFrame> frames =
+        measure_path(gpu, path, v.settings, {.width = s.width, .height = s.height, .first = s.first, .count = s.count});
+    double edge = 0;
+    for (const PathFrame& f : frames) {
+      csv << csv_quoted(v.name) << ',' << f.frame << ',' << int(f.cut) << ',' << f.error << ',' << f.edge_error << ','
+          << f.edge_pixels << ',' << f.ghost_error << ',' << f.ghost_pixels << ',' << f.flicker << ',' << f.still_pixels << ','
+          << csv_measure_values(renderer, s.width, s.height, 1) << '\n';
+      edge += f.edge_error;
+    }
+    std::cout << v.name << ": mean edge error " << (frames.empty() ? 0.0 : edge / double(frames.size())) << " over "
+              << frames.size() << " frames\n";
+  }
+  std::cout << "wrote " << file << '\n';
+}
+
+void sweep_cost(const Settings& s, const SceneGpu& gpu, const std::string& renderer, bool software) {
+  const CameraPath& path = path_named(s.scene, s.path);
+  const std::string file = s.out + "/11_cost" + std::string(software ? "_llvmpipe" : "") + ".csv";
+  std::ofstream csv(file);
+  csv << "# " << (software ? "llvmpipe CPU time (glFinish around each pass): " : "GPU time: ") << renderer << ", " << s.width
+      << "x" << s.height << "; each pass's mean and fastest ms\n"
+      << "method,pass,ms,min_ms," << csv_measure_columns() << '\n';
+  OutputTarget target(s.width, s.height);
+  for (const Variant& v : variants()) {
+    if (v.name != "no AA" && v.name != "TAA") continue;
+    TemporalFrame frame(gpu);
+    PassMetrics metrics;
+    int i = 0;
+    const Measurement m = measure(metrics, [&] {
+      const int k = i++ % path.frames();
+      frame.render(frame_camera(path.camera(gpu.scene(), k), float(s.width) / float(s.height)),
+                   {target.framebuffer(), s.width, s.height}, v.settings, 1.f / path.fps, path.cut_at(k), &metrics);
+    }, {.frames = s.frames});
+    for (const PassMeasurement& p : m.passes)
+      csv << csv_quoted(v.name) << ',' << csv_quoted(p.name) << ',' << p.mean_ms << ',' << p.min_ms << ','
+          << csv_measure_values(renderer, s.width, s.height, m.frames) << '\n';
+  }
+  std::cout << "wrote " << file << '\n';
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Settings s;
+  return run_sweep(argc, argv, "11_temporal_sweep", [&](SweepArgs& args) {
+    args.text("--out", s.out).text("--scene", s.scene).text("--path", s.path).size("--size", s.width, s.height)
+        .integer("--first", s.first).integer("--count", s.count).integer("--frames", s.frames);
+  }, [&] {
+    if (s.frames < 1) throw UsageError("--frames must be at least 1");
+    if (s.first < 0 || s.first > 100000) throw UsageError("--first must be between 0 and 100000");
+    if (s.count < -1 || s.count > 100000) throw UsageError("--count must be -1 (to the end) or between 0 and 100000");
+    std::filesystem::create_directories(s.out);
+    auto context = Context::create({.headless = true, .width = s.width, .height = s.height});
+    const Scene scene = load_scene(from_root(s.scene));
+    path_named(s.scene, s.path);  // an unknown path says so before anything is drawn
+    const SceneGpu gpu(scene);
+    sweep_path(s, gpu, context->renderer(), context->is_software());
+    sweep_cost(s, gpu, context->renderer(), context->is_software());
+  });
+}

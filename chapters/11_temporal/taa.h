@@ -1,0 +1,65 @@
+#pragma once
+// Temporal anti-aliasing as a stage of chapter 03's frame, after the composite (and after
+// chapter 10's glass): this frame's jittered radiance blended into the history, the last
+// frames' result moved by the motion vectors (motion.h). The result replaces the frame's
+// float radiance, so chapter 05's HDR chain tonemaps the anti-aliased image.
+//
+//   TaaStage taa(motion);
+//   frame.add_stage(motion); frame.add_stage(taa);   // the glass's stage between them
+//   taa.set(settings, exposure); if (cut) taa.reset();
+#include "chapters/03_light_volumes/deferred_frame.h"
+#include "chapters/11_temporal/motion.h"
+#include "common/gl.h"
+#include "common/shader.h"
+
+namespace lp::ch11 {
+
+enum class HistoryFilter { Bilinear, CatmullRom };
+enum class HistoryClip { Off, ClampRgb, ClipYCoCg };
+
+// [taa-settings]
+struct TaaSettings {
+  bool enabled = true;                               // off: the frame as chapter 10 draws it
+  float alpha = 0.1f;                                // this frame's weight in the blend
+  HistoryFilter filter = HistoryFilter::CatmullRom;  // how the history is read between its texels
+  HistoryClip clip = HistoryClip::ClipYCoCg;         // the history held to this frame's 3x3 neighbourhood
+  bool reject_disocclusion = true;                   // history dropped where the surface was hidden
+  float depth_tolerance = 0.05f;                     // relative: a depth this far from the last frame's is another surface
+  bool tonemapped = true;                            // blend in a tonemapped space (weights 1 / (1 + exposed luminance))
+};
+// [/taa-settings]
+
+class TaaStage : public ch03::FrameStage {
+ public:
+  explicit TaaStage(const MotionStage& motion);
+  void reload_shaders() { resolve_.reload(); }
+  // `exposure_state`: chapter 05's eye (ExposureState), whose exposure the tonemapped blend
+  // uses: the last frame's, read on the GPU (0: none yet, the blend uses 1).
+  void set(const TaaSettings& settings, GLuint exposure_state) {
+    settings_ = settings;
+    exposure_state_ = exposure_state;
+  }
+  void reset() { reset_ = true; }  // the next frame starts the history again (a camera cut)
+
+  void after_composite(ch03::DeferredFrame& frame, PassMetrics* metrics) override;
+
+  // After render(): the resolved radiance (RGBA16F) and where its history was dropped (R8: 1).
+  GLuint history() const { return history_[cur_].id(); }
+  GLuint rejected() const { return rejected_.id(); }
+  std::size_t allocated_bytes() const { return std::size_t(width_) * height_ * (8 * 2 + 1); }
+
+ private:
+  void resize(int width, int height);
+  const MotionStage& motion_;
+  ShaderProgram resolve_;
+  TaaSettings settings_;
+  GLuint exposure_state_ = 0;
+  bool reset_ = true;
+  gl::Texture history_[2] = {gl::Texture(GL_TEXTURE_2D), gl::Texture(GL_TEXTURE_2D)}, rejected_{GL_TEXTURE_2D};  // sized by resize()
+  gl::Framebuffer fbo_[2];
+  gl::Sampler bilinear_;
+  gl::VertexArray empty_;
+  int width_ = 0, height_ = 0, cur_ = 0;
+};
+
+}  // namespace lp::ch11

@@ -1,0 +1,74 @@
+#include "chapters/11_temporal/temporal_frame.h"
+
+#include "common/error.h"
+#include "common/target.h"
+
+namespace lp::ch11 {
+
+TemporalFrame::TemporalFrame(const SceneGpu& scene) : whole_(scene), motion_(scene), taa_(motion_) {
+  // After chapter 10's own stages: the motion before the lights, TAA after the glass.
+  whole_.add_stage(motion_);
+  whole_.add_stage(taa_);
+}
+
+void TemporalFrame::reload_shaders() {
+  whole_.reload_shaders();
+  motion_.reload_shaders();
+  taa_.reload_shaders();
+}
+
+// [temporal-render]
+void TemporalFrame::render(const FrameCamera& camera, const ch03::FrameOutput& output, const TemporalSettings& s,
+                           float dt, bool cut, PassMetrics* metrics) {
+  const bool new_shot = cut || !sequence_;
+  const bool taa = s.taa.enabled;
+  jitter_ = taa || s.jitter_alone ? jitter_offset(index_, s.jitter_period) : glm::vec2(0);
+  motion_.set_enabled(taa);
+  motion_.set_cameras(camera, new_shot ? camera : previous_);
+  if (new_shot) taa_.reset();
+  // The blend's weights use the exposure chapter 05's eye last tonemapped with.
+  taa_.set(s.taa, whole_.radiance() ? whole_.hdr().adaptation().state_buffer() : 0);
+  whole_.render(jittered(camera, jitter_, output.width, output.height), output, s.whole, dt, new_shot, metrics);
+  previous_ = camera;
+  sequence_ = true;
+  ++index_;
+}
+// [/temporal-render]
+
+void TemporalFrame::render_still(const FrameCamera& camera, glm::vec2 offset, const ch03::FrameOutput& output,
+                                 const TemporalSettings& s) {
+  TemporalSettings still = s;
+  still.taa.enabled = false;
+  motion_.set_enabled(false);
+  taa_.set(still.taa, 0);
+  jitter_ = offset;
+  whole_.render(jittered(camera, offset, output.width, output.height), output, still.whole, 1.f / 30.f, true);
+  sequence_ = false;
+}
+
+ImageF read_linear(GLuint framebuffer, int width, int height) {
+  const ImageRGBA8 image = read_framebuffer(framebuffer, width, height);
+  ImageF out = ImageF::blank(width, height, 3);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < 3; ++c) out.at(x, y, c) = srgb_to_linear(image.at(x, y)[c] / 255.f);
+  return out;
+}
+
+ImageF supersampled(TemporalFrame& frame, const FrameCamera& camera, int width, int height, const TemporalSettings& s,
+                    int grid) {
+  if (grid < 1 || grid > 16) throw Error("supersampled: a grid of " + std::to_string(grid) + " (1 to 16 a side)");
+  OutputTarget target(width, height);
+  ImageF sum = ImageF::blank(width, height, 3);
+  for (int j = 0; j < grid; ++j)
+    for (int i = 0; i < grid; ++i) {
+      const glm::vec2 offset((float(i) + 0.5f) / float(grid) - 0.5f, (float(j) + 0.5f) / float(grid) - 0.5f);
+      frame.render_still(camera, offset, {target.framebuffer(), width, height}, s);
+      const ImageF one = read_linear(target.framebuffer(), width, height);
+      for (std::size_t k = 0; k < sum.data.size(); ++k) sum.data[k] += one.data[k];
+    }
+  for (float& v : sum.data) v /= float(grid * grid);
+  return sum;
+}
+
+}  // namespace lp::ch11

@@ -1,0 +1,65 @@
+#pragma once
+// Chapter 10's whole frame over time: each frame's projection jittered (Halton 2, 3), the
+// motion vectors drawn after the G-buffer, and TAA after the composite and the glass, before
+// chapter 05's HDR chain. The frame remembers the last camera; a cut starts history again.
+//
+//   TemporalFrame frame(scene_gpu);
+//   frame.render(camera, {target, w, h}, settings, dt, cut, &metrics);   // camera without jitter
+#include "chapters/10_frame/whole_frame.h"
+#include "chapters/11_temporal/jitter.h"
+#include "chapters/11_temporal/motion.h"
+#include "chapters/11_temporal/taa.h"
+#include "common/image.h"
+
+namespace lp::ch11 {
+
+// [temporal-settings]
+struct TemporalSettings {
+  ch10::WholeFrameSettings whole;  // chapter 10's stages
+  TaaSettings taa;                 // taa.enabled false: chapter 10's frame, no jitter, no motion
+  unsigned jitter_period = 8;      // Halton(2, 3) points before the pattern repeats
+  bool jitter_alone = false;       // jitter without TAA too (tests: the frames TAA would blend)
+};
+// [/temporal-settings]
+
+class TemporalFrame {
+ public:
+  explicit TemporalFrame(const SceneGpu& scene);
+  void reload_shaders();
+  // One frame of a sequence. `camera` without jitter; `cut`: a new shot (no history, the eye
+  // adapted at once), as on the first frame.
+  void render(const FrameCamera& camera, const ch03::FrameOutput& output, const TemporalSettings& s, float dt, bool cut,
+              PassMetrics* metrics = nullptr);
+  // One frame alone, its projection moved by `offset` pixels, without history (the frames the
+  // supersampled truth averages). The next render() starts a new sequence.
+  void render_still(const FrameCamera& camera, glm::vec2 offset, const ch03::FrameOutput& output, const TemporalSettings& s);
+
+  glm::vec2 last_jitter() const { return jitter_; }
+  ch10::WholeFrame& whole() { return whole_; }
+  const MotionStage& motion() const { return motion_; }
+  const TaaStage& taa() const { return taa_; }
+  std::size_t allocated_bytes() const { return whole_.allocated_bytes() + motion_.allocated_bytes() + taa_.allocated_bytes(); }
+
+ private:
+  ch10::WholeFrame whole_;
+  MotionStage motion_;
+  TaaStage taa_;
+  FrameCamera previous_;
+  bool sequence_ = false;
+  unsigned index_ = 0;
+  glm::vec2 jitter_{0};
+};
+
+// [truth-grid]
+// The supersampled truth of a frame: 16 frames of the whole frame, each moved to one point of
+// a 4x4 grid over the pixel (stratified, so every sub-pixel region counts equally), without
+// history, averaged in linear light. The same pixel size as the frame, so the screen-space
+// stages (AO and indirect light in pixels, bloom) see the scene as the frame does.
+ImageF supersampled(TemporalFrame& frame, const FrameCamera& camera, int width, int height, const TemporalSettings& s,
+                    int grid = 4);
+// [/truth-grid]
+
+// The output read back as linear RGB floats (sRGB decoded), rows top to bottom.
+ImageF read_linear(GLuint framebuffer, int width, int height);
+
+}  // namespace lp::ch11

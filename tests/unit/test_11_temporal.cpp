@@ -1,0 +1,89 @@
+// Chapter 11 without OpenGL: the Halton jitter and the camera paths.
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "chapters/11_temporal/camera_path.h"
+#include "chapters/11_temporal/jitter.h"
+#include "common/error.h"
+#include "common/paths.h"
+
+using namespace lp;
+using namespace lp::ch11;
+
+// The radical inverse mirrors the digits: base 2: 1 -> 1/2, 6 = 110b -> 0.011b = 3/8;
+// base 3: 5 = 12 (base 3) -> 0.21 (base 3) = 7/9.
+TEST(Jitter, TheRadicalInverseMirrorsTheDigits) {
+  EXPECT_FLOAT_EQ(radical_inverse(1, 2), 0.5f);
+  EXPECT_FLOAT_EQ(radical_inverse(6, 2), 0.375f);
+  EXPECT_FLOAT_EQ(radical_inverse(5, 3), 7.f / 9.f);
+}
+
+// Over a period the offsets average to zero (the history converges on the pixel's centre),
+// stay inside the pixel, and are distinct. Derived: the first b^k - 1 points of base b are
+// {1 .. b^k - 1} / b^k, mean exactly 1/2; period 8 in base 2 adds 1/16, mean 57/128, which the
+// offsets subtract.
+TEST(Jitter, HaltonJitterHasAZeroMeanOverItsPeriod) {
+  EXPECT_FLOAT_EQ(halton_mean(7, 2), 0.5f);
+  EXPECT_FLOAT_EQ(halton_mean(8, 3), 0.5f);
+  EXPECT_FLOAT_EQ(halton_mean(8, 2), 57.f / 128.f);
+  for (unsigned period : {1u, 4u, 8u, 16u}) {
+    glm::vec2 sum(0);
+    std::set<std::pair<float, float>> seen;
+    for (unsigned i = 0; i < period; ++i) {
+      const glm::vec2 o = jitter_offset(i, period);
+      EXPECT_GE(o.x, -0.5f);
+      EXPECT_LE(o.x, 0.5f);
+      EXPECT_GE(o.y, -0.5f);
+      EXPECT_LE(o.y, 0.5f);
+      seen.insert({o.x, o.y});
+      sum += o;
+    }
+    EXPECT_NEAR(sum.x / float(period), 0.f, 1e-6f) << "period " << period;
+    EXPECT_NEAR(sum.y / float(period), 0.f, 1e-6f) << "period " << period;
+    EXPECT_EQ(seen.size(), period);
+    EXPECT_EQ(jitter_offset(period, period), jitter_offset(0, period));  // it repeats
+  }
+}
+
+// A jittered projection moves every point's image by the offset, in pixels.
+TEST(Jitter, TheJitteredProjectionMovesTheImageByTheOffset) {
+  FrameCamera c;
+  c.projection = glm::perspective(0.8f, 16.f / 9.f, 0.1f, 100.f);
+  const FrameCamera j = jittered(c, {0.25f, -0.5f}, 160, 90);
+  for (const glm::vec4 p : {glm::vec4(0, 0, -5, 1), glm::vec4(3, -1, -40, 1)}) {
+    const glm::vec4 a = c.projection * p, b = j.projection * p;
+    EXPECT_NEAR((b.x / b.w - a.x / a.w) * 0.5f * 160.f, 0.25f, 1e-4f);
+    EXPECT_NEAR((b.y / b.w - a.y / a.w) * 0.5f * 90.f, -0.5f, 1e-4f);
+    EXPECT_FLOAT_EQ(b.z / b.w, a.z / a.w);  // depth untouched
+  }
+}
+
+// The paths: frame 0 is the named view, the frame count is the duration at the rate, a cut is
+// reported on the frame it happens and on no other, and unknown names say what there is.
+TEST(CameraPaths, FramesPosesAndCuts) {
+  const std::string street = "assets/street_shop/street_shop.gltf";
+  const Scene scene = load_scene(from_root(street));
+  const CameraPath& walk = path_named(street, "walk");
+  EXPECT_EQ(walk.frames(), 91);  // 3 s at 30 frames a second, both ends
+  const Camera first = walk.camera(scene, 0);
+  EXPECT_EQ(first.world, scene.camera("shops").world);
+  EXPECT_NE(walk.camera(scene, 45).world, first.world);
+  EXPECT_EQ(walk.camera(scene, 45).world, walk.camera(scene, 45).world);  // deterministic
+  int walk_cuts = 0;
+  for (int i = 1; i < walk.frames(); ++i) walk_cuts += walk.cut_at(i);
+  EXPECT_EQ(walk_cuts, 0);
+  EXPECT_TRUE(walk.cut_at(0));
+  const CameraPath& cut = path_named(street, "cut");
+  std::vector<int> cuts;
+  for (int i = 1; i < cut.frames(); ++i)
+    if (cut.cut_at(i)) cuts.push_back(i);
+  ASSERT_EQ(cuts, std::vector<int>{30});  // the frame at t = 1 s shows the new view
+  EXPECT_EQ(glm::vec3(cut.camera(scene, 30).world[3]), scene.camera("shop_window").position());
+  try {
+    path_named(street, "fly");
+    FAIL() << "no error for an unknown path";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("walk"), std::string::npos) << e.what();
+  }
+}

@@ -1,0 +1,247 @@
+// Chapter 11 on the GPU: motion vectors of a still camera are zero whatever the jitter, TAA of
+// a still camera is the frame itself, a cut starts the history again, and along a path TAA is
+// nearer the supersampled truth on edges than no AA while disocclusion rejection holds ghosting
+// down (measure.h).
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdio>
+#include <numeric>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "chapters/11_temporal/camera_path.h"
+#include "chapters/11_temporal/measure.h"
+#include "chapters/11_temporal/temporal_frame.h"
+#include "common/paths.h"
+#include "common/target.h"
+#include "tests/unit/gl_environment.h"
+
+using namespace lp;
+using namespace lp::ch11;
+
+namespace {
+
+constexpr int kW = 160, kH = 90;
+
+const Scene& street() {
+  static const Scene scene = load_scene(from_root("assets/street_shop/street_shop.gltf"));
+  return scene;
+}
+const SceneGpu& street_gpu() {
+  static const SceneGpu gpu(street());
+  return gpu;
+}
+
+FrameCamera shops() { return frame_camera(street().camera("shops"), float(kW) / float(kH)); }
+
+// Chapter 10's whole frame with its defaults, the eye adapted at once (the truth's frames are
+// each a new shot: the same exposure rule for both).
+TemporalSettings defaults() {
+  TemporalSettings s;
+  s.whole.hdr.adaptation.tau = 0.f;
+  return s;
+}
+
+int max_step(const ImageRGBA8& a, const ImageRGBA8& b) {
+  int m = 0;
+  for (std::size_t i = 0; i < a.pixels.size(); ++i) m = std::max(m, std::abs(int(a.pixels[i]) - int(b.pixels[i])));
+  return m;
+}
+
+double mean_of(const std::vector<PathFrame>& frames, double PathFrame::*field) {
+  double sum = 0;
+  for (const PathFrame& f : frames) sum += f.*field;
+  return frames.empty() ? 0.0 : sum / double(frames.size());
+}
+
+}  // namespace
+
+// A still camera: every pixel's motion is zero and its depth then is its depth now, frame after
+// frame, although each frame's projection is jittered differently (motion is the surface's,
+// computed without the jitter).
+TEST(TemporalGl, AStillCameraHasZeroMotionWhateverTheJitter) {
+  TemporalFrame frame(street_gpu());
+  OutputTarget target(kW, kH);
+  for (int i = 0; i < 3; ++i) frame.render(shops(), {target.framebuffer(), kW, kH}, defaults(), 1.f / 30.f, i == 0);
+  ASSERT_NE(frame.last_jitter(), glm::vec2(0));
+  const ImageF m = read_texture_rgba(frame.motion().current(), kW, kH);
+  float largest = 0, depth_change = 0, nearest = 1e30f;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      largest = std::max({largest, std::abs(m.at(x, y, 0)), std::abs(m.at(x, y, 1))});
+      depth_change = std::max(depth_change, std::abs(m.at(x, y, 2) - m.at(x, y, 3)));
+      nearest = std::min(nearest, m.at(x, y, 3));
+    }
+  EXPECT_EQ(largest, 0.f);       // the same matrices both times: exactly the same uv
+  EXPECT_EQ(depth_change, 0.f);
+  EXPECT_GT(nearest, 0.f);       // a depth in front of the camera, not the clear value
+  EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+}
+
+// Reprojection of a still camera is the identity: with the jitter held at the pixel's centre
+// (a period of 1), the history is this frame's image at texel centres, where Catmull-Rom's
+// weights are (0, 1, 0, 0) and the clip box holds it; so after frames of blending the result is
+// the frame without TAA. Allowed: one 8-bit step (the tonemapped space's round trip in float).
+TEST(TemporalGl, ReprojectionOfAStillCameraIsTheIdentity) {
+  TemporalSettings s = defaults();
+  s.jitter_period = 1;
+  TemporalFrame frame(street_gpu());
+  OutputTarget target(kW, kH);
+  for (int i = 0; i < 6; ++i) frame.render(shops(), {target.framebuffer(), kW, kH}, s, 1.f / 30.f, i == 0);
+  const ImageRGBA8 taa = target.read();
+  const ImageF rejected = read_texture_rgba(frame.taa().rejected(), kW, kH);
+  double kept = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) kept += rejected.at(x, y, 0) < 0.5f ? 1 : 0;
+  s.taa.enabled = false;
+  TemporalFrame plain(street_gpu());  // the same frames: chapter 05's exposure feedback has the same past
+  for (int i = 0; i < 6; ++i) plain.render(shops(), {target.framebuffer(), kW, kH}, s, 1.f / 30.f, i == 0);
+  EXPECT_EQ(kept, double(kW * kH));  // nothing was hidden: all the history is used
+  EXPECT_LE(max_step(taa, target.read()), 1);
+}
+
+// A cut: the first frame of the new view is that view's frame alone (no TAA, the same jitter,
+// after the same frames, so chapter 05's exposure feedback has the same past), with no trace
+// of the view before, and every pixel's history dropped. The disocclusion test is off here, so
+// only the reset can drop the old view. Allowed: one 8-bit step (the tonemapped space's round
+// trip in float).
+TEST(TemporalGl, ACutStartsTheHistoryAgain) {
+  const CameraPath& path = path_named("assets/street_shop/street_shop.gltf", "cut");
+  int cut = 1;
+  while (cut < path.frames() && !path.cut_at(cut)) ++cut;
+  ASSERT_LT(cut, path.frames());
+  TemporalSettings s = defaults();
+  s.taa.reject_disocclusion = false;
+  TemporalSettings plain = s;
+  plain.taa.enabled = false;
+  plain.jitter_alone = true;
+  auto play = [&](TemporalFrame& frame, OutputTarget& target, const TemporalSettings& settings) {
+    for (int i = cut - 4; i <= cut; ++i)
+      frame.render(frame_camera(path.camera(street(), i), float(kW) / float(kH)), {target.framebuffer(), kW, kH}, settings,
+                   1.f / 30.f, i == cut - 4 || path.cut_at(i));
+    return target.read();
+  };
+  TemporalFrame frame(street_gpu()), alone(street_gpu());
+  OutputTarget target(kW, kH);
+  const ImageRGBA8 after_cut = play(frame, target, s);
+  const ImageF rejected = read_texture_rgba(frame.taa().rejected(), kW, kH);
+  double dropped = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) dropped += rejected.at(x, y, 0) > 0.5f ? 1 : 0;
+  const ImageRGBA8 reference = play(alone, target, plain);
+  EXPECT_EQ(frame.last_jitter(), alone.last_jitter());
+  EXPECT_EQ(dropped, double(kW * kH));
+  EXPECT_LE(max_step(after_cut, reference), 1);
+}
+
+// A moving camera: each pixel's motion takes it to where its surface point projects in the last
+// frame. The point is rebuilt on the CPU from the pixel's centre and the view depth the motion
+// target holds (its w), through this frame's camera; the last camera projects it. Jitter held
+// at the centre (a period of 1), so the pixel's centre is the point the G-buffer saw.
+namespace {
+// The worst and mean distance, in pixels, between where each pixel's motion takes it and where
+// its point (rebuilt from the motion target's depth through c1) projects through c0.
+std::pair<double, double> motion_error(const Camera& c0, const Camera& c1) {
+  TemporalSettings s = defaults();
+  s.jitter_period = 1;
+  s.whole.indirect = s.whole.ao = false;
+  const FrameCamera f0 = frame_camera(c0, float(kW) / float(kH)), f1 = frame_camera(c1, float(kW) / float(kH));
+  TemporalFrame frame(street_gpu());
+  OutputTarget target(kW, kH);
+  frame.render(f0, {target.framebuffer(), kW, kH}, s, 1.f / 30.f, true);
+  frame.render(f1, {target.framebuffer(), kW, kH}, s, 1.f / 30.f, false);
+  const ImageF m = read_texture_rgba(frame.motion().current(), kW, kH);
+  const glm::mat4 inverse_projection = glm::inverse(f1.projection), camera_to_world = glm::inverse(f1.view);
+  double worst = 0, sum = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const glm::vec2 uv((float(x) + 0.5f) / kW, 1.f - (float(y) + 0.5f) / kH);
+      glm::vec4 view = inverse_projection * glm::vec4(uv * 2.f - 1.f, 1.f, 1.f);
+      view /= view.w;
+      const glm::vec3 point = glm::vec3(camera_to_world * glm::vec4(glm::vec3(view) * (m.at(x, y, 3) / -view.z), 1.f));
+      const glm::vec4 clip = f0.view_projection() * glm::vec4(point, 1.f);
+      const glm::vec2 expected = glm::vec2(clip) / clip.w * 0.5f + 0.5f;
+      const glm::vec2 moved = uv - glm::vec2(m.at(x, y, 0), m.at(x, y, 1));
+      const double px = glm::length((moved - expected) * glm::vec2(kW, kH));
+      worst = std::max(worst, px);
+      sum += px;
+    }
+  return {worst, sum / double(kW * kH)};
+}
+}  // namespace
+
+TEST(TemporalGl, AMovingCameraMovesEachPixelToItsLastProjection) {
+  const Camera c0 = street().camera("shops");
+  Camera moved = c0, turned = c0;
+  moved.world = glm::translate(glm::mat4(1), glm::vec3(c0.world * glm::vec4(0.3f, 0.05f, -0.4f, 0.f))) * c0.world;
+  turned.world = c0.world * glm::rotate(glm::mat4(1), 0.03f, glm::vec3(0, 1, 0));
+  for (const Camera& c1 : {moved, turned}) {
+    const auto [worst, mean] = motion_error(c0, c1);
+    std::printf("motion error: worst %.4f, mean %.5f px\n", worst, mean);
+    // The GPU interpolates the same clip positions in float: a hundredth of a pixel is far above
+    // float rounding at this size (a uv step of 2^-24 is 10^-5 pixels) and far below what moves a
+    // Catmull-Rom read visibly.
+    EXPECT_LT(worst, 0.01);
+    EXPECT_LT(mean, 1e-3);
+  }
+}
+
+// Along a still camera's jittered frames TAA approaches the supersampled truth: after 24 frames
+// (the reset frame's weight 0.9^24 < 0.08) its edge error is below 0.8 of no AA's. Why 0.8: a
+// straight edge crossing a pixel at coverage c is one sample's colour with error 2c(1 - c) of
+// the contrast, a third on average; the 8 Halton points estimate c within their discrepancy,
+// about 1/5, so the converged ratio is near 0.6. 0.8 leaves room for the frames before
+// convergence and for what is not a straight edge.
+TEST(TemporalGl, OnAStillCameraTaaEdgesAreNearerTheTruthThanNoAa) {
+  const CameraPath still{"still", "street_shop", 30.f, {{0.f, "shops", {0, 0, 0}, 0.f, 0.f}, {1.f, "shops", {0, 0, 0}, 0.f, 0.f}}};
+  const PathRunOptions o{.width = kW, .height = kH, .first = 24, .count = 1};
+  TemporalSettings taa = defaults();
+  taa.whole.indirect = taa.whole.ao = false;  // their pixel-sized noise is not what this measures
+  TemporalSettings off = taa;
+  off.taa.enabled = false;
+  const std::vector<PathFrame> with = measure_path(street_gpu(), still, taa, o);
+  const std::vector<PathFrame> without = measure_path(street_gpu(), still, off, o);
+  ASSERT_EQ(with.size(), 1u);
+  ASSERT_EQ(without.size(), 1u);
+  EXPECT_GT(with[0].edge_pixels, std::size_t(kW * kH / 50));  // the street has edges to measure
+  std::printf("edge error: TAA %.5f, no AA %.5f (%zu edge pixels); overall %.5f, %.5f\n", with[0].edge_error,
+              without[0].edge_error, with[0].edge_pixels, with[0].error, without[0].error);
+  EXPECT_LT(with[0].edge_error, 0.8 * without[0].edge_error);
+}
+
+// Disocclusion: along the walk, every pixel whose surface was hidden last frame by the stated
+// rule (measure.h's C++ twin of the resolve's test, on the motion targets read back) has its
+// history dropped by the resolve, and every other pixel keeps it. The two compute the same rule
+// in float on the same data: only a pixel whose depth difference lies within float rounding
+// (10^-6 relative) of the tolerance may go either way; of 14 400 pixels we allow two each way.
+TEST(TemporalGl, TheResolveDropsTheHistoryOfEveryDisoccludedPixel) {
+  const CameraPath& path = path_named("assets/street_shop/street_shop.gltf", "walk");
+  TemporalSettings s = defaults();
+  s.whole.indirect = s.whole.ao = false;
+  TemporalFrame frame(street_gpu());
+  OutputTarget target(kW, kH);
+  for (int i = 0; i < 8; ++i)
+    frame.render(frame_camera(path.camera(street(), i), float(kW) / float(kH)), {target.framebuffer(), kW, kH}, s, 1.f / 30.f,
+                 path.cut_at(i));
+  const ImageF now = read_texture_rgba(frame.motion().current(), kW, kH);
+  const ImageF then = read_texture_rgba(frame.motion().previous(), kW, kH);
+  const ImageF rejected = read_texture_rgba(frame.taa().rejected(), kW, kH);
+  const std::vector<std::uint8_t> hidden = disocclusion_mask(now, then, s.taa.depth_tolerance);
+  int disoccluded = 0, dropped = 0, kept_elsewhere = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const bool r = rejected.at(x, y, 0) > 0.5f;
+      if (hidden[std::size_t(y) * kW + x]) {
+        ++disoccluded;
+        dropped += r;
+      } else {
+        kept_elsewhere += !r;
+      }
+    }
+  std::printf("%d disoccluded, %d of them dropped; %d of %d others kept\n", disoccluded, dropped, kept_elsewhere,
+              kW * kH - disoccluded);
+  EXPECT_GT(disoccluded, 20);  // the walk uncovers something every frame
+  EXPECT_GE(dropped, disoccluded - 2);
+  EXPECT_GE(kept_elsewhere, kW * kH - disoccluded - 2);
+}
