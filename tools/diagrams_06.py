@@ -9,6 +9,10 @@
                       over two occluders: light bleeding, and what P_min does to it
 06_pcss.svg           PCSS's similar triangles for the sun: the cone towards the sun's disk on
                       the blockers' plane (filter radius) and on the map's near plane (search)
+06_cascades.svg       cascaded maps seen from above: the view frustum cut by the practical split (log and
+                      uniform blended by lambda), a sphere around each slice and the map's square around it
+06_snapping.svg       a shadow edge drawn into texels by a box that slides with the camera (its staircase
+                      moves: shimmer) and by one moved by whole texels (the same staircase)
 06_light_frustum.svg  the sun's map box in a section of the atrium: across the light fitted to what the view
                       sees, along the light the whole scene's depth (a caster above the view)
 """
@@ -260,12 +264,101 @@ def light_arrows_along(s, P, d, starts):
         s.line(P(p), P(add(p, d, 2.5)), LIGHT, 2, arrow=True)
 
 
+def practical_splits(count, near, far, lam):
+    """shadow_math.h's cascade_splits."""
+    return [lam * near * (far / near) ** (i / count) + (1 - lam) * (near + (far - near) * i / count)
+            for i in range(count + 1)]
+
+
+def cascades_figure(out: Path):
+    """Top view: the camera at the left looking right, its frustum (half angle h) from near to
+    far cut by the practical split; each slice's smallest sphere (centre on the axis, near and far
+    corners on it) and the square map around it (the light from above the page)."""
+    s = Svg(700, 420)
+    near, far, lam, count = 0.5, 40.0, 0.75, 3
+    h = math.radians(18)
+    z = practical_splits(count, near, far, lam)
+    log = practical_splits(count, near, far, 1.0)
+    uni = practical_splits(count, near, far, 0.0)
+    spheres = []
+    for i in range(count):
+        n, f = z[i], z[i + 1]
+        a, b = n * math.tan(h), f * math.tan(h)
+        c = min(max(((f * f + b * b) - (n * n + a * a)) / (2 * (f - n)), n), f)
+        spheres.append((c, max(math.hypot(c - n, a), math.hypot(f - c, b))))
+    c_last, r_last = spheres[-1]
+    k = min(620 / (c_last + r_last), 290 / (2 * r_last))  # pixels per metre: the last square fits
+    ox, oy = 50, 225
+    P = lambda d, side: (ox + d * k, oy - side * d * math.tan(h) * k)  # noqa: E731
+    s.text((350, 20), "Three cascades, practical split (λ = 0.75): each slice's sphere and the square map around it",
+           INK, 12, "middle", bold=True)
+    s.dot((ox, oy), INK, 4)
+    s.text((ox - 30, oy + 4), "eye", INK, 11)
+    colours = [BAD, GOOD, RAY]
+    for i, (c, r) in enumerate(spheres):
+        n, f = z[i], z[i + 1]
+        centre = (ox + c * k, oy)
+        s.poly([P(n, 1), P(f, 1), P(f, -1), P(n, -1)], colours[i], 2, fill=colours[i], opacity=0.15)
+        pts = [(centre[0] + r * k * math.cos(2 * math.pi * j / 90), centre[1] + r * k * math.sin(2 * math.pi * j / 90))
+               for j in range(90)]
+        s.poly(pts, colours[i], 1.2, dash="4 3")
+        s.rect(centre[0] - r * k, centre[1] - r * k, 2 * r * k, 2 * r * k, "none", colours[i])
+        s.text((470, 110 + 18 * i), f"cascade {i}: view depth {n:.1f} to {f:.1f} m", colours[i], 11)
+    # The first inner split by each scheme, on a ruler above the frustum.
+    ruler = 48
+    s.line((ox, ruler), (ox + far * k, ruler), GREY, 1)
+    for value, label, colour, dy in ((log[1], "log", GREY, -6), (z[1], "practical", INK, 14), (uni[1], "uniform", GREY, -6)):
+        x = ox + value * k
+        s.line((x, ruler - 5), (x, ruler + 5), colour, 2)
+        s.text((x, ruler + dy), label, colour, 10, "middle")
+    s.text((ox + far * k, ruler - 6), "the first split", GREY, 10, "end")
+    s.text((20, 398), "A sphere's size depends on its slice and the field of view only:", INK, 11)
+    s.text((20, 413), "it holds as the camera turns and moves, and so does its map's texel.", INK, 11)
+    s.save(out, "06_cascades.svg")
+
+
+def snapping_figure(out: Path):
+    """A straight shadow edge over a map's texels, two frames apart. Left: the box slid 0.4 texel
+    with the camera, the texel centres fall elsewhere on the edge and the staircase changes.
+    Right: the box moved a whole texel, the centres are the same points of the world."""
+    s = Svg(680, 300)
+    W, cols, rows = 26, 9, 7
+    edge = lambda x: 0.55 * x + 40  # noqa: E731  the shadow edge, page y of the world x (from the panel's left)
+    for panel, (x0, title, shift) in enumerate(((20, "Box slides with the camera: the staircase moves", 0.4),
+                                                (360, "Box moved by whole texels: the same staircase", 1.0))):
+        s.text((x0 + 150, 22), title, INK, 12, "middle", bold=True)
+        top = 50
+        # Frame 2's shadowed texels filled, then frame 1's outlined over them.
+        for frame, offset in ((1, shift), (0, 0.0)):
+            for i in range(-1, cols + 1):
+                for j in range(rows):
+                    gx = (i + offset) * W  # texel's left, world x from the panel's left
+                    if gx < 0 or gx + W > cols * W:
+                        continue
+                    cx, cy = gx + W / 2, j * W + W / 2
+                    if cy <= edge(cx):
+                        continue
+                    if frame == 1:
+                        s.rect(x0 + gx + 1, top + j * W + 1, W - 2, W - 2, "#f2b8b8" if panel == 0 else "#bfe3c4", "none")
+                    else:
+                        s.rect(x0 + gx + 3, top + j * W + 3, W - 6, W - 6, "none", DARK)
+        s.line((x0, top + edge(0)), (x0 + cols * W, top + edge(cols * W)), INK, 2)
+        s.text((x0, top + rows * W + 22), "outlined: frame 1's shadowed texels; filled: frame 2's", INK, 11)
+        s.text((x0 + 150, top - 8), f"frame 2's box: {shift:g} texel along", BAD if panel == 0 else GOOD, 11, "middle")
+        s.text((x0, top + rows * W + 40), "black line: the true shadow edge, fixed in the world", INK, 11)
+    s.text((20, 290), "texel = 2 r / (N − 2); the box's corner at floor(c / texel) · texel: one spare texel a side",
+           INK, 11)
+    s.save(out, "06_snapping.svg")
+
+
 def main(out: Path):
     out.mkdir(parents=True, exist_ok=True)
     acne_figure(out)
     chebyshev_figure(out)
     pcss_figure(out)
     light_frustum_figure(out)
+    cascades_figure(out)
+    snapping_figure(out)
 
 
 if __name__ == "__main__":

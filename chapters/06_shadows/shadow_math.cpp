@@ -67,6 +67,63 @@ LightFrustum fit_light_frustum(glm::vec3 direction, glm::vec3 scene_min, glm::ve
   return f;
 }
 
+// [cascades-cpp]
+std::vector<float> cascade_splits(int count, float near, float far, float lambda) {
+  if (count < 1 || count > kMaxCascades)
+    throw Error("cascade_splits: between 1 and " + std::to_string(kMaxCascades) + " cascades (got " + std::to_string(count) + ")");
+  if (!(near > 0.f && far > near)) throw Error("cascade_splits: needs 0 < near < far");
+  if (!(lambda >= 0.f && lambda <= 1.f)) throw Error("cascade_splits: lambda must be in [0, 1]");
+  std::vector<float> z(std::size_t(count) + 1);
+  for (int i = 0; i <= count; ++i) {
+    const float t = float(i) / float(count);
+    z[std::size_t(i)] = lambda * near * std::pow(far / near, t) + (1.f - lambda) * (near + (far - near) * t);
+  }
+  z.front() = near, z.back() = far;  // exactly, whatever pow rounds to
+  return z;
+}
+
+Sphere frustum_slice_sphere(const glm::mat4& camera_world, float yfov, float aspect, float n, float f) {
+  // Half the diagonal of the slice's near and far rectangles; the centre on the axis at the depth c
+  // equally far from a near and a far corner, or at the far rectangle when that is nearer.
+  const float k = std::tan(yfov / 2.f) * std::sqrt(1.f + aspect * aspect);
+  const float a = n * k, b = f * k;
+  float c = ((f * f + b * b) - (n * n + a * a)) / (2.f * (f - n));
+  c = std::clamp(c, n, f);
+  const float radius = std::max(std::sqrt((c - n) * (c - n) + a * a), std::sqrt((f - c) * (f - c) + b * b));
+  const glm::vec3 eye(camera_world[3]), forward = -glm::normalize(glm::vec3(camera_world[2]));
+  return {eye + forward * c, radius};
+}
+
+LightFrustum fit_cascade(glm::vec3 direction, glm::vec3 scene_min, glm::vec3 scene_max, const Sphere& sphere,
+                         int map_size, bool snap) {
+  if (map_size < 8) throw Error("fit_cascade: a map of at least 8 texels a side");
+  // The light's view and the whole scene's depth range: fit_light_frustum's, fitted to nothing.
+  LightFrustum f = fit_light_frustum(direction, scene_min, scene_max);
+  const float texel = 2.f * sphere.radius / float(map_size - 2);
+  const float half = 0.5f * float(map_size) * texel;
+  glm::vec3 centre = glm::vec3(f.view * glm::vec4(sphere.centre, 1.f));
+  if (snap) centre.x = std::floor(centre.x / texel) * texel, centre.y = std::floor(centre.y / texel) * texel;
+  f.box_min.x = centre.x - half, f.box_max.x = centre.x + half;
+  f.box_min.y = centre.y - half, f.box_max.y = centre.y + half;
+  f.projection = glm::ortho(f.box_min.x, f.box_max.x, f.box_min.y, f.box_max.y, -f.box_max.z, -f.box_min.z);
+  return f;
+}
+
+CascadeChoice choose_cascade(float depth, const std::vector<float>& splits, float band) {
+  CascadeChoice c;
+  const int count = int(splits.size()) - 1;
+  for (int i = 0; i < count; ++i)
+    if (depth < splits[std::size_t(i) + 1]) {
+      c.cascade = i;
+      const float length = band * (splits[std::size_t(i) + 1] - splits[std::size_t(i)]);
+      const float into = depth - (splits[std::size_t(i) + 1] - length);
+      if (i + 1 < count && length > 0.f && into > 0.f) c.next_weight = std::min(into / length, 1.f);
+      return c;
+    }
+  return c;
+}
+// [/cascades-cpp]
+
 SpotFrustum fit_spot_frustum(glm::vec3 position, glm::vec3 direction, float outer_cone, float range, glm::vec3 scene_min,
                              glm::vec3 scene_max) {
   if (!(outer_cone > 0.f && outer_cone <= kMaxSpotCone))

@@ -3,6 +3,7 @@
 // it in shadow_visibility.glsl (uniform block ShadowBlock), C++ in shadow_stage.cpp, which
 // fills it and asserts the std140 offsets (vec4 and mat4 on 16 bytes, floats between).
 #define SHADOW_MAX_POISSON_TAPS 64
+#define SHADOW_MAX_CASCADES 4
 struct ShadowParameters {
   mat4 matrix;           // world to the sun map's clip space (orthographic)
   float texel_metres;    // one map texel, metres
@@ -27,5 +28,16 @@ struct ShadowParameters {
   vec3 spot_position;
   float spot_mapped;     // 1 when the spot's map was drawn this frame
   float spot_near, spot_far, spot_tan_cone, spot_map_size;  // its frustum (metres) and map (texels)
+  // Cascades (shadow_math.h [cascades]), when SHADOW_CASCADES > 1: the sun's maps are the layers
+  // of an array, each with its frustum; the light's view and depth range are those above.
+  mat4 cascade_matrix[SHADOW_MAX_CASCADES];  // world to each cascade's clip space
+  vec4 cascade_far;      // the view depth where each cascade ends, metres
+  vec4 cascade_texel;    // each cascade's texel, metres
+  vec4 cascade_extent;   // each cascade's square, metres a side
+  vec4 camera_depth;     // a world point's view depth: dot(camera_depth.xyz, p) + camera_depth.w
+  float cascade_count;
+  float cascade_band;    // the blend band: the last fraction of a cascade's depth range
+  float cascade_near;    // the camera's near plane: where the first cascade begins
+  float unused2;
 };
 // [/shadow-block]
