@@ -28,6 +28,9 @@ struct ShadowParameters {
   vec3 spot_position;
   float spot_mapped;     // 1 when the spot's map was drawn this frame
   float spot_near, spot_far, spot_tan_cone, spot_map_size;  // its frustum (metres) and map (texels)
+  // ... the cascades' fields ([shadow-block-cascades])
+// [/shadow-block]
+// [shadow-block-cascades]
   // Cascades (shadow_math.h [cascades]), when SHADOW_CASCADES > 1: the sun's maps are the layers
   // of an array, each with its frustum; the light's view and depth range are those above.
   mat4 cascade_matrix[SHADOW_MAX_CASCADES];  // world to each cascade's clip space
@@ -40,4 +43,4 @@ struct ShadowParameters {
   float cascade_near;    // the camera's near plane: where the first cascade begins
   float unused2;
 };
-// [/shadow-block]
+// [/shadow-block-cascades]
