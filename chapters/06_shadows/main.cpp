@@ -2,7 +2,8 @@
 // map from an orthographic frustum fitted to what the view needs, and the frame's light
 // shaders look each pixel up in it by the method the mode names: one comparison (hard),
 // k x k comparisons (pcf), the hardware's comparison sampler (pcf-hardware), Chebyshev's bound
-// on filtered moments (vsm), filtered exp(c z) in log space (esm), or PCF over the penumbra a
+// on filtered moments (vsm), filtered exp(c z) in log space (esm), four moments and the Hamburger
+// reconstruction (msm), or PCF over the penumbra a
 // blocker search finds for the sun as a disk (pcss); or with no map, by the sun's shadow volumes
 // counted in the stencil (volumes). The sun casts, and a spot light the scene marks (a
 // perspective map, hard or PCF); the
@@ -54,9 +55,9 @@ std::vector<Light> scaled_lights(const std::vector<Light>& lights, float sun) {
 const CliSpec kCli{
     .program = "06_shadows",
     .summary = "Shadows from the sun in the deferred frame: a depth map from a fitted orthographic frustum, looked up "
-               "with one comparison, PCF, the hardware comparison sampler, VSM, ESM or PCSS; or shadow volumes.",
+               "with one comparison, PCF, the hardware comparison sampler, VSM, ESM, four moments (MSM) or PCSS; or shadow volumes.",
     .default_scene = "assets/atrium/atrium.gltf",
-    .modes = {"pcf", "hard", "pcf-hardware", "vsm", "esm", "volumes", "pcss"},  // the chapter's recommendation first
+    .modes = {"pcf", "hard", "pcf-hardware", "vsm", "esm", "volumes", "pcss", "msm"},  // the chapter's recommendation first
     .knobs = {{"map", "shadow map width and height in texels (8192: 1.3 GiB with vsm or esm)", 1024, 16, 8192, true},
               {"kernel", "pcf: the k x k grid; vsm, esm: the box filter's width (odd)", 3, 1, 31, true},
               {"taps", "pcf: 0 for the k x k grid, or this many taps of a Poisson disk k texels across, rotated per "
@@ -70,7 +71,8 @@ const CliSpec kCli{
               {"c", "esm: the exponent of exp(c z) (z: window depth in [0, 1]); any c works in log space", 80, 1, 10000,
                false},
               {"fit", "fit the map's box to the view (off: to the whole scene)", 1, 0, 1, true},
-              {"moments", "vsm, esm: bits per value of the filtered map, 32 (RG32F) or 16 (RG16F, half the bytes)", 32,
+              {"moments", "vsm, esm: bits per value of the filtered map, 32 (RG32F) or 16 (RG16F, half the bytes); msm: "
+                          "RGBA32F or RGBA16 through the optimised map", 32,
                16, 32, true},
               {"cascades", "cascaded maps for the sun, each --map texels a side (1: one map fitted to the view; "
                            "methods hard, pcf, pcf-hardware, pcss)", 1, 1, kMaxCascades, true},

@@ -195,6 +195,26 @@ float esm_visibility_direct(float filtered, float c, float depth);
 float esm_visibility_log(float log_filtered, float c, float depth);
 // [/esm]
 
+// [msm]
+// Moment shadow maps (Peters and Klein 2015) store four moments b = (z, z^2, z^3, z^4) of the
+// depths under the filter. For a receiver at depth d, the Hamburger reconstruction finds the
+// distribution with these moments that puts the least weight in front of d: three depths, one of
+// them d itself, the other two the roots of a quadratic from the Cholesky factorisation of the
+// moments' Hankel matrix; the weight of those in front of d is the shadow. Four moments pin down
+// two occluders exactly, where Chebyshev's two moments let light bleed through. The moments are
+// pulled a little towards (0.5, 0.5, 0.5, 0.5) first (`moment_bias`), since a Hankel matrix of
+// one or two depths is singular. The lit fraction returned is 1 - shadow, in [0, 1].
+float msm_hamburger(glm::vec4 moments, float depth, float moment_bias);
+glm::vec4 msm_moments(float depth);  // (z, z^2, z^3, z^4)
+// In 16 bits a channel (RGBA16, 64 bits a texel), the moments are stored through the paper's
+// optimised affine map, which spreads them over [0, 1] so that rounding to 16 bits costs the
+// reconstruction the least; filtering commutes with it (it is affine, the filter's weights sum
+// to 1), so the map is filtered as stored and converted back at the lookup.
+glm::vec4 msm_optimize(glm::vec4 moments);
+glm::vec4 msm_unoptimize(glm::vec4 stored);
+inline constexpr float kMsmMomentBias16 = 3e-5f, kMsmMomentBias32 = 3e-7f;
+// [/msm]
+
 // Does the sphere (centre, radius) reach into the view frustum of `view_projection` (OpenGL
 // clip space)? Conservative: the six planes only (Gribb and Hartmann), so a sphere near a
 // corner may pass that reaches nothing; a sphere that reaches the view always passes.

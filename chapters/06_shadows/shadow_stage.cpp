@@ -163,7 +163,8 @@ const ShaderProgram& ShadowStage::program(const std::string& vertex, const std::
 
 void ShadowStage::allocate() {
   const int n = settings_.map_size;
-  const bool filtered = settings_.method == ShadowMethod::Vsm || settings_.method == ShadowMethod::Esm;
+  const bool msm = settings_.method == ShadowMethod::Msm;
+  const bool filtered = settings_.method == ShadowMethod::Vsm || settings_.method == ShadowMethod::Esm || msm;
   if (settings_.moment_bits != 16 && settings_.moment_bits != 32)
     throw Error("shadow stage: moment_bits must be 16 or 32 (got " + std::to_string(settings_.moment_bits) + ")");
   const int bits = filtered ? settings_.moment_bits : 32;
@@ -174,8 +175,9 @@ void ShadowStage::allocate() {
   if (cascades > 1 && filtered)
     throw Error("shadow stage: cascades work with the methods hard, pcf, pcf-hardware and pcss, not " +
                 kMethodNames[int(settings_.method)] + " (its filtered map is one layer)");
+  const int channels = msm ? 4 : 2;
   if (n == allocated_size_ && filtered == allocated_filtered_ && bits == allocated_bits_ &&
-      cascades == allocated_cascades_)
+      cascades == allocated_cascades_ && channels == allocated_channels_)
     return;
   allocated_cascades_ = cascades;
   cascade_depth_.reset();
@@ -200,7 +202,8 @@ void ShadowStage::allocate() {
   if (filtered) {
     // RG32F for both (ESM uses the red channel): one format, so the sizes compare; or RG16F,
     // half the bytes, whose 11-bit mantissa rounds M2 - M1^2 (shadow_math.h [fp16-moments]).
-    const GLenum format = bits == 16 ? GL_RG16F : GL_RG32F;
+    // MSM: four moments, RGBA32F or RGBA16 (unsigned normalised: the optimised map's [0, 1]).
+    const GLenum format = msm ? (bits == 16 ? GL_RGBA16 : GL_RGBA32F) : bits == 16 ? GL_RG16F : GL_RG32F;
     moments_ = gl::make_texture_2d(format, n, n);
     scratch_ = gl::make_texture_2d(format, n, n);
     moments_fbo_ = gl::Framebuffer();
@@ -211,6 +214,7 @@ void ShadowStage::allocate() {
   allocated_size_ = n;
   allocated_filtered_ = filtered;
   allocated_bits_ = bits;
+  allocated_channels_ = channels;
 }
 
 std::size_t ShadowStage::allocated_bytes() const {
@@ -219,7 +223,8 @@ std::size_t ShadowStage::allocated_bytes() const {
   const std::size_t texels = std::size_t(allocated_size_) * std::size_t(allocated_size_) *
                              std::size_t(allocated_cascades_);
   const std::size_t spot = std::size_t(spot_size_) * std::size_t(spot_size_) * 4;  // the spot's depth map, if any
-  return texels * (4 + (allocated_filtered_ ? 2 * 2 * std::size_t(allocated_bits_ / 8) : 0)) + spot;
+  const std::size_t filtered = 2 * std::size_t(allocated_channels_) * std::size_t(allocated_bits_ / 8);  // map + scratch
+  return texels * (4 + (allocated_filtered_ ? filtered : 0)) + spot;
 }
 
 // [shadow-stage]
@@ -278,8 +283,11 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
   if (allocated_filtered_) {
     // 2. VSM / ESM: what the method filters, pre-filtered by a separable box.
     auto pass = timed(metrics, "shadow map: pre-filter");
-    const ShaderProgram& p = program("02_gbuffer/shaders/fullscreen.vert", "06_shadows/shaders/shadow_filter.frag",
-                                     {settings_.method == ShadowMethod::Vsm ? "SHADOW_VSM 1" : "SHADOW_ESM 1"});
+    std::vector<std::string> defines = {settings_.method == ShadowMethod::Vsm   ? "SHADOW_VSM 1"
+                                        : settings_.method == ShadowMethod::Msm ? "SHADOW_MSM 1"
+                                                                                : "SHADOW_ESM 1"};
+    if (settings_.method == ShadowMethod::Msm && allocated_bits_ == 16) defines.push_back("MSM_OPTIMIZED 1");
+    const ShaderProgram& p = program("02_gbuffer/shaders/fullscreen.vert", "06_shadows/shaders/shadow_filter.frag", defines);
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
     p.use();
@@ -324,6 +332,10 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
   block.esm_c = settings_.c;
   block.vsm_p_min = settings_.p_min;
   block.poisson_taps = float(poisson_taps_);
+  block.msm_moment_bias = settings_.msm_moment_bias > 0.f ? settings_.msm_moment_bias
+                          : allocated_bits_ == 16        ? kMsmMomentBias16
+                                                         : kMsmMomentBias32;
+  block.msm_optimized = settings_.method == ShadowMethod::Msm && allocated_bits_ == 16 ? 1.f : 0.f;
   block.view = frustum_.view;
   block.extent = glm::vec2(frustum_.box_max - frustum_.box_min);
   block.tan_sun_radius = std::tan(settings_.sun_angular_radius);

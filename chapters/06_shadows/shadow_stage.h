@@ -24,9 +24,10 @@ namespace lp::ch06 {
 
 // Volumes: no map; the sun's shadow volumes counted in the stencil (z-fail), shadow_volumes.h.
 // Pcss: the sun as a disk (sun_angular_radius), PCF over the penumbra a blocker search
-// estimates (shadow_math.h [pcss]).
-enum class ShadowMethod { Hard, Pcf, PcfHardware, Vsm, Esm, Volumes, Pcss };
-inline const std::vector<std::string> kMethodNames = {"hard", "pcf", "pcf-hardware", "vsm", "esm", "volumes", "pcss"};
+// estimates (shadow_math.h [pcss]). Msm: four filtered moments, the Hamburger reconstruction
+// (shadow_math.h [msm]).
+enum class ShadowMethod { Hard, Pcf, PcfHardware, Vsm, Esm, Volumes, Pcss, Msm };
+inline const std::vector<std::string> kMethodNames = {"hard", "pcf", "pcf-hardware", "vsm", "esm", "volumes", "pcss", "msm"};
 ShadowMethod method_from_name(const std::string& name);  // throws Error for an unknown one
 
 struct ShadowSettings {
@@ -44,7 +45,9 @@ struct ShadowSettings {
   float p_min = 0.2f;           // VSM's light-bleeding reduction
   float c = 80.f;               // ESM's exponent (window depth in [0, 1])
   bool fit_to_view = true;      // the map's box cut to what the camera sees (else the whole scene)
-  int moment_bits = 32;         // VSM, ESM: the filtered map in RG32F (32) or RG16F (16), half the bytes
+  int moment_bits = 32;         // VSM, ESM: the filtered map in RG32F (32) or RG16F (16), half the bytes;
+                                // MSM: RGBA32F (32) or RGBA16 through the optimised map (16)
+  float msm_moment_bias = 0.f;  // MSM: the pull towards 0.5 (0: kMsmMomentBias16 or kMsmMomentBias32)
   float volume_offset = 0.01f;  // volumes: metres each volume is pushed along the light ([silhouette])
   bool count_volume_fragments = false;  // volumes: count the fragments the volumes rasterise (a second draw)
   // Cascades (shadow_math.h [cascades]): 1 is the one map fitted above; 2 to kMaxCascades maps of
@@ -118,6 +121,7 @@ class ShadowStage : public ch03::FrameStage {
   int spot_size_ = 0;
   int allocated_size_ = 0;
   bool allocated_filtered_ = false;
+  int allocated_channels_ = 2;  // of the filtered map: 2 (VSM, ESM) or 4 (MSM)
   int allocated_bits_ = 32;
   int poisson_taps_ = 0;
   std::vector<glm::vec2> poisson_;

@@ -6,14 +6,15 @@
 // and the frames measured.
 //
 //   06_shadows_sweep [--out DIR] [--size WxH] [--frames N] [--truth-samples N]
-//                    [--only main|pcf|moments|volumes|pcss|cascades]
+//                    [--only main|pcf|moments|volumes|pcss|cascades|msm]
 //   -> DIR/06_shadows.csv, and 06_shadows_moments.csv: VSM and ESM with the filtered map in
 //      RG32F and in RG16F (..._llvmpipe.csv on llvmpipe); --only pcf: the main CSV's PCF rows
 //      alone (the grid and the Poisson disk) into 06_shadows_pcf.csv; 06_shadows_pcss.csv:
 //      PCSS against the fixed PCF kernels on three views, and at three sun sizes (each against
 //      the soft truth of its own sun); 06_shadows_cascades.csv: cascaded maps on the street
 //      (chapter 03's street, its moon alone), error by cascade count and map size, and shimmer
-//      as the camera steps, with and without snapping
+//      as the camera steps, with and without snapping; 06_shadows_msm.csv: moment shadow maps
+//      against VSM and ESM on the atrium's views: light leaking, error, cost and bytes
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -219,8 +220,8 @@ int main(int argc, char** argv) {
         .integer("--truth-samples", s.truth_samples).text("--only", s.only);
   }, [&] {
     if (!s.only.empty() && s.only != "main" && s.only != "pcf" && s.only != "moments" && s.only != "volumes" &&
-        s.only != "pcss" && s.only != "cascades")
-      throw UsageError("--only must be main, pcf, moments, volumes, pcss or cascades, not '" + s.only + "'");
+        s.only != "pcss" && s.only != "cascades" && s.only != "msm")
+      throw UsageError("--only must be main, pcf, moments, volumes, pcss, cascades or msm, not '" + s.only + "'");
     std::filesystem::create_directories(s.out);
     auto context = Context::create({.headless = true, .width = s.width, .height = s.height});
     const std::string renderer = context->renderer();
@@ -455,5 +456,73 @@ int main(int argc, char** argv) {
     }
     // [/pcss-rows]
     if (s.only.empty() || s.only == "cascades") cascade_rows(s, renderer, software);
+    // [msm-rows]
+    // Moment shadow maps against VSM (with and without P_min) and ESM: light leaking (pixels the
+    // soft truth has in full shadow lit by more than 0.1: all of them, and those where PCF 3x3 is
+    // dark, where only the moments can bring light), the error against the soft truth, the
+    // pre-filter's and the lookups' cost, and the bytes.
+    if (s.only.empty() || s.only == "msm") {
+      const std::string file = s.out + (software ? "/06_shadows_msm_llvmpipe.csv" : "/06_shadows_msm.csv");
+      std::ofstream csv(file);
+      csv << "# " << (software ? "llvmpipe CPU time: " : "GPU time: ") << renderer << ", " << s.width << "x" << s.height
+          << ", atrium; soft truth: sun disk " << TruthSettings{}.angular_radius << " rad, " << s.truth_samples
+          << " rays per pixel; leak: pixels in full shadow (soft truth 0) lit > 0.1\n"
+          << "view,method,setting,bits,bytes,filter_ms,global_ms,frame_ms,full_shadow,leak,leak_pct,pcf_dark,leak_pcf_dark,"
+             "soft_mean,soft_p99,"
+          << csv_measure_columns() << "\n";
+      struct Row { std::string setting; ShadowSettings shadow; };
+      const std::vector<Row> rows = {
+          {"pmin 0", {.method = ShadowMethod::Vsm, .p_min = 0.f}},
+          {"pmin 0.2", {.method = ShadowMethod::Vsm}},
+          {"c 80", {.method = ShadowMethod::Esm}},
+          {"32-bit", {.method = ShadowMethod::Msm}},
+          {"16-bit", {.method = ShadowMethod::Msm, .moment_bits = 16}},
+          {"vsm 16-bit", {.method = ShadowMethod::Vsm, .p_min = 0.f, .moment_bits = 16}},
+      };
+      for (const std::string view : {"overview", "aisle", "corner"}) {
+        const FrameCamera camera = frame_camera(scene.camera(view), float(s.width) / s.height);
+        const ImageF truth = cached_shadow_truth(scene, rays, camera, s.width, s.height, sun.direction,
+                                                 {.samples = s.truth_samples});
+        stage.set({.method = ShadowMethod::Pcf, .kernel = 3}, ShadowPicture::Visibility);
+        frame.render(camera, {visibility.framebuffer(), s.width, s.height});
+        const ImageF pcf = visibility.read();
+        for (const Row& r : rows) {
+          const ShadowSettings& x = r.shadow;
+          stage.set(x, ShadowPicture::Visibility);
+          frame.render(camera, {visibility.framebuffer(), s.width, s.height});
+          const ImageF vis = visibility.read();
+          auto blue = [](const ImageF& v, int px, int py) { return v.at(px, py, 2) > 0.3f && v.at(px, py, 0) < 0.2f; };
+          std::size_t dark = 0, leak = 0, pcf_dark = 0, leak_pcf_dark = 0;
+          for (int y = 0; y < s.height; ++y)
+            for (int px = 0; px < s.width; ++px) {
+              if (truth.at(px, y, 2) < 0.5f || truth.at(px, y, 1) > 0.f || blue(vis, px, y) || blue(pcf, px, y)) continue;
+              const bool lit = vis.at(px, y, 0) > 0.1f;
+              ++dark, leak += lit;
+              if (pcf.at(px, y, 0) == 0.f) ++pcf_dark, leak_pcf_dark += lit;
+            }
+          const VisibilityError soft = visibility_error(vis, truth, 1);
+          if (view == "overview" && (r.setting == "32-bit" || r.setting == "pmin 0")) {
+            const std::string name = s.out + "/06_overview_" + kMethodNames[int(x.method)] + "_leak";
+            save_png(name + "_visibility.png", visibility_picture(vis, 0, truth));
+            save_png(name + "_error.png", error_picture(vis, truth, 1));
+          }
+          stage.set(x);
+          PassMetrics metrics;
+          const Measurement m = measure(metrics, [&] { frame.render(camera, {image.framebuffer(), s.width, s.height}, &metrics); },
+                                        {.frames = s.frames});
+          csv << view << ',' << kMethodNames[int(x.method)] << ',' << r.setting << ',' << x.moment_bits << ','
+              << stage.allocated_bytes() << ',' << pass_ms(m, "shadow map: pre-filter") << ','
+              << pass_ms(m, "global: ambient + directional (chapter 03)") << ',' << m.total_ms() << ',' << dark << ','
+              << leak << ',' << (dark ? 100.0 * double(leak) / double(dark) : 0.0) << ',' << pcf_dark << ','
+              << leak_pcf_dark << ',' << soft.mean_abs << ',' << soft.p99 << ','
+              << csv_measure_values(renderer, s.width, s.height, m.frames) << "\n";
+          std::cout << view << ' ' << kMethodNames[int(x.method)] << ' ' << r.setting << ": leak " << leak << " of " << dark
+                    << " (" << leak_pcf_dark << " of " << pcf_dark << " where pcf is dark), soft mean " << soft.mean_abs
+                    << ", frame " << m.total_ms() << " ms" << std::endl;
+        }
+      }
+      std::cout << "wrote " << file << '\n';
+    }
+    // [/msm-rows]
   });
 }

@@ -17,10 +17,10 @@ struct ShadowParameters {
   float esm_c;           // ESM's exponent
   float vsm_p_min;       // VSM's light-bleeding reduction
   float poisson_taps;    // PCF and PCSS: taps of the Poisson disk (0: PCF's k x k grid)
-  float unused0;
+  float msm_moment_bias; // MSM's pull of the moments towards 0.5
   mat4 view;             // world to the light's view space (looking down -z)
   vec2 extent;           // the map's box: width and height, metres
-  float unused1;
+  float msm_optimized;   // MSM: 1 when the map holds the optimised 16-bit moments
   float tan_sun_radius;  // PCSS: tan(the sun's angular radius)
   vec4 poisson[SHADOW_MAX_POISSON_TAPS / 2];  // the unit-disk taps, two a vec4 (xy, zw)
   mat4 spot_matrix;      // world to the marked spot light's clip space (perspective)
