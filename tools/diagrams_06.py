@@ -13,6 +13,9 @@
                       uniform blended by lambda), a sphere around each slice and the map's square around it
 06_snapping.svg       a shadow edge drawn into texels by a box that slides with the camera (its staircase
                       moves: shimmer) and by one moved by whole texels (the same staircase)
+06_moments.svg        the lit fraction over a filter of two and of three occluders against the receiver's depth:
+                      the truth, Chebyshev's bound from two moments (VSM), the Hamburger reconstruction
+                      from four (MSM)
 06_light_frustum.svg  the sun's map box in a section of the atrium: across the light fitted to what the view
                       sees, along the light the whole scene's depth (a caster above the view)
 """
@@ -351,6 +354,67 @@ def snapping_figure(out: Path):
     s.save(out, "06_snapping.svg")
 
 
+def msm_hamburger(b, d, bias=3e-7):
+    """shadow_math.cpp's msm_hamburger: the lit fraction from four moments b at depth d."""
+    b = [x * (1 - bias) + 0.5 * bias for x in b]
+    l32_d22 = -b[0] * b[1] + b[2]
+    d22 = -b[0] * b[0] + b[1]
+    sq_var = -b[1] * b[1] + b[3]
+    d33_d22 = sq_var * d22 - l32_d22 * l32_d22
+    l32 = l32_d22 / d22
+    c = [1.0, d, d * d]
+    c[1] -= b[0]
+    c[2] -= b[1] + l32 * c[1]
+    c[1] /= d22
+    c[2] *= d22 / d33_d22
+    c[1] -= l32 * c[2]
+    c[0] -= c[1] * b[0] + c[2] * b[1]
+    p, q = c[1] / c[2], c[0] / c[2]
+    r = math.sqrt(max(p * p / 4 - q, 0))
+    z1, z2 = -p / 2 - r, -p / 2 + r
+    sw = (z1, d, 1, 1) if z2 < d else (d, z1, 0, 1) if z1 < d else (0, 0, 0, 0)
+    quotient = (sw[0] * z2 - b[0] * (sw[0] + z2) + b[1]) / ((z2 - sw[1]) * (d - z1))
+    return 1 - min(max(sw[2] + sw[3] * quotient, 0), 1)
+
+
+def moments_figure(out: Path):
+    """Two panels: a filter over two occluders (half at 0.2, half at 0.5), and over three (0.2,
+    0.45, 0.7 in thirds). The lit fraction against the receiver's depth d: the truth (the weight at
+    or beyond d), Chebyshev from the first two moments, the Hamburger reconstruction from four."""
+    s = Svg(700, 330)
+    for panel, (x0, depths, weights, title) in enumerate((
+            (20, [0.2, 0.5], [0.5, 0.5], "Two occluders: four moments are exact"),
+            (360, [0.2, 0.45, 0.7], [1 / 3, 1 / 3, 1 / 3], "Three: both bound the truth, MSM the closer"))):
+        L, R, T, B = x0 + 40, x0 + 310, 50, 250
+        X = lambda d: L + (R - L) * d  # noqa: E731
+        Y = lambda v: B - (B - T) * v  # noqa: E731
+        s.text(((L + R) / 2, 24), title, INK, 12, "middle", bold=True)
+        s.line((L, B), (R, B), INK, 1)
+        s.line((L, B), (L, T), INK, 1)
+        for v in (0, 0.5, 1):
+            s.text((L - 6, Y(v) + 4), f"{v:g}", INK, 10, "end")
+        for z in depths:
+            s.line((X(z), B), (X(z), B + 4), INK, 1)
+            s.text((X(z), B + 15), f"{z:g}", INK, 10, "middle")
+        s.text(((L + R) / 2, B + 30), "the receiver's depth d", INK, 11, "middle")
+        b = [sum(w * z ** k for z, w in zip(depths, weights)) for k in (1, 2, 3, 4)]
+        var = b[1] - b[0] ** 2
+        ds = [i / 300 for i in range(1, 300)]
+        truth = lambda d: sum(w for z, w in zip(depths, weights) if z >= d)  # noqa: E731
+        cheb = lambda d: 1.0 if d <= b[0] else var / (var + (d - b[0]) ** 2)  # noqa: E731
+        s.poly([(X(d), Y(truth(d))) for d in ds], INK, 2.5, closed=False)
+        s.poly([(X(d), Y(cheb(d))) for d in ds], RAY, 2, closed=False)
+        s.poly([(X(d), Y(msm_hamburger(b, d))) for d in ds], GOOD, 2, dash="6 4", closed=False)
+    y = 305
+    s.line((60, y), (84, y), INK, 2.5)
+    s.text((90, y + 4), "truth: the weight at or beyond d", INK, 11)
+    s.line((300, y), (324, y), RAY, 2)
+    s.text((330, y + 4), "Chebyshev, two moments (VSM)", RAY, 11)
+    s.line((520, y), (544, y), GOOD, 2, "6 4")
+    s.text((550, y + 4), "Hamburger, four (MSM)", GOOD, 11)
+    s.save(out, "06_moments.svg")
+
+
 def main(out: Path):
     out.mkdir(parents=True, exist_ok=True)
     acne_figure(out)
@@ -359,6 +423,7 @@ def main(out: Path):
     light_frustum_figure(out)
     cascades_figure(out)
     snapping_figure(out)
+    moments_figure(out)
 
 
 if __name__ == "__main__":
