@@ -1076,6 +1076,39 @@ TEST(ShadowsGlCascades, NearPixelsReadTheFirstCascadeAndFarOnesTheLast) {
   ASSERT_GT(last, std::size_t(kW * kH / 100));
   EXPECT_GE(double(agree), 0.99 * double(compared));
 }
+// The blend band fades one cascade into the next: with it, some pixels' visibility differs from
+// the same cascades without it (where a shadow edge crosses a band, the two maps' stairs differ),
+// and every such pixel lies in a band by the C++ choice (one pixel's slack: the G-buffer's
+// position against the ray's hit).
+TEST(ShadowsGlCascades, TheBlendBandMixesTheTwoCascadesOnlyInTheBand) {
+  Street street;
+  const FrameCamera cam = frame_camera(street.scene.camera("street_level"), float(kW) / kH);
+  const ShadowSettings banded{.method = ShadowMethod::Pcf, .cascades = 4, .cascade_band = 0.2f};
+  ShadowSettings sharp = banded;
+  sharp.cascade_band = 0.f;
+  const ImageF with = street.visibility(cam, banded), without = street.visibility(cam, sharp);
+  const std::vector<float> splits = street.stage.cascade_splits();
+  const auto hits = primary_hits(street.rays, cam, kW, kH);
+  const glm::vec3 forward = -glm::vec3(glm::inverse(cam.view)[2]);
+  std::size_t differ = 0, outside = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      if (std::abs(with.at(x, y, 0) - without.at(x, y, 0)) < 1e-4f) continue;
+      ++differ;
+      bool in_band = false;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int u = std::clamp(x + dx, 0, kW - 1), v = std::clamp(y + dy, 0, kH - 1);
+          const auto& h = hits[std::size_t(v) * kW + u];
+          if (h) in_band = in_band || choose_cascade(glm::dot(h->position - cam.position, forward), splits, 0.2f).next_weight > 0.f;
+        }
+      outside += !in_band;
+    }
+  std::printf("blend band: %zu pixels differ from the cascades without it, %zu of them outside a band\n", differ, outside);
+  EXPECT_GT(differ, std::size_t(10));
+  EXPECT_EQ(outside, 0u);
+}
+
 // The cascades on the atrium's views against the hard truth, outside each pixel's edge band:
 // edge_band_pixels's bias in texels times the texel of the cascade the pixel reads (the larger
 // of two in a blend band), over the pixel's footprint at its view depth (nearer than its
