@@ -6,7 +6,7 @@ lightpass_gtests(06_shadows gl lightpass_06_shadows unit/test_06_shadows_gl.cpp)
 # The program: reference images per method (tests/reference/06_shadows/, made on llvmpipe
 # with --check --update-references), what a headless run reports, and bad input.
 set(P06 $<TARGET_FILE:06_shadows>)
-foreach(mode hard pcf pcf-hardware vsm esm volumes pcss)
+foreach(mode hard pcf pcf-hardware vsm esm volumes pcss msm)
   lightpass_program_test(06_shadows.reference.${mode} 0 "references match" ${P06} --check --mode ${mode} --out ${CHECK_OUT}/06_shadows)
 endforeach()
 lightpass_program_test(06_shadows.headless_reports_the_map 0 "sun shadows, pcf: map 512x512 \\(1024 KiB\\), [0-9.]+ cm per texel"
@@ -22,6 +22,12 @@ lightpass_program_test(06_shadows.bad_taps 2 "--taps must be between 0 and 64, g
 lightpass_program_test(06_shadows.bad_sun_size 2 "--sun-size must be between 0 and 0.2, got 0.5" ${P06} --sun-size 0.5)
 lightpass_program_test(06_shadows.bad_sun 2 "--sun must be between 0 and 1000, got -1" ${P06} --sun -1)
 lightpass_program_test(06_shadows.bad_mode 2 "unknown mode 'stencil'" ${P06} --mode stencil)
+# Cascades: a filtered map is one layer; the report names each cascade's depth range and texel.
+lightpass_program_test(06_shadows.bad_cascades_with_vsm 2 "--cascades 4 needs the mode hard, pcf, pcf-hardware or pcss"
+  ${P06} --headless --size 16x16 --mode vsm --cascades 4)
+lightpass_program_test(06_shadows.bad_cascades_five 2 "--cascades must be between 1 and 4, got 5" ${P06} --cascades 5)
+lightpass_program_test(06_shadows.headless_reports_the_cascades 0 "cascade 3: view depth [0-9.]+ to [0-9.]+ m, [0-9.]+ cm per texel"
+  ${P06} --headless --size 64x36 --mode hard --cascades 4 --out ${CMAKE_BINARY_DIR}/out/06_cascades.png)
 # The sun is scaled only where the scene asks (the atrium's extras: 4): a model without lights,
 # lit by the default rig, keeps its light and does not clip to white (at 4 times, its lit faces do).
 set(P06_OUT ${CMAKE_BINARY_DIR}/out/06_scenes)

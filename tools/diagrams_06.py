@@ -9,6 +9,13 @@
                       over two occluders: light bleeding, and what P_min does to it
 06_pcss.svg           PCSS's similar triangles for the sun: the cone towards the sun's disk on
                       the blockers' plane (filter radius) and on the map's near plane (search)
+06_cascades.svg       cascaded maps seen from above: the view frustum cut by the practical split (log and
+                      uniform blended by lambda), a sphere around each slice and the map's square around it
+06_snapping.svg       a shadow edge drawn into texels by a box that slides with the camera (its staircase
+                      moves: shimmer) and by one moved by whole texels (the same staircase)
+06_moments.svg        the lit fraction over a filter of two and of three occluders against the receiver's depth:
+                      the truth, Chebyshev's bound from two moments (VSM), the Hamburger reconstruction
+                      from four (MSM)
 06_light_frustum.svg  the sun's map box in a section of the atrium: across the light fitted to what the view
                       sees, along the light the whole scene's depth (a caster above the view)
 """
@@ -260,12 +267,163 @@ def light_arrows_along(s, P, d, starts):
         s.line(P(p), P(add(p, d, 2.5)), LIGHT, 2, arrow=True)
 
 
+def practical_splits(count, near, far, lam):
+    """shadow_math.h's cascade_splits."""
+    return [lam * near * (far / near) ** (i / count) + (1 - lam) * (near + (far - near) * i / count)
+            for i in range(count + 1)]
+
+
+def cascades_figure(out: Path):
+    """Top view: the camera at the left looking right, its frustum (half angle h) from near to
+    far cut by the practical split; each slice's smallest sphere (centre on the axis, near and far
+    corners on it) and the square map around it (the light from above the page)."""
+    s = Svg(700, 420)
+    near, far, lam, count = 0.5, 40.0, 0.75, 3
+    h = math.radians(18)
+    z = practical_splits(count, near, far, lam)
+    log = practical_splits(count, near, far, 1.0)
+    uni = practical_splits(count, near, far, 0.0)
+    spheres = []
+    for i in range(count):
+        n, f = z[i], z[i + 1]
+        a, b = n * math.tan(h), f * math.tan(h)
+        c = min(max(((f * f + b * b) - (n * n + a * a)) / (2 * (f - n)), n), f)
+        spheres.append((c, max(math.hypot(c - n, a), math.hypot(f - c, b))))
+    c_last, r_last = spheres[-1]
+    k = min(620 / (c_last + r_last), 290 / (2 * r_last))  # pixels per metre: the last square fits
+    ox, oy = 50, 225
+    P = lambda d, side: (ox + d * k, oy - side * d * math.tan(h) * k)  # noqa: E731
+    s.text((350, 20), "Three cascades, practical split (λ = 0.75): each slice's sphere and the square map around it",
+           INK, 12, "middle", bold=True)
+    s.dot((ox, oy), INK, 4)
+    s.text((ox - 30, oy + 4), "eye", INK, 11)
+    colours = [BAD, GOOD, RAY]
+    for i, (c, r) in enumerate(spheres):
+        n, f = z[i], z[i + 1]
+        centre = (ox + c * k, oy)
+        s.poly([P(n, 1), P(f, 1), P(f, -1), P(n, -1)], colours[i], 2, fill=colours[i], opacity=0.15)
+        pts = [(centre[0] + r * k * math.cos(2 * math.pi * j / 90), centre[1] + r * k * math.sin(2 * math.pi * j / 90))
+               for j in range(90)]
+        s.poly(pts, colours[i], 1.2, dash="4 3")
+        s.rect(centre[0] - r * k, centre[1] - r * k, 2 * r * k, 2 * r * k, "none", colours[i])
+        s.text((470, 110 + 18 * i), f"cascade {i}: view depth {n:.1f} to {f:.1f} m", colours[i], 11)
+    # The first inner split by each scheme, on a ruler above the frustum.
+    ruler = 48
+    s.line((ox, ruler), (ox + far * k, ruler), GREY, 1)
+    for value, label, colour, dy in ((log[1], "log", GREY, -6), (z[1], "practical", INK, 14), (uni[1], "uniform", GREY, -6)):
+        x = ox + value * k
+        s.line((x, ruler - 5), (x, ruler + 5), colour, 2)
+        s.text((x, ruler + dy), label, colour, 10, "middle")
+    s.text((ox + far * k, ruler - 6), "the first split", GREY, 10, "end")
+    s.text((20, 398), "A sphere's size depends on its slice and the field of view only:", INK, 11)
+    s.text((20, 413), "it holds as the camera turns and moves, and so does its map's texel.", INK, 11)
+    s.save(out, "06_cascades.svg")
+
+
+def snapping_figure(out: Path):
+    """A straight shadow edge over a map's texels, two frames apart. Left: the box slid 0.4 texel
+    with the camera, the texel centres fall elsewhere on the edge and the staircase changes.
+    Right: the box moved a whole texel, the centres are the same points of the world."""
+    s = Svg(680, 300)
+    W, cols, rows = 26, 9, 7
+    edge = lambda x: 0.55 * x + 40  # noqa: E731  the shadow edge, page y of the world x (from the panel's left)
+    for panel, (x0, title, shift) in enumerate(((20, "Box slides with the camera: the staircase moves", 0.4),
+                                                (360, "Box moved by whole texels: the same staircase", 1.0))):
+        s.text((x0 + 150, 22), title, INK, 12, "middle", bold=True)
+        top = 50
+        # Frame 2's shadowed texels filled, then frame 1's outlined over them.
+        for frame, offset in ((1, shift), (0, 0.0)):
+            for i in range(-1, cols + 1):
+                for j in range(rows):
+                    gx = (i + offset) * W  # texel's left, world x from the panel's left
+                    if gx < 0 or gx + W > cols * W:
+                        continue
+                    cx, cy = gx + W / 2, j * W + W / 2
+                    if cy <= edge(cx):
+                        continue
+                    if frame == 1:
+                        s.rect(x0 + gx + 1, top + j * W + 1, W - 2, W - 2, "#f2b8b8" if panel == 0 else "#bfe3c4", "none")
+                    else:
+                        s.rect(x0 + gx + 3, top + j * W + 3, W - 6, W - 6, "none", DARK)
+        s.line((x0, top + edge(0)), (x0 + cols * W, top + edge(cols * W)), INK, 2)
+        s.text((x0, top + rows * W + 22), "outlined: frame 1's shadowed texels; filled: frame 2's", INK, 11)
+        s.text((x0 + 150, top - 8), f"frame 2's box: {shift:g} texel along", BAD if panel == 0 else GOOD, 11, "middle")
+        s.text((x0, top + rows * W + 40), "black line: the true shadow edge, fixed in the world", INK, 11)
+    s.text((20, 290), "texel = 2 r / (N − 2); the box's corner at floor(c / texel) · texel: one spare texel a side",
+           INK, 11)
+    s.save(out, "06_snapping.svg")
+
+
+def msm_hamburger(b, d, bias=3e-7):
+    """shadow_math.cpp's msm_hamburger: the lit fraction from four moments b at depth d."""
+    b = [x * (1 - bias) + 0.5 * bias for x in b]
+    l32_d22 = -b[0] * b[1] + b[2]
+    d22 = -b[0] * b[0] + b[1]
+    sq_var = -b[1] * b[1] + b[3]
+    d33_d22 = sq_var * d22 - l32_d22 * l32_d22
+    l32 = l32_d22 / d22
+    c = [1.0, d, d * d]
+    c[1] -= b[0]
+    c[2] -= b[1] + l32 * c[1]
+    c[1] /= d22
+    c[2] *= d22 / d33_d22
+    c[1] -= l32 * c[2]
+    c[0] -= c[1] * b[0] + c[2] * b[1]
+    p, q = c[1] / c[2], c[0] / c[2]
+    r = math.sqrt(max(p * p / 4 - q, 0))
+    z1, z2 = -p / 2 - r, -p / 2 + r
+    sw = (z1, d, 1, 1) if z2 < d else (d, z1, 0, 1) if z1 < d else (0, 0, 0, 0)
+    quotient = (sw[0] * z2 - b[0] * (sw[0] + z2) + b[1]) / ((z2 - sw[1]) * (d - z1))
+    return 1 - min(max(sw[2] + sw[3] * quotient, 0), 1)
+
+
+def moments_figure(out: Path):
+    """Two panels: a filter over two occluders (half at 0.2, half at 0.5), and over three (0.2,
+    0.45, 0.7 in thirds). The lit fraction against the receiver's depth d: the truth (the weight at
+    or beyond d), Chebyshev from the first two moments, the Hamburger reconstruction from four."""
+    s = Svg(700, 330)
+    for panel, (x0, depths, weights, title) in enumerate((
+            (20, [0.2, 0.5], [0.5, 0.5], "Two occluders: four moments are exact"),
+            (360, [0.2, 0.45, 0.7], [1 / 3, 1 / 3, 1 / 3], "Three: both bound the truth, MSM the closer"))):
+        L, R, T, B = x0 + 40, x0 + 310, 50, 250
+        X = lambda d: L + (R - L) * d  # noqa: E731
+        Y = lambda v: B - (B - T) * v  # noqa: E731
+        s.text(((L + R) / 2, 24), title, INK, 12, "middle", bold=True)
+        s.line((L, B), (R, B), INK, 1)
+        s.line((L, B), (L, T), INK, 1)
+        for v in (0, 0.5, 1):
+            s.text((L - 6, Y(v) + 4), f"{v:g}", INK, 10, "end")
+        for z in depths:
+            s.line((X(z), B), (X(z), B + 4), INK, 1)
+            s.text((X(z), B + 15), f"{z:g}", INK, 10, "middle")
+        s.text(((L + R) / 2, B + 30), "the receiver's depth d", INK, 11, "middle")
+        b = [sum(w * z ** k for z, w in zip(depths, weights)) for k in (1, 2, 3, 4)]
+        var = b[1] - b[0] ** 2
+        ds = [i / 300 for i in range(1, 300)]
+        truth = lambda d: sum(w for z, w in zip(depths, weights) if z >= d)  # noqa: E731
+        cheb = lambda d: 1.0 if d <= b[0] else var / (var + (d - b[0]) ** 2)  # noqa: E731
+        s.poly([(X(d), Y(truth(d))) for d in ds], INK, 2.5, closed=False)
+        s.poly([(X(d), Y(cheb(d))) for d in ds], RAY, 2, closed=False)
+        s.poly([(X(d), Y(msm_hamburger(b, d))) for d in ds], GOOD, 2, dash="6 4", closed=False)
+    y = 305
+    s.line((60, y), (84, y), INK, 2.5)
+    s.text((90, y + 4), "truth: the weight at or beyond d", INK, 11)
+    s.line((300, y), (324, y), RAY, 2)
+    s.text((330, y + 4), "Chebyshev, two moments (VSM)", RAY, 11)
+    s.line((520, y), (544, y), GOOD, 2, "6 4")
+    s.text((550, y + 4), "Hamburger, four (MSM)", GOOD, 11)
+    s.save(out, "06_moments.svg")
+
+
 def main(out: Path):
     out.mkdir(parents=True, exist_ok=True)
     acne_figure(out)
     chebyshev_figure(out)
     pcss_figure(out)
     light_frustum_figure(out)
+    cascades_figure(out)
+    snapping_figure(out)
+    moments_figure(out)
 
 
 if __name__ == "__main__":

@@ -2,7 +2,8 @@
 // map from an orthographic frustum fitted to what the view needs, and the frame's light
 // shaders look each pixel up in it by the method the mode names: one comparison (hard),
 // k x k comparisons (pcf), the hardware's comparison sampler (pcf-hardware), Chebyshev's bound
-// on filtered moments (vsm), filtered exp(c z) in log space (esm), or PCF over the penumbra a
+// on filtered moments (vsm), filtered exp(c z) in log space (esm), four moments and the Hamburger
+// reconstruction (msm), or PCF over the penumbra a
 // blocker search finds for the sun as a disk (pcss); or with no map, by the sun's shadow volumes
 // counted in the stencil (volumes). The sun casts, and a spot light the scene marks (a
 // perspective map, hard or PCF); the
@@ -28,7 +29,7 @@ namespace {
 using namespace lp;
 using namespace lp::ch06;
 
-enum Show { kResult, kVisibility, kMap, kTruth, kSoftTruth, kError };  // --show's order
+enum Show { kResult, kVisibility, kMap, kTruth, kSoftTruth, kError, kCascades };  // --show's order
 
 // The truth's channel as grey, blue where the sun does not reach (as show_visibility.frag).
 ImageRGBA8 truth_picture(const ImageF& truth, int channel) {
@@ -54,9 +55,9 @@ std::vector<Light> scaled_lights(const std::vector<Light>& lights, float sun) {
 const CliSpec kCli{
     .program = "06_shadows",
     .summary = "Shadows from the sun in the deferred frame: a depth map from a fitted orthographic frustum, looked up "
-               "with one comparison, PCF, the hardware comparison sampler, VSM, ESM or PCSS; or shadow volumes.",
+               "with one comparison, PCF, the hardware comparison sampler, VSM, ESM, four moments (MSM) or PCSS; or shadow volumes.",
     .default_scene = "assets/atrium/atrium.gltf",
-    .modes = {"pcf", "hard", "pcf-hardware", "vsm", "esm", "volumes", "pcss"},  // the chapter's recommendation first
+    .modes = {"pcf", "hard", "pcf-hardware", "vsm", "esm", "volumes", "pcss", "msm"},  // the chapter's recommendation first
     .knobs = {{"map", "shadow map width and height in texels (8192: 1.3 GiB with vsm or esm)", 1024, 16, 8192, true},
               {"kernel", "pcf: the k x k grid; vsm, esm: the box filter's width (odd)", 3, 1, 31, true},
               {"taps", "pcf: 0 for the k x k grid, or this many taps of a Poisson disk k texels across, rotated per "
@@ -70,8 +71,16 @@ const CliSpec kCli{
               {"c", "esm: the exponent of exp(c z) (z: window depth in [0, 1]); any c works in log space", 80, 1, 10000,
                false},
               {"fit", "fit the map's box to the view (off: to the whole scene)", 1, 0, 1, true},
-              {"moments", "vsm, esm: bits per value of the filtered map, 32 (RG32F) or 16 (RG16F, half the bytes)", 32,
+              {"moments", "vsm, esm: bits per value of the filtered map, 32 (RG32F) or 16 (RG16F, half the bytes); msm: "
+                          "RGBA32F or RGBA16 through the optimised map", 32,
                16, 32, true},
+              {"cascades", "cascaded maps for the sun, each --map texels a side (1: one map fitted to the view; "
+                           "methods hard, pcf, pcf-hardware, pcss)", 1, 1, kMaxCascades, true},
+              {"lambda", "cascades: the split, 0 uniform to 1 logarithmic", 0.75, 0, 1, false},
+              {"snap", "cascades: each box on whole texels (0: shimmers as the camera moves)", 1, 0, 1, true},
+              {"band", "cascades: the blend band, a fraction of each cascade's depth range", 0.1, 0, 0.5, false},
+              {"shadow-distance", "cascades: metres of view depth they cover (0: the far plane or the scene's "
+                                  "farthest corner)", 0, 0, 100000, false},
               {"sun", "multiplies directional lights, times what the scene asks for (the atrium: 4, its 0.4 lux "
                       "sun beside eight point lights shows the shadows only faintly at 1; other scenes: 1)", 1, 0, 1000,
                false},
@@ -79,8 +88,9 @@ const CliSpec kCli{
                                   "itself (near black, far white); the ray-traced hard or soft truth (the sun as a disk of "
                                   "--sun-size; ray traced on the CPU: "
                                   "seconds per view); |visibility - truth| as a heat map (hard truth for hard, "
-                                  "soft for the others; red = 1)",
-                          {"result", "visibility", "map", "truth", "soft-truth", "error"})}};
+                                  "soft for the others; red = 1); the visibility tinted by the cascade each pixel "
+                                  "reads (red, green, blue, yellow)",
+                          {"result", "visibility", "map", "truth", "soft-truth", "error", "cascades"})}};
 
 // [references]
 // The atrium in sunlight: every method from above, the hard and filtered methods and PCSS in
@@ -170,18 +180,29 @@ int main(int argc, char** argv) {
                                     .p_min = float(f.knob("pmin")),
                                     .c = float(f.knob("c")),
                                     .fit_to_view = f.knob_int("fit") != 0,
-                                    .moment_bits = moment_bits};
+                                    .moment_bits = moment_bits,
+                                    .cascades = f.knob_int("cascades"),
+                                    .cascade_lambda = float(f.knob("lambda")),
+                                    .cascade_distance = float(f.knob("shadow-distance")),
+                                    .cascade_band = float(f.knob("band")),
+                                    .cascade_snap = f.knob_int("snap") != 0};
       const int show = f.knob_int("show");
+      const bool cascadable = settings.method == ShadowMethod::Hard || settings.method == ShadowMethod::Pcf ||
+                              settings.method == ShadowMethod::PcfHardware || settings.method == ShadowMethod::Pcss;
+      if (settings.cascades > 1 && !cascadable)
+        throw UsageError("--cascades " + std::to_string(settings.cascades) + " needs the mode hard, pcf, pcf-hardware or "
+                         "pcss (" + f.mode + (settings.method == ShadowMethod::Volumes ? " has no map)" : "'s filtered map is one layer)"));
       if (!sun_casts && show != kResult)
         throw Error(knob_text(kCli, "show", f.knob("show")) + " shows the sun's shadows, and the scene marks the sun '" +
                     sun.name + "' casts_shadows: false");
       shadows.set(settings, show == kVisibility ? ShadowPicture::Visibility
                             : show == kMap      ? ShadowPicture::Map
+                            : show == kCascades ? ShadowPicture::Cascades
                                                 : ShadowPicture::None);
       frame.render(f.camera, {f.target, f.width, f.height}, &app.metrics());
       // [/settings]
       // [truth-view]
-      if (show >= kTruth) {
+      if (show >= kTruth && show <= kError) {
         // The truth for this camera and size: traced once per view (cached on disk headless).
         if (!rays) rays = std::make_unique<RayScene>(app.scene());
         const glm::mat4 key = f.camera.projection * f.camera.view;
@@ -228,11 +249,19 @@ int main(int argc, char** argv) {
         out << "sun shadows, " << f.mode << ": map " << settings.map_size << "x" << settings.map_size << " ("
             << shadows.allocated_bytes() / 1024 << " KiB), " << shadows.frustum().texel_world(settings.map_size) * 100.f
             << " cm per texel; frame took " << ms << " ms (wall clock, " << app.context().renderer() << ")\n";
+        const auto& cascades = shadows.cascades();
+        for (std::size_t i = 0; i < cascades.size(); ++i)
+          out << "  cascade " << i << ": view depth " << shadows.cascade_splits()[i] << " to "
+              << shadows.cascade_splits()[i + 1] << " m, " << cascades[i].texel_world(settings.map_size) * 100.f
+              << " cm per texel\n";
       }
       app.panel([&] {
         ImGui::Text("sun map %dx%d, %.1f cm per texel", settings.map_size, settings.map_size,
                     shadows.frustum().texel_world(settings.map_size) * 100.f);
         ImGui::Text("%zu KiB for the sun's maps", shadows.allocated_bytes() / 1024);
+        for (std::size_t i = 0; i < shadows.cascades().size(); ++i)
+          ImGui::Text("cascade %zu: to %.1f m, %.1f cm per texel", i, shadows.cascade_splits()[i + 1],
+                      shadows.cascades()[i].texel_world(settings.map_size) * 100.f);
       });
     }
   });

@@ -67,6 +67,63 @@ LightFrustum fit_light_frustum(glm::vec3 direction, glm::vec3 scene_min, glm::ve
   return f;
 }
 
+// [cascades-cpp]
+std::vector<float> cascade_splits(int count, float near, float far, float lambda) {
+  if (count < 1 || count > kMaxCascades)
+    throw Error("cascade_splits: between 1 and " + std::to_string(kMaxCascades) + " cascades (got " + std::to_string(count) + ")");
+  if (!(near > 0.f && far > near)) throw Error("cascade_splits: needs 0 < near < far");
+  if (!(lambda >= 0.f && lambda <= 1.f)) throw Error("cascade_splits: lambda must be in [0, 1]");
+  std::vector<float> z(std::size_t(count) + 1);
+  for (int i = 0; i <= count; ++i) {
+    const float t = float(i) / float(count);
+    z[std::size_t(i)] = lambda * near * std::pow(far / near, t) + (1.f - lambda) * (near + (far - near) * t);
+  }
+  z.front() = near, z.back() = far;  // exactly, whatever pow rounds to
+  return z;
+}
+
+Sphere frustum_slice_sphere(const glm::mat4& camera_world, float yfov, float aspect, float n, float f) {
+  // Half the diagonal of the slice's near and far rectangles; the centre on the axis at the depth c
+  // equally far from a near and a far corner, or at the far rectangle when that is nearer.
+  const float k = std::tan(yfov / 2.f) * std::sqrt(1.f + aspect * aspect);
+  const float a = n * k, b = f * k;
+  float c = ((f * f + b * b) - (n * n + a * a)) / (2.f * (f - n));
+  c = std::clamp(c, n, f);
+  const float radius = std::max(std::sqrt((c - n) * (c - n) + a * a), std::sqrt((f - c) * (f - c) + b * b));
+  const glm::vec3 eye(camera_world[3]), forward = -glm::normalize(glm::vec3(camera_world[2]));
+  return {eye + forward * c, radius};
+}
+
+LightFrustum fit_cascade(glm::vec3 direction, glm::vec3 scene_min, glm::vec3 scene_max, const Sphere& sphere,
+                         int map_size, bool snap) {
+  if (map_size < 8) throw Error("fit_cascade: a map of at least 8 texels a side");
+  // The light's view and the whole scene's depth range: fit_light_frustum's, fitted to nothing.
+  LightFrustum f = fit_light_frustum(direction, scene_min, scene_max);
+  const float texel = 2.f * sphere.radius / float(map_size - 2);
+  const float half = 0.5f * float(map_size) * texel;
+  glm::vec3 centre = glm::vec3(f.view * glm::vec4(sphere.centre, 1.f));
+  if (snap) centre.x = std::floor(centre.x / texel) * texel, centre.y = std::floor(centre.y / texel) * texel;
+  f.box_min.x = centre.x - half, f.box_max.x = centre.x + half;
+  f.box_min.y = centre.y - half, f.box_max.y = centre.y + half;
+  f.projection = glm::ortho(f.box_min.x, f.box_max.x, f.box_min.y, f.box_max.y, -f.box_max.z, -f.box_min.z);
+  return f;
+}
+
+CascadeChoice choose_cascade(float depth, const std::vector<float>& splits, float band) {
+  CascadeChoice c;
+  const int count = int(splits.size()) - 1;
+  for (int i = 0; i < count; ++i)
+    if (depth < splits[std::size_t(i) + 1]) {
+      c.cascade = i;
+      const float length = band * (splits[std::size_t(i) + 1] - splits[std::size_t(i)]);
+      const float into = depth - (splits[std::size_t(i) + 1] - length);
+      if (i + 1 < count && length > 0.f && into > 0.f) c.next_weight = std::min(into / length, 1.f);
+      return c;
+    }
+  return c;
+}
+// [/cascades-cpp]
+
 SpotFrustum fit_spot_frustum(glm::vec3 position, glm::vec3 direction, float outer_cone, float range, glm::vec3 scene_min,
                              glm::vec3 scene_max) {
   if (!(outer_cone > 0.f && outer_cone <= kMaxSpotCone))
@@ -163,6 +220,64 @@ float esm_visibility_direct(float filtered, float c, float depth) {
 float esm_visibility_log(float log_filtered, float c, float depth) {
   return std::clamp(std::exp(std::min(log_filtered - c * depth, 0.f)), 0.f, 1.f);
 }
+
+// [msm-cpp]
+glm::vec4 msm_moments(float z) {
+  const float z2 = z * z;
+  return {z, z2, z2 * z, z2 * z2};
+}
+
+// The paper's matrices, written row by row as the paper's HLSL multiplies a row vector by them;
+// glm's constructor takes columns, so M * v here is the paper's mul(v, M).
+glm::vec4 msm_optimize(glm::vec4 b) {
+  const glm::mat4 m(-2.07224649f, 13.7948857237f, 0.105877704f, 9.7924062118f,     //
+                    32.23703778f, -59.4683975703f, -1.9077466311f, -33.7652110555f,  //
+                    -68.571074599f, 82.0359750338f, 9.3496555107f, 47.9456096605f,  //
+                    39.3703274134f, -35.364903257f, -6.6543490743f, -23.9728048165f);
+  glm::vec4 out = m * b;
+  out.x += 0.035955884801f;
+  return out;
+}
+
+glm::vec4 msm_unoptimize(glm::vec4 stored) {
+  const glm::mat4 m(0.2227744146f, 0.1549679261f, 0.1451988946f, 0.163127443f,   //
+                    0.0771972861f, 0.1394629426f, 0.2120202157f, 0.2591432266f,  //
+                    0.7926986636f, 0.7963415838f, 0.7258694464f, 0.6539092497f,  //
+                    0.0319417555f, -0.1722823173f, -0.2758014811f, -0.3376131734f);
+  stored.x -= 0.035955884801f;
+  return m * stored;
+}
+
+float msm_hamburger(glm::vec4 b, float depth, float moment_bias) {
+  b = glm::mix(b, glm::vec4(0.5f), moment_bias);
+  // The Hankel matrix's Cholesky factorisation, only what is needed of it.
+  const float l32_d22 = -b.x * b.y + b.z;
+  const float d22 = -b.x * b.x + b.y;
+  const float squared_variance = -b.y * b.y + b.w;
+  const float d33_d22 = squared_variance * d22 - l32_d22 * l32_d22;
+  const float inv_d22 = 1.f / d22;
+  const float l32 = l32_d22 * inv_d22;
+  // Solve B c = (1, d, d^2): forward substitution, scaling, backward substitution.
+  glm::vec3 c(1.f, depth, depth * depth);
+  c.y -= b.x;
+  c.z -= b.y + l32 * c.y;
+  c.y *= inv_d22;
+  c.z *= d22 / d33_d22;
+  c.y -= l32 * c.z;
+  c.x -= c.y * b.x + c.z * b.y;
+  // The other two support points: the roots of c.x + c.y z + c.z z^2.
+  const float p = c.y / c.z, q = c.x / c.z;
+  const float r = std::sqrt(std::max(p * p * 0.25f - q, 0.f));
+  const float z1 = -p * 0.5f - r, z2 = -p * 0.5f + r;
+  // The weight in front of the receiver: all of it (both roots in front), the part on z1, or none.
+  const glm::vec4 sw = z2 < depth ? glm::vec4(z1, depth, 1.f, 1.f)
+                       : z1 < depth ? glm::vec4(depth, z1, 0.f, 1.f)
+                                    : glm::vec4(0.f);
+  const float quotient = (sw.x * z2 - b.x * (sw.x + z2) + b.y) / ((z2 - sw.y) * (depth - z1));
+  const float shadow = std::clamp(sw.z + sw.w * quotient, 0.f, 1.f);
+  return 1.f - shadow;
+}
+// [/msm-cpp]
 
 // [sphere-in-view]
 bool sphere_in_view(const glm::vec3& centre, float radius, const glm::mat4& view_projection) {

@@ -43,6 +43,44 @@ LightFrustum fit_light_frustum(glm::vec3 direction, glm::vec3 scene_min, glm::ve
                                const glm::mat4* inverse_camera_view_projection = nullptr);
 // [/light-frustum]
 
+// [cascades]
+// Cascaded shadow maps for the sun: the view's depth range [near, far] cut into `count` slices,
+// each with a map of its own, so that a texel near the camera covers what a pixel does there and
+// one far away what a pixel does far away. The practical split scheme (Zhang et al. 2006): the
+// logarithmic split, which keeps a texel's size over a pixel's the same in every slice, blended
+// with the uniform one, which the log split starves far away:
+//   z_i = lambda near (far / near)^(i / count) + (1 - lambda) (near + (far - near) i / count).
+// Returns count + 1 view depths: z_0 = near, z_count = far.
+inline constexpr int kMaxCascades = 4;
+std::vector<float> cascade_splits(int count, float near, float far, float lambda);
+// The smallest sphere around the slice of a symmetric perspective frustum between view depths
+// n and f (`camera_world`: the camera's inverse view; yfov, aspect its projection's). Its radius
+// depends on n, f, yfov and aspect only: the camera may move and turn, the sphere's size, and so
+// the cascade's texel, stay the same.
+struct Sphere {
+  glm::vec3 centre{0};
+  float radius = 0;
+};
+Sphere frustum_slice_sphere(const glm::mat4& camera_world, float yfov, float aspect, float n, float f);
+// A cascade's orthographic frustum: the light's view as fit_light_frustum's (the scene's centre,
+// the same rotation for every cascade and every frame), across it a square around the sphere,
+// along it the whole scene's depth range (every caster). The square is N texels of
+// 2 radius / (N - 2) metres: one spare texel a side, so that with `snap` its corner moves to a
+// whole multiple of a texel (the sphere stays inside) and the texel grid stays where it was in
+// the world while the camera moves: a shadow edge drawn into the same texels as the frame before.
+LightFrustum fit_cascade(glm::vec3 direction, glm::vec3 scene_min, glm::vec3 scene_max, const Sphere& sphere,
+                         int map_size, bool snap);
+// Which cascade a point at view depth `depth` reads (the first whose far split lies beyond it;
+// -1 beyond the last: lit), and the weight of the next cascade in the blend band: the last
+// `band` fraction of a cascade's depth range fades into the next, so no seam shows where the
+// texel's size jumps. shadow_visibility.glsl's cascade choice is the twin.
+struct CascadeChoice {
+  int cascade = -1;
+  float next_weight = 0;
+};
+CascadeChoice choose_cascade(float depth, const std::vector<float>& splits, float band);
+// [/cascades]
+
 // [spot-frustum]
 // A spot light's perspective frustum: from its position along its direction, a square field of
 // view of twice its outer cone (the cone is the circle inscribed in it), near plane 5 cm, far
@@ -156,6 +194,26 @@ float esm_filter_log(const std::vector<float>& log_values, const std::vector<flo
 float esm_visibility_direct(float filtered, float c, float depth);
 float esm_visibility_log(float log_filtered, float c, float depth);
 // [/esm]
+
+// [msm]
+// Moment shadow maps (Peters and Klein 2015) store four moments b = (z, z^2, z^3, z^4) of the
+// depths under the filter. For a receiver at depth d, the Hamburger reconstruction finds the
+// distribution with these moments that puts the least weight in front of d: three depths, one of
+// them d itself, the other two the roots of a quadratic from the Cholesky factorisation of the
+// moments' Hankel matrix; the weight of those in front of d is the shadow. Four moments pin down
+// two occluders exactly, where Chebyshev's two moments let light bleed through. The moments are
+// pulled a little towards (0.5, 0.5, 0.5, 0.5) first (`moment_bias`), since a Hankel matrix of
+// one or two depths is singular. The lit fraction returned is 1 - shadow, in [0, 1].
+float msm_hamburger(glm::vec4 moments, float depth, float moment_bias);
+glm::vec4 msm_moments(float depth);  // (z, z^2, z^3, z^4)
+// In 16 bits a channel (RGBA16, 64 bits a texel), the moments are stored through the paper's
+// optimised affine map, which spreads them over [0, 1] so that rounding to 16 bits costs the
+// reconstruction the least; filtering commutes with it (it is affine, the filter's weights sum
+// to 1), so the map is filtered as stored and converted back at the lookup.
+glm::vec4 msm_optimize(glm::vec4 moments);
+glm::vec4 msm_unoptimize(glm::vec4 stored);
+inline constexpr float kMsmMomentBias16 = 3e-5f, kMsmMomentBias32 = 3e-7f;
+// [/msm]
 
 // Does the sphere (centre, radius) reach into the view frustum of `view_projection` (OpenGL
 // clip space)? Conservative: the six planes only (Gribb and Hartmann), so a sphere near a

@@ -20,7 +20,10 @@ using glsl::ShadowParameters;
 static_assert(SHADOW_MAX_POISSON_TAPS == kMaxPoissonTaps);
 static_assert(offsetof(ShadowParameters, view) == 112 && offsetof(ShadowParameters, extent) == 176 &&
               offsetof(ShadowParameters, poisson) == 192 && offsetof(ShadowParameters, spot_position) == 832 &&
-              sizeof(ShadowParameters) == 864, "std140: vec4 and mat4 members on 16 bytes");
+              offsetof(ShadowParameters, cascade_matrix) == 864 && offsetof(ShadowParameters, cascade_far) == 1120 &&
+              offsetof(ShadowParameters, cascade_count) == 1184 && sizeof(ShadowParameters) == 1200,
+              "std140: vec4 and mat4 members on 16 bytes");
+static_assert(SHADOW_MAX_CASCADES == kMaxCascades);
 
 namespace {
 // The stage's texture units, from the first the frame gave it (shadow_visibility.glsl reads
@@ -122,9 +125,11 @@ ch03::StageNeeds ShadowStage::needs() const { return {.units = kUnitCount, .bloc
 ch03::ShaderHooks ShadowStage::shader_hooks() const {
   std::string method = "SHADOW_" + kMethodNames[int(settings_.method)];
   std::transform(method.begin(), method.end(), method.begin(), [](char c) { return c == '-' ? '_' : char(std::toupper(c)); });
-  return {"06_shadows/shaders/shadow_visibility.glsl", "",
-          {"SHADOW_METHOD " + method, "SHADOW_UNIT " + std::to_string(slots().unit(0)),
-           "SHADOW_BLOCK " + std::to_string(slots().block(0))}};
+  std::vector<std::string> defines = {"SHADOW_METHOD " + method, "SHADOW_UNIT " + std::to_string(slots().unit(0)),
+                                      "SHADOW_BLOCK " + std::to_string(slots().block(0))};
+  // The sun's maps as an array (only then: one map keeps the program it always had).
+  if (settings_.cascades > 1) defines.push_back("SHADOW_CASCADES " + std::to_string(settings_.cascades));
+  return {"06_shadows/shaders/shadow_visibility.glsl", "", defines};
 }
 
 // [bind-hook]
@@ -139,9 +144,10 @@ void ShadowStage::bind_hook_resources() const {
     return;
   }
   glBindBufferBase(GL_UNIFORM_BUFFER, at.block(0), block_.id());
-  glBindTextureUnit(at.unit(kDepthUnit), depth_.id());
+  const GLuint sun_maps = allocated_cascades_ > 1 ? cascade_depth_.id() : depth_.id();  // cascades: the array
+  glBindTextureUnit(at.unit(kDepthUnit), sun_maps);
   glBindSampler(at.unit(kDepthUnit), nearest_.id());
-  glBindTextureUnit(at.unit(kCompareUnit), depth_.id());
+  glBindTextureUnit(at.unit(kCompareUnit), sun_maps);
   glBindSampler(at.unit(kCompareUnit), compare_.id());
   glBindTextureUnit(at.unit(kMomentsUnit), allocated_filtered_ ? moments_.id() : depth_.id());
   glBindSampler(at.unit(kMomentsUnit), linear_.id());
@@ -157,12 +163,38 @@ const ShaderProgram& ShadowStage::program(const std::string& vertex, const std::
 
 void ShadowStage::allocate() {
   const int n = settings_.map_size;
-  const bool filtered = settings_.method == ShadowMethod::Vsm || settings_.method == ShadowMethod::Esm;
+  const bool msm = settings_.method == ShadowMethod::Msm;
+  const bool filtered = settings_.method == ShadowMethod::Vsm || settings_.method == ShadowMethod::Esm || msm;
   if (settings_.moment_bits != 16 && settings_.moment_bits != 32)
     throw Error("shadow stage: moment_bits must be 16 or 32 (got " + std::to_string(settings_.moment_bits) + ")");
   const int bits = filtered ? settings_.moment_bits : 32;
-  if (n == allocated_size_ && filtered == allocated_filtered_ && bits == allocated_bits_) return;
-  depth_ = gl::make_texture_2d(GL_DEPTH_COMPONENT32F, n, n);
+  const int cascades = settings_.cascades;
+  if (cascades < 1 || cascades > kMaxCascades)
+    throw Error("shadow stage: between 1 and " + std::to_string(kMaxCascades) + " cascades (got " +
+                std::to_string(cascades) + ")");
+  if (cascades > 1 && filtered)
+    throw Error("shadow stage: cascades work with the methods hard, pcf, pcf-hardware and pcss, not " +
+                kMethodNames[int(settings_.method)] + " (its filtered map is one layer)");
+  const int channels = msm ? 4 : 2;
+  if (n == allocated_size_ && filtered == allocated_filtered_ && bits == allocated_bits_ &&
+      cascades == allocated_cascades_ && channels == allocated_channels_)
+    return;
+  allocated_cascades_ = cascades;
+  cascade_depth_.reset();
+  cascade_fbos_.clear();
+  if (cascades > 1) {
+    // One depth layer per cascade, each drawn through a framebuffer of its own.
+    cascade_depth_ = gl::Texture(GL_TEXTURE_2D_ARRAY);
+    glTextureStorage3D(cascade_depth_.id(), 1, GL_DEPTH_COMPONENT32F, n, n, cascades);
+    for (int i = 0; i < cascades; ++i) {
+      gl::Framebuffer& fbo = cascade_fbos_.emplace_back();
+      glNamedFramebufferTextureLayer(fbo.id(), GL_DEPTH_ATTACHMENT, cascade_depth_.id(), 0, i);
+      glNamedFramebufferDrawBuffer(fbo.id(), GL_NONE);
+    }
+  }
+  // The one map (with cascades, a 1x1 stand-in: the visibility hook does not read it).
+  const int one = cascades > 1 ? 1 : n;
+  depth_ = gl::make_texture_2d(GL_DEPTH_COMPONENT32F, one, one);
   depth_fbo_ = gl::Framebuffer();
   glNamedFramebufferTexture(depth_fbo_.id(), GL_DEPTH_ATTACHMENT, depth_.id(), 0);
   glNamedFramebufferDrawBuffer(depth_fbo_.id(), GL_NONE);
@@ -170,7 +202,8 @@ void ShadowStage::allocate() {
   if (filtered) {
     // RG32F for both (ESM uses the red channel): one format, so the sizes compare; or RG16F,
     // half the bytes, whose 11-bit mantissa rounds M2 - M1^2 (shadow_math.h [fp16-moments]).
-    const GLenum format = bits == 16 ? GL_RG16F : GL_RG32F;
+    // MSM: four moments, RGBA32F or RGBA16 (unsigned normalised: the optimised map's [0, 1]).
+    const GLenum format = msm ? (bits == 16 ? GL_RGBA16 : GL_RGBA32F) : bits == 16 ? GL_RG16F : GL_RG32F;
     moments_ = gl::make_texture_2d(format, n, n);
     scratch_ = gl::make_texture_2d(format, n, n);
     moments_fbo_ = gl::Framebuffer();
@@ -181,14 +214,17 @@ void ShadowStage::allocate() {
   allocated_size_ = n;
   allocated_filtered_ = filtered;
   allocated_bits_ = bits;
+  allocated_channels_ = channels;
 }
 
 std::size_t ShadowStage::allocated_bytes() const {
   if (settings_.method == ShadowMethod::Volumes)  // the visibility bytes and the volumes' vertices
     return std::size_t(volume_width_) * std::size_t(volume_height_) + volume_buffer_bytes_;
-  const std::size_t texels = std::size_t(allocated_size_) * std::size_t(allocated_size_);
+  const std::size_t texels = std::size_t(allocated_size_) * std::size_t(allocated_size_) *
+                             std::size_t(allocated_cascades_);
   const std::size_t spot = std::size_t(spot_size_) * std::size_t(spot_size_) * 4;  // the spot's depth map, if any
-  return texels * (4 + (allocated_filtered_ ? 2 * 2 * std::size_t(allocated_bits_ / 8) : 0)) + spot;
+  const std::size_t filtered = 2 * std::size_t(allocated_channels_) * std::size_t(allocated_bits_ / 8);  // map + scratch
+  return texels * (4 + (allocated_filtered_ ? filtered : 0)) + spot;
 }
 
 // [shadow-stage]
@@ -200,7 +236,10 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
   const Scene& scene = scene_.scene();
   frustum_ = fit_light_frustum(sun_.direction, scene.bounds_min, scene.bounds_max,
                                settings_.fit_to_view ? &inverse_view_projection : nullptr);
-  {
+  if (settings_.cascades > 1) fit_cascades(settings_.cascade_camera ? *settings_.cascade_camera : frame.camera());
+  else cascades_.clear(), splits_.clear();
+  if (!cascades_.empty()) draw_cascades(metrics);
+  else {
     // 1. Depth from the light: every opaque triangle, both sides (no culling), depth only (glass,
     //    alphaMode BLEND, casts no shadow: a map of depths cannot hold what it lets through).
     auto pass = timed(metrics, "shadow map: depth from the sun");
@@ -244,8 +283,11 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
   if (allocated_filtered_) {
     // 2. VSM / ESM: what the method filters, pre-filtered by a separable box.
     auto pass = timed(metrics, "shadow map: pre-filter");
-    const ShaderProgram& p = program("02_gbuffer/shaders/fullscreen.vert", "06_shadows/shaders/shadow_filter.frag",
-                                     {settings_.method == ShadowMethod::Vsm ? "SHADOW_VSM 1" : "SHADOW_ESM 1"});
+    std::vector<std::string> defines = {settings_.method == ShadowMethod::Vsm   ? "SHADOW_VSM 1"
+                                        : settings_.method == ShadowMethod::Msm ? "SHADOW_MSM 1"
+                                                                                : "SHADOW_ESM 1"};
+    if (settings_.method == ShadowMethod::Msm && allocated_bits_ == 16) defines.push_back("MSM_OPTIMIZED 1");
+    const ShaderProgram& p = program("02_gbuffer/shaders/fullscreen.vert", "06_shadows/shaders/shadow_filter.frag", defines);
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
     p.use();
@@ -290,6 +332,10 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
   block.esm_c = settings_.c;
   block.vsm_p_min = settings_.p_min;
   block.poisson_taps = float(poisson_taps_);
+  block.msm_moment_bias = settings_.msm_moment_bias > 0.f ? settings_.msm_moment_bias
+                          : allocated_bits_ == 16        ? kMsmMomentBias16
+                                                         : kMsmMomentBias32;
+  block.msm_optimized = settings_.method == ShadowMethod::Msm && allocated_bits_ == 16 ? 1.f : 0.f;
   block.view = frustum_.view;
   block.extent = glm::vec2(frustum_.box_max - frustum_.box_min);
   block.tan_sun_radius = std::tan(settings_.sun_angular_radius);
@@ -304,9 +350,72 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
   block.spot_mapped = spot_mapped_ ? 1.f : 0.f;
   block.spot_near = spot_frustum_.near, block.spot_far = spot_frustum_.far;
   block.spot_tan_cone = spot_frustum_.tan_cone, block.spot_map_size = float(n);
+  block.cascade_count = float(cascades_.size());
+  block.cascade_band = settings_.cascade_band;
+  block.camera_depth = cascade_depth_plane_;
+  block.cascade_near = splits_.empty() ? 0.f : splits_.front();
+  for (std::size_t i = 0; i < cascades_.size(); ++i) {
+    block.cascade_matrix[i] = cascades_[i].view_projection();
+    block.cascade_far[int(i)] = splits_[i + 1];
+    block.cascade_texel[int(i)] = cascades_[i].texel_world(n);
+    block.cascade_extent[int(i)] = cascades_[i].box_max.x - cascades_[i].box_min.x;
+  }
   glNamedBufferSubData(block_.id(), 0, sizeof(block), &block);
 }
 // [/shadow-stage]
+
+// [cascades-stage]
+// The cascades for this camera: the splits of its depth range, a sphere around each slice, the
+// sphere's square in the light's view, on whole texels.
+void ShadowStage::fit_cascades(const FrameCamera& camera) {
+  const Scene& scene = scene_.scene();
+  const glm::mat4 camera_world = glm::inverse(camera.view);
+  float far = settings_.cascade_distance;
+  if (!(far >= 0.f)) throw Error("shadow stage: cascade_distance must be 0 or more metres");
+  if (far == 0.f) {
+    // To the camera's far plane, or to the scene's farthest corner in view depth, the nearer.
+    float corner = 0.f;
+    for (int i = 0; i < 8; ++i) {
+      const glm::vec3 c(i & 1 ? scene.bounds_max.x : scene.bounds_min.x, i & 2 ? scene.bounds_max.y : scene.bounds_min.y,
+                        i & 4 ? scene.bounds_max.z : scene.bounds_min.z);
+      corner = std::max(corner, -(camera.view * glm::vec4(c, 1.f)).z);
+    }
+    far = std::min(camera.zfar, corner);
+  }
+  far = std::max(far, 2.f * camera.znear);
+  splits_ = ch06::cascade_splits(settings_.cascades, camera.znear, far, settings_.cascade_lambda);
+  cascades_.clear();
+  for (int i = 0; i < settings_.cascades; ++i) {
+    const Sphere sphere = frustum_slice_sphere(camera_world, camera.yfov, camera.aspect, splits_[std::size_t(i)],
+                                               splits_[std::size_t(i) + 1]);
+    cascades_.push_back(fit_cascade(sun_.direction, scene.bounds_min, scene.bounds_max, sphere, settings_.map_size,
+                                    settings_.cascade_snap));
+  }
+  // A world point's view depth, -z in the camera's view space: minus the view matrix's third row.
+  cascade_depth_plane_ = -glm::vec4(camera.view[0][2], camera.view[1][2], camera.view[2][2], camera.view[3][2]);
+}
+
+void ShadowStage::draw_cascades(PassMetrics* metrics) {
+  // 1. Depth from the light, once per cascade into its layer (every opaque triangle each time).
+  auto pass = timed(metrics, "shadow map: depth from the sun");
+  const int n = settings_.map_size;
+  const ShaderProgram& p = program("06_shadows/shaders/shadow_depth.vert", "06_shadows/shaders/shadow_depth.frag", {});
+  glDisable(GL_BLEND), glDisable(GL_STENCIL_TEST), glDisable(GL_SCISSOR_TEST), glDisable(GL_CULL_FACE);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glClearDepth(1.0);
+  p.use();
+  for (std::size_t i = 0; i < cascades_.size(); ++i) {
+    glBindFramebuffer(GL_FRAMEBUFFER, cascade_fbos_[i].id());
+    glViewport(0, 0, n, n);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    p.set("u_light_view_projection", cascades_[i].view_projection());
+    scene_.draw([&](const Instance& inst, const Material&) { p.set("u_model", inst.model); }, SceneGpu::Primitives::Opaque);
+  }
+  frustum_ = cascades_.front();  // what frustum() reports: the nearest cascade
+}
+// [/cascades-stage]
 
 // [volumes-stage]
 void ShadowStage::draw_volumes(ch03::DeferredFrame& frame, PassMetrics* metrics) {
@@ -425,6 +534,11 @@ bool ShadowStage::composite(ch03::DeferredFrame& frame, PassMetrics* metrics) {
   for (const auto& d : frame.view().hooks.glsl_defines()) defines.push_back(d);
   if (picture_ == ShadowPicture::Map) defines.push_back("SHOW_MAP 1");
   if (picture_ == ShadowPicture::Penumbra) defines.push_back("SHOW_PENUMBRA 1");
+  if (picture_ == ShadowPicture::Cascades) {
+    if (settings_.method == ShadowMethod::Volumes)
+      throw Error("shadow stage: the cascades picture needs a map method, not volumes");
+    defines.push_back("SHOW_CASCADES 1");
+  }
   if (picture_ == ShadowPicture::SpotVisibility) {
     if (!spot_ || settings_.method == ShadowMethod::Volumes)
       throw Error("shadow stage: the spot's visibility needs a spot light marked to cast and a map method");

@@ -17,15 +17,17 @@
 #include "chapters/06_shadows/shadow_math.h"
 #include "chapters/06_shadows/shadow_volumes.h"
 #include "common/scene.h"
+#include "common/camera.h"
 #include "common/shader.h"
 
 namespace lp::ch06 {
 
 // Volumes: no map; the sun's shadow volumes counted in the stencil (z-fail), shadow_volumes.h.
 // Pcss: the sun as a disk (sun_angular_radius), PCF over the penumbra a blocker search
-// estimates (shadow_math.h [pcss]).
-enum class ShadowMethod { Hard, Pcf, PcfHardware, Vsm, Esm, Volumes, Pcss };
-inline const std::vector<std::string> kMethodNames = {"hard", "pcf", "pcf-hardware", "vsm", "esm", "volumes", "pcss"};
+// estimates (shadow_math.h [pcss]). Msm: four filtered moments, the Hamburger reconstruction
+// (shadow_math.h [msm]).
+enum class ShadowMethod { Hard, Pcf, PcfHardware, Vsm, Esm, Volumes, Pcss, Msm };
+inline const std::vector<std::string> kMethodNames = {"hard", "pcf", "pcf-hardware", "vsm", "esm", "volumes", "pcss", "msm"};
 ShadowMethod method_from_name(const std::string& name);  // throws Error for an unknown one
 
 struct ShadowSettings {
@@ -43,9 +45,21 @@ struct ShadowSettings {
   float p_min = 0.2f;           // VSM's light-bleeding reduction
   float c = 80.f;               // ESM's exponent (window depth in [0, 1])
   bool fit_to_view = true;      // the map's box cut to what the camera sees (else the whole scene)
-  int moment_bits = 32;         // VSM, ESM: the filtered map in RG32F (32) or RG16F (16), half the bytes
+  int moment_bits = 32;         // VSM, ESM: the filtered map in RG32F (32) or RG16F (16), half the bytes;
+                                // MSM: RGBA32F (32) or RGBA16 through the optimised map (16)
+  float msm_moment_bias = 0.f;  // MSM: the pull towards 0.5 (0: kMsmMomentBias16 or kMsmMomentBias32)
   float volume_offset = 0.01f;  // volumes: metres each volume is pushed along the light ([silhouette])
   bool count_volume_fragments = false;  // volumes: count the fragments the volumes rasterise (a second draw)
+  // Cascades (shadow_math.h [cascades]): 1 is the one map fitted above; 2 to kMaxCascades maps of
+  // map_size each, in a texture array (methods hard, pcf, pcf-hardware and pcss).
+  int cascades = 1;
+  float cascade_lambda = 0.75f;   // the split: 0 uniform, 1 logarithmic
+  float cascade_distance = 0.f;   // metres of view depth the cascades cover (0: to the camera's far
+                                  // plane or the scene's farthest corner, the nearer); beyond, lit
+  float cascade_band = 0.1f;      // the blend band, a fraction of each cascade's depth range
+  bool cascade_snap = true;       // the cascades' boxes on whole texels (no shimmer)
+  // Tests: fit the cascades to this camera instead of the frame's (a map that stays where it is).
+  std::optional<FrameCamera> cascade_camera;
 };
 
 // What the last frame's shadow volumes were (method Volumes).
@@ -57,7 +71,9 @@ struct VolumeStats {
 // What composite() draws instead of the image. Penumbra (method Pcss): the filter's radius in
 // metres, unclamped (0 where the search finds no blocker; blue where the sun does not reach).
 // SpotVisibility: the marked spot light's visibility alone (blue where the spot does not reach).
-enum class ShadowPicture { None, Visibility, Map, Penumbra, SpotVisibility };
+// Cascades: the sun's visibility tinted by the cascade each pixel reads (red, green, blue,
+// yellow; mixed in the blend bands).
+enum class ShadowPicture { None, Visibility, Map, Penumbra, SpotVisibility, Cascades };
 
 class ShadowStage : public ch03::FrameStage {
  public:
@@ -68,6 +84,9 @@ class ShadowStage : public ch03::FrameStage {
   void set(const ShadowSettings& settings, ShadowPicture picture = ShadowPicture::None);
   const ShadowSettings& settings() const { return settings_; }
   const LightFrustum& frustum() const { return frustum_; }
+  // The last frame's cascades (empty with one map) and their splits (view depths, count + 1).
+  const std::vector<LightFrustum>& cascades() const { return cascades_; }
+  const std::vector<float>& cascade_splits() const { return splits_; }
   const std::optional<Light>& spot() const { return spot_; }          // the spot light with a map
   const SpotFrustum& spot_frustum() const { return spot_frustum_; }
   // Whether the last frame drew the spot's map: not when the sphere its range reaches lies
@@ -86,6 +105,8 @@ class ShadowStage : public ch03::FrameStage {
  private:
   void allocate();
   void draw_volumes(ch03::DeferredFrame& frame, PassMetrics* metrics);
+  void fit_cascades(const FrameCamera& camera);
+  void draw_cascades(PassMetrics* metrics);
   const ShaderProgram& program(const std::string& vertex, const std::string& fragment, std::vector<std::string> defines);
   const SceneGpu& scene_;
   Light sun_;
@@ -100,9 +121,16 @@ class ShadowStage : public ch03::FrameStage {
   int spot_size_ = 0;
   int allocated_size_ = 0;
   bool allocated_filtered_ = false;
+  int allocated_channels_ = 2;  // of the filtered map: 2 (VSM, ESM) or 4 (MSM)
   int allocated_bits_ = 32;
   int poisson_taps_ = 0;
   std::vector<glm::vec2> poisson_;
+  std::vector<LightFrustum> cascades_;
+  std::vector<float> splits_;
+  int allocated_cascades_ = 1;
+  glm::vec4 cascade_depth_plane_{0};
+  gl::Texture cascade_depth_{GL_TEXTURE_2D_ARRAY};
+  std::vector<gl::Framebuffer> cascade_fbos_;
   gl::Texture depth_{GL_TEXTURE_2D}, moments_{GL_TEXTURE_2D}, scratch_{GL_TEXTURE_2D};
   gl::Framebuffer depth_fbo_, moments_fbo_, scratch_fbo_;
   gl::Sampler nearest_, compare_, linear_;

@@ -90,6 +90,19 @@ VisibilityError visibility_error(const ImageF& visibility, const ImageF& truth, 
   return e;
 }
 
+Flips visibility_flips(const ImageF& method_a, const ImageF& method_b, const ImageF& truth_a, const ImageF& truth_b) {
+  auto blue = [](const ImageF& v, int x, int y) { return v.at(x, y, 2) > 0.3f && v.at(x, y, 0) < 0.2f; };
+  Flips f;
+  for (int y = 0; y < truth_a.height; ++y)
+    for (int x = 0; x < truth_a.width; ++x) {
+      if (truth_a.at(x, y, 2) < 0.5f || truth_b.at(x, y, 2) < 0.5f || blue(method_a, x, y) || blue(method_b, x, y)) continue;
+      ++f.pixels;
+      f.method += (method_a.at(x, y, 0) > 0.5f) != (method_b.at(x, y, 0) > 0.5f);
+      f.truth += (truth_a.at(x, y, 0) > 0.5f) != (truth_b.at(x, y, 0) > 0.5f);
+    }
+  return f;
+}
+
 std::vector<bool> hard_edge_pixels(const ImageF& truth, int radius) {
   std::vector<bool> edge(std::size_t(truth.width) * std::size_t(truth.height), false);
   for (int y = 0; y < truth.height; ++y)

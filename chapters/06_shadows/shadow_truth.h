@@ -54,6 +54,19 @@ VisibilityError visibility_error(const ImageF& visibility, const ImageF& truth, 
 std::vector<bool> hard_edge_pixels(const ImageF& truth, int radius = 1);
 // [/shadow-error]
 
+// [shimmer]
+// Shimmer: how many pixels change sides between two frames of a moving camera. A pixel counts
+// where both frames' truths hold it in their masks and neither method picture is the blue of
+// the sky or a surface facing away (show_visibility.frag); it flips where its hard visibility
+// (channel 0, above or below 0.5) differs between the frames, for the method and for the truth.
+// The truth's own flips are the shadow edges sweeping over the pixels as the camera moves; a
+// map adds its own when its texel grid moves in the world.
+struct Flips {
+  std::size_t method = 0, truth = 0, pixels = 0;
+};
+Flips visibility_flips(const ImageF& method_a, const ImageF& method_b, const ImageF& truth_a, const ImageF& truth_b);
+// [/shimmer]
+
 // A direction within `angular_radius` of `axis`, uniform over the cone's solid angle, from
 // (u, v) in [0, 1)^2.
 glm::vec3 sample_cone(glm::vec3 axis, float angular_radius, float u, float v);

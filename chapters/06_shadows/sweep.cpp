@@ -6,12 +6,15 @@
 // and the frames measured.
 //
 //   06_shadows_sweep [--out DIR] [--size WxH] [--frames N] [--truth-samples N]
-//                    [--only main|pcf|moments|volumes|pcss]
+//                    [--only main|pcf|moments|volumes|pcss|cascades|msm]
 //   -> DIR/06_shadows.csv, and 06_shadows_moments.csv: VSM and ESM with the filtered map in
 //      RG32F and in RG16F (..._llvmpipe.csv on llvmpipe); --only pcf: the main CSV's PCF rows
 //      alone (the grid and the Poisson disk) into 06_shadows_pcf.csv; 06_shadows_pcss.csv:
 //      PCSS against the fixed PCF kernels on three views, and at three sun sizes (each against
-//      the soft truth of its own sun)
+//      the soft truth of its own sun); 06_shadows_cascades.csv: cascaded maps on the street
+//      (chapter 03's street, its moon alone), error by cascade count and map size, and shimmer
+//      as the camera steps, with and without snapping; 06_shadows_msm.csv: moment shadow maps
+//      against VSM and ESM on the atrium's views: light leaking, error, cost and bytes
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -100,6 +103,114 @@ double pass_ms(const Measurement& m, const std::string& name) {
   return p ? p->mean_ms : 0.0;
 }
 
+// The shimmer path: steps of 2 mm across the view (to the camera's right and a little up).
+constexpr int kSteps = 8;
+constexpr float kStep = 0.002f;
+
+// [cascade-rows]
+// Cascaded maps on the street (street_level looks 120 m down it), its moon alone: the 312 local
+// lights are left out, the shadows measured are the moon's. Error against the truths and cost by
+// cascade count and map size; then shimmer: the camera steps `kSteps` times by `kStep` metres
+// (across the view: to its right and a little up), and each step's flips (shadow_truth.h [shimmer]) are counted for
+// the hard method and for the truth, with the boxes snapped to whole texels and not.
+void cascade_rows(const Settings& s, const std::string& renderer, bool software) {
+  Scene scene = load_scene(from_root("assets/street/street.gltf"));
+  std::erase_if(scene.lights, [](const Light& l) { return l.type != LightType::Directional; });
+  SceneGpu gpu(scene);
+  RayScene rays(scene);
+  const Light& sun = find_sun(scene);
+  ch03::DeferredFrame frame(gpu);
+  ch03::use_lights(frame, scene, scene.lights, true);
+  ShadowStage stage(gpu, sun);
+  frame.add_stage(stage);
+  OutputTarget image(s.width, s.height);
+  ColourTarget visibility(s.width, s.height, GL_RGBA32F);
+  const std::string file = s.out + (software ? "/06_shadows_cascades_llvmpipe.csv" : "/06_shadows_cascades.csv");
+  std::ofstream csv(file);
+  csv << "# " << (software ? "llvmpipe CPU time: " : "GPU time: ") << renderer << ", " << s.width << "x" << s.height
+      << ", the street's moon alone; soft truth: sun disk " << TruthSettings{}.angular_radius << " rad, "
+      << s.truth_samples << " rays per pixel; shimmer: flips per step over the pixels counted, " << kSteps
+      << " steps of " << kStep * 1000 << " mm\n"
+      << "view,kind,method,cascades,map,lambda,snap,bytes,near_texel_cm,depth_ms,global_ms,frame_ms,hard_wrong_pct,"
+         "soft_mean,method_flips,truth_flips,flip_pixels,"
+      << csv_measure_columns() << "\n";
+  const std::string view = "street_level";
+  const Camera base = scene.camera(view);
+  const FrameCamera camera = frame_camera(base, float(s.width) / s.height);
+  const ImageF truth = cached_shadow_truth(scene, rays, camera, s.width, s.height, sun.direction, {.samples = s.truth_samples});
+  auto row = [&](const std::string& kind, const ShadowSettings& x, double hard_wrong, double soft_mean, const Flips& flips,
+                 const Measurement* m) {
+    csv << view << ',' << kind << ',' << kMethodNames[int(x.method)] << ',' << x.cascades << ',' << x.map_size << ','
+        << x.cascade_lambda << ',' << x.cascade_snap << ',' << stage.allocated_bytes() << ','
+        << stage.frustum().texel_world(x.map_size) * 100 << ',' << (m ? pass_ms(*m, "shadow map: depth from the sun") : 0)
+        << ',' << (m ? pass_ms(*m, "global: ambient + directional (chapter 03)") : 0) << ',' << (m ? m->total_ms() : 0)
+        << ',' << hard_wrong << ',' << soft_mean << ',' << flips.method << ',' << flips.truth << ',' << flips.pixels << ','
+        << csv_measure_values(renderer, s.width, s.height, m ? m->frames : 0) << "\n";
+  };
+  // Error and cost.
+  for (ShadowMethod method : {ShadowMethod::Hard, ShadowMethod::Pcf})
+    for (int cascades : {1, 2, 3, 4})
+      for (int map : {512, 1024, 2048}) {
+        const ShadowSettings x{.method = method, .map_size = map, .cascades = cascades};
+        stage.set(x, ShadowPicture::Visibility);
+        frame.render(camera, {visibility.framebuffer(), s.width, s.height});
+        const ImageF vis = visibility.read();
+        const VisibilityError hard = visibility_error(vis, truth, 0), soft = visibility_error(vis, truth, 1);
+        if (map == 1024 && method == ShadowMethod::Hard && (cascades == 1 || cascades == 4)) {
+          const std::string name = s.out + "/06_street_" + std::to_string(cascades) + "_cascades";
+          save_png(name + "_visibility.png", visibility_picture(vis, 0, truth));
+          save_png(name + "_error.png", error_picture(vis, truth, 0));
+          if (cascades == 4) {
+            stage.set(x, ShadowPicture::Cascades);
+            frame.render(camera, {image.framebuffer(), s.width, s.height});
+            save_png(name + "_tinted.png", image.read());
+            save_png(s.out + "/06_street_truth_hard.png", visibility_picture(truth, 0, truth));
+          }
+        }
+        stage.set(x);
+        PassMetrics metrics;
+        const Measurement m = measure(metrics, [&] { frame.render(camera, {image.framebuffer(), s.width, s.height}, &metrics); },
+                                      {.frames = s.frames});
+        row("error", x, 100 * hard.wrong, soft.mean_abs, {}, &m);
+        std::cout << "street " << kMethodNames[int(method)] << " cascades " << cascades << " map " << map << ": hard wrong "
+                  << 100 * hard.wrong << "%, soft mean " << soft.mean_abs << ", frame " << m.total_ms() << " ms" << std::endl;
+      }
+  // Shimmer: the same camera path for every setting, its truths traced once.
+  std::vector<FrameCamera> path;
+  std::vector<ImageF> truths;
+  for (int i = 0; i <= kSteps; ++i) {
+    Camera c = base;
+    const glm::vec3 across = glm::normalize(glm::vec3(base.world[0]) + 0.3f * glm::vec3(base.world[1]));
+    c.world = glm::translate(glm::mat4(1), float(i) * kStep * across) * c.world;
+    path.push_back(frame_camera(c, float(s.width) / s.height));
+    truths.push_back(shadow_truth(scene, rays, path.back(), s.width, s.height, sun.direction, {.samples = 1}));
+  }
+  for (int cascades : {1, 4})
+    for (int map : {1024, 2048})
+      for (bool snap : {true, false}) {
+        if (cascades == 1 && !snap) continue;  // one map has no snapping to switch
+        const ShadowSettings x{.method = ShadowMethod::Hard, .map_size = map, .cascades = cascades, .cascade_snap = snap};
+        Flips total;
+        ImageF previous;
+        for (int i = 0; i <= kSteps; ++i) {
+          stage.set(x, ShadowPicture::Visibility);
+          frame.render(path[std::size_t(i)], {visibility.framebuffer(), s.width, s.height});
+          ImageF v = visibility.read();
+          if (i > 0) {
+            const Flips f = visibility_flips(previous, v, truths[std::size_t(i) - 1], truths[std::size_t(i)]);
+            total.method += f.method, total.truth += f.truth, total.pixels += f.pixels;
+          }
+          previous = std::move(v);
+        }
+        row("shimmer", x, 0, 0, total, nullptr);
+        std::cout << "street shimmer cascades " << cascades << " map " << map << (snap ? " snapped" : " unsnapped") << ": "
+                  << total.method << " flips against the truth's " << total.truth << " over " << total.pixels
+                  << " pixel-steps" << std::endl;
+      }
+  std::cout << "wrote " << file << '\n';
+}
+// [/cascade-rows]
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -109,8 +220,8 @@ int main(int argc, char** argv) {
         .integer("--truth-samples", s.truth_samples).text("--only", s.only);
   }, [&] {
     if (!s.only.empty() && s.only != "main" && s.only != "pcf" && s.only != "moments" && s.only != "volumes" &&
-        s.only != "pcss")
-      throw UsageError("--only must be main, pcf, moments, volumes or pcss, not '" + s.only + "'");
+        s.only != "pcss" && s.only != "cascades" && s.only != "msm")
+      throw UsageError("--only must be main, pcf, moments, volumes, pcss, cascades or msm, not '" + s.only + "'");
     std::filesystem::create_directories(s.out);
     auto context = Context::create({.headless = true, .width = s.width, .height = s.height});
     const std::string renderer = context->renderer();
@@ -344,5 +455,74 @@ int main(int argc, char** argv) {
       std::cout << "wrote " << file << '\n';
     }
     // [/pcss-rows]
+    if (s.only.empty() || s.only == "cascades") cascade_rows(s, renderer, software);
+    // [msm-rows]
+    // Moment shadow maps against VSM (with and without P_min) and ESM: light leaking (pixels the
+    // soft truth has in full shadow lit by more than 0.1: all of them, and those where PCF 3x3 is
+    // dark, where only the moments can bring light), the error against the soft truth, the
+    // pre-filter's and the lookups' cost, and the bytes.
+    if (s.only.empty() || s.only == "msm") {
+      const std::string file = s.out + (software ? "/06_shadows_msm_llvmpipe.csv" : "/06_shadows_msm.csv");
+      std::ofstream csv(file);
+      csv << "# " << (software ? "llvmpipe CPU time: " : "GPU time: ") << renderer << ", " << s.width << "x" << s.height
+          << ", atrium; soft truth: sun disk " << TruthSettings{}.angular_radius << " rad, " << s.truth_samples
+          << " rays per pixel; leak: pixels in full shadow (soft truth 0) lit > 0.1\n"
+          << "view,method,setting,bits,bytes,filter_ms,global_ms,frame_ms,full_shadow,leak,leak_pct,pcf_dark,leak_pcf_dark,"
+             "soft_mean,soft_p99,"
+          << csv_measure_columns() << "\n";
+      struct Row { std::string setting; ShadowSettings shadow; };
+      const std::vector<Row> rows = {
+          {"pmin 0", {.method = ShadowMethod::Vsm, .p_min = 0.f}},
+          {"pmin 0.2", {.method = ShadowMethod::Vsm}},
+          {"c 80", {.method = ShadowMethod::Esm}},
+          {"32-bit", {.method = ShadowMethod::Msm}},
+          {"16-bit", {.method = ShadowMethod::Msm, .moment_bits = 16}},
+          {"vsm 16-bit", {.method = ShadowMethod::Vsm, .p_min = 0.f, .moment_bits = 16}},
+      };
+      for (const std::string view : {"overview", "aisle", "corner"}) {
+        const FrameCamera camera = frame_camera(scene.camera(view), float(s.width) / s.height);
+        const ImageF truth = cached_shadow_truth(scene, rays, camera, s.width, s.height, sun.direction,
+                                                 {.samples = s.truth_samples});
+        stage.set({.method = ShadowMethod::Pcf, .kernel = 3}, ShadowPicture::Visibility);
+        frame.render(camera, {visibility.framebuffer(), s.width, s.height});
+        const ImageF pcf = visibility.read();
+        for (const Row& r : rows) {
+          const ShadowSettings& x = r.shadow;
+          stage.set(x, ShadowPicture::Visibility);
+          frame.render(camera, {visibility.framebuffer(), s.width, s.height});
+          const ImageF vis = visibility.read();
+          auto blue = [](const ImageF& v, int px, int py) { return v.at(px, py, 2) > 0.3f && v.at(px, py, 0) < 0.2f; };
+          std::size_t dark = 0, leak = 0, pcf_dark = 0, leak_pcf_dark = 0;
+          for (int y = 0; y < s.height; ++y)
+            for (int px = 0; px < s.width; ++px) {
+              if (truth.at(px, y, 2) < 0.5f || truth.at(px, y, 1) > 0.f || blue(vis, px, y) || blue(pcf, px, y)) continue;
+              const bool lit = vis.at(px, y, 0) > 0.1f;
+              ++dark, leak += lit;
+              if (pcf.at(px, y, 0) == 0.f) ++pcf_dark, leak_pcf_dark += lit;
+            }
+          const VisibilityError soft = visibility_error(vis, truth, 1);
+          if (view == "overview" && (r.setting == "32-bit" || r.setting == "pmin 0")) {
+            const std::string name = s.out + "/06_overview_" + kMethodNames[int(x.method)] + "_leak";
+            save_png(name + "_visibility.png", visibility_picture(vis, 0, truth));
+            save_png(name + "_error.png", error_picture(vis, truth, 1));
+          }
+          stage.set(x);
+          PassMetrics metrics;
+          const Measurement m = measure(metrics, [&] { frame.render(camera, {image.framebuffer(), s.width, s.height}, &metrics); },
+                                        {.frames = s.frames});
+          csv << view << ',' << kMethodNames[int(x.method)] << ',' << r.setting << ',' << x.moment_bits << ','
+              << stage.allocated_bytes() << ',' << pass_ms(m, "shadow map: pre-filter") << ','
+              << pass_ms(m, "global: ambient + directional (chapter 03)") << ',' << m.total_ms() << ',' << dark << ','
+              << leak << ',' << (dark ? 100.0 * double(leak) / double(dark) : 0.0) << ',' << pcf_dark << ','
+              << leak_pcf_dark << ',' << soft.mean_abs << ',' << soft.p99 << ','
+              << csv_measure_values(renderer, s.width, s.height, m.frames) << "\n";
+          std::cout << view << ' ' << kMethodNames[int(x.method)] << ' ' << r.setting << ": leak " << leak << " of " << dark
+                    << " (" << leak_pcf_dark << " of " << pcf_dark << " where pcf is dark), soft mean " << soft.mean_abs
+                    << ", frame " << m.total_ms() << " ms" << std::endl;
+        }
+      }
+      std::cout << "wrote " << file << '\n';
+    }
+    // [/msm-rows]
   });
 }

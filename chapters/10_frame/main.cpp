@@ -49,6 +49,8 @@ const CliSpec kCli{
                           {"image", "accumulation", "revealage", "error"}),
               // --mode whole: every stage of the book (whole_frame.h); each can be switched off.
               {"shadows", "whole: the sun's shadow map (chapter 06)", 1, 0, 1, true},
+              {"sun-cascades", "whole: chapter 06's cascades for the sun (1: one map fitted to the view; 2 to 4, "
+                               "snapped)", 1, 1, ch06::kMaxCascades, true},
               {"clustered", "whole: the local lights by chapter 09's clusters (off: chapter 03's stencil volumes)", 1, 0, 1, true},
               {"ao", "whole: ambient occlusion (chapters 07, 08)", 1, 0, 1, true},
               {"indirect", "whole: one bounce of indirect light (chapter 08)", 1, 0, 1, true},
@@ -167,6 +169,7 @@ void draw_whole(App& app, const Frame& f, WholeFrame& whole) {
   WholeFrameSettings s{.shadows = f.knob_int("shadows") != 0, .clustered = f.knob_int("clustered") != 0,
                        .ao = f.knob_int("ao") != 0, .indirect = f.knob_int("indirect") != 0,
                        .neon = f.knob_int("neon") != 0,
+                       .sun_cascades = f.knob_int("sun-cascades"),
                        // The exact order is --mode frame's ground truth (a CPU composite): the
                        // whole frame sorts instead, and says so below.
                        .transparency = which == "off" ? Method::Off : which == "exact" ? Method::Sorted : method_named(which),

@@ -129,7 +129,7 @@ void WholeFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outp
   ch03::DeferredFrame& frame = source_->frame();
   frame.set_local_lights(s.clustered ? clustered_.get() : nullptr);
   frame.set_strategy(ch03::Strategy::Stencil);
-  if (shadows_) shadows_->set(ch06::ShadowSettings{});
+  if (shadows_) shadows_->set(ch06::ShadowSettings{.cascades = s.sun_cascades});
   if (gi_) {
     ch08::GiSettings g;
     g.ao = p[kAo].runs;

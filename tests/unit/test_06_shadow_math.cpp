@@ -486,3 +486,179 @@ TEST(ShadowMath, SphereInViewAgainstTheFrustumsPlanes) {
   EXPECT_TRUE(sphere_in_view({30, 0, -10}, 30.f, vp));  // large enough to reach in
   EXPECT_FALSE(sphere_in_view({0, 0, -200}, 50.f, vp));  // beyond the far plane
 }
+
+// [cascade-tests]
+// The practical split against its definition, written out here from Zhang et al.'s two schemes:
+// the logarithmic split n (f/n)^(i/C), the uniform n + (f - n) i / C, blended by lambda; lambda 0
+// and 1 give each alone; the splits rise from near to far.
+TEST(ShadowCascades, SplitsAreTheBlendOfTheLogarithmicAndTheUniformSplit) {
+  const float n = 0.05f, f = 120.f;
+  for (int count : {1, 2, 3, 4})
+    for (float lambda : {0.f, 0.25f, 0.75f, 1.f}) {
+      const std::vector<float> z = cascade_splits(count, n, f, lambda);
+      ASSERT_EQ(z.size(), std::size_t(count) + 1);
+      EXPECT_EQ(z.front(), n);
+      EXPECT_EQ(z.back(), f);
+      for (int i = 1; i < count; ++i) {
+        const double log_split = n * std::pow(double(f) / n, double(i) / count);
+        const double uniform = n + (double(f) - n) * i / count;
+        EXPECT_NEAR(z[std::size_t(i)], lambda * log_split + (1 - lambda) * uniform, 1e-4 * f) << count << " " << lambda;
+        EXPECT_GT(z[std::size_t(i)], z[std::size_t(i) - 1]);
+      }
+    }
+  // Logarithmic: every cascade spans the same ratio far / near.
+  const std::vector<float> z = cascade_splits(4, 0.1f, 100.f, 1.f);
+  for (int i = 1; i < 4; ++i) EXPECT_NEAR(z[std::size_t(i) + 1] / z[std::size_t(i)], z[1] / z[0], 1e-3);
+  EXPECT_THROW(cascade_splits(kMaxCascades + 1, n, f, 0.5f), Error);
+  EXPECT_THROW(cascade_splits(2, f, n, 0.5f), Error);
+  EXPECT_THROW(cascade_splits(2, n, f, 1.5f), Error);
+}
+
+// The slice's sphere holds the slice's eight corners, touches one of them (it is no larger than
+// it must be for a centre on the axis), and its radius does not change when the camera moves or
+// turns: a cascade's texel is the same in every frame.
+TEST(ShadowCascades, TheSliceSphereHoldsTheSliceAndKeepsItsSizeAsTheCameraMoves) {
+  const float yfov = 0.9f, aspect = 16.f / 9.f;
+  float radius = -1.f;
+  for (int k = 0; k < 5; ++k) {
+    const glm::vec3 eye(1.f + 3.7f * k, 1.7f, 55.f - 11.f * k);
+    const glm::mat4 view = glm::lookAt(eye, eye + glm::vec3(std::sin(0.6f * k), -0.1f * k, -1.f), glm::vec3(0, 1, 0));
+    const glm::mat4 world = glm::inverse(view);
+    for (auto [n, f] : {std::pair{0.05f, 7.8f}, std::pair{7.8f, 17.f}, std::pair{35.f, 120.f}}) {
+      const Sphere s = frustum_slice_sphere(world, yfov, aspect, n, f);
+      const glm::mat4 projection = glm::perspective(yfov, aspect, n, f);
+      const glm::mat4 inverse = glm::inverse(projection * view);
+      float farthest = 0.f, near_corner = 0.f, far_corner = 0.f;
+      for (int i = 0; i < 8; ++i) {
+        glm::vec4 p = inverse * glm::vec4(i & 1 ? 1.f : -1.f, i & 2 ? 1.f : -1.f, i & 4 ? 1.f : -1.f, 1.f);
+        const float d = glm::distance(glm::vec3(p) / p.w, s.centre);
+        farthest = std::max(farthest, d);
+        (i & 4 ? far_corner : near_corner) = d;
+      }
+      EXPECT_LE(farthest, s.radius * (1.f + 1e-4f));
+      EXPECT_GE(farthest, s.radius * (1.f - 1e-4f));
+      // The smallest: a centre on the axis moved either way would leave the near or the far
+      // corners outside, so both are on the sphere; or the centre is on the far rectangle.
+      const float depth = glm::dot(s.centre - eye, -glm::vec3(world[2]));
+      if (std::abs(depth - f) > 1e-3f * f) EXPECT_NEAR(near_corner, far_corner, 1e-4f * s.radius) << n << " " << f;
+      else EXPECT_NEAR(far_corner, s.radius, 1e-4f * s.radius);
+      if (n == 7.8f) {
+        if (radius < 0.f) radius = s.radius;
+        EXPECT_EQ(s.radius, radius);  // bit for bit
+      }
+    }
+  }
+}
+
+// Snapping: as the sphere moves by small steps, the snapped box moves by whole texels (its corner
+// stays on the grid of the first box), keeps its size, and holds the sphere; unsnapped, the
+// corner slides off the grid.
+TEST(ShadowCascades, SnappedBoxesMoveByWholeTexelsAndHoldTheSphere) {
+  const glm::vec3 sun = glm::normalize(glm::vec3(-0.4f, -0.8f, -0.3f));
+  const glm::vec3 lo(-20.f, 0.f, -100.f), hi(20.f, 25.f, 60.f);
+  const int n = 1024;
+  const Sphere start{{2.f, 3.f, 40.f}, 4.6f};
+  const LightFrustum first = fit_cascade(sun, lo, hi, start, n, true);
+  const float texel = first.texel_world(n);
+  EXPECT_NEAR(texel, 2.f * start.radius / float(n - 2), 1e-7f);
+  double worst_snapped = 0, worst_unsnapped = 0;
+  for (int k = 1; k <= 40; ++k) {
+    Sphere s = start;
+    s.centre += float(k) * 0.0013f * glm::vec3(1.f, 0.3f, -0.5f);
+    const LightFrustum a = fit_cascade(sun, lo, hi, s, n, true), b = fit_cascade(sun, lo, hi, s, n, false);
+    for (int axis = 0; axis < 2; ++axis) {
+      const double steps = (a.box_min[axis] - first.box_min[axis]) / texel;
+      worst_snapped = std::max(worst_snapped, std::abs(steps - std::round(steps)));
+      const double slid = (b.box_min[axis] - first.box_min[axis]) / texel;
+      worst_unsnapped = std::max(worst_unsnapped, std::abs(slid - std::round(slid)));
+      EXPECT_NEAR(a.box_max[axis] - a.box_min[axis], first.box_max[axis] - first.box_min[axis], 1e-4f);
+      const float centre = glm::vec3(a.view * glm::vec4(s.centre, 1.f))[axis];
+      EXPECT_LE(a.box_min[axis], centre - s.radius);
+      EXPECT_GE(a.box_max[axis], centre + s.radius);
+    }
+  }
+  std::printf("box corner off the first grid: snapped %.2e texels, unsnapped %.2f texels\n", worst_snapped, worst_unsnapped);
+  EXPECT_LT(worst_snapped, 1e-2);
+  EXPECT_GT(worst_unsnapped, 0.2);
+}
+
+// The choice: the first cascade whose far split lies beyond the depth, -1 beyond the last; the
+// next cascade's weight rises from 0 to 1 over the last `band` of a cascade's range, and is 0 in
+// the last cascade (nothing to fade into).
+TEST(ShadowCascades, ChoiceByDepthAndTheBlendBand) {
+  const std::vector<float> z = {0.1f, 10.f, 20.f, 40.f};
+  EXPECT_EQ(choose_cascade(0.5f, z, 0.1f).cascade, 0);
+  EXPECT_EQ(choose_cascade(10.f, z, 0.1f).cascade, 1);
+  EXPECT_EQ(choose_cascade(39.9f, z, 0.1f).cascade, 2);
+  EXPECT_EQ(choose_cascade(40.f, z, 0.1f).cascade, -1);
+  EXPECT_EQ(choose_cascade(8.9f, z, 0.1f).next_weight, 0.f);   // before the band (9.01 to 10)
+  EXPECT_NEAR(choose_cascade(9.505f, z, 0.1f).next_weight, 0.5f, 1e-4f);
+  EXPECT_NEAR(choose_cascade(19.5f, z, 0.1f).next_weight, 0.5f, 1e-4f);  // band 18 to 20 in the second
+  EXPECT_EQ(choose_cascade(39.9f, z, 0.1f).next_weight, 0.f);  // the last: no next one
+  EXPECT_EQ(choose_cascade(9.9f, z, 0.f).next_weight, 0.f);    // no band
+}
+// [/cascade-tests]
+
+// [msm-tests]
+// The optimised quantisation: every depth's moments land in [0, 1] (what a 16-bit UNORM channel
+// can hold) and come back through the inverse map.
+TEST(ShadowMsm, OptimisedMomentsFitUnormAndComeBack) {
+  for (int i = 0; i <= 1000; ++i) {
+    const float z = float(i) / 1000.f;
+    const glm::vec4 b = msm_moments(z), stored = msm_optimize(b), back = msm_unoptimize(stored);
+    for (int k = 0; k < 4; ++k) {
+      EXPECT_GE(stored[k], -1e-3f) << z;
+      EXPECT_LE(stored[k], 1.f + 1e-3f) << z;
+      EXPECT_NEAR(back[k], b[k], 1e-4f) << z << " moment " << k;
+    }
+  }
+}
+
+// For any distribution, the Hamburger reconstruction's shadow is at most the true fraction in
+// front of the receiver (it is the least any distribution with these moments puts there), so its
+// lit fraction is at least the truth; and four moments bound tighter than Chebyshev's two.
+TEST(ShadowMsm, HamburgerBoundsTheLitFractionAndIsTighterThanChebyshev) {
+  std::mt19937 rng(25);
+  std::uniform_real_distribution<float> u(0.05f, 0.95f);
+  int tighter = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    std::vector<float> z(8), w(8);
+    float total = 0;
+    for (int i = 0; i < 8; ++i) z[std::size_t(i)] = u(rng), w[std::size_t(i)] = u(rng), total += w[std::size_t(i)];
+    for (float& x : w) x /= total;
+    glm::dvec4 b(0);
+    for (int i = 0; i < 8; ++i) b += double(w[std::size_t(i)]) * glm::dvec4(msm_moments(z[std::size_t(i)]));
+    const float d = u(rng);
+    const float truth = lit_fraction(z, w, d);
+    const float msm = msm_hamburger(glm::vec4(b), d, kMsmMomentBias32);
+    const float vsm = chebyshev_upper_bound({float(b.x), float(b.y)}, d, 0.f);
+    EXPECT_GE(msm, truth - 2e-3f) << trial;
+    EXPECT_LE(msm, vsm + 2e-3f) << trial;
+    tighter += msm < vsm - 0.01f;
+  }
+  std::printf("msm tighter than chebyshev by > 0.01 in %d of 2000\n", tighter);
+  EXPECT_GT(tighter, 500);
+}
+
+// Two occluders over a receiver (the bleeding case of OverlappingOccludersBleedAndPminRemovesIt):
+// Chebyshev lets a tenth of the light through, four moments almost none; and the same in 16 bits
+// through the optimised map, rounded to 16-bit steps as RGBA16 stores it, with its moment bias.
+TEST(ShadowMsm, TwoOccludersDoNotBleed) {
+  const std::vector<float> z = {0.2f, 0.5f}, w = {0.5f, 0.5f};
+  const glm::vec4 b = 0.5f * (msm_moments(0.2f) + msm_moments(0.5f));
+  const float d = 0.8f;
+  const float vsm = chebyshev_upper_bound({b.x, b.y}, d, 0.f);
+  const float msm = msm_hamburger(b, d, kMsmMomentBias32);
+  glm::vec4 stored = msm_optimize(b);
+  for (int k = 0; k < 4; ++k) stored[k] = std::round(std::clamp(stored[k], 0.f, 1.f) * 65535.f) / 65535.f;
+  const float msm16 = msm_hamburger(msm_unoptimize(stored), d, kMsmMomentBias16);
+  std::printf("two occluders, receiver behind: truth 0, chebyshev %.3f, msm %.4f, msm 16-bit %.4f\n", vsm, msm, msm16);
+  EXPECT_GT(vsm, 0.09f);
+  EXPECT_LT(msm, 0.01f);
+  EXPECT_LT(msm16, 0.02f);
+  // Between the occluders half the light: the Hamburger reconstruction is exact for two depths.
+  EXPECT_NEAR(msm_hamburger(b, 0.35f, kMsmMomentBias32), lit_fraction(z, w, 0.35f), 0.02f);
+  // In front of both: lit.
+  EXPECT_NEAR(msm_hamburger(b, 0.1f, kMsmMomentBias32), 1.f, 0.01f);
+}
+// [/msm-tests]

@@ -134,3 +134,23 @@ TEST(WholeFrameGl, TheGlassSeesTheSunsMapWithIndirectLightOnOrOff) {
   EXPECT_EQ(same, floor) << "glass pixels whose light changed with chapter 08's stage";
   EXPECT_GT(shaded, floor / 20) << "the sun's map darkens at least 5 % of the glass floor by half";
 }
+
+// Chapter 06's cascades for the sun in the whole frame (--sun-cascades): the setting reaches the
+// shadow stage (the street's image changes where the moon's shadows are drawn from four maps
+// instead of one), and the image with cascades still has the moon's shadows (it is not the frame
+// without them).
+TEST(WholeFrameGl, SunCascadesReachTheShadowStage) {
+  const Scene scene = shop_street();
+  WholeFrame frame(scene);
+  WholeFrameSettings one, four, none;
+  four.sun_cascades = 4;
+  none.shadows = false;
+  const ImageRGBA8 a = draw(frame, scene, 160, 90, one), b = draw(frame, scene, 160, 90, four);
+  const ImageRGBA8 c = draw(frame, scene, 160, 90, none);
+  std::size_t differ = 0, differ_from_none = 0;
+  for (std::size_t i = 0; i < a.pixels.size(); ++i) differ += a.pixels[i] != b.pixels[i], differ_from_none += b.pixels[i] != c.pixels[i];
+  std::printf("four cascades against one map: %zu channel values differ; against no shadows: %zu\n", differ, differ_from_none);
+  EXPECT_GT(differ, 0u);
+  EXPECT_GT(differ_from_none, 0u);
+  EXPECT_TRUE(draw(frame, scene, 160, 90, one).pixels == a.pixels);  // and back: the one map's image again
+}

@@ -3,6 +3,7 @@
 // it in shadow_visibility.glsl (uniform block ShadowBlock), C++ in shadow_stage.cpp, which
 // fills it and asserts the std140 offsets (vec4 and mat4 on 16 bytes, floats between).
 #define SHADOW_MAX_POISSON_TAPS 64
+#define SHADOW_MAX_CASCADES 4
 struct ShadowParameters {
   mat4 matrix;           // world to the sun map's clip space (orthographic)
   float texel_metres;    // one map texel, metres
@@ -16,10 +17,10 @@ struct ShadowParameters {
   float esm_c;           // ESM's exponent
   float vsm_p_min;       // VSM's light-bleeding reduction
   float poisson_taps;    // PCF and PCSS: taps of the Poisson disk (0: PCF's k x k grid)
-  float unused0;
+  float msm_moment_bias; // MSM's pull of the moments towards 0.5
   mat4 view;             // world to the light's view space (looking down -z)
   vec2 extent;           // the map's box: width and height, metres
-  float unused1;
+  float msm_optimized;   // MSM: 1 when the map holds the optimised 16-bit moments
   float tan_sun_radius;  // PCSS: tan(the sun's angular radius)
   vec4 poisson[SHADOW_MAX_POISSON_TAPS / 2];  // the unit-disk taps, two a vec4 (xy, zw)
   mat4 spot_matrix;      // world to the marked spot light's clip space (perspective)
@@ -27,5 +28,19 @@ struct ShadowParameters {
   vec3 spot_position;
   float spot_mapped;     // 1 when the spot's map was drawn this frame
   float spot_near, spot_far, spot_tan_cone, spot_map_size;  // its frustum (metres) and map (texels)
-};
+  // ... the cascades' fields ([shadow-block-cascades])
 // [/shadow-block]
+// [shadow-block-cascades]
+  // Cascades (shadow_math.h [cascades]), when SHADOW_CASCADES > 1: the sun's maps are the layers
+  // of an array, each with its frustum; the light's view and depth range are those above.
+  mat4 cascade_matrix[SHADOW_MAX_CASCADES];  // world to each cascade's clip space
+  vec4 cascade_far;      // the view depth where each cascade ends, metres
+  vec4 cascade_texel;    // each cascade's texel, metres
+  vec4 cascade_extent;   // each cascade's square, metres a side
+  vec4 camera_depth;     // a world point's view depth: dot(camera_depth.xyz, p) + camera_depth.w
+  float cascade_count;
+  float cascade_band;    // the blend band: the last fraction of a cascade's depth range
+  float cascade_near;    // the camera's near plane: where the first cascade begins
+  float unused2;
+};
+// [/shadow-block-cascades]

@@ -12,6 +12,33 @@ uniform float u_c;      // ESM's exponent
 uniform bool u_from_depth;
 layout(location = 0) out vec4 out_value;
 
+#ifdef SHADOW_MSM
+// MSM: the four moments (z, z^2, z^3, z^4), through the optimised map when the target is 16-bit
+// (MSM_OPTIMIZED; shadow_math.h [msm]: the map is affine, so filtering commutes with it).
+vec4 moments_at(ivec2 p) {
+  ivec2 size = textureSize(u_input, 0);
+  vec4 t = texelFetch(u_input, clamp(p, ivec2(0), size - 1), 0);
+  if (!u_from_depth) return t;
+  float z = t.x, z2 = z * z;
+  vec4 b = vec4(z, z2, z2 * z, z2 * z2);
+#ifdef MSM_OPTIMIZED
+  b = mat4(-2.07224649, 13.7948857237, 0.105877704, 9.7924062118,
+           32.23703778, -59.4683975703, -1.9077466311, -33.7652110555,
+           -68.571074599, 82.0359750338, 9.3496555107, 47.9456096605,
+           39.3703274134, -35.364903257, -6.6543490743, -23.9728048165) * b;
+  b.x += 0.035955884801;
+#endif
+  return b;
+}
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  float w = 1.0 / float(2 * u_radius + 1);
+  vec4 sum = vec4(0.0);
+  for (int i = -u_radius; i <= u_radius; ++i) sum += w * moments_at(p + i * u_step);
+  out_value = sum;
+}
+#else
+
 vec2 value_at(ivec2 p) {
   ivec2 size = textureSize(u_input, 0);
   p = clamp(p, ivec2(0), size - 1);
@@ -41,3 +68,4 @@ void main() {
 #endif
 }
 // [/filter-glsl]
+#endif  // SHADOW_MSM

@@ -13,6 +13,7 @@
 #define SHADOW_ESM 4
 #define SHADOW_VOLUMES 5
 #define SHADOW_PCSS 6
+#define SHADOW_MSM 7
 #if !defined(SHADOW_METHOD) || !defined(SHADOW_UNIT) || !defined(SHADOW_BLOCK)
 #error the shadow hook needs SHADOW_METHOD, SHADOW_UNIT and SHADOW_BLOCK (ShadowStage::shader_hooks)
 #endif
@@ -38,10 +39,34 @@ float local_visibility(int index, GpuLight light, Surface s) { return 1.0; }
 layout(std140, binding = SHADOW_BLOCK) uniform ShadowBlock { ShadowParameters sh; };
 // The stage's units: the sun's map read raw (nearest) and through the comparison sampler,
 // VSM's or ESM's filtered map, and the spot's map (+3 is the pre-filter's input, +4 the volumes').
+// With cascades (SHADOW_CASCADES > 1) the sun's maps are the layers of an array, on the same
+// units; SHADOW_DEPTH and SHADOW_COMPARE read the layer of the cascade being looked up.
+#ifndef SHADOW_CASCADES
+#define SHADOW_CASCADES 1
+#endif
+#if SHADOW_CASCADES > 1
+layout(binding = SHADOW_UNIT + 0) uniform sampler2DArray sh_cascades;
+layout(binding = SHADOW_UNIT + 1) uniform sampler2DArrayShadow sh_cascades_compare;
+float sh_layer = 0.0;
+#define SHADOW_DEPTH(uv) texture(sh_cascades, vec3(uv, sh_layer))
+#define SHADOW_COMPARE(uvz) texture(sh_cascades_compare, vec4((uvz).xy, sh_layer, (uvz).z))
+#else
 layout(binding = SHADOW_UNIT + 0) uniform sampler2D sh_depth;
 layout(binding = SHADOW_UNIT + 1) uniform sampler2DShadow sh_depth_compare;
+#define SHADOW_DEPTH(uv) texture(sh_depth, uv)
+#define SHADOW_COMPARE(uvz) texture(sh_depth_compare, uvz)
+#endif
 layout(binding = SHADOW_UNIT + 2) uniform sampler2D sh_moments;
 layout(binding = SHADOW_UNIT + 5) uniform sampler2D sh_spot_depth;
+
+// The map a lookup reads: the sun's one map, or the cascade chosen for the pixel (all share the
+// light's view, sh.view, and its depth range, sh.depth_range).
+struct SunMap {
+  mat4 matrix;         // world to the map's clip space
+  float texel_metres;  // one texel, metres
+  vec2 extent;         // the map's box across the light, metres
+};
+SunMap sh_map;
 
 // [bias-glsl]
 // shadow_math.h's slope_scaled_bias and normal_offset; the bias in window-depth units
@@ -50,10 +75,10 @@ vec3 shadow_lookup(Surface s, vec3 to_light) {
   float cos_theta = clamp(dot(s.normal, to_light), 1e-4, 1.0);
   float sin_theta = sqrt(1.0 - cos_theta * cos_theta);
   float tan_theta = min(sin_theta / cos_theta, 10.0);
-  vec3 p = s.position + s.normal * (sh.normal_offset * sh.texel_metres * sin_theta);
-  vec4 clip = sh.matrix * vec4(p, 1.0);
+  vec3 p = s.position + s.normal * (sh.normal_offset * sh_map.texel_metres * sin_theta);
+  vec4 clip = sh_map.matrix * vec4(p, 1.0);
   vec3 window = clip.xyz / clip.w * 0.5 + 0.5;
-  float bias = sh.texel_metres * (sh.constant_bias + sh.slope_bias * tan_theta) / sh.depth_range;
+  float bias = sh_map.texel_metres * (sh.constant_bias + sh.slope_bias * tan_theta) / sh.depth_range;
   return vec3(window.xy, window.z - bias);
 }
 // [/bias-glsl]
@@ -66,7 +91,7 @@ vec3 shadow_lookup(Surface s, vec3 to_light) {
 vec2 receiver_plane_gradient(Surface s) {
   vec3 n = mat3(sh.view) * s.normal;
   float nz = max(n.z, 0.05);  // faces the light (n.z > 0); at most 20:1 slopes
-  return vec2(n.x, n.y) / nz * sh.extent / sh.depth_range;
+  return vec2(n.x, n.y) / nz * sh_map.extent / sh.depth_range;
 }
 // [/receiver-plane-glsl]
 
@@ -87,16 +112,14 @@ vec2 poisson_tap(int i) {
 // PCSS's filter radius in metres at the last lookup (show_visibility.frag's penumbra picture).
 float sh_pcss_radius = 0.0;
 
-float directional_visibility(int index, GpuLight light, Surface s) {
-  if (index != 0) return 1.0;
-  vec3 to_light = -light.direction_range.xyz;
-  if (dot(s.normal, to_light) <= 0.0) return 1.0;  // faces away: the light adds nothing anyway
+// The sun's visibility in the map sh_map (and, with cascades, the layer sh_layer).
+float sun_map_visibility(Surface s, vec3 to_light) {
   vec3 q = shadow_lookup(s, to_light);
   // Outside the map's box (sideways or beyond its far plane): nothing casts there, lit.
   if (any(lessThan(q.xy, vec2(0.0))) || any(greaterThan(q.xy, vec2(1.0))) || q.z > 1.0) return 1.0;
 #if SHADOW_METHOD == SHADOW_HARD
   // [hard-glsl]
-  return q.z <= texture(sh_depth, q.xy).r ? 1.0 : 0.0;
+  return q.z <= SHADOW_DEPTH(q.xy).r ? 1.0 : 0.0;
   // [/hard-glsl]
 #elif SHADOW_METHOD == SHADOW_PCF
   // [pcf-glsl]
@@ -111,14 +134,14 @@ float directional_visibility(int index, GpuLight light, Surface s) {
     float scale = (float(r) + 0.5) * texel;
     for (int i = 0; i < taps; ++i) {
       vec2 o = turn * poisson_tap(i) * scale;
-      lit += q.z + dot(g, o) <= texture(sh_depth, q.xy + o).r ? 1.0 : 0.0;
+      lit += q.z + dot(g, o) <= SHADOW_DEPTH(q.xy + o).r ? 1.0 : 0.0;
     }
     return lit / float(taps);
   }
   for (int y = -r; y <= r; ++y)
     for (int x = -r; x <= r; ++x) {
       vec2 o = vec2(x, y) * texel;
-      lit += q.z + dot(g, o) <= texture(sh_depth, q.xy + o).r ? 1.0 : 0.0;
+      lit += q.z + dot(g, o) <= SHADOW_DEPTH(q.xy + o).r ? 1.0 : 0.0;
     }
   return lit / float((2 * r + 1) * (2 * r + 1));
   // [/pcf-glsl]
@@ -131,7 +154,7 @@ float directional_visibility(int index, GpuLight light, Surface s) {
   for (int y = -r; y <= r; ++y)
     for (int x = -r; x <= r; ++x) {
       vec2 o = vec2(x, y) * texel;
-      lit += texture(sh_depth_compare, vec3(q.xy + o, q.z + dot(g, o)));
+      lit += SHADOW_COMPARE(vec3(q.xy + o, q.z + dot(g, o)));
     }
   return lit / float((2 * r + 1) * (2 * r + 1));
   // [/pcf-hardware-glsl]
@@ -159,28 +182,102 @@ float directional_visibility(int index, GpuLight light, Surface s) {
   mat2 turn = poisson_turn();
   int taps = int(sh.poisson_taps);
   // 1. The blocker search: whatever can hide part of the sun lies within d_r tan(theta).
-  vec2 search = max(q.z * sh.depth_range * tan_size, sh.texel_metres) / sh.extent;
+  vec2 search = max(q.z * sh.depth_range * tan_size, sh_map.texel_metres) / sh_map.extent;
   float blockers = 0.0, sum = 0.0;
   for (int i = 0; i < taps; ++i) {
     vec2 o = turn * poisson_tap(i) * search;
-    float z = texture(sh_depth, q.xy + o).r;
+    float z = SHADOW_DEPTH(q.xy + o).r;
     if (z < q.z + dot(g, o)) sum += z, blockers += 1.0;
   }
   if (blockers == 0.0) return 1.0;  // nothing between the receiver and any of the sun
   // 2. The penumbra: the sun's disk on the blockers' mean depth, (d_r - d_b) tan(theta) across
   // (half a texel at least: below it the map cannot tell).
-  float radius = max((q.z - sum / blockers) * sh.depth_range * tan_size, 0.5 * sh.texel_metres);
+  float radius = max((q.z - sum / blockers) * sh.depth_range * tan_size, 0.5 * sh_map.texel_metres);
   sh_pcss_radius = radius;
   // 3. PCF over that disk.
   float lit = 0.0;
   for (int i = 0; i < taps; ++i) {
-    vec2 o = turn * poisson_tap(i) * (radius / sh.extent);
-    lit += q.z + dot(g, o) <= texture(sh_depth, q.xy + o).r ? 1.0 : 0.0;
+    vec2 o = turn * poisson_tap(i) * (radius / sh_map.extent);
+    lit += q.z + dot(g, o) <= SHADOW_DEPTH(q.xy + o).r ? 1.0 : 0.0;
   }
   return lit / float(taps);
   // [/pcss-glsl]
+#elif SHADOW_METHOD == SHADOW_MSM
+  // [msm-glsl]
+  // shadow_math.h's msm_hamburger: the moments (back from the optimised 16-bit map), pulled
+  // towards 0.5, the Hankel matrix's Cholesky factors, the two other support points, and the
+  // weight in front of the receiver.
+  vec4 b = texture(sh_moments, q.xy);
+  if (sh.msm_optimized > 0.5) {
+    b.x -= 0.035955884801;
+    b = mat4(0.2227744146, 0.1549679261, 0.1451988946, 0.163127443,
+             0.0771972861, 0.1394629426, 0.2120202157, 0.2591432266,
+             0.7926986636, 0.7963415838, 0.7258694464, 0.6539092497,
+             0.0319417555, -0.1722823173, -0.2758014811, -0.3376131734) * b;
+  }
+  b = mix(b, vec4(0.5), sh.msm_moment_bias);
+  float l32_d22 = -b.x * b.y + b.z;
+  float d22 = -b.x * b.x + b.y;
+  float squared_variance = -b.y * b.y + b.w;
+  float d33_d22 = squared_variance * d22 - l32_d22 * l32_d22;
+  float inv_d22 = 1.0 / d22;
+  float l32 = l32_d22 * inv_d22;
+  vec3 c = vec3(1.0, q.z, q.z * q.z);
+  c.y -= b.x;
+  c.z -= b.y + l32 * c.y;
+  c.y *= inv_d22;
+  c.z *= d22 / d33_d22;
+  c.y -= l32 * c.z;
+  c.x -= c.y * b.x + c.z * b.y;
+  float p = c.y / c.z, qq = c.x / c.z;
+  float r = sqrt(max(p * p * 0.25 - qq, 0.0));
+  float z1 = -p * 0.5 - r, z2 = -p * 0.5 + r;
+  vec4 sw = z2 < q.z ? vec4(z1, q.z, 1.0, 1.0) : z1 < q.z ? vec4(q.z, z1, 0.0, 1.0) : vec4(0.0);
+  float quotient = (sw.x * z2 - b.x * (sw.x + z2) + b.y) / ((z2 - sw.y) * (q.z - z1));
+  return 1.0 - clamp(sw.z + sw.w * quotient, 0.0, 1.0);
+  // [/msm-glsl]
 #else
 #error SHADOW_METHOD names no method
+#endif
+}
+
+// The cascade the last lookup read, plus the next one's weight in a blend band (the cascades
+// picture); -1 beyond the last cascade.
+float sh_cascade_shown = 0.0;
+
+#if SHADOW_CASCADES > 1
+float cascade_visibility(int i, Surface s, vec3 to_light) {
+  sh_map = SunMap(sh.cascade_matrix[i], sh.cascade_texel[i], vec2(sh.cascade_extent[i]));
+  sh_layer = float(i);
+  return sun_map_visibility(s, to_light);
+}
+#endif
+
+float directional_visibility(int index, GpuLight light, Surface s) {
+  if (index != 0) return 1.0;
+  vec3 to_light = -light.direction_range.xyz;
+  if (dot(s.normal, to_light) <= 0.0) return 1.0;  // faces away: the light adds nothing anyway
+#if SHADOW_CASCADES > 1
+  // [cascade-choice-glsl]
+  // shadow_math.h's choose_cascade: the first cascade whose far split lies beyond the pixel's
+  // view depth; in the last `band` of its depth range, faded into the next one.
+  float depth = dot(sh.camera_depth.xyz, s.position) + sh.camera_depth.w;
+  int count = int(sh.cascade_count);
+  for (int i = 0; i < count; ++i) {
+    if (depth >= sh.cascade_far[i]) continue;
+    float band = sh.cascade_band * (sh.cascade_far[i] - (i == 0 ? sh.cascade_near : sh.cascade_far[i - 1]));
+    float next = i + 1 < count && band > 0.0 ? clamp((depth - (sh.cascade_far[i] - band)) / band, 0.0, 1.0) : 0.0;
+    float v = cascade_visibility(i, s, to_light);
+    if (next > 0.0) v = mix(v, cascade_visibility(i + 1, s, to_light), next);
+    sh_cascade_shown = float(i) + next;
+    return v;
+  }
+  sh_cascade_shown = -1.0;
+  return 1.0;  // beyond the last cascade: no map covers it
+  // [/cascade-choice-glsl]
+#else
+  sh_map = SunMap(sh.matrix, sh.texel_metres, sh.extent);
+  return sun_map_visibility(s, to_light);
 #endif
 }
 

@@ -15,7 +15,13 @@ void main() {
   float side = min(u_output_size.x, u_output_size.y);
   vec2 uv = (gl_FragCoord.xy - 0.5 * (u_output_size - side)) / side;
   if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) { out_colour = vec4(0.1, 0.15, 0.4, 1.0); return; }
+#if SHADOW_CASCADES > 1
+  // The cascades side by side, the nearest on the left, each squeezed into its strip.
+  float layer = min(floor(uv.x * float(SHADOW_CASCADES)), float(SHADOW_CASCADES - 1));
+  out_colour = vec4(vec3(texture(sh_cascades, vec3(fract(uv.x * float(SHADOW_CASCADES)), uv.y, layer)).r), 1.0);
+#else
   out_colour = vec4(vec3(texture(sh_depth, uv).r), 1.0);
+#endif
   return;
 #endif
   Surface s = decode_gbuffer(ivec2(gl_FragCoord.xy));
@@ -34,6 +40,18 @@ void main() {
   GpuLight sun = GpuLight(vec4(0.0), vec4(u_sun_direction, 0.0), vec4(1.0), vec4(0.0));
   if (s.is_sky || dot(s.normal, -u_sun_direction) <= 0.0) { out_colour = vec4(0.1, 0.15, 0.4, 1.0); return; }
   float v = directional_visibility(0, sun, s);
+#ifdef SHOW_CASCADES
+  // The visibility tinted by the cascade the pixel reads (mixed in a blend band), grey beyond
+  // the last one.
+  const vec3 tints[4] = vec3[4](vec3(1.0, 0.3, 0.3), vec3(0.3, 1.0, 0.3), vec3(0.35, 0.45, 1.0), vec3(1.0, 0.9, 0.2));
+  vec3 tint = vec3(0.5);
+  if (sh_cascade_shown >= 0.0) {
+    int i = int(sh_cascade_shown);
+    tint = mix(tints[i], tints[min(i + 1, 3)], fract(sh_cascade_shown));
+  }
+  out_colour = vec4(tint * (0.3 + 0.7 * v), 1.0);
+  return;
+#endif
 #ifdef SHOW_PENUMBRA
   out_colour = vec4(vec3(sh_pcss_radius), 1.0);  // PCSS's filter radius, metres (a float target reads it)
   return;
