@@ -1,0 +1,51 @@
+#!/usr/bin/env python3
+"""Chapter 11's figures: the plots from the CSVs 11_temporal_sweep writes (book/figures/), through
+tools/plot.py.
+
+    python3 tools/figures_11.py [FIGURES_DIR]
+
+For each path CSV present (11_path_<scene>_<path>_llvmpipe.csv, made on llvmpipe at a small
+size; a GPU's file without the suffix once measured there):
+
+11_path_<scene>_<path>_<tag>.svg          the error of each frame along the path, no AA against TAA,
+                                          on edges (solid) and over the whole image (dashed)
+11_path_<scene>_<path>_variants_<tag>.svg the edge error of TAA with each of its parts switched off
+"""
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from plot import Series, plot, read_csv  # noqa: E402
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def series(rows, method, col, label, dashed=False):
+    return Series(label, [(float(r["frame"]), float(r[col])) for r in rows if r["method"] == method], dashed=dashed)
+
+
+def path_plots(d: Path, csv: Path, stem: str, tag: str, where: str):
+    notes, rows = read_csv(csv)
+    note = notes[0] if notes else ""
+    methods = [m for m in dict.fromkeys(r["method"] for r in rows)]
+    main = [series(rows, m, "edge_error", f"{m}: edges") for m in ("no AA", "TAA") if m in methods]
+    main += [series(rows, m, "error", f"{m}: whole image", dashed=True) for m in ("no AA", "TAA") if m in methods]
+    plot(d / f"{stem}_{tag}.svg", f"Error against the supersampled truth along the path ({where})", note, main,
+         "frame of the path (30 a second)", "mean |image − truth| (sRGB, 0..1)")
+    plot(d / f"{stem}_variants_{tag}.svg", f"Edge error of TAA with one part switched off ({where})", note,
+         [series(rows, m, "edge_error", m, dashed=(m not in ("no AA", "TAA"))) for m in methods],
+         "frame of the path (30 a second)", "mean |image − truth| on edges (sRGB, 0..1)")
+
+
+def main(argv):
+    d = Path(argv[0]) if argv else ROOT / "book" / "figures"
+    for csv in sorted(d.glob("11_path_*.csv")):
+        name = csv.stem
+        if name.endswith("_llvmpipe"):
+            path_plots(d, csv, name[: -len("_llvmpipe")], "llvmpipe", "llvmpipe")
+        elif name.endswith("_h200"):
+            path_plots(d, csv, name[: -len("_h200")], "h200", "NVIDIA H200")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
