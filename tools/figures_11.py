@@ -2,7 +2,8 @@
 """Chapter 11's figures: the plots from the CSVs 11_temporal_sweep writes (book/figures/), through
 tools/plot.py.
 
-    python3 tools/figures_11.py [FIGURES_DIR]
+    python3 tools/figures_11.py [FIGURES_DIR]                  the plots (SVG)
+    python3 tools/figures_11.py --png BUILD_DIR [FIGURES_DIR]  the pictures (PNG) too, drawn by the program
 
 For each path CSV present (11_path_<scene>_<path>_llvmpipe.csv, made on llvmpipe at a small
 size; a GPU's file without the suffix once measured there):
@@ -11,6 +12,7 @@ size; a GPU's file without the suffix once measured there):
                                           on edges (solid) and over the whole image (dashed)
 11_path_<scene>_<path>_variants_<tag>.svg the edge error of TAA with each of its parts switched off
 """
+import subprocess
 import sys
 from pathlib import Path
 
@@ -18,6 +20,13 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from plot import Series, plot, read_csv  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
+
+# The pictures: (file, program arguments), at 320x180 (llvmpipe draws the walk's 13 frames in seconds).
+# --strip writes <out>_strip.png next to --out.
+PICTURES = [
+    ("11_walk_motion.png", ["--path", "walk", "--at", "12", "--show", "motion"]),
+    ("11_walk.png", ["--path", "walk", "--frames", "13", "--strip", "6"]),
+]
 
 
 def series(rows, method, col, label, dashed=False):
@@ -37,7 +46,17 @@ def path_plots(d: Path, csv: Path, stem: str, tag: str, where: str):
          "frame of the path (30 a second)", "mean |image − truth| on edges (sRGB, 0..1)")
 
 
+def pictures(build: Path, d: Path):
+    exe = build / "chapters" / "11_temporal" / "11_temporal"
+    for name, args in PICTURES:
+        subprocess.run([str(exe), "--headless", "--size", "320x180", "--out", str(d / name)] + args, check=True)
+    (d / "11_walk.png").unlink()  # the strip's last frame alone; the strip is what the book shows
+
+
 def main(argv):
+    png = None
+    if len(argv) >= 2 and argv[0] == "--png":
+        png, argv = Path(argv[1]), argv[2:]
     d = Path(argv[0]) if argv else ROOT / "book" / "figures"
     for csv in sorted(d.glob("11_path_*.csv")):
         name = csv.stem
@@ -45,6 +64,8 @@ def main(argv):
             path_plots(d, csv, name[: -len("_llvmpipe")], "llvmpipe", "llvmpipe")
         elif name.endswith("_h200"):
             path_plots(d, csv, name[: -len("_h200")], "h200", "NVIDIA H200")
+    if png:
+        pictures(png, d)
 
 
 if __name__ == "__main__":
