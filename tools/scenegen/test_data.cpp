@@ -235,6 +235,7 @@ to it. All are `minimal.gltf` changed in one way unless said.
 | `image_huge_header.gltf` (+ `huge_header.png`) | a PNG whose header says 100000 x 100000 | 0: "texture 'huge_header.png' could not be loaded (it is 100000x100000, more than the loader accepts ..." |
 | `image_shared_16.gltf` | 16 images naming `stripes.png` | 0: no warning (decoded and counted once) |
 | `glb_bad_json.glb` | a .glb whose JSON chunk holds terminal control bytes | 1: tinygltf's parse error, those bytes shown as `\xNN` |
+| `bad_lights.gltf` | minimal's plane with one good light and four defective ones (zero and negative intensity, negative range, a spot whose outer cone angle, 109°, is more than a hemisphere) | chapter 03's test: each defect named, the image still drawn |
 )md";
 
 void write_real_model_cases(const fs::path& dir) {
@@ -536,6 +537,34 @@ void write_any_scene_cases(const fs::path& dir) {
       for (int k = 0; k < 10; ++k) d["nodes"][first + i]["children"].push_back(first + i + 1);
     d["nodes"].push_back({{"name", "bulb"}, {"translation", {0.0, 1.0, 0.0}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
     d["scenes"][0]["nodes"] = {0, 2, first};
+  });
+  // Chapter 03's defective lights: one good light and four that the light set must leave out
+  // or warn about, each named in the messages.
+  variant("bad_lights", [&](json& d) {
+    json lights = json::array();
+    auto add = [&](const char* name, const char* type, std::vector<double> colour, double intensity) {
+      lights.push_back({{"name", name}, {"type", type}, {"color", colour}, {"intensity", intensity}});
+      return lights.size() - 1;
+    };
+    lights[add("good", "point", {1, 0.9, 0.8}, 2.0)]["range"] = 3.0;
+    add("dark", "point", {1, 1, 1}, 0.0);
+    add("negative", "point", {1, 1, 1}, -2.0);
+    lights[add("negative_range", "point", {0.4, 0.6, 1}, 0.3)]["range"] = -3.0;
+    const size_t spot = add("wide_spot", "spot", {1, 0.5, 0.2}, 1.5);
+    lights[spot]["range"] = 4.0;
+    lights[spot]["spot"] = {{"innerConeAngle", 0.5}, {"outerConeAngle", 1.9}};
+    d["extensions"]["KHR_lights_punctual"]["lights"] = lights;
+    json camera = d["nodes"][0], plane = d["nodes"][2];
+    d["nodes"] = {camera, plane};
+    const std::pair<const char*, std::vector<double>> at[] = {
+        {"good", {0.5, 1.0, 0.0}}, {"dark", {0, 1.5, 0}}, {"negative", {0, 1.5, 0}}, {"negative_range", {-0.6, 0.8, 0.3}},
+        {"wide_spot", {0.0, 1.2, -0.5}}};
+    for (size_t i = 0; i < std::size(at); ++i) {
+      json n = {{"name", at[i].first}, {"translation", at[i].second}, {"extensions", {{"KHR_lights_punctual", {{"light", i}}}}}};
+      if (i == 4) n["rotation"] = {-0.70710678, 0, 0, 0.70710678};  // the spot looks down
+      d["nodes"].push_back(n);
+    }
+    d["scenes"][0]["nodes"] = {0, 1, 2, 3, 4, 5, 6};
   });
   // Files and messages.
   variant("buffer_dev_zero", [&](json& d) { d["buffers"][0]["uri"] = "/dev/zero"; });
