@@ -52,6 +52,26 @@ std::string exercise_shot_name(int k, const Shot& shot, const CliSpec& spec) {
   return "exercise" + std::to_string(k) + "_" + shot.name(spec);
 }
 
+// An exercise whose answer is a number: the reader's file against the chapter's computation,
+// in words; no context is needed. --update-references has nothing to make.
+int check_number_exercise(const Chapter& chapter, const Options& options) {
+  const Exercise& e = chapter.exercises[std::size_t(options.exercise - 1)];
+  const std::string what = "exercise " + std::to_string(options.exercise) + " (" + e.title + ")";
+  if (options.update_references) {
+    std::cout << what << ": its answer is a number the chapter computes; no images to update\n";
+    return 0;
+  }
+  const std::string path = exercise_file(chapter, e, false).string();
+  const NumberVerdict v = check_number_answer(read_answer_file(path), path, *e.number, e.number->expected());
+  if (v.right) {
+    std::cout << what << ": your answer matches the solution: " << v.words << '\n';
+    return 0;
+  }
+  std::cout << what << ": your answer does not match the solution: " << v.words << ".\n  Look at " << e.look_at
+            << ".\n  Your file: " << path << '\n';
+  return 1;
+}
+
 }  // namespace
 
 std::string exercise_list(const Chapter& chapter) {
@@ -854,6 +874,14 @@ int run_chapter(int argc, const char* const* argv, const Chapter& chapter, const
       std::cout << '\n' << knob_usage(chapter.cli);
       std::cout << "exercises:" << (chapter.exercises.empty() ? " none\n" : "\n" + exercise_list(chapter));
       return 0;
+    }
+    if (options.exercise > 0 && chapter.exercises[options.exercise - 1].number) {
+      if (options.check || options.update_references) return check_number_exercise(chapter, options);
+      // Without --check the program runs as the chapter's own: the number is the reader's to find.
+      const Exercise& e = chapter.exercises[options.exercise - 1];
+      std::cout << "exercise " << options.exercise << " (" << e.title << ") asks for a number: write it in "
+                << exercise_file(chapter, e, false).string() << " ('answer = ...'); --check says whether it is right\n";
+      options.exercise = 0;
     }
     // An exercise's shots may be of another scene than the chapter's default: it runs on that one.
     if (options.exercise > 0 && options.scene == chapter.cli.default_scene && !chapter.exercises[options.exercise - 1].scene.empty())

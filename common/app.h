@@ -26,6 +26,7 @@
 #include "common/image.h"
 #include "common/measure.h"
 #include "common/metrics.h"
+#include "common/number_answer.h"
 #include "common/scene.h"
 #include "common/scene_gpu.h"
 #include "common/target.h"
@@ -73,6 +74,9 @@ struct Exercise {
   std::vector<Shot> shots;  // what --check renders, at the chapter's exercise size
   std::string look_at;      // where a wrong answer shows, said when the check fails
   std::string scene = {};   // the scene its shots are of, when not the chapter's default
+  // An answer that is a number (common/number_answer.h): `file` is a text file with the line
+  // `answer = ...`, no define and no shots; --check compares the number, with no context.
+  std::optional<NumberAnswer> number = {};
 };
 
 struct Chapter {
