@@ -43,3 +43,7 @@ add_test(NAME 06_shadows.sweep_unknown_option COMMAND ${EXPECT} 2 "unknown optio
 lightpass_program_test(06_shadows.error_view_reports_pcf_near_the_soft_truth 0
   "against the soft truth: mean \\|error\\| 0\\.0[0-4][0-9]*, p99"
   ${P06} --headless --size 320x180 --mode pcf --show error --out ${CMAKE_BINARY_DIR}/out/06_error.png)
+# The chapter's exercises (main.cpp's list; the book's "Exercises"): solutions pass, stubs fail,
+# and a plausible wrong answer to each (tests/exercises/wrong/06_shadows/) fails. Exercise 4's
+# answer is a number.
+lightpass_exercise_tests(06_shadows 4 NUMBERS 4 WRONG 1 2 3 4)

@@ -111,7 +111,36 @@ std::vector<Shot> atrium_shots() {
 }
 // [/references]
 
-const Chapter kChapter{.cli = kCli, .references = atrium_shots()};
+// The exercises (the book's "Exercises"): three functions of shadow_visibility.glsl, each
+// checked where its mistake shows, and one number.
+std::vector<Exercise> exercises() {
+  return {{.title = "the map lookup's normal offset and slope-scaled bias",
+           .file = "shadow_lookup.glsl",
+           .define = "EXERCISE_SHADOW_LOOKUP",
+           .shots = {{"overview", "hard", {}, {}, kTexturedFloor}, {"corner", "hard", {{"show", kVisibility}}}},
+           .look_at = "the lit floor and walls (--show visibility): acne, stripes of shadow on surfaces the sun lights, "
+                      "worst where it grazes them"},
+          {.title = "variance shadow maps: Chebyshev's bound and the bleeding reduction",
+           .file = "vsm_bound.glsl",
+           .define = "EXERCISE_VSM_BOUND",
+           .shots = {{"overview", "vsm", {}, {}, kTexturedFloor}, {"aisle", "vsm", {{"show", kVisibility}}}},
+           .look_at = "the shadows (--mode vsm --show visibility): whether there are any, their soft edges, and light "
+                      "bleeding where the columns' shadows overlap"},
+          {.title = "PCF's receiver plane: the depth gradient across the kernel",
+           .file = "receiver_plane.glsl",
+           .define = "EXERCISE_RECEIVER_PLANE",
+           .shots = {{"overview", "pcf", {{"kernel", 7}, {"show", kVisibility}}}, {"corner", "pcf", {{"kernel", 7}, {"show", kVisibility}}}},
+           .look_at = "the surfaces the sun grazes (--kernel 7 --show visibility): a dark fringe of self-shadow, or "
+                      "shadows that lose their contact"},
+          {.title = "the practical split: where cascade 1 ends",
+           .file = "cascade_split.txt",
+           .look_at = "shadow_math.h's [cascades]: z_1 blends the logarithmic and the uniform split, i = 1 of 4",
+           .number = NumberAnswer{.expected = [] { return double(cascade_splits(4, 0.5f, 80.f, 0.75f)[1]); },
+                                  .tolerance = 0.01,
+                                  .unit = "m"}}};
+}
+
+const Chapter kChapter{.cli = kCli, .references = atrium_shots(), .exercises = exercises()};
 
 }  // namespace
 

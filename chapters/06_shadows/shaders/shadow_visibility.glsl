@@ -68,6 +68,10 @@ struct SunMap {
 };
 SunMap sh_map;
 
+// With --exercise 1 the reader's shadow_lookup() (chapters/06_shadows/exercises/) stands in.
+#ifdef EXERCISE_SHADOW_LOOKUP
+#include EXERCISE_SHADOW_LOOKUP
+#else
 // [bias-glsl]
 // shadow_math.h's slope_scaled_bias and normal_offset; the bias in window-depth units
 // (the light's projection is orthographic: depth is linear in metres).
@@ -82,7 +86,12 @@ vec3 shadow_lookup(Surface s, vec3 to_light) {
   return vec3(window.xy, window.z - bias);
 }
 // [/bias-glsl]
+#endif
 
+// With --exercise 3 the reader's receiver_plane_gradient() stands in.
+#ifdef EXERCISE_RECEIVER_PLANE
+#include EXERCISE_RECEIVER_PLANE
+#else
 // [receiver-plane-glsl]
 // shadow_math.h's receiver_plane_gradient: how the receiver's window depth changes per unit
 // of the map's (u, v), from its normal in the light's view space. A PCF tap `o` away from the
@@ -94,6 +103,7 @@ vec2 receiver_plane_gradient(Surface s) {
   return vec2(n.x, n.y) / nz * sh_map.extent / sh.depth_range;
 }
 // [/receiver-plane-glsl]
+#endif
 
 // [poisson-glsl]
 // The rotated Poisson disk's taps (shadow_math.h [poisson]): the turn, an angle that
@@ -111,6 +121,11 @@ vec2 poisson_tap(int i) {
 
 // PCSS's filter radius in metres at the last lookup (show_visibility.frag's penumbra picture).
 float sh_pcss_radius = 0.0;
+
+// With --exercise 2 the reader's vsm_visibility(moments, depth) stands in for VSM's lines below.
+#ifdef EXERCISE_VSM_BOUND
+#include EXERCISE_VSM_BOUND
+#endif
 
 // The sun's visibility in the map sh_map (and, with cascades, the layer sh_layer).
 float sun_map_visibility(Surface s, vec3 to_light) {
@@ -159,6 +174,9 @@ float sun_map_visibility(Surface s, vec3 to_light) {
   return lit / float((2 * r + 1) * (2 * r + 1));
   // [/pcf-hardware-glsl]
 #elif SHADOW_METHOD == SHADOW_VSM
+#ifdef EXERCISE_VSM_BOUND
+  return vsm_visibility(texture(sh_moments, q.xy).xy, q.z);
+#else
   // [vsm-glsl]
   vec2 m = texture(sh_moments, q.xy).xy;
   if (q.z <= m.x) return 1.0;
@@ -167,6 +185,7 @@ float sun_map_visibility(Surface s, vec3 to_light) {
   float p_max = variance / (variance + d * d);
   return clamp((p_max - sh.vsm_p_min) / (1.0 - sh.vsm_p_min), 0.0, 1.0);
   // [/vsm-glsl]
+#endif
 #elif SHADOW_METHOD == SHADOW_ESM
   // [esm-glsl]
   float l = texture(sh_moments, q.xy).x;  // log of the filtered exp(c z)
