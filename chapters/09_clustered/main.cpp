@@ -63,6 +63,33 @@ std::vector<Shot> references() {
   return shots;
 }
 
+// The exercises (the book's "Exercises"): three functions of grid.glsl, each checked on the
+// image at 1000 lights (a light lost shows) and on the lights evaluated per pixel (a light kept
+// everywhere shows).
+std::vector<Exercise> exercises() {
+  const std::map<std::string, double> heat = {{"lights", 1000}, {"show", kHeatEvaluated}, {"heat-scale", 200}};
+  const std::vector<Shot> shots = {{"street_level", "clustered", {{"lights", 1000}}},
+                                   {"street_level", "clustered", heat, {}, kCounts}};
+  return {{.title = "the exponential depth slice of a surface",
+           .file = "slice_of.glsl",
+           .define = "EXERCISE_SLICE_OF",
+           .shots = shots,
+           .look_at = "the street with --lights 1000: pools of light cut off at a slice's edge, and (--show "
+                      "heat-evaluated) the lights each pixel evaluates"},
+          {.title = "the view-space box around one cell",
+           .file = "cell_box.glsl",
+           .define = "EXERCISE_CELL_BOX",
+           .shots = {shots[1], {"street_level", "tiled", heat, {}, kCounts}, shots[0]},
+           .look_at = "the lights each pixel evaluates (--show heat-evaluated, in --mode clustered and tiled): too "
+                      "many where the box is too large, and lights cut off in the image where it misses part of the cell"},
+          {.title = "does a light's sphere meet a cell's box?",
+           .file = "sphere_box.glsl",
+           .define = "EXERCISE_SPHERE_BOX",
+           .shots = shots,
+           .look_at = "the lights each pixel evaluates (--show heat-evaluated), and pools of light cut off at cell "
+                      "edges in the image"}};
+}
+
 const lp::Chapter kChapter{
     .cli = {.program = "09_clustered",
             .summary = "Tiled and clustered light culling: lights binned into screen tiles or 3D clusters by compute "
@@ -79,6 +106,7 @@ const lp::Chapter kChapter{
                       {"heat-scale", "heat maps: lights per pixel or per cluster shown white", 100, 1, 1e7, false},
                       {"count", "count lights evaluated and lit (atomic counters, costs a little time)", 1, 0, 1, true}}},
     .references = references(),
+    .exercises = exercises(),
 };
 
 }  // namespace

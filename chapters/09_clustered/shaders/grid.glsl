@@ -16,15 +16,24 @@ float slice_start(int k) {
   return u_depth_range.x * pow(u_depth_range.y / u_depth_range.x, float(k) / float(u_tiles.z));
 }
 
+// With --exercise 1 the reader's slice_of stands in (2: cell_box, 3: sphere_meets_box; their
+// files are in chapters/09_clustered/exercises/).
+#ifdef EXERCISE_SLICE_OF
+#include EXERCISE_SLICE_OF
+#else
 int slice_of(float d) {
   float t = log(max(d, u_depth_range.x) / u_depth_range.x) / log(u_depth_range.y / u_depth_range.x);
   return clamp(int(floor(t * float(u_tiles.z))), 0, u_tiles.z - 1);
 }
+#endif
 
 struct Box {
   vec3 lo, hi;
 };
 
+#ifdef EXERCISE_CELL_BOX
+#include EXERCISE_CELL_BOX
+#else
 Box cell_box(ivec2 p0, ivec2 p1, float d0, float d1) {
   d0 *= 1.0 - kDepthPad;
   d1 *= 1.0 + kDepthPad;
@@ -39,12 +48,17 @@ Box cell_box(ivec2 p0, ivec2 p1, float d0, float d1) {
   }
   return b;
 }
+#endif
 
+#ifdef EXERCISE_SPHERE_BOX
+#include EXERCISE_SPHERE_BOX
+#else
 bool sphere_meets_box(vec3 centre, float radius, Box box) {
   vec3 d = centre - clamp(centre, box.lo, box.hi);
   float r = radius * (1.0 + 1e-5) + 1e-6;
   return dot(d, d) <= r * r;
 }
+#endif
 
 // Harada's 2.5D depth mask (cluster_grid.h's depth_bin / depth_range_bits / light_depth_bits).
 const int kDepthBins = 32;
