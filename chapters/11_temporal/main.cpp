@@ -73,7 +73,31 @@ std::vector<Shot> shots(const char* view) {
           {view, "whole", {{"path", walk}, {"at", 12}, {"show", kRejected}}}};
 }
 
-const Chapter kChapter{.cli = kCli, .references = shots("shops")};
+// The exercises (the book's "Exercises"): the motion vector and two steps of the resolve, each
+// checked on the walk after a dozen frames, where a wrong history shows.
+std::vector<Exercise> exercises() {
+  const double walk = path_index("walk");
+  const Shot image{"shops", "whole", {{"path", walk}, {"at", 12}}};
+  return {{.title = "a surface point's motion vector",
+           .file = "motion_of.glsl",
+           .define = "EXERCISE_MOTION_OF",
+           .shots = {image, {"shops", "whole", {{"path", walk}, {"at", 12}, {"show", kMotion}}}},
+           .look_at = "the motion (--path walk --show motion: hue is the direction) and the walk's edges, smeared "
+                      "or doubled where the history is read from the wrong place"},
+          {.title = "clipping the history to this frame's neighbourhood",
+           .file = "clip_to_box.glsl",
+           .define = "EXERCISE_CLIP_TO_BOX",
+           .shots = {image, {"shops", "whole", {{"path", walk}, {"at", 4}}}},
+           .look_at = "the walk's first frames (--path walk --at 4): ghosts of the street trailing behind edges"},
+          {.title = "was this surface hidden last frame?",
+           .file = "disoccluded.glsl",
+           .define = "EXERCISE_DISOCCLUDED",
+           .shots = {image, {"shops", "whole", {{"path", walk}, {"at", 12}, {"show", kRejected}}}},
+           .look_at = "where the history is dropped (--path walk --show rejected: red), beside the edges that "
+                      "the walk uncovers"}};
+}
+
+const Chapter kChapter{.cli = kCli, .references = shots("shops"), .exercises = exercises()};
 
 TemporalSettings settings_of(const Frame& f) {
   TemporalSettings s;

@@ -70,6 +70,10 @@ vec3 history_catmull_rom(vec2 uv) {
 }
 // [/catmull-rom]
 
+// With --exercise 2 the reader's clip_to_box (chapters/11_temporal/exercises/) stands in.
+#ifdef EXERCISE_CLIP_TO_BOX
+#include EXERCISE_CLIP_TO_BOX
+#else
 // [clip-box]
 // Moves q towards the box's centre until it lies inside (Playdead's clip; a clamp per axis
 // would also move its hue).
@@ -81,7 +85,12 @@ vec3 clip_to_box(vec3 lo, vec3 hi, vec3 q) {
   return m > 1.0 ? c + v / m : q;
 }
 // [/clip-box]
+#endif
 
+// With --exercise 3 the reader's disoccluded (chapters/11_temporal/exercises/) stands in.
+#ifdef EXERCISE_DISOCCLUDED
+#include EXERCISE_DISOCCLUDED
+#else
 // [disocclusion]
 // Hidden last frame: none of the four last-frame depths around where this surface was lies
 // within the tolerance of the depth it had there.
@@ -97,6 +106,7 @@ bool disoccluded(vec2 uv_then, float depth_then) {
   return nearest > u_depth_tolerance * depth_then;
 }
 // [/disocclusion]
+#endif
 
 void main() {
   ivec2 size = textureSize(u_current, 0);
