@@ -279,17 +279,7 @@ App::App(const Chapter& chapter, Options options) : chapter_(chapter), options_(
   frame_.knobs = options_.knobs;
   frame_.spec = &chapter_.cli;
 
-  if (context_->is_window()) {
-    // Tests of the panel's scene switch: the scene picked after the second frame.
-    if (const char* s = std::getenv("LIGHTPASS_TEST_SWITCH_SCENE")) test_scene_ = s;
-    // Tests of input at any frame rate: every frame made this slow (a sleep before the poll).
-    if (const char* s = std::getenv("LIGHTPASS_TEST_SLOW_FRAME_MS")) slow_frame_ms_ = parse_integer("LIGHTPASS_TEST_SLOW_FRAME_MS", s, 0, 60000);
-    gui_ = std::make_unique<Gui>(context_->window());
-    gpu_timer_ = std::make_unique<FrameTimer>();
-    fly_to(scene_->camera(view_));
-    last_time_ = glfwGetTime();
-    return;
-  }
+  // Before the window returns below: a window runs the reader's exercise too, and R reloads it.
   if (options_.exercise > 0) {
     exercise_ = &chapter_.exercises.at(options_.exercise - 1);  // run_chapter checked K
     exercise_path_ = exercise_file(chapter_, *exercise_, options_.update_references).string();
@@ -300,6 +290,17 @@ App::App(const Chapter& chapter, Options options) : chapter_(chapter), options_(
     set_program_wide_defines({exercise_->define + " \"" + exercise_path_ + "\""});
     (options_.bench ? std::cerr : std::cout) << "exercise " << options_.exercise << " (" << exercise_->title
                                              << "): " << exercise_path_ << " stands in for the chapter's function\n";
+  }
+  if (context_->is_window()) {
+    // Tests of the panel's scene switch: the scene picked after the second frame.
+    if (const char* s = std::getenv("LIGHTPASS_TEST_SWITCH_SCENE")) test_scene_ = s;
+    // Tests of input at any frame rate: every frame made this slow (a sleep before the poll).
+    if (const char* s = std::getenv("LIGHTPASS_TEST_SLOW_FRAME_MS")) slow_frame_ms_ = parse_integer("LIGHTPASS_TEST_SLOW_FRAME_MS", s, 0, 60000);
+    gui_ = std::make_unique<Gui>(context_->window());
+    gpu_timer_ = std::make_unique<FrameTimer>();
+    fly_to(scene_->camera(view_));
+    last_time_ = glfwGetTime();
+    return;
   }
   if (options_.check && exercise_) {
     for (const auto& shot : exercise_->shots)

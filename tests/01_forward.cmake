@@ -54,6 +54,12 @@ add_test(NAME 01_forward.shader_error_names_file_and_line
 add_test(NAME 01_forward.window_input_at_a_slow_frame_rate
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_input.sh ${P01} ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR}/window_input)
 set_tests_properties(01_forward.window_input_at_a_slow_frame_rate PROPERTIES TIMEOUT 300)
+# --exercise K in the window (Xvfb): the reader's file is what is drawn (the solution's and the
+# stub's snapshots differ, the solution's twice are equal), R after an edit reloads it, a mistake
+# in it is named by that file and line, at R and at the start (exit 1).
+add_test(NAME 01_forward.window_exercise_draws_and_reloads_the_readers_file
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_exercise.sh ${P01} ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR}/window_exercise)
+set_tests_properties(01_forward.window_exercise_draws_and_reloads_the_readers_file PROPERTIES TIMEOUT 300)
 # The window path (GLFW + the panel) under a virtual X display, closing itself after 3 frames.
 # The screenshot is the scene under the panel, not a black window: 54 % of it is lit on
 # llvmpipe (the scene alone: 59 %, the background alone: 0).
