@@ -49,5 +49,6 @@ set_tests_properties(09_clustered.density_sweep_reaches_its_density PROPERTIES T
 add_test(NAME 09_clustered.density_sweep_bad_views COMMAND ${EXPECT} 1 "--views: 1 to 64, not 0"
   -- $<TARGET_FILE:09_clustered_sweep> --density --views 0)
 # The chapter's exercises (main.cpp's list; the book's "Exercises"): solutions pass, stubs fail,
-# and a plausible wrong answer to each (tests/exercises/wrong/09_clustered/) fails.
-lightpass_exercise_tests(09_clustered 3 WRONG 1 2 3)
+# and a plausible wrong answer to each (tests/exercises/wrong/09_clustered/) fails. Exercise 4's
+# answer is a number.
+lightpass_exercise_tests(09_clustered 4 NUMBERS 4 WRONG 1 2 3 4)

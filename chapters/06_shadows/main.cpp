@@ -132,7 +132,7 @@ std::vector<Exercise> exercises() {
            .shots = {{"overview", "pcf", {{"kernel", 7}, {"show", kVisibility}}}, {"corner", "pcf", {{"kernel", 7}, {"show", kVisibility}}}},
            .look_at = "the surfaces the sun grazes (--kernel 7 --show visibility): a dark fringe of self-shadow, or "
                       "shadows that lose their contact"},
-          {.title = "the practical split: where cascade 1 ends",
+          {.title = "the practical split: where cascade 1 ends (a number)",
            .file = "cascade_split.txt",
            .look_at = "shadow_math.h's [cascades]: z_1 blends the logarithmic and the uniform split, i = 1 of 4",
            .number = NumberAnswer{.expected = [] { return double(cascade_splits(4, 0.5f, 80.f, 0.75f)[1]); },

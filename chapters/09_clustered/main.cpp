@@ -65,7 +65,7 @@ std::vector<Shot> references() {
 
 // The exercises (the book's "Exercises"): three functions of grid.glsl, each checked on the
 // image at 1000 lights (a light lost shows) and on the lights evaluated per pixel (a light kept
-// everywhere shows).
+// everywhere shows); and the radius of the sphere they cull with, a number.
 std::vector<Exercise> exercises() {
   const std::map<std::string, double> heat = {{"lights", 1000}, {"show", kHeatEvaluated}, {"heat-scale", 200}};
   const std::vector<Shot> shots = {{"street_level", "clustered", {{"lights", 1000}}},
@@ -87,7 +87,13 @@ std::vector<Exercise> exercises() {
            .define = "EXERCISE_SPHERE_BOX",
            .shots = shots,
            .look_at = "the lights each pixel evaluates (--show heat-evaluated), and pools of light cut off at cell "
-                      "edges in the image"}};
+                      "edges in the image"},
+          {.title = "how far a light's cut sphere reaches (a number)",
+           .file = "cut_radius.txt",
+           .look_at = "chapter 03's light_radius.h [threshold]: the cut is where the light falls to one sRGB step",
+           .number = NumberAnswer{.expected = [] { return double(ch03::light_radius(10.f, 0.f, ch03::cut_threshold(1.f))); },
+                                  .tolerance = 0.1,
+                                  .unit = "m"}}};
 }
 
 const lp::Chapter kChapter{
