@@ -1,5 +1,6 @@
-# Chapter 10: the whole frame. So far its transparency: GPU tests of the stage against the
-# exact per-pixel order and its hard cases, and the program (references, bad input).
+# Chapter 10: the whole frame, its transparency and its MSAA: GPU tests of the glass against the
+# exact per-pixel order and its hard cases, of MSAA and of the whole frame, and the program
+# (references, bad input).
 lightpass_gtests(10_frame gl lightpass_10_frame unit/test_10_transparency_gl.cpp
   unit/test_10_twins_gl.cpp unit/glsl_twin.cpp)
 
