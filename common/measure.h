@@ -9,8 +9,8 @@
 // measure() returns: the means are over exactly `Measurement::frames` frames.
 //
 // [warm-up]
-// Warm-up, until the times settle: a GPU raises its clocks only under load, and a pass of
-// under about 2 ms timed from cold can read several times slower. Frames
+// Warm-up, until the times settle: a GPU raises its clocks only under load, and a short
+// pass timed from cold can read several times slower. Frames
 // are rendered in blocks of at least `block_frames` frames and `block_seconds` of wall
 // clock, each block's mean frame time (the sum of its passes' mean times) read back at its
 // end. Warm-up ends at the first block, once at least `min_seconds` have passed, whose mean is

@@ -172,7 +172,7 @@ RayScene::RayScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
   // Robust traversal: no edge between two triangles lets a ray through (watertight), at a
   // small cost. The build quality stays the default (medium): on the book's scenes HIGH
   // changed neither the build (milliseconds) nor the rays per second (per CPU second of a
-  // thread) beyond the noise of a shared machine, about 10%.
+  // thread) beyond the noise of a shared machine.
   rtcSetSceneFlags(m.scene, RTC_SCENE_FLAG_ROBUST);
 
   m.instances.reserve(scene.instances.size());

@@ -1,5 +1,6 @@
-# Chapter 10: the whole frame. So far its transparency: GPU tests of the stage against the
-# exact per-pixel order and its hard cases, and the program (references, bad input).
+# Chapter 10: the whole frame, its transparency and its MSAA: GPU tests of the glass against the
+# exact per-pixel order and its hard cases, of MSAA and of the whole frame, and the program
+# (references, bad input).
 lightpass_gtests(10_frame gl lightpass_10_frame unit/test_10_transparency_gl.cpp
   unit/test_10_twins_gl.cpp unit/glsl_twin.cpp)
 
@@ -45,6 +46,14 @@ lightpass_image_test(10_frame.whole_with_clusters_is_chapter_05s_street "runs   
 lightpass_program_test(10_frame.whole_bench_times_every_stage 0
   "shadow map: depth from the sun.*local lights: clustered: shade.*neon: .*ssgi: .*hdr: tonemap"
   ${P10} --bench --frames 1 --mode whole --size 160x90 --scene assets/street_neon/street_neon.gltf)
+# With clusters the glass reads the whole frame's lists (built for every cell when the scene has
+# glass): one set a frame, so the glass's own list pass does not run; over the volumes it does.
+add_test(NAME 10_frame.whole_glass_reads_the_frames_clusters COMMAND ${EXPECT} 0 "\"name\":\"transparency: sorted, back to front\""
+  --no-match "transparency: light lists" -- ${P10} --bench --frames 1 --mode whole --size 160x90)
+set_tests_properties(10_frame.whole_glass_reads_the_frames_clusters PROPERTIES TIMEOUT 300)
+lightpass_program_test(10_frame.whole_glass_over_the_volumes_builds_its_own_lists 0
+  "\"name\":\"transparency: light lists [(]chapter 09, every cluster[)]\""
+  ${P10} --bench --frames 1 --mode whole --size 160x90 --clustered 0)
 # What a scene does not need is not run, and the program says why (the atrium: no tubes).
 lightpass_program_test(10_frame.whole_says_what_it_does_not_run 0
   "not run  neon tubes [(]chapter 04[)] [(]no neon tubes[)]"

@@ -70,12 +70,16 @@ int shadowed_spot(const Scene& scene) {
 }
 
 int shadowed_sun(const Scene& scene) {
-  // The first directional light the light set keeps (it leaves out what light_defect names):
-  // the one at index 0 of chapter 03's directional lights, which the visibility hook maps.
+  // The first directional light the light set keeps (it leaves out what light_defect names).
   for (std::size_t i = 0; i < scene.lights.size(); ++i)
     if (scene.lights[i].type == LightType::Directional && !light_defect(scene.lights[i]))
       return casts_shadows(scene, i) ? int(i) : -1;
   return -1;
+}
+
+int shadowed_sun_index(const Scene& scene) {
+  // The sun is the first directional light the set keeps, so the set's directional light 0.
+  return shadowed_sun(scene) >= 0 ? 0 : -1;
 }
 
 std::vector<std::string> unshadowed_casters(const Scene& scene) {
@@ -94,7 +98,8 @@ std::vector<std::string> unshadowed_casters(const Scene& scene) {
   return out;
 }
 
-ShadowStage::ShadowStage(const SceneGpu& scene, const Light& sun) : scene_(scene), sun_(sun) {
+ShadowStage::ShadowStage(const SceneGpu& scene, const Light& sun)
+    : scene_(scene), sun_(sun), sun_index_(shadowed_sun_index(scene.scene())) {
   if (const int spot = shadowed_spot(scene.scene()); spot >= 0) spot_ = scene.scene().lights[std::size_t(spot)];
   glSamplerParameteri(nearest_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glSamplerParameteri(nearest_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
@@ -126,7 +131,8 @@ ch03::ShaderHooks ShadowStage::shader_hooks() const {
   std::string method = "SHADOW_" + kMethodNames[int(settings_.method)];
   std::transform(method.begin(), method.end(), method.begin(), [](char c) { return c == '-' ? '_' : char(std::toupper(c)); });
   std::vector<std::string> defines = {"SHADOW_METHOD " + method, "SHADOW_UNIT " + std::to_string(slots().unit(0)),
-                                      "SHADOW_BLOCK " + std::to_string(slots().block(0))};
+                                      "SHADOW_BLOCK " + std::to_string(slots().block(0)),
+                                      "SHADOW_SUN_INDEX " + std::to_string(sun_index_)};
   // The sun's maps as an array (only then: one map keeps the program it always had).
   if (settings_.cascades > 1) defines.push_back("SHADOW_CASCADES " + std::to_string(settings_.cascades));
   return {"06_shadows/shaders/shadow_visibility.glsl", "", defines};

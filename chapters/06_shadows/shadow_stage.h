@@ -110,6 +110,7 @@ class ShadowStage : public ch03::FrameStage {
   const ShaderProgram& program(const std::string& vertex, const std::string& fragment, std::vector<std::string> defines);
   const SceneGpu& scene_;
   Light sun_;
+  int sun_index_;  // shadowed_sun_index(): the directional light the hook shadows
   ShadowSettings settings_;
   ShadowPicture picture_ = ShadowPicture::None;
   LightFrustum frustum_;
@@ -180,6 +181,9 @@ std::vector<std::string> unshadowed_casters(const Scene& scene);
 int shadowed_spot(const Scene& scene);
 // The sun that gets a map: the first directional light, if it casts; its index, or -1.
 int shadowed_sun(const Scene& scene);
+// That sun's index among the directional lights chapter 03's light set keeps (light_defect()
+// leaves some out): the `index` the visibility hook shadows (SHADOW_SUN_INDEX); -1 if none.
+int shadowed_sun_index(const Scene& scene);
 // [/casts-shadows]
 
 }  // namespace lp::ch06

@@ -257,8 +257,7 @@ int main(int argc, char** argv) {
     TransparencyStage glass(frame, app.scene_gpu());
     frame.add_stage(glass);
     std::unique_ptr<WholeFrame> whole;  // --mode whole: made when first asked for
-    MsaaFrame msaa(app.scene_gpu());  // --msaa 2 or 4: the same lights
-    msaa.set_lights(frame.volumes().lights());
+    MsaaFrame msaa(app.scene_gpu(), frame.volumes());  // --msaa 2 or 4: lit by the frame's lights
 
     // 3. Each frame, one of three: MSAA, the whole frame, or the glass study.
     while (app.next_frame()) {

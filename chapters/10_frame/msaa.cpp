@@ -35,28 +35,27 @@ void fullscreen(const gl::VertexArray& empty) {
 
 }  // namespace
 
-MsaaFrame::MsaaFrame(const SceneGpu& scene)
-    : scene_(scene), geometry_(scene), ambient_(scene.scene().ambient), background_(ch01::kBackground) {}
+MsaaFrame::MsaaFrame(const SceneGpu& scene, ch03::LightVolumes& lights)
+    : scene_(scene), geometry_(scene), local_(gl::make_buffer(nullptr, sizeof(LocalLight))), volumes_(lights),
+      ambient_(scene.scene().ambient), background_(ch01::kBackground) {}
 
 void MsaaFrame::reload_shaders() {
   geometry_.reload_shaders();
-  volumes_.reload_shaders();
-  programs_.reset();
+  programs_.reset();  // the volumes' programs are the frame's: its reload_shaders() makes them again
 }
 
-void MsaaFrame::set_lights(const ch03::LightSet& lights) {
-  std::vector<ch01::GpuLight> directional = lights.directional;
-  std::vector<LocalLight> local;  // chapter 03's light order: points, cones, wide spots
+// The full-screen loop reads every local light with its cut in one buffer, in chapter 03's
+// light order (points, cones, wide spots); the volumes read the frame's records as they are.
+void MsaaFrame::pack_local_lights() {
+  const ch03::LightSet& lights = volumes_.lights();
+  std::vector<LocalLight> local;
+  local.reserve(lights.local_count());
   for (const auto& p : lights.points) local.push_back({ch03::unpack(p), glm::vec4(p.position_radius.w, 0, 0, 0)});
   for (const auto& s : lights.cones) local.push_back({ch03::unpack(s), glm::vec4(s.position_radius.w, 0, 0, 0)});
   for (const auto& s : lights.wide_spots) local.push_back({ch03::unpack(s), glm::vec4(s.position_radius.w, 0, 0, 0)});
-  directional_count_ = int(directional.size());
   local_count_ = int(local.size());
-  if (directional.empty()) directional.resize(1);  // a buffer of no bytes cannot be bound
-  if (local.empty()) local.resize(1);
-  directional_ = gl::make_buffer(directional.data(), directional.size() * sizeof(ch01::GpuLight));
+  if (local.empty()) local.resize(1);  // a buffer of no bytes cannot be bound
   local_ = gl::make_buffer(local.data(), local.size() * sizeof(LocalLight));
-  volumes_.set_lights(lights);  // the same records, drawn as chapter 03's volumes
 }
 
 void MsaaFrame::resize(int width, int height, int samples) {
@@ -188,10 +187,11 @@ void MsaaFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outpu
   //    only the directional lights and the ambient (one light each, every pixel).
   glStencilMask(0xFF);
   glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDirectionalBinding, directional_.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLocalBinding, local_.id());
+  if (!volumes) pack_local_lights();
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDirectionalBinding, volumes_.directional_buffer());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLocalBinding, local_.id());  // with volumes: one record, never read
   for (ShaderProgram* program : {&p.per_pixel, &p.per_sample}) {
-    program->set("u_directional_count", directional_count_);
+    program->set("u_directional_count", int(volumes_.lights().directional.size()));
     program->set("u_local_count", volumes ? 0 : local_count_);
     program->set("u_ambient", ambient_);
     program->set("u_background", background_);

@@ -5,8 +5,7 @@
 // stencil-tested passes), and each sample tonemapped before the samples are averaged (the
 // source's chapter 5: the tonemapping curve is not linear, so resolving first is wrong).
 //
-//   MsaaFrame msaa(scene_gpu);
-//   msaa.set_lights(ch03::build_light_set(...));          // chapter 03's lights and cuts
+//   MsaaFrame msaa(scene_gpu, frame.volumes());           // chapter 03's frame's lights and cuts
 //   msaa.render(camera, {output_fbo, w, h}, {.samples = 4}, &metrics);
 //   MsaaCounts n = msaa.counts();                         // exact: marked, shaded
 //
@@ -17,13 +16,11 @@
 // marked samples inside it and its per-pixel shader on the unmarked ones. FullScreen: every
 // light summed in the two full-screen passes (chapter 03's cut and local_light() in a loop),
 // the first version, kept as the cross-check. Volumes is the default because it is the same
-// image (MsaaGl.VolumesShareTheStencilWithTheEdgeMark) and on the street's 300+ lights it
-// shades only the pixels each light reaches instead of every light at every pixel: on
-// llvmpipe about 3x faster with 1 sample and per sample everywhere, and not slower on the
-// edges, where each light's per-sample draw costs llvmpipe its whole volume's area however few
-// samples pass (book/figures/10_msaa_llvmpipe.csv). The directional lights and the ambient stay
-// one full-screen pass at both rates. With 1 sample nothing is marked and the frame is
-// chapter 03's.
+// image (MsaaGl.VolumesShareTheStencilWithTheEdgeMark) and on a street of hundreds of lights
+// it shades only the pixels each light reaches instead of every light at every pixel (the
+// times are book/10c-msaa.md's, from book/figures/10_msaa_llvmpipe.csv). The directional
+// lights and the ambient stay one full-screen pass at both rates. With 1 sample nothing is
+// marked and the frame is chapter 03's.
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -85,8 +82,7 @@ struct MsaaSettings {
 
 // Exact counts of the last render() made without metrics, from GL_SAMPLES_PASSED (64-bit).
 // (Not chapter 03's atomic counters: on llvmpipe, in a multisampled pass with early stencil
-// tests, their atomics also ran for fragments the stencil had rejected, 0.7 % more than the
-// samples that passed on the edge test scene.)
+// tests, their atomics also ran for fragments the stencil had rejected.)
 struct MsaaCounts {
   std::uint64_t pixels = 0;      // width x height
   std::uint64_t marked = 0;      // pixels the edge pass marked
@@ -109,10 +105,10 @@ struct MsaaCounts {
 
 class MsaaFrame {
  public:
-  explicit MsaaFrame(const SceneGpu& scene);
+  // Lit by `lights`, chapter 03's frame's (frame.volumes(): the lights with their cuts, as
+  // use_lights() set them, their records and volumes already on the GPU): read, never copied.
+  MsaaFrame(const SceneGpu& scene, ch03::LightVolumes& lights);
   void reload_shaders();
-  // Chapter 03's lights with their cuts (build_light_set), as its frame lights them.
-  void set_lights(const ch03::LightSet& lights);
   void set_ambient(const glm::vec3& ambient) { ambient_ = ambient; }
   void set_background(const glm::vec3& background) { background_ = background; }
 
@@ -131,6 +127,8 @@ class MsaaFrame {
   void resize(int width, int height, int samples);
   // The local lights as chapter 03's volumes, into the bound light target (step 4).
   void draw_volumes(const MsaaSettings& s, bool counting);
+  // MsaaLights::FullScreen: the local lights with their cuts as msaa_light.glsl reads them.
+  void pack_local_lights();
 
   const SceneGpu& scene_;
   ch02::GeometryPass geometry_;
@@ -140,14 +138,14 @@ class MsaaFrame {
   gl::Texture radiance_{GL_TEXTURE_2D}, stencil_{GL_TEXTURE_2D};
   gl::Framebuffer radiance_fbo_;
   gl::VertexArray empty_;
-  gl::Buffer directional_, local_;
-  int directional_count_ = 0, local_count_ = 0;
+  gl::Buffer local_;  // MsaaLights::FullScreen's records, packed each frame that draws them
+  int local_count_ = 0;
   struct Programs {
     ShaderProgram edges, per_pixel, per_sample, resolve, mark, centre_depth;
   };
   std::unique_ptr<Programs> programs_;
   int programs_samples_ = 0;
-  ch03::LightVolumes volumes_;  // chapter 03's meshes and light records, its volume shader
+  ch03::LightVolumes& volumes_;  // the frame's: its lights, meshes and records, its volume shader
   std::vector<std::pair<bool, gl::Query>> volume_queries_;  // counting: {per sample?, GL_SAMPLES_PASSED} per draw
   MsaaCounts counts_;
   std::vector<glm::vec2> positions_;

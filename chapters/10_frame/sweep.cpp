@@ -199,8 +199,7 @@ void sweep_msaa(const Settings& s, bool software) {
   SceneGpu gpu(scene);
   ch03::DeferredFrame frame(gpu);
   ch03::use_lights(frame, scene, scene.lights, false);
-  ch10::MsaaFrame msaa(gpu);
-  msaa.set_lights(frame.volumes().lights());
+  ch10::MsaaFrame msaa(gpu, frame.volumes());
   const FrameCamera camera = frame_camera(scene.camera("street_level"), float(w) / h);
   const ImageRGBA8 truth = supersampled(msaa, camera, w, h, 4);
   OutputTarget target(w, h);

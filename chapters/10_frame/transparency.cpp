@@ -71,29 +71,45 @@ static_assert(sizeof(CapturedFragment) == 32);
 }  // namespace
 
 TransparencyStage::TransparencyStage(const ch03::DeferredFrame& frame, const SceneGpu& scene)
-    : scene_(scene), draws_(blended_draws(scene.scene())),
-      lists_(frame.volumes(), {.kind = ch09::CullKind::Clustered, .all_cells = true}),
+    : scene_(scene), draws_(blended_draws(scene.scene())), frame_(frame),
       composite_({{GL_VERTEX_SHADER, "02_gbuffer/shaders/fullscreen.vert"},
                   {GL_FRAGMENT_SHADER, "10_frame/shaders/wboit_composite.frag"}}) {}
 
 void TransparencyStage::reload_shaders() {
   programs_.clear();
-  lists_.reload_shaders();
+  if (own_lists_) own_lists_->reload_shaders();
   composite_.reload();
+}
+
+// The frame's lists, or the stage's own (made when first needed).
+void TransparencyStage::use_frame_lists(ch09::ClusteredLights* lists) {
+  if (lists && (lists->settings().kind != ch09::CullKind::Clustered || !lists->settings().all_cells))
+    throw Error("chapter 10: the glass can share the frame's clusters only with all_cells on (" + lists->name() + ")");
+  frame_lists_ = lists;
+}
+
+ch09::ClusteredLights& TransparencyStage::lists() {
+  if (frame_lists_) return *frame_lists_;
+  if (!own_lists_)
+    own_lists_ = std::make_unique<ch09::ClusteredLights>(
+        frame_.volumes(), ch09::ClusterSettings{.kind = ch09::CullKind::Clustered, .all_cells = true});
+  return *own_lists_;
 }
 
 // [glass-lights]
 // The glass's lights are the frame's: its directional lights for the global part (the
 // buffer chapter 03's global pass reads, bound in draw_surfaces), and chapter 09's lists of
 // every cluster for the local lights (a pane may lie in a cluster no opaque surface
-// occupies). The lists are built for the frame's camera each frame.
+// occupies): the frame's own when its local lights are clusters, already built for this
+// frame's camera; else the stage's, built here for it.
 void TransparencyStage::build_lights(const ch03::DeferredFrame& frame, PassMetrics* metrics) {
+  if (frame_lists_) return;  // the frame's draw() built them
   auto pass = timed(metrics, "transparency: light lists (chapter 09, every cluster)");
-  lists_.build_lists(frame.light().width(), frame.light().height(), frame.view());
+  lists().build_lists(frame.light().width(), frame.light().height(), frame.view());
 }
 
 const ShaderProgram& TransparencyStage::program(Output output, const ch03::DeferredFrame& frame) {
-  std::vector<std::string> defines = lists_.forward_defines(frame.view());
+  std::vector<std::string> defines = lists().forward_defines(frame.view());
   defines.push_back(output == kOver ? "GLASS_OVER 1" : output == kWboit ? "GLASS_WBOIT 1" : "GLASS_CAPTURE 1");
   return programs_.get(surface_stages(), defines);
 }
@@ -131,7 +147,7 @@ void TransparencyStage::draw_surfaces(const ch03::DeferredFrame& frame, Output o
                                       const std::vector<BlendedDraw>& draws, bool ranks) {
   const FrameCamera& camera = frame.gbuffer().camera();
   const ShaderProgram& program = this->program(output, frame);
-  lists_.bind_for_forward(program, frame.view().camera);  // uses the program, sets the grid's uniforms
+  lists().bind_for_forward(program, frame.view().camera);  // uses the program, sets the grid's uniforms
   program.set("u_view_projection", camera.view_projection());
   program.set("u_eye", frame.camera().position);
   program.set("u_ambient", scene_.scene().ambient);

@@ -88,6 +88,10 @@ class TransparencyStage : public ch03::FrameStage {
   TransparencyStage(const ch03::DeferredFrame& frame, const SceneGpu& scene);
   void reload_shaders();
   void set(const TransparencySettings& settings) { settings_ = settings; }
+  // The frame's own clusters, when its local lights are drawn by them (chapter 09, clustered,
+  // all_cells on): the glass reads the lists the frame built this frame instead of building a
+  // second set. nullptr (chapter 03's volumes): the stage builds lists of its own.
+  void use_frame_lists(ch09::ClusteredLights* lists);
   const TransparencySettings& settings() const { return settings_; }
   std::size_t blended_count() const { return draws_.size(); }
 
@@ -113,7 +117,12 @@ class TransparencyStage : public ch03::FrameStage {
 
   const SceneGpu& scene_;
   std::vector<BlendedDraw> draws_;
-  ch09::ClusteredLights lists_;  // every cluster's list (all_cells): glass may lie in any of them
+  const ch03::DeferredFrame& frame_;
+  // Every cluster's list (all_cells): glass may lie in any of them. The frame's (use_frame_lists)
+  // or, made when first needed, the stage's own.
+  ch09::ClusteredLights* frame_lists_ = nullptr;
+  std::unique_ptr<ch09::ClusteredLights> own_lists_;
+  ch09::ClusteredLights& lists();
   TransparencySettings settings_;
   ProgramCache programs_;  // per output and the frame's defines
   ShaderProgram composite_;

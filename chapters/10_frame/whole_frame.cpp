@@ -69,7 +69,9 @@ void WholeFrame::build(const std::vector<PlannedStage>& p) {
   clustered_.reset();
   source_ = std::make_unique<ch05::DeferredRadiance>(gpu_);  // the scene stays on the GPU as it is
   ch03::DeferredFrame& frame = source_->frame();
-  clustered_ = std::make_unique<ch09::ClusteredLights>(frame.volumes());
+  // With glass, the lists of every cluster: the glass reads them too, so one set is built a
+  // frame (a cell's list is the same whether a surface occupies it or not).
+  clustered_ = std::make_unique<ch09::ClusteredLights>(frame.volumes(), ch09::ClusterSettings{.all_cells = glass});
   // [add-stages]
   if (shadows) {
     shadows_ = std::make_unique<ch06::ShadowStage>(gpu_, scene_.lights[std::size_t(ch06::shadowed_sun(scene_))]);
@@ -136,7 +138,10 @@ void WholeFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outp
     g.indirect = p[kIndirect].runs;
     gi_->set(g.indirect ? ch08::GiMode::Ssgi : ch08::GiMode::Ssao, g, ch08::GiShow::Image, source_->scene().ambient);
   }
-  if (glass_) glass_->set({.method = s.transparency});
+  if (glass_) {
+    glass_->set({.method = s.transparency});
+    glass_->use_frame_lists(s.clustered ? clustered_.get() : nullptr);  // else its own, over the volumes' lights
+  }
   // [one-frame]
   // 3. The frame into float radiance: G-buffer, shadow map, lights, tubes, AO + indirect,
   //    composite, glass (chapter 03's DeferredFrame::render with the stages above).

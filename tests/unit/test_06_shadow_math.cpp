@@ -11,6 +11,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "chapters/03_light_volumes/light_instances.h"
+#include "chapters/03_light_volumes/volume_meshes.h"
 #include "chapters/06_shadows/shadow_math.h"
 #include "chapters/06_shadows/shadow_stage.h"
 #include "chapters/06_shadows/shadow_truth.h"
@@ -471,6 +473,32 @@ TEST(ShadowLights, TheSunIsTheFirstDirectionalLightTheLightSetKeeps) {
   EXPECT_FALSE(casts_shadows(s, 1));
   s.lights[0].casts_shadows = false;  // the first directional light marked not to cast: no map at all
   EXPECT_EQ(shadowed_sun(s), -1);
+}
+
+// The visibility hook shadows the directional light whose index is SHADOW_SUN_INDEX
+// (shadowed_sun_index()): it must be where chapter 03's light set put the sun, with lights it
+// leaves out before it, and none when no sun casts.
+TEST(ShadowLights, TheHooksSunIndexIsWhereTheLightSetPutTheSun) {
+  auto directional = [](const char* name, float intensity, glm::vec3 direction) {
+    Light l;
+    l.type = LightType::Directional, l.name = name, l.intensity = intensity, l.direction = direction;
+    return l;
+  };
+  Light lamp;
+  lamp.type = LightType::Point, lamp.name = "lamp";
+  Scene s;
+  s.lights = {lamp, directional("broken", -1.f, {0, -1, 0}), directional("sun", 2.f, {0.6f, -0.8f, 0}),
+              directional("moon", 0.5f, {0, -0.8f, 0.6f})};
+  const ch03::VolumeShapes shapes = ch03::make_volume_shapes();
+  const ch03::LightSet set = ch03::build_light_set(s.lights, 0.01f, shapes);
+  const int index = shadowed_sun_index(s);
+  ASSERT_GE(index, 0);
+  ASSERT_LT(std::size_t(index), set.directional.size());
+  const ch01::GpuLight sun = ch01::pack_light(s.lights[std::size_t(shadowed_sun(s))]);
+  EXPECT_EQ(set.directional[std::size_t(index)].direction_range, sun.direction_range);
+  EXPECT_EQ(set.directional[std::size_t(index)].radiance, sun.radiance);
+  s.lights[2].casts_shadows = false;  // the sun marked not to cast: the hook shadows no light
+  EXPECT_EQ(shadowed_sun_index(s), -1);
 }
 
 // The view test that decides whether a spot needs its map: a sphere in front of the camera

@@ -17,7 +17,9 @@
 #include "chapters/03_light_volumes/light_radius.h"
 #include "chapters/06_shadows/shadow_stage.h"
 #include "chapters/10_frame/transparency.h"
+#include "common/error.h"
 #include "common/gl.h"
+#include "common/metrics.h"
 #include "common/paths.h"
 #include "common/shader.h"
 #include "common/target.h"
@@ -413,6 +415,38 @@ TEST(TransparencyGl, TheGlassReadsTheShadowMapWhateverAStageLeftOnItsUnits) {
   EXPECT_TRUE(clobbered.pixels == shadowed.pixels) << compare(clobbered, shadowed).summary();
   EXPECT_GT(compare(unshadowed, shadowed, {.threshold = 3, .max_failing_fraction = 0}).failing_fraction, 0.05)
       << "the sun's map darkens part of the floor";
+}
+
+// When the frame's local lights are chapter 09's clusters, built for every cell (the whole
+// frame with glass), the glass reads those lists instead of building a second set: no pass of
+// its own, and the image of the glass with lists of its own, bit for bit (a cell's list is the
+// same whoever builds it). Lists of the occupied cells only would leave a pane in an empty
+// cell unlit: refused.
+TEST(TransparencyGl, TheGlassReadsTheFramesClustersInsteadOfBuildingItsOwn) {
+  World w(glass_scene());
+  ch09::ClusteredLights clusters(w.frame.volumes(), {.kind = ch09::CullKind::Clustered, .all_cells = true});
+  w.frame.set_local_lights(&clusters);
+  const FrameCamera camera = w.camera("front");
+  const std::string own_pass = "transparency: light lists (chapter 09, every cluster)";
+  auto render = [&](ch09::ClusteredLights* frame_lists, bool& built_own) {
+    w.stage.use_frame_lists(frame_lists);
+    w.stage.set({.method = Method::Sorted});
+    PassMetrics metrics;
+    w.frame.render(camera, {w.target.framebuffer(), kW, kH}, &metrics);
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+    built_own = metrics.find(own_pass) != nullptr;
+    return w.target.read();
+  };
+  bool own_built = false, shared_built = true;
+  const ImageRGBA8 shared = render(&clusters, shared_built);  // first: no lists of its own exist yet
+  const ImageRGBA8 own = render(nullptr, own_built);
+  EXPECT_TRUE(own_built);
+  EXPECT_FALSE(shared_built);
+  const std::vector<int> d = steps(shared, own);
+  EXPECT_EQ(*std::max_element(d.begin(), d.end()), 0);
+  ch09::ClusteredLights occupied_only(w.frame.volumes(), {.kind = ch09::CullKind::Clustered});
+  EXPECT_THROW(w.stage.use_frame_lists(&occupied_only), Error);
+  w.stage.use_frame_lists(nullptr);
 }
 
 // Many near layers overflow the half-float accumulation to infinity (w alpha c up to 3e3 a

@@ -1,10 +1,10 @@
 // Chapter 06's visibility hook (chapter 03's FRAME_VISIBILITY, deferred_frame.h): the sun
 // looked up in its shadow map by the method the define SHADOW_METHOD names, or, with
 // SHADOW_VOLUMES, read from the visibility its shadow volumes left. ShadowStage::shader_hooks()
-// passes the method and its slots (SHADOW_UNIT, SHADOW_BLOCK). The C++ twins are in
-// shadow_math.h. Only the first directional light has a map, and the first spot light the
-// scene marks to cast (shadow_stage.h [casts-shadows]) a perspective one; the other lights
-// keep visibility 1.
+// passes the method, its slots (SHADOW_UNIT, SHADOW_BLOCK) and which directional light is the
+// sun (SHADOW_SUN_INDEX, from shadowed_sun_index()). The C++ twins are in shadow_math.h. Only
+// the sun has a map, and the first spot light the scene marks to cast (shadow_stage.h
+// [casts-shadows]) a perspective one; the other lights keep visibility 1.
 #include "03_light_volumes/shaders/hooks/frame_pixel.glsl"
 #define SHADOW_HARD 0
 #define SHADOW_PCF 1
@@ -14,8 +14,8 @@
 #define SHADOW_VOLUMES 5
 #define SHADOW_PCSS 6
 #define SHADOW_MSM 7
-#if !defined(SHADOW_METHOD) || !defined(SHADOW_UNIT) || !defined(SHADOW_BLOCK)
-#error the shadow hook needs SHADOW_METHOD, SHADOW_UNIT and SHADOW_BLOCK (ShadowStage::shader_hooks)
+#if !defined(SHADOW_METHOD) || !defined(SHADOW_UNIT) || !defined(SHADOW_BLOCK) || !defined(SHADOW_SUN_INDEX)
+#error the shadow hook needs SHADOW_METHOD, SHADOW_UNIT, SHADOW_BLOCK and SHADOW_SUN_INDEX (ShadowStage::shader_hooks)
 #endif
 
 #if SHADOW_METHOD == SHADOW_VOLUMES
@@ -26,7 +26,7 @@ layout(binding = SHADOW_UNIT + 4) uniform sampler2D sh_volume_visibility;
 
 // [volumes-glsl]
 float directional_visibility(int index, GpuLight light, Surface s) {
-  if (index != 0) return 1.0;
+  if (index != SHADOW_SUN_INDEX) return 1.0;
   if (dot(s.normal, -light.direction_range.xyz) <= 0.0) return 1.0;  // faces away, as the maps
   return texelFetch(sh_volume_visibility, ivec2(frame_pixel()), 0).r;
 }
@@ -273,7 +273,7 @@ float cascade_visibility(int i, Surface s, vec3 to_light) {
 #endif
 
 float directional_visibility(int index, GpuLight light, Surface s) {
-  if (index != 0) return 1.0;
+  if (index != SHADOW_SUN_INDEX) return 1.0;
   vec3 to_light = -light.direction_range.xyz;
   if (dot(s.normal, to_light) <= 0.0) return 1.0;  // faces away: the light adds nothing anyway
 #if SHADOW_CASCADES > 1
