@@ -26,7 +26,9 @@
 namespace lp::ch09 {
 
 // [settings]
-enum class CullKind { Tiled, Clustered };
+// ZBin: Z-binning (Drobot 2017): lights sorted by depth, a range per depth bin, a bit per
+// light per tile (shaders/zbin.glsl).
+enum class CullKind { Tiled, Clustered, ZBin };
 enum class ShadeIn { Compute, Fragment, Staged };  // Staged: compute, the tile's lights in shared memory (tiled)
 struct ClusterSettings {
   CullKind kind = CullKind::Clustered;
@@ -34,6 +36,7 @@ struct ClusterSettings {
   int tile_px = 16;          // tiled: square tiles of this many pixels
   bool depth_mask = false;   // tiled: Harada's 2.5D culling, 32 depth bins per tile (cluster_grid.h)
   glm::ivec3 clusters{16, 9, 24};  // clustered: tiles across, tiles down, depth slices (DOOM 2016's)
+  int zbins = 1024;          // zbin: exponential depth bins (1 to 16 384); its tiles are tile_px
   // The index list starts this large (indices) and grows to what a frame needs, up to
   // max_indices. Growth is found a frame late, never by waiting for the GPU: a cell that does
   // not fit is shaded from every light that frame (slower, the same image) and counted, and
@@ -45,11 +48,11 @@ struct ClusterSettings {
   // the G-buffer's surfaces occupy, so that any fragment a forward pass draws finds its lights.
   bool all_cells = false;
 };
-// The six ways of the program's --mode, beside chapter 03's: "tiled", "tiled-2.5d" (with the
+// The seven ways of the program's --mode, beside chapter 03's: "tiled", "tiled-2.5d" (with the
 // depth mask), "tiled-fragment", "tiled-staged" (the tile's lights staged in shared memory,
-// tiles of at most 32 pixels), "clustered" (compute), "clustered-fragment".
+// tiles of at most 32 pixels), "clustered" (compute), "clustered-fragment", "zbin" (compute).
 inline const std::vector<std::string> kClusterModes = {"tiled", "tiled-2.5d", "tiled-fragment", "tiled-staged",
-                                                       "clustered", "clustered-fragment"};
+                                                       "clustered", "clustered-fragment", "zbin"};
 bool is_cluster_mode(const std::string& name);
 ClusterSettings settings_for_mode(const std::string& name, ClusterSettings base = {});  // throws Error
 std::string mode_name(const ClusterSettings& s);
@@ -121,6 +124,8 @@ class ClusteredLights : public ch03::LocalLightPass {
  private:
   void upload_lights();
   void assign(const std::vector<std::string>& defines, const FrameCamera& camera);
+  void assign_zbin(const std::vector<std::string>& defines, const FrameCamera& camera);
+  void fence_state();
   void read_finished_states(bool wait_for_last);
   void set_grid_uniforms(const ShaderProgram& p, const FrameCamera& camera) const;
   const ShaderProgram& program(GLenum stage, const std::string& file, const std::vector<std::string>& defines);
@@ -138,6 +143,9 @@ class ClusteredLights : public ch03::LocalLightPass {
   int light_count_ = 0;
   gl::Buffer lights_, cells_, bounds_, indices_, state_;
   std::size_t lights_bytes_ = 0, cells_bytes_ = 0, bounds_bytes_ = 0;
+  // Z-binning's: the sorted order, each bin's range, each tile's bits, the sort's scratch.
+  gl::Buffer order_, zbins_, masks_, sort_;
+  std::size_t order_bytes_ = 0, zbins_bytes_ = 0, masks_bytes_ = 0, sort_bytes_ = 0;
   std::uint32_t capacity_ = 0;
   // Each draw's list state, copied when its assignment ends and read once the GPU has passed
   // the fence: a few draws may be in flight, the oldest slot is reused.

@@ -8,6 +8,9 @@
 #include "03_light_volumes/shaders/light_instance.glsl"
 #include "03_light_volumes/shaders/local_light.glsl"
 #include "09_clustered/shaders/grid.glsl"
+#ifdef ZBIN
+#include "09_clustered/shaders/zbin.glsl"
+#endif
 #ifdef COUNT_FRAGMENTS
 #include "03_light_volumes/shaders/fragment_counters.glsl"
 const uint kCountEvaluated = 0u, kCountLit = 1u, kCountSurface = 2u;
@@ -41,6 +44,16 @@ void add_light(Surface s, uvec2 list, uint k, inout vec3 diffuse, inout vec3 spe
   add_record(s, i, cluster_lights[i], diffuse, specular, lit);
 }
 
+#ifdef ZBIN
+// The light of the lowest bit left in mask word w (if any), added; its bit cleared.
+void zbin_take(Surface s, uint w, inout uint m, inout vec3 diffuse, inout vec3 specular, inout uint lit) {
+  if (m == 0u) return;
+  int i = int(light_indices[w * 32u + uint(findLSB(m))]);
+  add_record(s, i, cluster_lights[i], diffuse, specular, lit);
+  m &= m - 1u;
+}
+#endif
+
 // With counting on, one surface pixel's counts (shade_staged.comp calls it too).
 void count_pixel(uint evaluated, uint lit) {
 #ifdef COUNT_FRAGMENTS
@@ -59,6 +72,29 @@ void shade_surface(Surface s, ivec2 pixel, out vec3 diffuse, out vec3 specular, 
   diffuse = specular = vec3(0.0);
   evaluated = lit = 0u;
   if (s.is_sky) return;
+#ifdef ZBIN
+  // [zbin-loop]
+  // Z-binning: the lights of the pixel's depth bin's range whose bit its tile has set, in
+  // sorted (depth) order. Four bits an iteration, for llvmpipe's loop limit (above).
+  uvec2 range = zbins[zbin_of(view_depth(s.position))];
+  uint base = uint(cell_index(tile_of(pixel), 0)) * zbin_words();
+  if (range.x <= range.y)
+    for (uint w = range.x >> 5u; w <= range.y >> 5u; ++w) {
+      uint m = tile_masks[base + w];
+      if (w == range.x >> 5u) m &= 0xFFFFFFFFu << (range.x & 31u);
+      if (w == range.y >> 5u) m &= 0xFFFFFFFFu >> (31u - (range.y & 31u));
+      evaluated += uint(bitCount(m));
+      while (m != 0u) {
+        zbin_take(s, w, m, diffuse, specular, lit);
+        zbin_take(s, w, m, diffuse, specular, lit);
+        zbin_take(s, w, m, diffuse, specular, lit);
+        zbin_take(s, w, m, diffuse, specular, lit);
+      }
+    }
+  // [/zbin-loop]
+  count_pixel(evaluated, lit);
+  return;
+#endif
 #ifdef CLUSTERED
   uvec2 list = cells[cell_index(tile_of(pixel), slice_of(view_depth(s.position)))];
 #else
