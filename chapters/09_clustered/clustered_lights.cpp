@@ -374,6 +374,20 @@ std::vector<glm::uvec2> ClusteredLights::cell_lists() const {
   return v;
 }
 
+ClusteredLights::ZBinLists ClusteredLights::zbin_lists() const {
+  ZBinLists z;
+  if (settings_.kind != CullKind::ZBin) return z;
+  auto read = [](const gl::Buffer& b, std::size_t bytes, auto& v) {
+    v.resize(bytes / sizeof(v[0]));
+    if (!v.empty()) glGetNamedBufferSubData(b.id(), 0, GLsizeiptr(v.size() * sizeof(v[0])), v.data());
+  };
+  read(order_, std::size_t(light_count_) * 4, z.order);
+  read(zbins_, zbins_bytes_, z.ranges);
+  read(masks_, masks_bytes_, z.masks);
+  z.words = (std::size_t(light_count_) + 31) / 32;
+  return z;
+}
+
 std::vector<std::uint32_t> ClusteredLights::cell_counts() const {
   std::vector<std::uint32_t> n;
   for (const glm::uvec2& c : cell_lists()) n.push_back(c.y);

@@ -109,6 +109,15 @@ class ClusteredLights : public ch03::LocalLightPass {
   // Every cell's list as stored: (offset, count) per cell and the index list, for the tests.
   std::vector<glm::uvec2> cell_lists() const;
   std::vector<std::uint32_t> index_list();  // waits for the last draw
+  // Z-binning's lists as stored, for the tests: the sorted order (order[p] is a light), each
+  // bin's range of sorted positions (x > y: none), each tile's words of bits (words per tile).
+  struct ZBinLists {
+    std::vector<std::uint32_t> order;
+    std::vector<glm::uvec2> ranges;
+    std::vector<std::uint32_t> masks;
+    std::size_t words = 0;
+  };
+  ZBinLists zbin_lists() const;
   void reload_shaders() { programs_.clear(); }
 
   // [forward-api]
