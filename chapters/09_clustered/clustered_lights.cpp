@@ -9,7 +9,8 @@
 namespace lp::ch09 {
 
 bool is_cluster_mode(const std::string& name) {
-  return std::find(kClusterModes.begin(), kClusterModes.end(), name) != kClusterModes.end();
+  return std::find(kClusterModes.begin(), kClusterModes.end(), name) != kClusterModes.end() ||
+         std::find(kBenchModes.begin(), kBenchModes.end(), name) != kBenchModes.end();
 }
 
 ClusterSettings settings_for_mode(const std::string& name, ClusterSettings s) {
@@ -19,6 +20,7 @@ ClusterSettings settings_for_mode(const std::string& name, ClusterSettings s) {
             : name.find("staged") != std::string::npos ? ShadeIn::Staged
                                                        : ShadeIn::Compute;
   s.depth_mask = name.find("2.5d") != std::string::npos;
+  s.floor = name == "zbin-floor";
   return s;
 }
 
@@ -27,7 +29,8 @@ std::string mode_name(const ClusterSettings& s) {
   const bool staged = s.kind == CullKind::Tiled && s.shade == ShadeIn::Staged;
   const char* kind = s.kind == CullKind::Tiled ? "tiled" : s.kind == CullKind::ZBin ? "zbin" : "clustered";
   return std::string(kind) + (mask ? "-2.5d" : "") +
-         (s.shade == ShadeIn::Fragment ? "-fragment" : "") + (staged ? "-staged" : "");
+         (s.kind == CullKind::ZBin && s.floor ? "-floor" : "") + (s.shade == ShadeIn::Fragment ? "-fragment" : "") +
+         (staged ? "-staged" : "");
 }
 
 std::vector<std::string> ClusteredLights::pass_names(const std::string& mode) {
@@ -172,13 +175,16 @@ std::vector<std::string> ClusteredLights::build_lists(int w, int h, const ch03::
   for (const auto& d : view.hooks.glsl_defines()) defines.push_back(d);
   if (clustered) defines.push_back("CLUSTERED 1");
   if (clustered && settings_.all_cells) defines.push_back("ALL_CELLS 1");
+  const bool floor = zbin && settings_.floor;
   if (zbin) defines.push_back("ZBIN 1");
+  if (floor) defines.push_back("FLOOR 1");
   const bool mask = settings_.kind == CullKind::Tiled && settings_.depth_mask;
   if (mask) defines.push_back("DEPTH_MASK 1");
 
   // The cells and the bounds: one (offset, count) per cell; tiled: (min, max) per tile and
   // with the depth mask its 32 bins, clustered: an occupied flag per cell.
-  const std::size_t cells_bytes = std::size_t(grid_.cells()) * 8;
+  // (The floor: one (offset, count) per pixel instead.)
+  const std::size_t cells_bytes = (floor ? std::size_t(w) * std::size_t(h) : std::size_t(grid_.cells())) * 8;
   const std::size_t bounds_bytes = std::size_t(grid_.cells()) * 4 * (clustered ? 1 : mask ? 3 : 2);
   if (cells_bytes != cells_bytes_) glNamedBufferData(cells_.id(), GLsizeiptr(cells_bytes_ = cells_bytes), nullptr, GL_DYNAMIC_DRAW);
   if (bounds_bytes != bounds_bytes_) glNamedBufferData(bounds_.id(), GLsizeiptr(bounds_bytes_ = bounds_bytes), nullptr, GL_DYNAMIC_DRAW);
@@ -223,14 +229,8 @@ void ClusteredLights::assign(const std::vector<std::string>& defines, const Fram
   // No read-back in the frame: what earlier draws needed is read once the GPU is done with
   // them. If one overflowed, the list grows now, before this draw's assignment; the draw that
   // overflowed shaded its full cells from every light (assign.comp), so nothing was lost.
-  read_finished_states(false);
-  if (stats_.frame > 0 && stats_.cells_over > 0 && settings_.grow && capacity_ < settings_.max_indices &&
-      stats_.indices > capacity_) {
-    capacity_ = std::uint32_t(std::min<std::uint64_t>(stats_.indices + stats_.indices / 4, settings_.max_indices));
-    glNamedBufferData(indices_.id(), GLsizeiptr(capacity_) * 4, nullptr, GL_DYNAMIC_DRAW);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, indices_.id());
-    ++stats_.regrown;
-  }
+  grow_if_an_earlier_draw_overflowed();
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, indices_.id());
   const ShaderProgram& p = program(GL_COMPUTE_SHADER, "09_clustered/shaders/assign.comp", defines);
   set_grid_uniforms(p, camera);
   const ListState start{0, capacity_, 0, 0, 0, 0, 0, 0};
@@ -240,6 +240,16 @@ void ClusteredLights::assign(const std::vector<std::string>& defines, const Fram
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   fence_state();
   // [/overflow]
+}
+
+void ClusteredLights::grow_if_an_earlier_draw_overflowed() {
+  read_finished_states(false);
+  if (stats_.frame > 0 && stats_.cells_over > 0 && settings_.grow && capacity_ < settings_.max_indices &&
+      stats_.indices > capacity_) {
+    capacity_ = std::uint32_t(std::min<std::uint64_t>(stats_.indices + stats_.indices / 4, settings_.max_indices));
+    glNamedBufferData(indices_.id(), GLsizeiptr(capacity_) * 4, nullptr, GL_DYNAMIC_DRAW);
+    ++stats_.regrown;
+  }
 }
 
 void ClusteredLights::fence_state() {
@@ -278,7 +288,9 @@ void ClusteredLights::assign_zbin(const std::vector<std::string>& defines, const
   glClearNamedBufferSubData(sort_.id(), GL_R32UI, 0, GLsizeiptr(kSortKeys * 4), GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   glClearNamedBufferData(zbins_.id(), GL_RG32UI, GL_RG_INTEGER, GL_UNSIGNED_INT, empty_range);
   glClearNamedBufferData(masks_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  const ListState start{0, 0, 0, 0, 0, 0, 0, 0};
+  const bool floor = settings_.floor;
+  grow_if_an_earlier_draw_overflowed();  // the floor's lists are the index list; others: the late stats read
+  const ListState start{0, floor ? capacity_ : 0, 0, 0, 0, 0, 0, 0};
   glNamedBufferSubData(state_.id(), 0, sizeof(start), &start);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, order_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, zbins_.id());
@@ -297,9 +309,18 @@ void ClusteredLights::assign_zbin(const std::vector<std::string>& defines, const
     glDispatchCompute(step == 2 ? 1 : groups, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
+  if (floor) {  // each pixel's exact list, into the index list (bound where the sort's scratch was)
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, indices_.id());
+    const ShaderProgram& p = program(GL_COMPUTE_SHADER, "09_clustered/shaders/zbin_floor.comp", defines);
+    set_grid_uniforms(p, camera);
+    p.use();
+    glDispatchCompute(GLuint((grid_.width + 7) / 8), GLuint((grid_.height + 7) / 8), 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   fence_state();
-  stats_.bytes = order_bytes_ + zbins_bytes_ + masks_bytes_ + sort_bytes_ + bounds_bytes_ + lights_bytes_;
+  stats_.bytes = order_bytes_ + zbins_bytes_ + masks_bytes_ + sort_bytes_ + bounds_bytes_ + lights_bytes_ +
+                 (floor ? std::size_t(capacity_) * 4 + cells_bytes_ : 0);
 }
 // [/assign-zbin]
 

@@ -37,6 +37,10 @@ struct ClusterSettings {
   bool depth_mask = false;   // tiled: Harada's 2.5D culling, 32 depth bins per tile (cluster_grid.h)
   glm::ivec3 clusters{16, 9, 24};  // clustered: tiles across, tiles down, depth slices (DOOM 2016's)
   int zbins = 1024;          // zbin: exponential depth bins (1 to 16 384); its tiles are tile_px
+  // zbin-floor, a benchmark: Z-binning's lists turned into each pixel's exact list (the lights
+  // whose cut reaches its surface) in the assignment, so that the shading pass is the per-pair
+  // arithmetic alone: the floor the other modes' shading is measured against.
+  bool floor = false;
   // The index list starts this large (indices) and grows to what a frame needs, up to
   // max_indices. Growth is found a frame late, never by waiting for the GPU: a cell that does
   // not fit is shaded from every light that frame (slower, the same image) and counted, and
@@ -53,7 +57,9 @@ struct ClusterSettings {
 // tiles of at most 32 pixels), "clustered" (compute), "clustered-fragment", "zbin" (compute).
 inline const std::vector<std::string> kClusterModes = {"tiled", "tiled-2.5d", "tiled-fragment", "tiled-staged",
                                                        "clustered", "clustered-fragment", "zbin"};
-bool is_cluster_mode(const std::string& name);
+// Modes for measuring, not for the program's list: "zbin-floor" (settings.floor above).
+inline const std::vector<std::string> kBenchModes = {"zbin-floor"};
+bool is_cluster_mode(const std::string& name);  // one of kClusterModes or kBenchModes
 ClusterSettings settings_for_mode(const std::string& name, ClusterSettings base = {});  // throws Error
 std::string mode_name(const ClusterSettings& s);
 // [/settings]
@@ -135,6 +141,7 @@ class ClusteredLights : public ch03::LocalLightPass {
   void assign(const std::vector<std::string>& defines, const FrameCamera& camera);
   void assign_zbin(const std::vector<std::string>& defines, const FrameCamera& camera);
   void fence_state();
+  void grow_if_an_earlier_draw_overflowed();
   void read_finished_states(bool wait_for_last);
   void set_grid_uniforms(const ShaderProgram& p, const FrameCamera& camera) const;
   const ShaderProgram& program(GLenum stage, const std::string& file, const std::vector<std::string>& defines);

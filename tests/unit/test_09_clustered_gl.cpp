@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -190,6 +191,14 @@ Tolerance tolerance_for(const Scene& s) {
   return {double(ch03::cut_threshold(1.f, ch03::peak_reflectance(s))) * double(ch03::peak_reflectance(s))};
 }
 
+// The program's modes and the floor benchmark's (zbin-floor: exact per-pixel lists), which
+// must give the same image and lit pairs.
+std::vector<std::string> every_mode() {
+  std::vector<std::string> m = kClusterModes;
+  m.insert(m.end(), kBenchModes.begin(), kBenchModes.end());
+  return m;
+}
+
 // Clusters whose tiles are tiled shading's (16 pixels at 160 x 90), so that the two differ in
 // depth only.
 ClusterSettings clusters_like_tiles() {
@@ -217,7 +226,7 @@ TEST_F(ClusteredGl, TiledAndClusteredEqualTheStencilVolumes) {
     const Render stencil = render(*c.world, cam, w, h, nullptr, false);
     ASSERT_GT(stencil.stencil.lit, 1000u);
     std::vector<float> k;
-    for (const std::string& mode : kClusterModes) {
+    for (const std::string& mode : every_mode()) {
       SCOPED_TRACE(mode);
       ClusteredLights pass(c.world->frame_.volumes(), settings_for_mode(mode));
       // Lights lit per pixel: the same in every mode (the same cut, every lit pair listed), so
@@ -257,12 +266,20 @@ TEST_F(ClusteredGl, LitPairsEqualTheFullScreenPassExactly) {
   w.frame_.render(cam, {target.framebuffer(), width, height});
   const ch03::FragmentCounts full = w.frame_.volumes().counts();
   ASSERT_GT(full.lit, 1000u);
-  for (const std::string& mode : kClusterModes) {
+  std::map<std::string, std::uint64_t> evaluated;
+  for (const std::string& mode : every_mode()) {
     ClusteredLights pass(w.frame_.volumes(), settings_for_mode(mode));
     const Render r = render(w, cam, width, height, &pass, false);
     EXPECT_EQ(r.counts.lit, full.lit) << mode;
     EXPECT_LT(r.counts.evaluated, full.shaded) << mode << ": culling evaluates fewer than every light everywhere";
+    evaluated[mode] = r.counts.evaluated;
   }
+  // The floor evaluates only the lights whose cut reaches the surface: fewer than any culling.
+  for (const auto& [mode, e] : evaluated)
+    if (mode != "zbin-floor") {
+      EXPECT_LT(evaluated["zbin-floor"], e) << mode;
+    }
+  EXPECT_GT(evaluated["zbin-floor"], full.lit) << "lights within their cut that face away light nothing";
 }
 
 // The index list is compacted: the cells' lists tile [0, total) without gap or overlap, each
@@ -366,7 +383,7 @@ TEST_F(ClusteredGl, ZeroLightsAddNothing) {
   const int width = 64, height = 36;
   const FrameCamera cam = camera(w, "street_level", width, height);
   const Render stencil = render(w, cam, width, height, nullptr, false);
-  for (const std::string& mode : kClusterModes) {
+  for (const std::string& mode : every_mode()) {
     ClusteredLights pass(w.frame_.volumes(), settings_for_mode(mode));
     const Render r = render(w, cam, width, height, &pass, false);
     EXPECT_EQ(r.counts.evaluated, 0u) << mode;
@@ -387,7 +404,7 @@ void expect_all_modes_equal_stencil(World& w, const FrameCamera& cam, int width,
                                     std::vector<Render>* out = nullptr) {
   const Render stencil = render(w, cam, width, height, nullptr, false, Strategy::Stencil, nullptr);
   std::vector<float> k;
-  for (const std::string& mode : kClusterModes) {
+  for (const std::string& mode : every_mode()) {
     SCOPED_TRACE(mode);
     ClusteredLights pass(w.frame_.volumes(), settings_for_mode(mode));
     const Render r = render(w, cam, width, height, &pass, k.empty(), Strategy::Stencil, nullptr);

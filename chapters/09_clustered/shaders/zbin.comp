@@ -107,7 +107,9 @@ void main() {
       ++entries;
     }
   // [/zbin-tiles]
+#ifndef FLOOR  // (the floor counts its own lists' entries)
   // The list entries, as the other modes count theirs: (tile, light) pairs.
   if (entries > 0u && atomicAdd(state.needed_lo, entries) > 0xFFFFFFFFu - entries) atomicAdd(state.needed_hi, 1u);
+#endif
 #endif
 }
