@@ -40,11 +40,23 @@ lightpass_gtests(09_clustered_forward gl lightpass_09_clustered unit/test_09_clu
 # what measured it; no warning that a density was missed or a list overflowed.
 set(SWEEP09_OUT ${CMAKE_BINARY_DIR}/out/09_density)
 add_test(NAME 09_clustered.density_sweep_reaches_its_density COMMAND ${EXPECT} 0
-  "^target_density,lights,method,range_scale,density,lit,evaluated_per_lit,local_median_ms,local_p95_ms,"
-  "^8,1000,tiled,[0-9.]+,(7\\.(7[6-9]|[89])|8\\.([01]|2[0-4]))[0-9]*,[1-9][0-9]*,[0-9.]+,[0-9.e-]+,[0-9.e-]+,.*,2,[^,]+.*,64,36,1$"
-  "^32,1000,clustered,[0-9.]+,(31\\.|32\\.|30\\.[4-9])[0-9]*,"
+  "^target_density,lights,method,grid,range_scale,density,lit,evaluated_per_lit,local_median_ms,local_p95_ms,"
+  "^8,1000,tiled,default,[0-9.]+,(7\\.(7[6-9]|[89])|8\\.([01]|2[0-4]))[0-9]*,[1-9][0-9]*,[0-9.]+,[0-9.e-]+,[0-9.e-]+,.*,2,[^,]+.*,64,36,1$"
+  "^32,1000,clustered,default,[0-9.]+,(31\\.|32\\.|30\\.[4-9])[0-9]*,"
+  # Z-binning and the floor measured too; the floor's shading is 1 x its own.
+  "^32,1000,zbin,default,[0-9.]+,(31\\.|32\\.|30\\.[4-9])[0-9]*,"
+  "^32,1000,zbin-floor,default,([0-9.e-]+,){9}1,"
   --no-match "warning: .*(not 8|not 32|overflow|lists over)"
   -- sh -c "$<TARGET_FILE:09_clustered_sweep> --density --out ${SWEEP09_OUT} --size 64x36 --max-lights 1000 --views 2 --frames 1 2>&1 && cat ${SWEEP09_OUT}/09_density_summary_llvmpipe.csv")
 set_tests_properties(09_clustered.density_sweep_reaches_its_density PROPERTIES TIMEOUT 300)
+# The grid sweep (--grid): each grid of each method at the target density, named in the summary.
+set(GRID09_OUT ${CMAKE_BINARY_DIR}/out/09_grid)
+add_test(NAME 09_clustered.grid_sweep_names_every_grid COMMAND ${EXPECT} 0
+  "^target_density,lights,method,grid,"
+  "^8,1000,tiled,tile 8,"  "^8,1000,tiled,tile 32,"  "^8,1000,clustered,60x34x96,"
+  "^8,1000,zbin,tile 64 bins 4096,[0-9.]+,(7\\.(7[6-9]|[89])|8\\.([01]|2[0-4]))[0-9]*,"
+  --no-match "warning: .*(not 8|overflow|lists over|not timed)"
+  -- sh -c "$<TARGET_FILE:09_clustered_sweep> --grid --out ${GRID09_OUT} --size 64x36 --max-lights 1000 --views 1 --frames 1 2>&1 && grep '^8,' ${GRID09_OUT}/09_grid_summary_llvmpipe.csv")
+set_tests_properties(09_clustered.grid_sweep_names_every_grid PROPERTIES TIMEOUT 300)
 add_test(NAME 09_clustered.density_sweep_bad_views COMMAND ${EXPECT} 1 "--views: 1 to 64, not 0"
   -- $<TARGET_FILE:09_clustered_sweep> --density --views 0)
