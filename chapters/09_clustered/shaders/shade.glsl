@@ -72,7 +72,7 @@ void zbin_take(Surface s, uint w, int op, inout uint m, inout uint at, inout vec
 
 // [zbin-loop]
 // Z-binning: the lights of the pixel's depth bin's range whose bit its tile has set, in
-// sorted (depth) order. Four bits an iteration, for llvmpipe's loop limit (below).
+// sorted (depth) order. Four bits an iteration, for llvmpipe's loop limit (see the lists' loop).
 void zbin_visit(Surface s, ivec2 pixel, int op, inout uint at, inout vec3 diffuse, inout vec3 specular,
                 inout uint evaluated, inout uint lit) {
   uvec2 range = zbins[zbin_of(view_depth(s.position))];
