@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstddef>
 #include <cstring>
 
 #include "common/error.h"
@@ -38,12 +39,15 @@ std::vector<std::string> ClusteredLights::pass_names(const std::string& mode) {
           "local lights: " + mode + ": shade"};
 }
 
+namespace glsl {
+using glm::vec4;
+#include "chapters/09_clustered/shaders/cluster_light.h"  // struct ClusterLight, shared with GLSL
+}  // namespace glsl
+
 namespace {
-// The GPU's record of a light: chapter 03's packing plus its kind (grid.glsl's ClusterLight).
-struct GpuClusterLight {
-  glm::vec4 position_radius, radiance_range, direction_cone, kind;
-};
-static_assert(sizeof(GpuClusterLight) == 64);
+// The GPU's record of a light: chapter 03's packing plus its kind.
+using GpuClusterLight = glsl::ClusterLight;
+static_assert(sizeof(GpuClusterLight) == 64 && offsetof(GpuClusterLight, kind) == 48);
 
 struct ListState {
   std::uint32_t head, capacity, cells_over, over_lo, over_hi, needed_lo, needed_hi, max_count;
