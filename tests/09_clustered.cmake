@@ -56,7 +56,7 @@ add_test(NAME 09_clustered.grid_sweep_names_every_grid COMMAND ${EXPECT} 0
   "^8,1000,tiled,tile 8,"  "^8,1000,tiled,tile 32,"  "^8,1000,clustered,60x34x96,"
   "^8,1000,zbin,tile 64 bins 4096,[0-9.]+,(7\\.(7[6-9]|[89])|8\\.([01]|2[0-4]))[0-9]*,"
   --no-match "warning: .*(not 8|overflow|lists over|not timed)"
-  -- sh -c "$<TARGET_FILE:09_clustered_sweep> --grid --target 8 --out ${GRID09_OUT} --size 64x36 --max-lights 1000 --views 1 --frames 1 2>&1 && cat ${GRID09_OUT}/09_grid_summary_llvmpipe.csv")
+  -- sh -c "$<TARGET_FILE:09_clustered_sweep> --grid --target 8 --out ${GRID09_OUT} --size 64x36 --max-lights 1000 --views 1 --frames 1 2>&1 && cat ${GRID09_OUT}/09_grid_d8_summary_llvmpipe.csv")
 set_tests_properties(09_clustered.grid_sweep_names_every_grid PROPERTIES TIMEOUT 300)
 add_test(NAME 09_clustered.density_sweep_bad_views COMMAND ${EXPECT} 1 "--views: 1 to 64, not 0"
   -- $<TARGET_FILE:09_clustered_sweep> --density --views 0)

@@ -107,7 +107,9 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
   if (software) densities = {8, 32};
   if (s.target > 0) densities = {double(s.target)};
   const float threshold = ch03::cut_threshold(1.f, ch03::peak_reflectance(scene));
-  const std::string label = software ? "_llvmpipe" : "", name = s.grid ? "09_grid" : "09_density";
+  // One target alone writes its own files (09_grid_d32...), so that runs of each density add up.
+  const std::string label = software ? "_llvmpipe" : "";
+  const std::string name = std::string(s.grid ? "09_grid" : "09_density") + (s.target > 0 ? "_d" + std::to_string(s.target) : "");
   const std::string rows_file = s.out + "/" + name + label + ".csv", summary_file = s.out + "/" + name + "_summary" + label + ".csv";
   std::ofstream rows(rows_file), summary(summary_file);
   const std::string header = std::string("# ") + (software ? "llvmpipe CPU time: " : "GPU time: ") + context.renderer() + ", " +
