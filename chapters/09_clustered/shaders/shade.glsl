@@ -75,7 +75,7 @@ void zbin_take(Surface s, uint w, int op, inout uint m, inout uint at, inout vec
 // sorted (depth) order. Four bits an iteration, for llvmpipe's loop limit (see the lists' loop).
 void zbin_visit(Surface s, ivec2 pixel, int op, inout uint at, inout vec3 diffuse, inout vec3 specular,
                 inout uint evaluated, inout uint lit) {
-  uvec2 range = zbins[zbin_of(view_depth(s.position))];
+  uvec2 range = zbin_range(zbin_of(view_depth(s.position)));
   uint base = uint(cell_index(tile_of(pixel), 0)) * zbin_words();
   if (range.x <= range.y)
     for (uint w = range.x >> 5u; w <= range.y >> 5u; ++w) {

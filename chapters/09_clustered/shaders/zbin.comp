@@ -73,8 +73,8 @@ void main() {
   if (e.y < u_depth_range.x || e.x > u_depth_range.y) return;  // no surface is that near or far
   int b1 = zbin_of(e.y);
   for (int b = zbin_of(e.x); b <= b1; ++b) {
-    atomicMin(zbins[b].x, g);
-    atomicMax(zbins[b].y, g);
+    atomicMin(zbins[2 * b], g);
+    atomicMax(zbins[2 * b + 1], g);
   }
   // [/zbin-bins]
 #elif STEP == 5

@@ -8,8 +8,10 @@
 uniform int u_zbins;  // depth bins
 
 // The sorted order: light_indices[p] is the light at sorted position p (grid.glsl's Indices).
-// Bin b's range of sorted positions: x the first, y the last; x > y when no light reaches it.
-layout(std430, binding = 6) buffer ZBins { uvec2 zbins[]; };
+// Bin b's range of sorted positions: zbins[2b] the first, zbins[2b + 1] the last (first > last
+// when no light reaches it); plain uints, so that every atomic names a scalar.
+layout(std430, binding = 6) buffer ZBins { uint zbins[]; };
+uvec2 zbin_range(int b) { return uvec2(zbins[2 * b], zbins[2 * b + 1]); }
 // Tile t's bit for sorted position p: bit p % 32 of word t * zbin_words() + p / 32.
 layout(std430, binding = 7) buffer TileMasks { uint tile_masks[]; };
 
