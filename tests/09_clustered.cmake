@@ -23,6 +23,11 @@ lightpass_program_test(09_clustered.bench_times_the_three_passes 0
 # A grid too large for its bounds is refused with a message, not allocated.
 lightpass_program_test(09_clustered.huge_grid_is_refused 1 "a grid of 1024 x 1024 x 256 cells is more than 4 194 304"
   ${P09} --headless --size 1024x1024 --clusters-x 1024 --clusters-y 1024 --slices 256 --out ${CMAKE_BINARY_DIR}/out/09_huge.png)
+# Z-binning's tile masks (a bit per light per tile) are bounded: too many for their bound is
+# refused with a message naming the knob, not allocated.
+lightpass_program_test(09_clustered.zbin_masks_over_their_bound_are_refused 1
+  "Z-binning's tile masks, 230400 tiles x 100000 lights, take more than 1 GiB; use larger tiles"
+  ${P09} --headless --size 640x360 --mode zbin --tile 1 --lights 100000 --out ${CMAKE_BINARY_DIR}/out/09_zbin_huge.png)
 # The staged pass runs a work group per tile: tiles larger than 32 pixels are refused by name.
 lightpass_program_test(09_clustered.staged_needs_tiles_of_at_most_32_pixels 1
   "tiled-staged needs square tiles of at most 32 pixels, not 64 x 64"
