@@ -71,8 +71,9 @@ std::string mode_name(const ClusterSettings& s);
 struct ClusterStats {
   int cells = 0;                 // of the grid
   std::uint64_t frame = 0;       // the draw (1, 2, ...) the GPU's numbers below are of
-  std::uint64_t indices = 0;     // entries in the index list (every cell's list, compacted)
-  std::uint32_t max_list = 0;    // the longest cell list
+  std::uint64_t indices = 0;     // entries in the index list (every cell's list, compacted);
+                                 // zbin: bits set in the tiles' masks; zbin-floor: the exact lists' entries
+  std::uint32_t max_list = 0;    // the longest cell list (zbin: 0, zbin-floor: the longest pixel list)
   std::uint32_t capacity = 0;    // the index list's size now
   int regrown = 0;               // times the list has grown
   std::uint32_t cells_over = 0;  // cells that did not fit: shaded from every light in that draw
