@@ -5,7 +5,7 @@ lightpass_gtests(09_clustered gl lightpass_09_clustered unit/test_09_clustered_g
 
 # The program: reference images (every mode, inside a light, the heat maps and the grid).
 set(P09 $<TARGET_FILE:09_clustered>)
-foreach(mode clustered tiled clustered-fragment tiled-fragment tiled-staged stencil)
+foreach(mode clustered tiled clustered-fragment tiled-fragment tiled-staged zbin stencil)
   lightpass_program_test(09_clustered.reference.${mode} 0 "references match" ${P09} --check --mode ${mode} --out ${CHECK_OUT}/09_clustered)
 endforeach()
 # A headless run reports what it did: the street's 312 lights, lit pairs equal to the stencil
@@ -23,6 +23,11 @@ lightpass_program_test(09_clustered.bench_times_the_three_passes 0
 # A grid too large for its bounds is refused with a message, not allocated.
 lightpass_program_test(09_clustered.huge_grid_is_refused 1 "a grid of 1024 x 1024 x 256 cells is more than 4 194 304"
   ${P09} --headless --size 1024x1024 --clusters-x 1024 --clusters-y 1024 --slices 256 --out ${CMAKE_BINARY_DIR}/out/09_huge.png)
+# Z-binning's tile masks (a bit per light per tile) are bounded: too many for their bound is
+# refused with a message naming the knob, not allocated.
+lightpass_program_test(09_clustered.zbin_masks_over_their_bound_are_refused 1
+  "Z-binning's tile masks, 230400 tiles x 100000 lights, take more than 1 GiB; use larger tiles"
+  ${P09} --headless --size 640x360 --mode zbin --tile 1 --lights 100000 --out ${CMAKE_BINARY_DIR}/out/09_zbin_huge.png)
 # The staged pass runs a work group per tile: tiles larger than 32 pixels are refused by name.
 lightpass_program_test(09_clustered.staged_needs_tiles_of_at_most_32_pixels 1
   "tiled-staged needs square tiles of at most 32 pixels, not 64 x 64"
@@ -40,12 +45,24 @@ lightpass_gtests(09_clustered_forward gl lightpass_09_clustered unit/test_09_clu
 # what measured it; no warning that a density was missed or a list overflowed.
 set(SWEEP09_OUT ${CMAKE_BINARY_DIR}/out/09_density)
 add_test(NAME 09_clustered.density_sweep_reaches_its_density COMMAND ${EXPECT} 0
-  "^target_density,lights,method,range_scale,density,lit,evaluated_per_lit,local_median_ms,local_p95_ms,"
-  "^8,1000,tiled,[0-9.]+,(7\\.(7[6-9]|[89])|8\\.([01]|2[0-4]))[0-9]*,[1-9][0-9]*,[0-9.]+,[0-9.e-]+,[0-9.e-]+,.*,2,[^,]+.*,64,36,1$"
-  "^32,1000,clustered,[0-9.]+,(31\\.|32\\.|30\\.[4-9])[0-9]*,"
+  "^target_density,lights,method,grid,range_scale,density,lit,evaluated_per_lit,local_median_ms,local_p95_ms,"
+  "^8,1000,tiled,default,[0-9.]+,(7\\.(7[6-9]|[89])|8\\.([01]|2[0-4]))[0-9]*,[1-9][0-9]*,[0-9.]+,[0-9.e-]+,[0-9.e-]+,.*,2,[^,]+.*,64,36,1$"
+  "^32,1000,clustered,default,[0-9.]+,(31\\.|32\\.|30\\.[4-9])[0-9]*,"
+  # Z-binning and the floor measured too; the floor's shading is 1 x its own.
+  "^32,1000,zbin,default,[0-9.]+,(31\\.|32\\.|30\\.[4-9])[0-9]*,"
+  "^32,1000,zbin-floor,default,([0-9.e-]+,){10}1,"
   --no-match "warning: .*(not 8|not 32|overflow|lists over)"
   -- sh -c "$<TARGET_FILE:09_clustered_sweep> --density --out ${SWEEP09_OUT} --size 64x36 --max-lights 1000 --views 2 --frames 1 2>&1 && cat ${SWEEP09_OUT}/09_density_summary_llvmpipe.csv")
 set_tests_properties(09_clustered.density_sweep_reaches_its_density PROPERTIES TIMEOUT 300)
+# The grid sweep (--grid): each grid of each method at the target density, named in the summary.
+set(GRID09_OUT ${CMAKE_BINARY_DIR}/out/09_grid)
+add_test(NAME 09_clustered.grid_sweep_names_every_grid COMMAND ${EXPECT} 0
+  "^target_density,lights,method,grid,"
+  "^8,1000,tiled,tile 8,"  "^8,1000,tiled,tile 32,"  "^8,1000,clustered,60x34x96,"
+  "^8,1000,zbin,tile 64 bins 4096,[0-9.]+,(7\\.(7[6-9]|[89])|8\\.([01]|2[0-4]))[0-9]*,"
+  --no-match "warning: .*(not 8|overflow|lists over|not timed)"
+  -- sh -c "$<TARGET_FILE:09_clustered_sweep> --grid --target 8 --out ${GRID09_OUT} --size 64x36 --max-lights 1000 --views 1 --frames 1 2>&1 && cat ${GRID09_OUT}/09_grid_d8_summary_llvmpipe.csv")
+set_tests_properties(09_clustered.grid_sweep_names_every_grid PROPERTIES TIMEOUT 300)
 add_test(NAME 09_clustered.density_sweep_bad_views COMMAND ${EXPECT} 1 "--views: 1 to 64, not 0"
   -- $<TARGET_FILE:09_clustered_sweep> --density --views 0)
 # The chapter's exercises (main.cpp's list; the book's "Exercises"): solutions pass, stubs fail,

@@ -12,6 +12,11 @@
                  N lights, 4 N lights of the same size (dense: each point lit by about 4 times as
                  many) and 4 N lights of half the size (a stated density: about as many); the count at one
                  surface point is computed, not drawn by hand
+09_zbin.svg      Z-binning (Drobot 2017) from the side: lights sorted by the depth of their
+                 centres (their sorted positions printed), exponential depth bins, one pixel's
+                 surface in one bin and its tile's column; below, the sorted positions as three
+                 rows of bits: the bin's range (first to last light reaching the bin), the tile's
+                 bits (lights reaching the column) and what the pixel evaluates, both; computed
 """
 import math
 import random
@@ -127,11 +132,91 @@ def density_figure(out: Path):
     s.save(out, "09_density.svg")
 
 
+def zbin_figure(out: Path):
+    """Side view, metres: the eye at depth 0, the screen's half-angle 0.45 rad, one tile's column
+    within 0.06 rad of the axis (tilted by 0.12 rad), near 0.5 m, far 40 m, 10 exponential bins.
+    Lights: a fixed random set of circles; sorted by centre depth. A light reaches a bin when its
+    depth extent [z - r, z + r] overlaps it (the range keeps the first and last sorted position
+    of those); it reaches the tile when its circle meets the column's wedge. The pixel's surface
+    lies at 19 m in the column: it evaluates the lights in both, and is lit by those whose circle
+    holds its surface point."""
+    s = Svg(820, 420)
+    near, far, bins, half = 0.5, 40.0, 10, 0.45
+    tile_lo, tile_hi = 0.06, 0.18  # the tile's column, radians above the axis
+    rng = random.Random(17)
+    lights = []
+    while len(lights) < 20:
+        z = rng.uniform(3, 38)
+        y = rng.uniform(-0.8, 0.8) * half * z
+        lights.append((z, y, rng.uniform(1.0, 2.2)))
+    lights += [(20.2, 3.4, 1.9), (22.6, 1.6, 1.6)]  # two that light the pixel
+    lights.sort(key=lambda l: l[0])
+    surface_z = 21.5
+    surface = (surface_z, surface_z * math.tan(0.5 * (tile_lo + tile_hi)))
+    bounds = [near * (far / near) ** (k / bins) for k in range(bins + 1)]
+    b = next(k for k in range(bins) if bounds[k] <= surface_z < bounds[k + 1])
+    scale, x0, y_mid = 18.0, 40, 150
+    X = lambda z: x0 + z * scale  # noqa: E731
+    Y = lambda y: y_mid - y * scale * 0.55  # noqa: E731
+    s.text((x0, 24), "Lights sorted by depth; a depth bin keeps the range of sorted positions that reach it", INK, 13, bold=True)
+    for k in range(1, bins):
+        s.line((X(bounds[k]), Y(half * far * 0.62)), (X(bounds[k]), Y(-half * far * 0.62)), GREY, 0.6)
+    s.poly([(X(bounds[b]), Y(half * far * 0.62)), (X(bounds[b + 1]), Y(half * far * 0.62)),
+            (X(bounds[b + 1]), Y(-half * far * 0.62)), (X(bounds[b]), Y(-half * far * 0.62))], RAY, 1.2, fill=RAY, opacity=0.10)
+    # The tile's column: a wedge from the eye.
+    s.poly([(X(0), Y(0)), (X(far), Y(far * math.tan(tile_hi))), (X(far), Y(far * math.tan(tile_lo)))], GOOD, 1.0,
+           fill=GOOD, opacity=0.10)
+    s.dot((X(0), Y(0)), INK, 4)
+    s.text((X(0) - 4, Y(0) + 18), "eye", INK, 11)
+    in_bin, in_tile, lit = [], [], []
+    for i, (z, y, r) in enumerate(lights):
+        in_bin.append(z - r < bounds[b + 1] and z + r >= bounds[b])
+        # The circle meets the wedge: its centre's distance to either edge ray, or the centre inside.
+        a = math.atan2(y, z)
+        edges = [seg_dist((z, y), (0, 0), (far, far * math.tan(t))) for t in (tile_lo, tile_hi)]
+        in_tile.append(tile_lo <= a <= tile_hi or min(edges) <= r)
+        lit.append(math.hypot(z - surface[0], y - surface[1]) <= r)
+    first = min(i for i in range(len(lights)) if in_bin[i])
+    last = max(i for i in range(len(lights)) if in_bin[i])
+    for i, (z, y, r) in enumerate(lights):
+        both = first <= i <= last and in_tile[i]
+        colour = GOOD if both and lit[i] else BAD if both else GREY
+        s.poly([(X(z + r * math.cos(t)), Y(y + r * math.sin(t))) for t in [2 * math.pi * j / 40 for j in range(40)]],
+               colour, 1.0, fill=LIGHT, opacity=0.15)
+        s.dot((X(z), Y(y)), colour, 2.5)
+        s.text((X(z), Y(y) - 5), str(i), INK, 10, "middle")
+    s.dot((X(surface[0]), Y(surface[1])), INK, 4)
+    s.line((X(surface[0]), Y(surface[1])), (X(surface[0]) + 40, Y(surface[1]) + 60), INK, 0.8)
+    s.text((X(surface[0]) + 42, Y(surface[1]) + 72), "the pixel's surface", INK, 11)
+    s.text((X(bounds[b]), 292), f"its bin: {bounds[b]:.1f} to {bounds[b + 1]:.1f} m", RAY, 11)
+    # The sorted positions as bits.
+    rows = (("bin range", [first <= i <= last for i in range(len(lights))], RAY),
+            ("tile bits", in_tile, GOOD),
+            ("evaluated", [first <= i <= last and in_tile[i] for i in range(len(lights))], None))
+    cell = 22
+    for k, (name, bits, colour) in enumerate(rows):
+        yy = 312 + k * 26
+        s.text((x0, yy + 15), name, INK, 11)
+        for i, on in enumerate(bits):
+            c = (GOOD if lit[i] else BAD) if name == "evaluated" else colour  # as in the drawing above
+            s.rect(x0 + 80 + i * cell, yy, cell - 3, 19, c if on else PALE)
+            s.text((x0 + 80 + i * cell + (cell - 3) / 2, yy + 14), str(i), INK if not on else "#ffffff", 9, "middle")
+    evaluated = sum(first <= i <= last and in_tile[i] for i in range(len(lights)))
+    lit_n = sum(lit)
+    s.text((x0 + 80 + len(lights) * cell + 10, 330), f"range {first} to {last},", INK, 11)
+    s.text((x0 + 80 + len(lights) * cell + 10, 346), f"{sum(in_tile)} in the tile,", INK, 11)
+    s.text((x0 + 80 + len(lights) * cell + 10, 362), f"{evaluated} evaluated, {lit_n} lit", INK, 11, bold=True)
+    s.text((x0, 408), "green: evaluated and reaches the surface; red: evaluated for nothing; grey: skipped "
+           "(bins: blue, the tile's column: green)", GREY, 11)
+    s.save(out, "09_zbin.svg")
+
+
 def main(argv):
     out = Path(argv[0]) if argv else Path(__file__).resolve().parent.parent / "book" / "figures"
     out.mkdir(parents=True, exist_ok=True)
     cells_figure(out)
     density_figure(out)
+    zbin_figure(out)
 
 
 if __name__ == "__main__":

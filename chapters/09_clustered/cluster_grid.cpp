@@ -78,6 +78,23 @@ bool sphere_meets_box(const glm::vec3& centre, float radius, const Box& box) {
 }
 // [/sphere-box]
 
+// [sphere-tiles]
+TileRect sphere_tiles(const FrameCamera& camera, const Grid& g, const glm::vec3& c, float radius) {
+  const float r = radius * (1.f + 1e-5f) + 1e-6f;
+  const float d0 = std::max(-c.z - r, 0.5f * g.znear), d1 = -c.z + r;
+  if (d1 < d0) return {{0, 0}, {-1, -1}};  // wholly nearer than the near plane
+  // x / d over the sphere's box is extreme at its corners.
+  const glm::vec2 lo = glm::min((glm::vec2(c) - r) / d0, (glm::vec2(c) - r) / d1);
+  const glm::vec2 hi = glm::max((glm::vec2(c) + r) / d0, (glm::vec2(c) + r) / d1);
+  const glm::vec2 scale(camera.projection[0][0], camera.projection[1][1]), offset(camera.projection[2][0], camera.projection[2][1]);
+  const glm::vec2 size(float(g.width), float(g.height)), tile(float(g.tile_w), float(g.tile_h));
+  const glm::vec2 tiles(float(g.tiles_x), float(g.tiles_y));
+  const glm::vec2 px_lo = ((lo * scale - offset) * 0.5f + 0.5f) * size - 1.f, px_hi = ((hi * scale - offset) * 0.5f + 0.5f) * size + 1.f;
+  return {glm::ivec2(glm::clamp(glm::floor(px_lo / tile), glm::vec2(0.f), tiles)),
+          glm::ivec2(glm::clamp(glm::floor(px_hi / tile), glm::vec2(-1.f), tiles - 1.f))};
+}
+// [/sphere-tiles]
+
 // [depth-bits]
 int depth_bin(float lo, float hi, float d) {
   const float t = (d - lo) / std::max(hi - lo, 1e-30f) * float(kDepthBins);

@@ -52,6 +52,15 @@ Box cluster_box(const FrameCamera& camera, const Grid& g, int tx, int ty, int sl
 bool sphere_meets_box(const glm::vec3& centre, float radius, const Box& box);
 // [/grid]
 
+// Z-binning's screen rectangle of a light (zbin.comp's step 5): the tiles [lo, hi] (inclusive;
+// empty when lo > hi) that the sphere (centre in view space, radius) can cover, from its
+// view-space box cut at half the near plane, a pixel wider on each side for rounding.
+struct TileRect {
+  glm::ivec2 lo, hi;
+  bool holds(int tx, int ty) const { return tx >= lo.x && tx <= hi.x && ty >= lo.y && ty <= hi.y; }
+};
+TileRect sphere_tiles(const FrameCamera& camera, const Grid& g, const glm::vec3& centre, float radius);
+
 // Harada's 2.5D culling (Harada, Forward+, 2012) for tiled shading: a tile's depth range
 // [lo, hi] is cut into 32 equal bins. The tile's mask has bit b set where one of its surfaces
 // lies in bin b; a light's mask has the bins its sphere's depth extent overlaps. A light the

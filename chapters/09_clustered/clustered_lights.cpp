@@ -1,6 +1,8 @@
 #include "chapters/09_clustered/clustered_lights.h"
 
 #include <algorithm>
+#include <bit>
+#include <cstddef>
 #include <cstring>
 
 #include "common/error.h"
@@ -8,24 +10,28 @@
 namespace lp::ch09 {
 
 bool is_cluster_mode(const std::string& name) {
-  return std::find(kClusterModes.begin(), kClusterModes.end(), name) != kClusterModes.end();
+  return std::find(kClusterModes.begin(), kClusterModes.end(), name) != kClusterModes.end() ||
+         std::find(kBenchModes.begin(), kBenchModes.end(), name) != kBenchModes.end();
 }
 
 ClusterSettings settings_for_mode(const std::string& name, ClusterSettings s) {
   if (!is_cluster_mode(name)) throw Error("unknown culling mode '" + name + "'");
-  s.kind = name.rfind("tiled", 0) == 0 ? CullKind::Tiled : CullKind::Clustered;
+  s.kind = name.rfind("tiled", 0) == 0 ? CullKind::Tiled : name.rfind("zbin", 0) == 0 ? CullKind::ZBin : CullKind::Clustered;
   s.shade = name.find("fragment") != std::string::npos ? ShadeIn::Fragment
             : name.find("staged") != std::string::npos ? ShadeIn::Staged
                                                        : ShadeIn::Compute;
   s.depth_mask = name.find("2.5d") != std::string::npos;
+  s.floor = name == "zbin-floor";
   return s;
 }
 
 std::string mode_name(const ClusterSettings& s) {
   const bool mask = s.kind == CullKind::Tiled && s.depth_mask;
   const bool staged = s.kind == CullKind::Tiled && s.shade == ShadeIn::Staged;
-  return std::string(s.kind == CullKind::Tiled ? "tiled" : "clustered") + (mask ? "-2.5d" : "") +
-         (s.shade == ShadeIn::Fragment ? "-fragment" : "") + (staged ? "-staged" : "");
+  const char* kind = s.kind == CullKind::Tiled ? "tiled" : s.kind == CullKind::ZBin ? "zbin" : "clustered";
+  return std::string(kind) + (mask ? "-2.5d" : "") +
+         (s.kind == CullKind::ZBin && s.floor ? "-floor" : "") + (s.shade == ShadeIn::Fragment ? "-fragment" : "") +
+         (staged ? "-staged" : "");
 }
 
 std::vector<std::string> ClusteredLights::pass_names(const std::string& mode) {
@@ -33,12 +39,15 @@ std::vector<std::string> ClusteredLights::pass_names(const std::string& mode) {
           "local lights: " + mode + ": shade"};
 }
 
+namespace glsl {
+using glm::vec4;
+#include "chapters/09_clustered/shaders/cluster_light.h"  // struct ClusterLight, shared with GLSL
+}  // namespace glsl
+
 namespace {
-// The GPU's record of a light: chapter 03's packing plus its kind (grid.glsl's ClusterLight).
-struct GpuClusterLight {
-  glm::vec4 position_radius, radiance_range, direction_cone, kind;
-};
-static_assert(sizeof(GpuClusterLight) == 64);
+// The GPU's record of a light: chapter 03's packing plus its kind.
+using GpuClusterLight = glsl::ClusterLight;
+static_assert(sizeof(GpuClusterLight) == 64 && offsetof(GpuClusterLight, kind) == 48);
 
 struct ListState {
   std::uint32_t head, capacity, cells_over, over_lo, over_hi, needed_lo, needed_hi, max_count;
@@ -94,6 +103,7 @@ void ClusteredLights::set_grid_uniforms(const ShaderProgram& p, const FrameCamer
   set4i(p, "u_grid", grid_.width, grid_.height, grid_.tile_w, grid_.tile_h);
   set4i(p, "u_tiles", grid_.tiles_x, grid_.tiles_y, grid_.slices, light_count_);
   p.set("u_depth_range", glm::vec2(grid_.znear, grid_.zfar));
+  glProgramUniform1i(p.id(), glGetUniformLocation(p.id(), "u_zbins"), settings_.zbins);  // -1 (none): ignored
 }
 
 // [draw]
@@ -154,7 +164,7 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
 // [build-lists]
 std::vector<std::string> ClusteredLights::build_lists(int w, int h, const ch03::SurfaceView& view) {
   const FrameCamera& camera = view.camera;
-  const bool clustered = settings_.kind == CullKind::Clustered;
+  const bool clustered = settings_.kind == CullKind::Clustered, zbin = settings_.kind == CullKind::ZBin;
   grid_ = clustered ? grid_of_counts(w, h, settings_.clusters.x, settings_.clusters.y, settings_.clusters.z,
                                      camera.znear, camera.zfar)
                     : grid_of_tiles(w, h, settings_.tile_px, 1, camera.znear, camera.zfar);
@@ -169,12 +179,16 @@ std::vector<std::string> ClusteredLights::build_lists(int w, int h, const ch03::
   for (const auto& d : view.hooks.glsl_defines()) defines.push_back(d);
   if (clustered) defines.push_back("CLUSTERED 1");
   if (clustered && settings_.all_cells) defines.push_back("ALL_CELLS 1");
-  const bool mask = !clustered && settings_.depth_mask;
+  const bool floor = zbin && settings_.floor;
+  if (zbin) defines.push_back("ZBIN 1");
+  if (floor) defines.push_back("FLOOR 1");
+  const bool mask = settings_.kind == CullKind::Tiled && settings_.depth_mask;
   if (mask) defines.push_back("DEPTH_MASK 1");
 
   // The cells and the bounds: one (offset, count) per cell; tiled: (min, max) per tile and
   // with the depth mask its 32 bins, clustered: an occupied flag per cell.
-  const std::size_t cells_bytes = std::size_t(grid_.cells()) * 8;
+  // (The floor: one (offset, count) per pixel instead.)
+  const std::size_t cells_bytes = (floor ? std::size_t(w) * std::size_t(h) : std::size_t(grid_.cells())) * 8;
   const std::size_t bounds_bytes = std::size_t(grid_.cells()) * 4 * (clustered ? 1 : mask ? 3 : 2);
   if (cells_bytes != cells_bytes_) glNamedBufferData(cells_.id(), GLsizeiptr(cells_bytes_ = cells_bytes), nullptr, GL_DYNAMIC_DRAW);
   if (bounds_bytes != bounds_bytes_) glNamedBufferData(bounds_.id(), GLsizeiptr(bounds_bytes_ = bounds_bytes), nullptr, GL_DYNAMIC_DRAW);
@@ -205,7 +219,10 @@ std::vector<std::string> ClusteredLights::build_lists(int w, int h, const ch03::
   // 2. Assign: each cell's lights into the index list (grown first if an earlier draw's did not fit).
   {
     auto pass = timed(metrics_, names[1]);
-    assign(defines, camera);
+    if (zbin)
+      assign_zbin(defines, camera);
+    else
+      assign(defines, camera);
   }
   return defines;
 }
@@ -216,14 +233,8 @@ void ClusteredLights::assign(const std::vector<std::string>& defines, const Fram
   // No read-back in the frame: what earlier draws needed is read once the GPU is done with
   // them. If one overflowed, the list grows now, before this draw's assignment; the draw that
   // overflowed shaded its full cells from every light (assign.comp), so nothing was lost.
-  read_finished_states(false);
-  if (stats_.frame > 0 && stats_.cells_over > 0 && settings_.grow && capacity_ < settings_.max_indices &&
-      stats_.indices > capacity_) {
-    capacity_ = std::uint32_t(std::min<std::uint64_t>(stats_.indices + stats_.indices / 4, settings_.max_indices));
-    glNamedBufferData(indices_.id(), GLsizeiptr(capacity_) * 4, nullptr, GL_DYNAMIC_DRAW);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, indices_.id());
-    ++stats_.regrown;
-  }
+  grow_if_an_earlier_draw_overflowed();
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, indices_.id());
   const ShaderProgram& p = program(GL_COMPUTE_SHADER, "09_clustered/shaders/assign.comp", defines);
   set_grid_uniforms(p, camera);
   const ListState start{0, capacity_, 0, 0, 0, 0, 0, 0};
@@ -231,6 +242,21 @@ void ClusteredLights::assign(const std::vector<std::string>& defines, const Fram
   p.use();
   glDispatchCompute(GLuint(grid_.tiles_x), GLuint(grid_.tiles_y), GLuint(grid_.slices));
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  fence_state();
+  // [/overflow]
+}
+
+void ClusteredLights::grow_if_an_earlier_draw_overflowed() {
+  read_finished_states(false);
+  if (stats_.frame > 0 && stats_.cells_over > 0 && settings_.grow && capacity_ < settings_.max_indices &&
+      stats_.indices > capacity_) {
+    capacity_ = std::uint32_t(std::min<std::uint64_t>(stats_.indices + stats_.indices / 4, settings_.max_indices));
+    glNamedBufferData(indices_.id(), GLsizeiptr(capacity_) * 4, nullptr, GL_DYNAMIC_DRAW);
+    ++stats_.regrown;
+  }
+}
+
+void ClusteredLights::fence_state() {
   // This draw's state, copied on the GPU and fenced: read by a later draw, or wait_stats().
   PendingState* slot = &pending_[0];
   for (PendingState& q : pending_)
@@ -240,10 +266,67 @@ void ClusteredLights::assign(const std::vector<std::string>& defines, const Fram
   slot->fence.reset();
   slot->fence.sync = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
   slot->frame = ++frame_;
-  // [/overflow]
   stats_.capacity = capacity_;
   stats_.bytes = std::size_t(capacity_) * 4 + cells_bytes_ + bounds_bytes_ + lights_bytes_;
 }
+
+// [assign-zbin]
+void ClusteredLights::assign_zbin(const std::vector<std::string>& defines, const FrameCamera& camera) {
+  if (settings_.zbins < 1 || settings_.zbins > 16384)
+    throw Error("clustered lights: Z-binning needs 1 to 16 384 depth bins, not " + std::to_string(settings_.zbins));
+  // Bounded memory: a bit per light per tile, at most 1 GiB (1 000 000 lights over 16-pixel tiles at 1080p fit).
+  const std::uint64_t words = (std::uint64_t(light_count_) + 31) / 32;
+  const std::uint64_t mask_bytes = std::max<std::uint64_t>(std::uint64_t(grid_.tiles_x) * std::uint64_t(grid_.tiles_y) * words * 4, 4);
+  if (mask_bytes > (std::uint64_t(1) << 30))
+    throw Error("clustered lights: Z-binning's tile masks, " + std::to_string(grid_.tiles_x * grid_.tiles_y) + " tiles x " +
+                std::to_string(light_count_) + " lights, take more than 1 GiB; use larger tiles (--tile)");
+  constexpr std::size_t kSortKeys = 16384;  // zbin.comp's
+  auto size = [](gl::Buffer& b, std::size_t& have, std::size_t want) {
+    if (want != have) glNamedBufferData(b.id(), GLsizeiptr(have = want), nullptr, GL_DYNAMIC_DRAW);
+  };
+  size(order_, order_bytes_, std::max<std::size_t>(std::size_t(light_count_) * 4, 4));
+  size(zbins_, zbins_bytes_, std::size_t(settings_.zbins) * 8);
+  size(masks_, masks_bytes_, std::size_t(mask_bytes));
+  size(sort_, sort_bytes_, (kSortKeys + std::size_t(light_count_)) * 4);
+  const std::uint32_t zero = 0, empty_range[2] = {0xFFFFFFFFu, 0u};
+  glClearNamedBufferSubData(sort_.id(), GL_R32UI, 0, GLsizeiptr(kSortKeys * 4), GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  glClearNamedBufferData(zbins_.id(), GL_RG32UI, GL_RG_INTEGER, GL_UNSIGNED_INT, empty_range);
+  glClearNamedBufferData(masks_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  const bool floor = settings_.floor;
+  grow_if_an_earlier_draw_overflowed();  // the floor's lists are the index list; others: the late stats read
+  const ListState start{0, floor ? capacity_ : 0, 0, 0, 0, 0, 0, 0};
+  glNamedBufferSubData(state_.id(), 0, sizeof(start), &start);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, order_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, zbins_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, masks_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, sort_.id());
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  // Keys, scan, scatter, bins, tiles: one invocation per light except the scan's one group.
+  const GLuint groups = GLuint((light_count_ + 255) / 256);
+  for (int step = 1; step <= 5; ++step) {
+    if (light_count_ == 0) break;
+    std::vector<std::string> d = defines;
+    d.push_back("STEP " + std::to_string(step));
+    const ShaderProgram& p = program(GL_COMPUTE_SHADER, "09_clustered/shaders/zbin.comp", d);
+    set_grid_uniforms(p, camera);
+    p.use();
+    glDispatchCompute(step == 2 ? 1 : groups, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+  if (floor) {  // each pixel's exact list, into the index list (bound where the sort's scratch was)
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, indices_.id());
+    const ShaderProgram& p = program(GL_COMPUTE_SHADER, "09_clustered/shaders/zbin_floor.comp", defines);
+    set_grid_uniforms(p, camera);
+    p.use();
+    glDispatchCompute(GLuint((grid_.width + 7) / 8), GLuint((grid_.height + 7) / 8), 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  fence_state();
+  stats_.bytes = order_bytes_ + zbins_bytes_ + masks_bytes_ + sort_bytes_ + bounds_bytes_ + lights_bytes_ +
+                 (floor ? std::size_t(capacity_) * 4 + cells_bytes_ : 0);
+}
+// [/assign-zbin]
 
 void ClusteredLights::read_finished_states(bool wait_for_last) {
   for (PendingState& q : pending_) {
@@ -302,9 +385,32 @@ EvalCounts ClusteredLights::counts() const {
 }
 
 std::vector<glm::uvec2> ClusteredLights::cell_lists() const {
+  if (settings_.kind == CullKind::ZBin) {  // each tile's bits: (0, how many)
+    std::vector<std::uint32_t> m(masks_bytes_ / 4);
+    if (!m.empty()) glGetNamedBufferSubData(masks_.id(), 0, GLsizeiptr(masks_bytes_), m.data());
+    const std::size_t words = (std::size_t(light_count_) + 31) / 32;
+    std::vector<glm::uvec2> v(std::size_t(grid_.cells()), glm::uvec2(0));
+    for (std::size_t t = 0; t < v.size() && words; ++t)
+      for (std::size_t k = 0; k < words && t * words + k < m.size(); ++k) v[t].y += std::uint32_t(std::popcount(m[t * words + k]));
+    return v;
+  }
   std::vector<glm::uvec2> v(std::size_t(grid_.cells()));
   if (!v.empty()) glGetNamedBufferSubData(cells_.id(), 0, GLsizeiptr(v.size() * 8), v.data());
   return v;
+}
+
+ClusteredLights::ZBinLists ClusteredLights::zbin_lists() const {
+  ZBinLists z;
+  if (settings_.kind != CullKind::ZBin) return z;
+  auto read = [](const gl::Buffer& b, std::size_t bytes, auto& v) {
+    v.resize(bytes / sizeof(v[0]));
+    if (!v.empty()) glGetNamedBufferSubData(b.id(), 0, GLsizeiptr(v.size() * sizeof(v[0])), v.data());
+  };
+  read(order_, std::size_t(light_count_) * 4, z.order);
+  read(zbins_, zbins_bytes_, z.ranges);
+  read(masks_, masks_bytes_, z.masks);
+  z.words = (std::size_t(light_count_) + 31) / 32;
+  return z;
 }
 
 std::vector<std::uint32_t> ClusteredLights::cell_counts() const {

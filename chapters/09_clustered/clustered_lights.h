@@ -26,7 +26,9 @@
 namespace lp::ch09 {
 
 // [settings]
-enum class CullKind { Tiled, Clustered };
+// ZBin: Z-binning (Drobot 2017): lights sorted by depth, a range per depth bin, a bit per
+// light per tile (shaders/zbin.glsl).
+enum class CullKind { Tiled, Clustered, ZBin };
 enum class ShadeIn { Compute, Fragment, Staged };  // Staged: compute, the tile's lights in shared memory (tiled)
 struct ClusterSettings {
   CullKind kind = CullKind::Clustered;
@@ -34,6 +36,11 @@ struct ClusterSettings {
   int tile_px = 16;          // tiled: square tiles of this many pixels
   bool depth_mask = false;   // tiled: Harada's 2.5D culling, 32 depth bins per tile (cluster_grid.h)
   glm::ivec3 clusters{16, 9, 24};  // clustered: tiles across, tiles down, depth slices (DOOM 2016's)
+  int zbins = 1024;          // zbin: exponential depth bins (1 to 16 384); its tiles are tile_px
+  // zbin-floor, a benchmark: Z-binning's lists turned into each pixel's exact list (the lights
+  // whose cut reaches its surface) in the assignment, so that the shading pass is the per-pair
+  // arithmetic alone: the floor the other modes' shading is measured against.
+  bool floor = false;
   // The index list starts this large (indices) and grows to what a frame needs, up to
   // max_indices. Growth is found a frame late, never by waiting for the GPU: a cell that does
   // not fit is shaded from every light that frame (slower, the same image) and counted, and
@@ -45,12 +52,14 @@ struct ClusterSettings {
   // the G-buffer's surfaces occupy, so that any fragment a forward pass draws finds its lights.
   bool all_cells = false;
 };
-// The six ways of the program's --mode, beside chapter 03's: "tiled", "tiled-2.5d" (with the
+// The seven ways of the program's --mode, beside chapter 03's: "tiled", "tiled-2.5d" (with the
 // depth mask), "tiled-fragment", "tiled-staged" (the tile's lights staged in shared memory,
-// tiles of at most 32 pixels), "clustered" (compute), "clustered-fragment".
+// tiles of at most 32 pixels), "clustered" (compute), "clustered-fragment", "zbin" (compute).
 inline const std::vector<std::string> kClusterModes = {"tiled", "tiled-2.5d", "tiled-fragment", "tiled-staged",
-                                                       "clustered", "clustered-fragment"};
-bool is_cluster_mode(const std::string& name);
+                                                       "clustered", "clustered-fragment", "zbin"};
+// Modes for measuring, not for the program's list: "zbin-floor" (settings.floor above).
+inline const std::vector<std::string> kBenchModes = {"zbin-floor"};
+bool is_cluster_mode(const std::string& name);  // one of kClusterModes or kBenchModes
 ClusterSettings settings_for_mode(const std::string& name, ClusterSettings base = {});  // throws Error
 std::string mode_name(const ClusterSettings& s);
 // [/settings]
@@ -62,8 +71,9 @@ std::string mode_name(const ClusterSettings& s);
 struct ClusterStats {
   int cells = 0;                 // of the grid
   std::uint64_t frame = 0;       // the draw (1, 2, ...) the GPU's numbers below are of
-  std::uint64_t indices = 0;     // entries in the index list (every cell's list, compacted)
-  std::uint32_t max_list = 0;    // the longest cell list
+  std::uint64_t indices = 0;     // entries in the index list (every cell's list, compacted);
+                                 // zbin: bits set in the tiles' masks; zbin-floor: the exact lists' entries
+  std::uint32_t max_list = 0;    // the longest cell list (zbin: 0, zbin-floor: the longest pixel list)
   std::uint32_t capacity = 0;    // the index list's size now
   int regrown = 0;               // times the list has grown
   std::uint32_t cells_over = 0;  // cells that did not fit: shaded from every light in that draw
@@ -106,6 +116,15 @@ class ClusteredLights : public ch03::LocalLightPass {
   // Every cell's list as stored: (offset, count) per cell and the index list, for the tests.
   std::vector<glm::uvec2> cell_lists() const;
   std::vector<std::uint32_t> index_list();  // waits for the last draw
+  // Z-binning's lists as stored, for the tests: the sorted order (order[p] is a light), each
+  // bin's range of sorted positions (x > y: none), each tile's words of bits (words per tile).
+  struct ZBinLists {
+    std::vector<std::uint32_t> order;
+    std::vector<glm::uvec2> ranges;
+    std::vector<std::uint32_t> masks;
+    std::size_t words = 0;
+  };
+  ZBinLists zbin_lists() const;
   void reload_shaders() { programs_.clear(); }
 
   // [forward-api]
@@ -121,6 +140,9 @@ class ClusteredLights : public ch03::LocalLightPass {
  private:
   void upload_lights();
   void assign(const std::vector<std::string>& defines, const FrameCamera& camera);
+  void assign_zbin(const std::vector<std::string>& defines, const FrameCamera& camera);
+  void fence_state();
+  void grow_if_an_earlier_draw_overflowed();
   void read_finished_states(bool wait_for_last);
   void set_grid_uniforms(const ShaderProgram& p, const FrameCamera& camera) const;
   const ShaderProgram& program(GLenum stage, const std::string& file, const std::vector<std::string>& defines);
@@ -138,6 +160,9 @@ class ClusteredLights : public ch03::LocalLightPass {
   int light_count_ = 0;
   gl::Buffer lights_, cells_, bounds_, indices_, state_;
   std::size_t lights_bytes_ = 0, cells_bytes_ = 0, bounds_bytes_ = 0;
+  // Z-binning's: the sorted order, each bin's range, each tile's bits, the sort's scratch.
+  gl::Buffer order_, zbins_, masks_, sort_;
+  std::size_t order_bytes_ = 0, zbins_bytes_ = 0, masks_bytes_ = 0, sort_bytes_ = 0;
   std::uint32_t capacity_ = 0;
   // Each draw's list state, copied when its assignment ends and read once the GPU has passed
   // the fence: a few draws may be in flight, the oldest slot is reused.

@@ -1,11 +1,12 @@
 // Chapter 09: tiled and clustered light culling. Chapter 03 drew every local light as a
 // volume: a draw per light, which stops scaling long before 100 000 lights. Here compute
 // shaders bin the lights into screen tiles (with each tile's depth bounds) or into a 3D grid
-// of clusters (exponential depth slices), and each pixel is lit by its cell's list alone,
+// of clusters (exponential depth slices), or (Z-binning) sort them by depth into bins and
+// mark them in the tiles they reach, and each pixel is lit by its cell's lights alone,
 // in compute or in a full-screen fragment pass. The lights, their cut and their lighting
 // are chapter 03's, so every mode gives chapter 03's image; the modes are chapter 03's
-// stencil volumes and the five ways of this chapter (tiled with Harada's 2.5D depth mask
-// among them), `--show` draws the heat maps.
+// stencil volumes and the seven ways of this chapter (tiled with Harada's 2.5D depth mask
+// and Z-binning among them), `--show` draws the heat maps.
 #include <chrono>
 #include <iostream>
 #include <memory>
@@ -105,10 +106,11 @@ const lp::Chapter kChapter{
             .knobs = {{"lights", "local lights (0: the scene's own; more adds lights like them)", 0, 0, 1000000, true},
                       choice_knob("show", "result, lights evaluated or lit per pixel, lights per cluster (the grid)",
                                   {"result", "heat-evaluated", "heat-lit", "clusters"}),
-                      {"tile", "tiled: tile size in pixels", 16, 1, 512, true},
+                      {"tile", "tiled and zbin: tile size in pixels", 16, 1, 512, true},
                       {"clusters-x", "clustered: tiles across (DOOM 2016: 16)", 16, 1, 1024, true},
                       {"clusters-y", "clustered: tiles down (DOOM 2016: 9)", 9, 1, 1024, true},
                       {"slices", "clustered: exponential depth slices (DOOM 2016: 24)", 24, 1, 256, true},
+                      {"bins", "zbin: exponential depth bins", 1024, 1, 16384, true},
                       {"heat-scale", "heat maps: lights per pixel or per cluster shown white", 100, 1, 1e7, false},
                       {"count", "count lights evaluated and lit (atomic counters, costs a little time)", 1, 0, 1, true}}},
     .references = references(),
@@ -147,6 +149,7 @@ int main(int argc, char** argv) {
         ClusterSettings s = settings_for_mode(is_forward ? "clustered" : f.mode);
         s.tile_px = std::max(f.knob_int("tile"), 1);
         s.clusters = {f.knob_int("clusters-x"), f.knob_int("clusters-y"), f.knob_int("slices")};
+        s.zbins = f.knob_int("bins");
         if (is_forward) {
           forward.set_settings(s);
           forward.set_counting(f.knob_int("count") != 0);

@@ -195,3 +195,40 @@ TEST(Density, ViewsAlongTheStreetKeepTheirDirection) {
   EXPECT_GT(glm::dot(v[1].position() - c.position(), forward), 9.f);
   EXPECT_EQ(glm::vec3(v[2].world[2]), glm::vec3(c.world[2]));
 }
+
+// Z-binning's screen rectangle holds the sphere: points on spheres all around the view
+// (straddling the near plane, off to the sides, far), projected to pixels, each fall in a tile
+// of their sphere's rectangle; a sphere wholly behind the eye gets none, and a small sphere in
+// the middle of the view only a few.
+TEST(ClusterGrid, ZBinsRectangleHoldsEveryPixelItsSphereCovers) {
+  const FrameCamera cam = test_camera();
+  const Grid g = grid_of_tiles(320, 180, 16, 1, cam.znear, cam.zfar);
+  std::uint32_t state = 12345u;
+  auto uniform = [&] {
+    state = state * 1664525u + 1013904223u;
+    return float(state >> 8) / float(1u << 24);
+  };
+  int checked = 0;
+  for (int k = 0; k < 400; ++k) {
+    const glm::vec3 c((uniform() - 0.5f) * 40.f, (uniform() - 0.5f) * 20.f, -uniform() * 30.f + 1.f);
+    const float r = 0.1f + uniform() * 4.f;
+    const TileRect rect = sphere_tiles(cam, g, c, r);
+    for (int s = 0; s < 200; ++s) {
+      const float z = uniform() * 2.f - 1.f, a = uniform() * 6.2831853f, q = std::sqrt(1.f - z * z);
+      const glm::vec3 p = c + r * glm::vec3(q * std::cos(a), q * std::sin(a), z);
+      if (-p.z < cam.znear) continue;  // no surface is nearer than the near plane
+      const glm::vec4 clip = cam.projection * glm::vec4(p, 1.f);
+      const glm::vec2 px = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(g.width, g.height);
+      if (px.x < 0 || px.y < 0 || px.x >= float(g.width) || px.y >= float(g.height)) continue;
+      ++checked;
+      ASSERT_TRUE(rect.holds(int(px.x) / g.tile_w, int(px.y) / g.tile_h))
+          << "sphere " << k << " at (" << c.x << ", " << c.y << ", " << c.z << ") r " << r << ": pixel (" << px.x << ", "
+          << px.y << ") outside tiles " << rect.lo.x << ".." << rect.hi.x << " x " << rect.lo.y << ".." << rect.hi.y;
+    }
+  }
+  EXPECT_GT(checked, 10000);
+  const TileRect behind = sphere_tiles(cam, g, glm::vec3(0, 0, 5), 1.f);
+  EXPECT_TRUE(behind.lo.x > behind.hi.x || behind.lo.y > behind.hi.y);
+  const TileRect small = sphere_tiles(cam, g, glm::vec3(0, 0, -20), 0.2f);
+  EXPECT_LE((small.hi.x - small.lo.x + 1) * (small.hi.y - small.lo.y + 1), 4);
+}

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -82,6 +83,10 @@ class ClusteredGl : public ::testing::Test {
       if (pass) pass->set_counting(true);
     }
     w.frame_.volumes().set_counting(true);
+    if (pass && pass->settings().floor) {  // the floor's lists grow a frame late: a benchmark settles first
+      w.frame_.render(cam, {target.framebuffer(), width, height});
+      pass->wait_stats();
+    }
     Render r;
     PassMetrics metrics;
     w.frame_.render(cam, {target.framebuffer(), width, height}, &metrics);
@@ -190,6 +195,14 @@ Tolerance tolerance_for(const Scene& s) {
   return {double(ch03::cut_threshold(1.f, ch03::peak_reflectance(s))) * double(ch03::peak_reflectance(s))};
 }
 
+// The program's modes and the floor benchmark's (zbin-floor: exact per-pixel lists), which
+// must give the same image and lit pairs.
+std::vector<std::string> every_mode() {
+  std::vector<std::string> m = kClusterModes;
+  m.insert(m.end(), kBenchModes.begin(), kBenchModes.end());
+  return m;
+}
+
 // Clusters whose tiles are tiled shading's (16 pixels at 160 x 90), so that the two differ in
 // depth only.
 ClusterSettings clusters_like_tiles() {
@@ -217,7 +230,7 @@ TEST_F(ClusteredGl, TiledAndClusteredEqualTheStencilVolumes) {
     const Render stencil = render(*c.world, cam, w, h, nullptr, false);
     ASSERT_GT(stencil.stencil.lit, 1000u);
     std::vector<float> k;
-    for (const std::string& mode : kClusterModes) {
+    for (const std::string& mode : every_mode()) {
       SCOPED_TRACE(mode);
       ClusteredLights pass(c.world->frame_.volumes(), settings_for_mode(mode));
       // Lights lit per pixel: the same in every mode (the same cut, every lit pair listed), so
@@ -257,12 +270,20 @@ TEST_F(ClusteredGl, LitPairsEqualTheFullScreenPassExactly) {
   w.frame_.render(cam, {target.framebuffer(), width, height});
   const ch03::FragmentCounts full = w.frame_.volumes().counts();
   ASSERT_GT(full.lit, 1000u);
-  for (const std::string& mode : kClusterModes) {
+  std::map<std::string, std::uint64_t> evaluated;
+  for (const std::string& mode : every_mode()) {
     ClusteredLights pass(w.frame_.volumes(), settings_for_mode(mode));
     const Render r = render(w, cam, width, height, &pass, false);
     EXPECT_EQ(r.counts.lit, full.lit) << mode;
     EXPECT_LT(r.counts.evaluated, full.shaded) << mode << ": culling evaluates fewer than every light everywhere";
+    evaluated[mode] = r.counts.evaluated;
   }
+  // The floor evaluates only the lights whose cut reaches the surface: fewer than any culling.
+  for (const auto& [mode, e] : evaluated)
+    if (mode != "zbin-floor") {
+      EXPECT_LT(evaluated["zbin-floor"], e) << mode;
+    }
+  EXPECT_GT(evaluated["zbin-floor"], full.lit) << "lights within their cut that face away light nothing";
 }
 
 // The index list is compacted: the cells' lists tile [0, total) without gap or overlap, each
@@ -366,7 +387,7 @@ TEST_F(ClusteredGl, ZeroLightsAddNothing) {
   const int width = 64, height = 36;
   const FrameCamera cam = camera(w, "street_level", width, height);
   const Render stencil = render(w, cam, width, height, nullptr, false);
-  for (const std::string& mode : kClusterModes) {
+  for (const std::string& mode : every_mode()) {
     ClusteredLights pass(w.frame_.volumes(), settings_for_mode(mode));
     const Render r = render(w, cam, width, height, &pass, false);
     EXPECT_EQ(r.counts.evaluated, 0u) << mode;
@@ -387,7 +408,7 @@ void expect_all_modes_equal_stencil(World& w, const FrameCamera& cam, int width,
                                     std::vector<Render>* out = nullptr) {
   const Render stencil = render(w, cam, width, height, nullptr, false, Strategy::Stencil, nullptr);
   std::vector<float> k;
-  for (const std::string& mode : kClusterModes) {
+  for (const std::string& mode : every_mode()) {
     SCOPED_TRACE(mode);
     ClusteredLights pass(w.frame_.volumes(), settings_for_mode(mode));
     const Render r = render(w, cam, width, height, &pass, k.empty(), Strategy::Stencil, nullptr);
@@ -517,6 +538,110 @@ TEST_F(ClusteredGl, TheDepthMaskDropsLightsInATilesDepthGaps) {
   }
 }
 
+// Z-binning's lists, read back and checked against the CPU: the order is every light once,
+// by view depth (within one of the sort's buckets); each bin's range holds every light whose
+// depth extent reaches the bin and ends at lights that reach it (tight); each tile's bits are
+// within tiled shading's list of that tile (the same sphere-box test on the same bounds) and
+// hold every light of it whose screen rectangle (cluster_grid.h's sphere_tiles, the C++ twin,
+// on a sphere 1 % smaller, for rounding) holds the tile: a tile's box is the box around its frustum, wider than the tile, so
+// tiled keeps lights there that cannot cover one of its pixels. On the street's lamps at a
+// quarter of their range, small next to the street, and at full range.
+TEST_F(ClusteredGl, ZBinRangesAndTileBitsHoldExactlyTheLightsThatReach) {
+  World& w = street();
+  const int width = 160, height = 90;
+  const FrameCamera cam = camera(w, "street_level", width, height);
+  for (const float scale : {1.f, 1.f / 4.f}) {
+    SCOPED_TRACE("range x " + std::to_string(scale));
+    std::vector<Light> lights = ch03::lights_for_count(w.scene_, 2000);
+    for (Light& l : lights)
+      if (l.type != LightType::Directional) l.range *= scale;
+    set_light_list(w, lights);
+    ClusteredLights tiled(w.frame_.volumes(), settings_for_mode("tiled"));
+    ClusteredLights zbin(w.frame_.volumes(), settings_for_mode("zbin"));
+    const Render t = render(w, cam, width, height, &tiled, false);
+    const Render z = render(w, cam, width, height, &zbin, false);
+    EXPECT_EQ(z.counts.lit, t.counts.lit);
+    const ClusteredLights::ZBinLists lists = zbin.zbin_lists();
+    // The lights' view-space centres and cuts, in the light order the GPU holds them.
+    const ch03::LightSet& set = w.frame_.volumes().lights();
+    std::vector<glm::vec4> spheres;
+    for (const auto& p : set.points) spheres.push_back(p.position_radius);
+    for (const auto* spots : {&set.cones, &set.wide_spots})
+      for (const auto& sp : *spots) spheres.push_back(sp.position_radius);
+    const std::size_t n = spheres.size();
+    ASSERT_GT(n, 1000u);
+    ASSERT_EQ(lists.order.size(), n);
+    std::vector<std::uint32_t> position(n, 0xFFFFFFFFu);
+    for (std::size_t p = 0; p < n; ++p) {
+      ASSERT_LT(lists.order[p], n);
+      ASSERT_EQ(position[lists.order[p]], 0xFFFFFFFFu) << "light " << lists.order[p] << " sorted twice";
+      position[lists.order[p]] = std::uint32_t(p);
+    }
+    auto depth = [&](std::size_t i) { return -(cam.view * glm::vec4(glm::vec3(spheres[i]), 1.f)).z; };
+    const float bucket = std::pow(cam.zfar / cam.znear, 1.f / 16384.f) * (1.f + 1e-5f);  // zbin.comp's keys
+    for (std::size_t p = 1; p < n; ++p) {
+      const float a = std::max(depth(lists.order[p - 1]), cam.znear), b = std::max(depth(lists.order[p]), cam.znear);
+      ASSERT_LE(a, b * bucket) << "sorted positions " << p - 1 << " and " << p << " out of depth order";
+    }
+    // The bins: the C++ twin of zbin_of is slice_of on a grid of that many slices.
+    const int bins = zbin.settings().zbins;
+    ASSERT_EQ(lists.ranges.size(), std::size_t(bins));
+    const Grid g = grid_of_tiles(width, height, 16, bins, cam.znear, cam.zfar);
+    std::size_t missing = 0, loose = 0, used = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const float d = depth(i), r = spheres[i].w;
+      if (d + r < cam.znear || d - r > cam.zfar) continue;
+      for (int b = slice_of(g, d - r); b <= slice_of(g, d + r); ++b)
+        if (lists.ranges[b].x > position[i] || position[i] > lists.ranges[b].y) ++missing;
+    }
+    for (int b = 0; b < bins; ++b) {
+      const glm::uvec2 range = lists.ranges[std::size_t(b)];
+      if (range.x > range.y) continue;
+      ++used;
+      // Each end is a light that reaches the bin (its extent, a little wider than the GPU's padding).
+      for (const std::uint32_t p : {range.x, range.y}) {
+        ASSERT_LT(p, n);
+        const float d = depth(lists.order[p]), r = spheres[lists.order[p]].w * 1.001f + 1e-3f;
+        if (slice_of(g, (d - r) * 0.999f) > b || slice_of(g, (d + r) * 1.001f) < b) ++loose;
+      }
+    }
+    EXPECT_EQ(missing, 0u) << "(light, bin) pairs whose bin's range leaves the light out";
+    EXPECT_EQ(loose, 0u) << "range ends that are lights not reaching the bin";
+    EXPECT_GT(used, std::size_t(bins / 20));
+    // The tiles: the same lights as tiled's lists, tile by tile.
+    const std::vector<glm::uvec2> cells = tiled.cell_lists();
+    const std::vector<std::uint32_t> index = tiled.index_list();
+    ASSERT_EQ(lists.masks.size(), cells.size() * lists.words);
+    std::size_t tiles_differ = 0, entries = 0, skipped = 0;
+    std::string first;
+    for (std::size_t tile = 0; tile < cells.size(); ++tile) {
+      std::vector<std::uint32_t> want(index.begin() + cells[tile].x, index.begin() + cells[tile].x + cells[tile].y), got;
+      for (std::size_t k = 0; k < lists.words; ++k)
+        for (int bit = 0; bit < 32; ++bit)
+          if (lists.masks[tile * lists.words + k] >> bit & 1u) got.push_back(lists.order[k * 32 + std::size_t(bit)]);
+      std::sort(got.begin(), got.end());
+      entries += got.size();
+      std::vector<std::uint32_t> kept;  // tiled's, less the lights whose rectangle misses the tile
+      const int tx = int(tile) % g.tiles_x, ty = int(tile) / g.tiles_x;
+      for (const std::uint32_t i : want) {
+        const glm::vec3 c(cam.view * glm::vec4(glm::vec3(spheres[i]), 1.f));
+        if (sphere_tiles(cam, g, c, spheres[i].w * 0.99f).holds(tx, ty)) kept.push_back(i);  // must be kept
+        if (!sphere_tiles(cam, g, c, spheres[i].w * 1.01f).holds(tx, ty)) ++skipped;            // may go
+      }
+      if (!std::includes(want.begin(), want.end(), got.begin(), got.end()) || !std::includes(got.begin(), got.end(), kept.begin(), kept.end()))
+        if (tiles_differ++ == 0)
+          first = "tile " + std::to_string(tile) + ": " + std::to_string(got.size()) + " bits, tiled lists " +
+                  std::to_string(want.size()) + ", of which the rectangles hold " + std::to_string(kept.size());
+    }
+    EXPECT_EQ(tiles_differ, 0u) << first;
+    EXPECT_GT(skipped, 0u) << "no light's rectangle missed a tile its box reached";
+    EXPECT_EQ(entries, z.stats.indices) << "the (tile, light) pairs the stats report";
+    EXPECT_GT(entries, 1000u);
+    // What Z-binning is for: fewer evaluated than tiled for the same lit pairs.
+    EXPECT_LT(z.counts.evaluated, t.counts.evaluated);
+  }
+}
+
 // 100 000 lights at a small size (16x9): correctness, not time. Every light reaches the GPU,
 // and every (pixel, light) pair that lights is lit exactly once: the lit-pair count is an
 // integer equal to chapter 03's full-screen pass's (every light at every pixel, no culling),
@@ -533,10 +658,10 @@ TEST_F(ClusteredGl, HundredThousandLightsAtASmallSize) {
   ASSERT_EQ(full.stencil.shaded, 100000u * width * height) << "the full-screen pass shades every light everywhere";
   ASSERT_GT(full.stencil.lit, 100000u) << "thousands of lights at each of the 144 pixels";
   std::vector<float> k;
-  for (const std::string& mode : {std::string("tiled"), std::string("clustered")}) {
+  for (const std::string& mode : {std::string("tiled"), std::string("clustered"), std::string("zbin")}) {
     SCOPED_TRACE(mode);
     ClusterSettings settings = settings_for_mode(mode);
-    settings.tile_px = 8;  // tiled: 2 x 2 tiles
+    settings.tile_px = 8;  // tiled and zbin: 2 x 2 tiles
     ClusteredLights pass(w.frame_.volumes(), settings);
     const Render r = render(w, cam, width, height, &pass, k.empty());
     if (k.empty()) k = r.heat;  // lights lit per pixel, the same in both modes

@@ -88,12 +88,7 @@ int cell_index(ivec2 tile, int slice) { return (slice * u_tiles.y + tile.y) * u_
 
 // The lights, in chapter 03's light order (points, cones, wide spots), as chapter 03 packs
 // them (light_instances.h) plus which kind each is.
-struct ClusterLight {
-  vec4 position_radius;  // xyz world position, w the cut
-  vec4 radiance_range;
-  vec4 direction_cone;   // spots only
-  vec4 kind;             // x: 1 for a spot
-};
+#include "09_clustered/shaders/cluster_light.h"
 layout(std430, binding = 0) readonly buffer Lights { ClusterLight cluster_lights[]; };
 // Each cell's list: where it starts in the index list and how many lights it holds.
 layout(std430, binding = 1) buffer Cells { uvec2 cells[]; };

@@ -8,6 +8,9 @@
 #include "03_light_volumes/shaders/light_instance.glsl"
 #include "03_light_volumes/shaders/local_light.glsl"
 #include "09_clustered/shaders/grid.glsl"
+#ifdef ZBIN
+#include "09_clustered/shaders/zbin.glsl"
+#endif
 #ifdef COUNT_FRAGMENTS
 #include "03_light_volumes/shaders/fragment_counters.glsl"
 const uint kCountEvaluated = 0u, kCountLit = 1u, kCountSurface = 2u;
@@ -41,6 +44,56 @@ void add_light(Surface s, uvec2 list, uint k, inout vec3 diffuse, inout vec3 spe
   add_record(s, i, cluster_lights[i], diffuse, specular, lit);
 }
 
+#ifdef ZBIN
+// What zbin_visit does with each light it finds: add it (the shading), or (the floor's exact
+// lists, zbin_floor.comp) count those whose cut reaches the surface, or also write them.
+const int kZShade = 0, kZCount = 1, kZWrite = 2;
+#ifdef FLOOR
+layout(std430, binding = 8) buffer FloorLists { uint floor_lights[]; };  // the exact lists, per pixel
+#endif
+// The light of the lowest bit left in mask word w (if any), visited; its bit cleared.
+void zbin_take(Surface s, uint w, int op, inout uint m, inout uint at, inout vec3 diffuse, inout vec3 specular,
+               inout uint lit) {
+  if (m == 0u) return;
+  int i = int(light_indices[w * 32u + uint(findLSB(m))]);
+  m &= m - 1u;
+  if (op == kZShade) {
+    add_record(s, i, cluster_lights[i], diffuse, specular, lit);
+    return;
+  }
+  // The floor's lists: the lights local_light() would not end at their cut, exactly.
+  vec4 l = cluster_lights[i].position_radius;
+  if (distance(l.xyz, s.position) > l.w) return;
+#ifdef FLOOR
+  if (op == kZWrite) floor_lights[at] = uint(i);
+#endif
+  ++at;
+}
+
+// [zbin-loop]
+// Z-binning: the lights of the pixel's depth bin's range whose bit its tile has set, in
+// sorted (depth) order. Four bits an iteration, for llvmpipe's loop limit (see the lists' loop).
+void zbin_visit(Surface s, ivec2 pixel, int op, inout uint at, inout vec3 diffuse, inout vec3 specular,
+                inout uint evaluated, inout uint lit) {
+  uvec2 range = zbin_range(zbin_of(view_depth(s.position)));
+  uint base = uint(cell_index(tile_of(pixel), 0)) * zbin_words();
+  if (range.x <= range.y)
+    for (uint w = range.x >> 5u; w <= range.y >> 5u; ++w) {
+      uint m = tile_masks[base + w];
+      if (w == range.x >> 5u) m &= 0xFFFFFFFFu << (range.x & 31u);
+      if (w == range.y >> 5u) m &= 0xFFFFFFFFu >> (31u - (range.y & 31u));
+      evaluated += uint(bitCount(m));
+      while (m != 0u) {
+        zbin_take(s, w, op, m, at, diffuse, specular, lit);
+        zbin_take(s, w, op, m, at, diffuse, specular, lit);
+        zbin_take(s, w, op, m, at, diffuse, specular, lit);
+        zbin_take(s, w, op, m, at, diffuse, specular, lit);
+      }
+    }
+}
+// [/zbin-loop]
+#endif
+
 // With counting on, one surface pixel's counts (shade_staged.comp calls it too).
 void count_pixel(uint evaluated, uint lit) {
 #ifdef COUNT_FRAGMENTS
@@ -59,6 +112,26 @@ void shade_surface(Surface s, ivec2 pixel, out vec3 diffuse, out vec3 specular, 
   diffuse = specular = vec3(0.0);
   evaluated = lit = 0u;
   if (s.is_sky) return;
+#ifdef FLOOR
+  // The floor: the pixel's exact list (zbin_floor.comp), no culling left to do; a pixel
+  // whose list did not fit falls back to the Z-binning below.
+  uvec2 exact = cells[pixel.y * u_grid.x + pixel.x];
+  if (exact.x != kEveryLight) {
+    for (uint k = 0u; k < exact.y; ++k) {
+      int i = int(floor_lights[exact.x + k]);
+      add_record(s, i, cluster_lights[i], diffuse, specular, lit);
+    }
+    evaluated = exact.y;
+    count_pixel(evaluated, lit);
+    return;
+  }
+#endif
+#ifdef ZBIN
+  uint unused = 0u;
+  zbin_visit(s, pixel, kZShade, unused, diffuse, specular, evaluated, lit);
+  count_pixel(evaluated, lit);
+  return;
+#endif
 #ifdef CLUSTERED
   uvec2 list = cells[cell_index(tile_of(pixel), slice_of(view_depth(s.position)))];
 #else

@@ -1,0 +1,30 @@
+// Z-binning (Drobot, SIGGRAPH 2017), the GLSL shared by its passes (zbin.comp) and its
+// shading (shade.glsl with ZBIN). The lights are sorted by the view depth of their centres;
+// each depth bin keeps the first and last sorted position of the lights whose depth extent
+// reaches it, and each screen tile a bit per sorted light whose sphere reaches the tile's box.
+// A pixel evaluates the lights both name: its tile's bits inside its bin's range.
+// Needs grid.glsl first. The bins are exponential in depth, as the clustered slices are
+// (cluster_grid.h's slice_of with `bins` slices is the C++ twin of zbin_of).
+uniform int u_zbins;  // depth bins
+
+// The sorted order: light_indices[p] is the light at sorted position p (grid.glsl's Indices).
+// Bin b's range of sorted positions: zbins[2b] the first, zbins[2b + 1] the last (first > last
+// when no light reaches it); plain uints, so that every atomic names a scalar.
+layout(std430, binding = 6) buffer ZBins { uint zbins[]; };
+uvec2 zbin_range(int b) { return uvec2(zbins[2 * b], zbins[2 * b + 1]); }
+// Tile t's bit for sorted position p: bit p % 32 of word t * zbin_words() + p / 32.
+layout(std430, binding = 7) buffer TileMasks { uint tile_masks[]; };
+
+uint zbin_words() { return (uint(u_tiles.w) + 31u) / 32u; }
+
+int zbin_of(float d) {
+  float t = log(max(d, u_depth_range.x) / u_depth_range.x) / log(u_depth_range.y / u_depth_range.x);
+  return clamp(int(floor(t * float(u_zbins))), 0, u_zbins - 1);
+}
+
+// A light's depth extent, padded as sphere_meets_box pads its radius and by kDepthPad of its
+// depth, so that a surface the light reaches never falls in a bin outside it by rounding.
+vec2 zbin_extent(float z, float radius) {
+  float r = radius * (1.0 + 1e-5) + 1e-6;
+  return vec2((z - r) * (1.0 - kDepthPad), (z + r) * (1.0 + kDepthPad));
+}
