@@ -75,15 +75,16 @@ PenumbraError penumbra_error(const ImageF& visibility, const ImageF& reference, 
   check_exclude(exclude, reference, "penumbra_error");
   const std::vector<bool> penumbra = penumbra_pixels(reference, channel, band);
   PenumbraError e;
-  double sum = 0;
+  double sum = 0, signed_sum = 0;
   for (int y = 0; y < reference.height; ++y)
     for (int x = 0; x < reference.width; ++x) {
       const std::size_t i = index(reference, x, y);
       if (!penumbra[i] || (exclude && (*exclude)[i])) continue;
-      sum += std::abs(double(visibility.at(x, y, 0)) - double(reference.at(x, y, channel)));
+      const double d = double(visibility.at(x, y, 0)) - double(reference.at(x, y, channel));
+      sum += std::abs(d), signed_sum += d;
       ++e.pixels;
     }
-  if (e.pixels) e.mean_abs = sum / double(e.pixels);
+  if (e.pixels) e.mean_abs = sum / double(e.pixels), e.mean_signed = signed_sum / double(e.pixels);
   return e;
 }
 

@@ -41,6 +41,7 @@ std::vector<bool> penumbra_pixels(const ImageF& reference, int channel, int band
 
 struct PenumbraError {
   double mean_abs = 0;     // mean |v - reference| over the penumbra
+  double mean_signed = 0;  // mean v - reference: above 0 the method lights the penumbra too much
   std::size_t pixels = 0;  // pixels counted
 };
 // The method's visibility (channel 0) against the reference's `channel` over its penumbra,
