@@ -68,7 +68,7 @@ TEST(PenumbraMetric, TheErrorIsTheMeanOverThePenumbraAlone) {
   const PenumbraError e = penumbra_error(v, t, 1, nullptr, 2);
   EXPECT_EQ(e.pixels, 16u * 5u);
   EXPECT_NEAR(e.mean_abs, (16 * 0.25 + 64 * 1.0) / 80.0, 1e-12);
-  EXPECT_NEAR(e.mean_signed, (16 * 0.25 - 32 * 0.5 - 32 * 1.0) / 80.0, 1e-12);  // the band's rows: 0.5 and 1 lit
+  EXPECT_NEAR(e.mean_signed, (16 * 0.25 - 64 * 1.0) / 80.0, 1e-12);  // the band's rows: lit in the truth, dark here
   EXPECT_NEAR(penumbra_error(v, t, 1, nullptr, 0).mean_abs, 0.25, 1e-12);
   std::vector<bool> exclude(16 * 16, false);
   for (int x = 0; x < 16; ++x) exclude[std::size_t(6 * 16 + x)] = true;  // one band row left out
