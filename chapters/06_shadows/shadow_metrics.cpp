@@ -38,7 +38,6 @@ std::vector<bool> outside_method_mask(const ImageF& v) {
   return out;
 }
 
-// [penumbra-pixels]
 std::vector<bool> penumbra_pixels(const ImageF& reference, int channel, int band) {
   if (channel < 0 || channel >= reference.channels || reference.channels < 3)
     throw Error("penumbra_pixels: channel " + std::to_string(channel) + " of an image with " +
@@ -67,7 +66,6 @@ std::vector<bool> penumbra_pixels(const ImageF& reference, int channel, int band
     }
   return out;
 }
-// [/penumbra-pixels]
 
 PenumbraError penumbra_error(const ImageF& visibility, const ImageF& reference, int channel,
                              const std::vector<bool>* exclude, int band) {
@@ -101,7 +99,6 @@ LightLeak light_leak(const ImageF& visibility, const ImageF& truth, const std::v
   return l;
 }
 
-// [footprint]
 KernelFootprint kernel_footprint(const LightFrustum& frustum, int map_size, int kernel) {
   if (map_size < 1 || kernel < 1)
     throw Error("kernel_footprint: map size " + std::to_string(map_size) + " and kernel " + std::to_string(kernel) +
@@ -115,7 +112,6 @@ KernelFootprint kernel_footprint(const LightFrustum& frustum, int map_size, int 
   f.width_v = float(kernel) * (frustum.box_max.y - frustum.box_min.y) / float(map_size);
   return f;
 }
-// [/footprint]
 
 // [filtered-truth-cpp]
 ImageF filtered_hard_truth(const RayScene& rays, const FrameCamera& camera, int width, int height,

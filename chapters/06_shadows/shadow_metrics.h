@@ -57,7 +57,6 @@ LightLeak light_leak(const ImageF& visibility, const ImageF& truth, const std::v
                      float threshold = kLeakThreshold);
 // [/penumbra-metric]
 
-// [filtered-truth]
 // A fixed kernel's footprint in the light's plane: k texels on each side, a texel being the
 // map's box over its size along each of the light view's axes (the frustum the stage fitted).
 struct KernelFootprint {
@@ -76,6 +75,5 @@ ImageF filtered_hard_truth(const RayScene& rays, const FrameCamera& camera, int 
                            const KernelFootprint& footprint, int strata = 8, std::uint64_t seed = 6);
 ImageF cached_filtered_hard_truth(const Scene& scene, const RayScene& rays, const FrameCamera& camera, int width,
                                   int height, const KernelFootprint& footprint, int strata = 8);
-// [/filtered-truth]
 
 }  // namespace lp::ch06
