@@ -512,15 +512,17 @@ int main(int argc, char** argv) {
           stage.set(x, ShadowPicture::Visibility);
           frame.render(camera, {visibility.framebuffer(), s.width, s.height});
           const ImageF vis = visibility.read();
-          auto blue = [](const ImageF& v, int px, int py) { return v.at(px, py, 2) > 0.3f && v.at(px, py, 0) < 0.2f; };
-          std::size_t dark = 0, leak = 0, pcf_dark = 0, leak_pcf_dark = 0;
-          for (int y = 0; y < s.height; ++y)
-            for (int px = 0; px < s.width; ++px) {
-              if (truth.at(px, y, 2) < 0.5f || truth.at(px, y, 1) > 0.f || blue(vis, px, y) || blue(pcf, px, y)) continue;
-              const bool lit = vis.at(px, y, 0) > 0.1f;
-              ++dark, leak += lit;
-              if (pcf.at(px, y, 0) == 0.f) ++pcf_dark, leak_pcf_dark += lit;
-            }
+          // shadow_metrics.h's light_leak, the rasteriser's sky of this method and of PCF left out;
+          // then again only where PCF 3x3 is dark.
+          std::vector<bool> exclude = outside_method_mask(vis);
+          const std::vector<bool> pcf_outside = outside_method_mask(pcf);
+          for (std::size_t i = 0; i < exclude.size(); ++i) exclude[i] = exclude[i] || pcf_outside[i];
+          const LightLeak all = light_leak(vis, truth, &exclude);
+          for (std::size_t i = 0; i < exclude.size(); ++i)
+            exclude[i] = exclude[i] || pcf.data[i * std::size_t(pcf.channels)] != 0.f;
+          const LightLeak where_pcf_dark = light_leak(vis, truth, &exclude);
+          const std::size_t dark = all.full_shadow, leak = all.leaking;
+          const std::size_t pcf_dark = where_pcf_dark.full_shadow, leak_pcf_dark = where_pcf_dark.leaking;
           const VisibilityError soft = visibility_error(vis, truth, 1);
           if (view == "overview" && (r.setting == "32-bit" || r.setting == "pmin 0")) {
             const std::string name = s.out + "/06_overview_" + kMethodNames[int(x.method)] + "_leak";
