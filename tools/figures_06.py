@@ -3,6 +3,8 @@
 
     python3 tools/figures_06.py [FIGURES_DIR]      (default book/figures)
 
+Every method and setting, cost against error (the mean, the error over the penumbra and the light
+leaking into full shadow), from the main sweep's CSVs (the H200's at 1080p, and llvmpipe's);
 PCSS against the fixed PCF kernels: the error against the soft truth (the sun as a disk of
 0.02 rad, PCSS's light) against the time of the global pass that does the lookups, one plot per
 renderer whose 06_shadows_pcss CSV is there (llvmpipe's, and the H200's once the GPU run made it).
@@ -29,9 +31,13 @@ def pcss_pareto(d: Path, csv_name: str, where: str, out: str):
          "mean |visibility - soft truth|", xlog=True)
 
 
-def method_pareto(d: Path, csv_name: str, where: str, suffix: str):
+def method_pareto(d: Path, csv_name: str, where: str, suffix: str, only=None):
     """Every method x setting of the main sweep on the overview: the shadow's whole cost (depth
-    pass + pre-filter + the global pass with the lookups) against the error, one plot per truth."""
+    pass + pre-filter + the global pass with the lookups) against the error, one plot per metric.
+    The mean over every sunlit pixel against the hard and the soft truth, and where the methods
+    differ (shadow_metrics.h): over the soft truth's penumbra, over the penumbra of the hard truth
+    box-filtered over PCF 3x3's footprint, and the pixels in full shadow that leak light. A CSV
+    from before the penumbra columns gets the first two plots only; `only` names the plots to make."""
     if not (d / csv_name).exists():
         return
     notes, rows = read_csv(d / csv_name)
@@ -41,17 +47,32 @@ def method_pareto(d: Path, csv_name: str, where: str, suffix: str):
         if r["method"] not in methods:
             methods.append(r["method"])
     cost = lambda r: float(r["depth_ms"]) + float(r["filter_ms"]) + float(r["global_ms"])  # noqa: E731
-    for truth, col, label in (("hard", "hard_mean", "mean |visibility - hard truth|"),
-                              ("soft", "soft_mean", "mean |visibility - soft truth|")):
-        series = [Series(m, [(cost(r), float(r[col]), r["setting"]) for r in rows if r["method"] == m], line=False)
+    leak_pct = lambda r: 100.0 * float(r["leak"]) / max(1.0, float(r["full_shadow"]))  # noqa: E731
+    metrics = (("hard", "hard_mean", lambda r: float(r["hard_mean"]), "mean |visibility - hard truth|",
+                "error against the hard truth", True),
+               ("soft", "soft_mean", lambda r: float(r["soft_mean"]), "mean |visibility - soft truth|",
+                "error against the soft truth", True),
+               ("penumbra", "penumbra_soft", lambda r: float(r["penumbra_soft"]),
+                "mean |visibility - soft truth| over its penumbra", "error over the soft truth's penumbra", False),
+               ("box", "penumbra_box", lambda r: float(r["penumbra_box"]),
+                "mean |visibility - box-filtered hard truth| over its penumbra",
+                "error over the penumbra of the hard truth filtered over PCF 3x3", False),
+               ("leak", "leak", leak_pct, "% of the pixels in full shadow lit > 0.1", "light leaking into full shadow",
+                False))
+    for name, column, value, label, what, ylog in metrics:
+        if (rows and column not in rows[0]) or (only and name not in only):
+            continue
+        series = [Series(m, [(cost(r), value(r), r["setting"]) for r in rows if r["method"] == m], line=False)
                   for m in methods]
-        plot(d / f"06_pareto_{truth}{suffix}.svg", f"Shadows: error against the {truth} truth and time ({where})",
+        plot(d / f"06_pareto_{name}{suffix}.svg", f"Shadows: {what} and time ({where})",
              notes[0] if notes else "", [s for s in series if s.points],
-             "ms per frame: depth pass + pre-filter + lookups (log scale)", label, xlog=True, ylog=True)
+             "ms per frame: depth pass + pre-filter + lookups (log scale)", label, xlog=True, ylog=ylog)
 
 
 def main(d: Path):
     method_pareto(d, "06_shadows_1080p_h200.csv", "NVIDIA H200, 1920x1080", "_1080p_h200")
+    # llvmpipe's: only the plots the book shows (the H200's mean-error plots stand for both).
+    method_pareto(d, "06_shadows_llvmpipe.csv", "llvmpipe", "_llvmpipe", only=("penumbra", "box", "leak"))
     pcss_pareto(d, "06_shadows_pcss_llvmpipe.csv", "llvmpipe", "06_pcss_pareto_llvmpipe.svg")
     pcss_pareto(d, "06_shadows_pcss_h200.csv", "NVIDIA H200", "06_pcss_pareto_h200.svg")
 

@@ -1,7 +1,8 @@
 // Chapter 06's measurements: every shadow method x setting on the atrium's views, its cost
 // (the depth pass, the pre-filter, and the global pass that does the lookups; common/measure.h:
 // warm-up until the times settle, then --frames frames) and its error against the ray-traced
-// hard and soft truths (shadow_truth.h). Writes book/figures/06_shadows.csv on a GPU,
+// hard and soft truths (shadow_truth.h), and over the penumbra and in full shadow
+// (shadow_metrics.h). Writes book/figures/06_shadows.csv on a GPU,
 // 06_shadows_llvmpipe.csv on llvmpipe (CPU times); every row names the renderer, the size
 // and the frames measured.
 //
@@ -25,6 +26,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "chapters/03_light_volumes/light_radius.h"
+#include "chapters/06_shadows/shadow_metrics.h"
 #include "chapters/06_shadows/shadow_stage.h"
 #include "chapters/06_shadows/shadow_truth.h"
 #include "common/context.h"
@@ -245,9 +247,15 @@ int main(int argc, char** argv) {
     csv << "# " << (software ? "llvmpipe CPU time: " : "GPU time: ") << renderer << ", " << s.width << "x" << s.height
         << ", atrium; soft truth: sun disk " << TruthSettings{}.angular_radius << " rad, " << s.truth_samples
         << " rays per pixel\n"
-        << "# ms: mean over the measured frames; error over the pixels the sun reaches (shadow_truth.h)\n"
+        << "# ms: mean over the measured frames; hard_*, soft_*: error over the pixels the sun reaches (shadow_truth.h)\n"
+        << "# penumbra_*: mean |error| over the reference's penumbra (strictly between 0 and 1) and " << kPenumbraBand
+        << " pixels around it (shadow_metrics.h); penumbra_soft against the soft truth, penumbra_box against the hard truth "
+           "box-filtered over PCF 3x3's footprint on the 1024^2 map; leak: of full_shadow pixels (soft truth 0), those lit > "
+        << kLeakThreshold << "\n"
+        << "# made by: 06_shadows_sweep --size " << s.width << "x" << s.height << " --frames " << s.frames
+        << " --truth-samples " << s.truth_samples << (s.only.empty() ? std::string() : " --only " + s.only) << "\n"
         << "view,method,setting,map,kernel,pmin,c,bytes,depth_ms,filter_ms,global_ms,frame_ms,hard_mean,hard_wrong_pct,"
-           "soft_mean,soft_p99,"
+           "soft_mean,soft_p99,penumbra_soft,penumbra_box,penumbra_box_signed,full_shadow,leak,"
         << csv_measure_columns() << "\n";
     for (const std::string view : {"overview", "corner"}) {
       const FrameCamera camera = frame_camera(scene.camera(view), float(s.width) / s.height);
@@ -257,12 +265,22 @@ int main(int argc, char** argv) {
         save_png(s.out + "/06_overview_truth_hard.png", visibility_picture(truth, 0, truth));
         save_png(s.out + "/06_overview_truth_soft.png", visibility_picture(truth, 1, truth));
       }
+      // The filtered hard truth of the default kernel (3x3 on the 1024^2 map): one reference for
+      // every row, in the frustum the stage fits to this view (the same for every setting).
+      stage.set(ShadowSettings{}, ShadowPicture::Visibility);
+      frame.render(camera, {visibility.framebuffer(), s.width, s.height});
+      const ImageF box = cached_filtered_hard_truth(scene, rays, camera, s.width, s.height,
+                                                    kernel_footprint(stage.frustum(), ShadowSettings{}.map_size,
+                                                                     ShadowSettings{}.kernel));
       for (const Variant& v : variants()) {
         if (pcf_only && v.shadow.method != ShadowMethod::Pcf) continue;
         stage.set(v.shadow, ShadowPicture::Visibility);
         frame.render(camera, {visibility.framebuffer(), s.width, s.height});
         const ImageF vis = visibility.read();
         const VisibilityError hard = visibility_error(vis, truth, 0), soft = visibility_error(vis, truth, 1);
+        const std::vector<bool> outside = outside_method_mask(vis);
+        const PenumbraError pen_soft = penumbra_error(vis, truth, 1, &outside), pen_box = penumbra_error(vis, box, 0, &outside);
+        const LightLeak leak = light_leak(vis, truth, &outside);
         // The book's pictures: each method at its defaults, on the overview.
         const std::string name = kMethodNames[int(v.shadow.method)];
         if (!pcf_only && view == "overview" && (v.setting == "kernel 3" || v.setting == "map 1024" || v.setting == "taps 32")) {
@@ -279,10 +297,13 @@ int main(int argc, char** argv) {
             << x.p_min << ',' << x.c << ',' << stage.allocated_bytes() << ','
             << pass_ms(m, "shadow map: depth from the sun") << ',' << pass_ms(m, "shadow map: pre-filter") << ','
             << pass_ms(m, "global: ambient + directional (chapter 03)") << ',' << m.total_ms() << ',' << hard.mean_abs << ','
-            << 100 * hard.wrong << ',' << soft.mean_abs << ',' << soft.p99 << ','
+            << 100 * hard.wrong << ',' << soft.mean_abs << ',' << soft.p99 << ',' << pen_soft.mean_abs << ','
+            << pen_box.mean_abs << ',' << pen_box.mean_signed << ',' << leak.full_shadow << ',' << leak.leaking << ','
             << csv_measure_values(renderer, s.width, s.height, m.frames) << "\n";
         std::cout << view << ' ' << kMethodNames[int(x.method)] << ' ' << v.setting << ": frame " << m.total_ms()
-                  << " ms, hard wrong " << 100 * hard.wrong << "%, soft mean " << soft.mean_abs << std::endl;
+                  << " ms, hard wrong " << 100 * hard.wrong << "%, soft mean " << soft.mean_abs << ", penumbra "
+                  << pen_soft.mean_abs << " (soft) " << pen_box.mean_abs << " (box), leak " << leak.leaking << " of "
+                  << leak.full_shadow << std::endl;
       }
     }
     std::cout << "wrote " << file << '\n';
@@ -491,15 +512,17 @@ int main(int argc, char** argv) {
           stage.set(x, ShadowPicture::Visibility);
           frame.render(camera, {visibility.framebuffer(), s.width, s.height});
           const ImageF vis = visibility.read();
-          auto blue = [](const ImageF& v, int px, int py) { return v.at(px, py, 2) > 0.3f && v.at(px, py, 0) < 0.2f; };
-          std::size_t dark = 0, leak = 0, pcf_dark = 0, leak_pcf_dark = 0;
-          for (int y = 0; y < s.height; ++y)
-            for (int px = 0; px < s.width; ++px) {
-              if (truth.at(px, y, 2) < 0.5f || truth.at(px, y, 1) > 0.f || blue(vis, px, y) || blue(pcf, px, y)) continue;
-              const bool lit = vis.at(px, y, 0) > 0.1f;
-              ++dark, leak += lit;
-              if (pcf.at(px, y, 0) == 0.f) ++pcf_dark, leak_pcf_dark += lit;
-            }
+          // shadow_metrics.h's light_leak, the rasteriser's sky of this method and of PCF left out;
+          // then again only where PCF 3x3 is dark.
+          std::vector<bool> exclude = outside_method_mask(vis);
+          const std::vector<bool> pcf_outside = outside_method_mask(pcf);
+          for (std::size_t i = 0; i < exclude.size(); ++i) exclude[i] = exclude[i] || pcf_outside[i];
+          const LightLeak all = light_leak(vis, truth, &exclude);
+          for (std::size_t i = 0; i < exclude.size(); ++i)
+            exclude[i] = exclude[i] || pcf.data[i * std::size_t(pcf.channels)] != 0.f;
+          const LightLeak where_pcf_dark = light_leak(vis, truth, &exclude);
+          const std::size_t dark = all.full_shadow, leak = all.leaking;
+          const std::size_t pcf_dark = where_pcf_dark.full_shadow, leak_pcf_dark = where_pcf_dark.leaking;
           const VisibilityError soft = visibility_error(vis, truth, 1);
           if (view == "overview" && (r.setting == "32-bit" || r.setting == "pmin 0")) {
             const std::string name = s.out + "/06_overview_" + kMethodNames[int(x.method)] + "_leak";

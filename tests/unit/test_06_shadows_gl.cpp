@@ -1,7 +1,8 @@
 // Chapter 06 on the GPU (llvmpipe in CI): the stage's visibility term, read back as floats,
 // against the ray-traced truth (shadow_truth.h: Embree, no map, no bias) on the atrium.
 // The hard methods agree with the hard truth away from shadow edges; the filtered ones are
-// within their stated error of the soft truth; the hard cases hold (acne without bias and
+// measured where they differ (shadow_metrics.h: over the penumbra, in full shadow); the hard
+// cases hold (acne without bias and
 // none with it, the sky and the surfaces facing away untouched, a caster outside the view).
 #include <gtest/gtest.h>
 
@@ -12,6 +13,7 @@
 
 #include "chapters/03_light_volumes/deferred_frame.h"
 #include "chapters/03_light_volumes/light_radius.h"
+#include "chapters/06_shadows/shadow_metrics.h"
 #include "chapters/06_shadows/shadow_stage.h"
 #include "chapters/06_shadows/shadow_truth.h"
 #include "common/paths.h"
@@ -56,6 +58,11 @@ struct World {
   }
   ImageF truth(const FrameCamera& cam, const TruthSettings& t = {}) {
     return cached_shadow_truth(scene, rays, cam, kW, kH, sun(), t);
+  }
+  // The hard truth box-filtered over the footprint of `s`'s kernel on its map, in the frustum
+  // the last render fitted (render `cam` first).
+  ImageF filtered_truth(const FrameCamera& cam, const ShadowSettings& s) {
+    return cached_filtered_hard_truth(scene, rays, cam, kW, kH, kernel_footprint(stage.frustum(), s.map_size, s.kernel));
   }
 
   Scene scene;
@@ -142,28 +149,122 @@ TEST_F(ShadowsGl, HardMethodMatchesTheHardTruthOutsideTheEdgeBand) {
   EXPECT_EQ(e.wrong, 0.0);
 }
 
-// The filtered methods against the sun as a disk (0.02 rad): each does better than a method
-// wrong by the whole amount in every penumbra pixel, whose mean error is the fraction P of
-// pixels in penumbra (0.02 < soft truth < 0.98). (Closer to the soft truth than the hard
-// method is not claimed: a 3x3 kernel of 2.8 cm texels is narrower than the 0.02 rad sun's
-// penumbra of about 16 cm under the arches; the sweep's CSV has the numbers.)
-TEST_F(ShadowsGl, FilteredMethodsAreWithinThePenumbraBudgetOfTheSoftTruth) {
+// [penumbra-gl]
+namespace {
+// The overview, aisle and corner with their truths, the hard map, and the pixels every
+// comparison leaves out: the sky and the surfaces the rasteriser and the ray tracer disagree on
+// (a silhouette), for the hard map or any of `methods`, so that all are compared on one set.
+struct PenumbraView {
+  std::string name;
+  FrameCamera cam;
+  ImageF truth, box, hard;
+  std::vector<ImageF> v;
+  std::vector<bool> exclude;
+};
+PenumbraView penumbra_view(const char* view, const std::vector<ShadowSettings>& methods) {
+  PenumbraView p{view, world->camera(view), {}, {}, {}, {}, {}};
+  p.truth = world->truth(p.cam);
+  p.hard = world->visibility(p.cam, {.method = ShadowMethod::Hard});  // fits the frustum to this view
+  p.box = world->filtered_truth(p.cam, ShadowSettings{});
+  p.exclude = outside_method_mask(p.hard);
+  for (const ShadowSettings& m : methods) {
+    p.v.push_back(world->visibility(p.cam, m));
+    const std::vector<bool> out = outside_method_mask(p.v.back());
+    for (std::size_t i = 0; i < out.size(); ++i) p.exclude[i] = p.exclude[i] || out[i];
+  }
+  return p;
+}
+}  // namespace
+
+// PCF where it differs from the hard map: over the penumbra (shadow_metrics.h: where the
+// reference lies strictly between 0 and 1, and 2 pixels around). Two references: the filtered
+// hard truth over the 3x3 kernel's footprint on the 1024^2 map (what the kernel estimates),
+// and the soft truth (the sun as a disk of 0.02 rad). The hard map is a step where both are
+// ramps; PCF's grid and the comparison sampler at their defaults must err less than it over
+// each penumbra, on each view. (The mean over every sunlit pixel could not tell: the hard map
+// scores best there, its errors are 3 % of the pixels.) VSM and ESM are not claimed: they light
+// the contacts (a capital over its column: the occluder's depth near the receiver's, where
+// Chebyshev's bound and exp(c (z_o - z_r)) are near 1), and on the atrium err more than the hard
+// map over the penumbra; the sweep's CSV has the numbers.
+TEST_F(ShadowsGl, PcfBeatsTheHardMapOverThePenumbra) {
+  const std::vector<ShadowSettings> methods = {{.method = ShadowMethod::Pcf}, {.method = ShadowMethod::PcfHardware}};
   for (const char* view : {"overview", "aisle", "corner"}) {
-    const FrameCamera cam = world->camera(view);
-    const ImageF truth = world->truth(cam);
-    double penumbra = 0, masked = 0;
-    for (int y = 0; y < kH; ++y)
-      for (int x = 0; x < kW; ++x)
-        if (truth.at(x, y, 2) > 0.5f) masked += 1, penumbra += truth.at(x, y, 1) > 0.02f && truth.at(x, y, 1) < 0.98f;
-    const double budget = penumbra / masked;
-    ASSERT_GT(budget, 0.01) << view << ": no penumbra to measure";
-    for (ShadowMethod m : {ShadowMethod::Pcf, ShadowMethod::PcfHardware, ShadowMethod::Vsm, ShadowMethod::Esm}) {
-      const VisibilityError e = visibility_error(world->visibility(cam, {.method = m}), truth, 1);
-      print((std::string(view) + " " + kMethodNames[int(m)] + " against the soft truth").c_str(), e);
-      EXPECT_LT(e.mean_abs, budget) << view << " " << kMethodNames[int(m)];
+    const PenumbraView p = penumbra_view(view, methods);
+    const PenumbraError hard_box = penumbra_error(p.hard, p.box, 0, &p.exclude);
+    const PenumbraError hard_soft = penumbra_error(p.hard, p.truth, 1, &p.exclude);
+    std::printf("%s: hard map over the penumbra: %.4f against the filtered hard truth (%zu pixels), %.4f against the soft "
+                "truth (%zu pixels)\n",
+                view, hard_box.mean_abs, hard_box.pixels, hard_soft.mean_abs, hard_soft.pixels);
+    ASSERT_GT(hard_box.pixels, std::size_t(kW * kH / 100)) << view << ": no penumbra to measure";
+    ASSERT_GT(hard_soft.pixels, std::size_t(kW * kH / 100)) << view << ": no penumbra to measure";
+    for (std::size_t i = 0; i < methods.size(); ++i) {
+      const std::string name = kMethodNames[int(methods[i].method)];
+      const PenumbraError e_box = penumbra_error(p.v[i], p.box, 0, &p.exclude);
+      const PenumbraError e_soft = penumbra_error(p.v[i], p.truth, 1, &p.exclude);
+      std::printf("%s: %s over the penumbra: %.4f against the filtered hard truth, %.4f against the soft truth\n", view,
+                  name.c_str(), e_box.mean_abs, e_soft.mean_abs);
+      EXPECT_LT(e_box.mean_abs, hard_box.mean_abs) << view << " " << name;
+      EXPECT_LT(e_soft.mean_abs, hard_soft.mean_abs) << view << " " << name;
     }
   }
 }
+
+// ESM filtered in log space and VSM (P_min 0) keep the light PCF finds in the penumbra. Both
+// are at least the lit weight of their own footprint: log sum_i w_i exp(c z_i) >= c q +
+// log(sum of w_i over the texels at or behind q), and Chebyshev's one-sided bound is at least
+// the fraction at or behind q. Their footprint (a k x k box read bilinearly) is not PCF's k x k
+// taps: per axis, up to 1 / (2k) of its weight lies outside them, and it has no receiver plane.
+// Claim: no penumbra pixel of the filtered hard truth is darker than PCF 3x3 by more than a
+// half. The half is not derived (the footprints' difference, a third for k = 3, does not bound
+// it pixel by pixel): a regression bound; on llvmpipe the darkest is 0.44 below PCF, a few dozen
+// pixels are below by 0.3. The geometric mean, ESM's c z averaged linearly, is darker than PCF by more than a half
+// on hundreds of pixels of each view: exp(c (mean z - q)) drops to nothing where a tenth of the
+// footprint is a caster a few centimetres up.
+TEST_F(ShadowsGl, EsmAndVsmAreNeverFarDarkerThanPcfOverThePenumbra) {
+  const std::vector<ShadowSettings> methods = {{.method = ShadowMethod::Pcf},
+                                               {.method = ShadowMethod::Esm},
+                                               {.method = ShadowMethod::Vsm, .p_min = 0.f}};
+  for (const char* view : {"overview", "aisle", "corner"}) {
+    const PenumbraView p = penumbra_view(view, methods);
+    const std::vector<bool> penumbra = penumbra_pixels(p.box, 0);
+    for (std::size_t m = 1; m < methods.size(); ++m) {
+      std::size_t pixels = 0, darker = 0;
+      float worst = 0;
+      for (std::size_t i = 0; i < penumbra.size(); ++i) {
+        if (!penumbra[i] || p.exclude[i]) continue;
+        ++pixels;
+        const float d = p.v[0].data[i * 4] - p.v[m].data[i * 4];  // how much darker than PCF
+        worst = std::max(worst, d);
+        darker += d > 0.5f;
+      }
+      std::printf("%s: %s darker than pcf by more than 0.5 on %zu of %zu penumbra pixels (at most %.3f)\n", view,
+                  kMethodNames[int(methods[m].method)].c_str(), darker, pixels, worst);
+      ASSERT_GT(pixels, std::size_t(kW * kH / 100)) << view;
+      EXPECT_EQ(darker, 0u) << view << " " << kMethodNames[int(methods[m].method)];
+    }
+  }
+}
+
+// Light leaking (shadow_metrics.h's light_leak: pixels the soft truth has in full shadow lit
+// above 0.1), VSM and ESM at their defaults: each lights less than half of them on each view.
+// Not derived: a regression bound with a wide margin (llvmpipe: ESM at most 37 %, on the aisle,
+// from its contact leaks; VSM at most 15 %). What it catches is a lookup that lost the
+// receiver's depth: ESM's exp(l - q) without c, or VSM's second moment stored as z (a variance of
+// z (1 - z)), light nearly everything.
+TEST_F(ShadowsGl, VsmAndEsmLeakIntoLessThanHalfOfTheFullShadow) {
+  const std::vector<ShadowSettings> methods = {{.method = ShadowMethod::Vsm}, {.method = ShadowMethod::Esm}};
+  for (const char* view : {"overview", "aisle", "corner"}) {
+    const PenumbraView p = penumbra_view(view, methods);
+    for (std::size_t m = 0; m < methods.size(); ++m) {
+      const LightLeak leak = light_leak(p.v[m], p.truth, &p.exclude);
+      std::printf("%s: %s lights %zu of %zu pixels in full shadow above 0.1\n", view,
+                  kMethodNames[int(methods[m].method)].c_str(), leak.leaking, leak.full_shadow);
+      ASSERT_GT(leak.full_shadow, std::size_t(1000)) << view;
+      EXPECT_LT(2 * leak.leaking, leak.full_shadow) << view << " " << kMethodNames[int(methods[m].method)];
+    }
+  }
+}
+// [/penumbra-gl]
 
 // A receiver the sun grazes (10 degrees over the floor): compared with its own depth it
 // shadows itself in stripes (acne) without bias; with the default bias, no lit pixel of the
@@ -261,28 +362,28 @@ ShadowLeak shadow_leak(const ImageF& v, const ImageF& truth, const std::vector<b
 }  // namespace
 
 // VSM's light bleeding in the atrium (arches over columns over the floor: occluders at several
-// depths over one receiver), and P_min cutting it: fewer of the truly shadowed pixels receive
-// more than 10 % of the light with P_min 0.6 than with none (the unit test
-// OverlappingOccludersBleedAndPminRemovesIt has the mechanism). And what it keeps: P_min maps
+// depths over one receiver), and P_min cutting it: fewer of the pixels in full shadow
+// (shadow_metrics.h's light_leak: the soft truth at 0) receive more than 10 % of the light with
+// P_min 0.6 than with none (the unit test OverlappingOccludersBleedAndPminRemovesIt has the
+// mechanism). And what it keeps: P_min maps
 // Chebyshev's [P_min, 1] onto [0, 1], so a pixel whose bound is p without it gets
 // clamp((p - P) / (1 - P)) >= p - (1 - p) P / (1 - P) with it: it darkens only what was not
 // fully lit, in proportion to what was missing (a pixel at p = 1 keeps 1). Asserted at every
 // pixel (1e-4: the float rounding of the two expressions); P_min subtracted without its
 // rescale darkens a pixel at p near 1 by P, and fails it.
 TEST_F(ShadowsGl, VsmBleedsLightAndPminReducesIt) {
-  // Every shadowed pixel counts, edges too: bleeding is strongest next to the occluders' edges.
+  // Every pixel in full shadow counts, edges too: bleeding is strongest next to the occluders' edges.
   const FrameCamera cam = world->camera("overview");
   const ImageF truth = world->truth(cam);
   const ShadowSettings none{.method = ShadowMethod::Vsm, .p_min = 0.f}, cut{.method = ShadowMethod::Vsm, .p_min = 0.6f};
   const ImageF v0 = world->visibility(cam, none);
-  std::vector<bool> exclude(std::size_t(kW) * kH, false);
-  exclude_raster_mask(v0, exclude);
+  const std::vector<bool> exclude = outside_method_mask(v0);
   const ImageF v1 = world->visibility(cam, cut);
-  const ShadowLeak before = shadow_leak(v0, truth, exclude, 0.1f);
-  const ShadowLeak after = shadow_leak(v1, truth, exclude, 0.1f);
-  std::printf("vsm bleeding: %zu of %zu shadowed pixels lit > 0.1 without P_min, %zu with P_min 0.6\n", before.leaking,
-              before.shadowed, after.leaking);
-  ASSERT_GT(before.shadowed, std::size_t(1000));
+  const LightLeak before = light_leak(v0, truth, &exclude);
+  const LightLeak after = light_leak(v1, truth, &exclude);
+  std::printf("vsm bleeding: %zu of %zu pixels in full shadow lit > 0.1 without P_min, %zu with P_min 0.6\n",
+              before.leaking, before.full_shadow, after.leaking);
+  ASSERT_GT(before.full_shadow, std::size_t(1000));
   EXPECT_GT(before.leaking, std::size_t(0));   // the bleeding is there to remove
   EXPECT_LT(after.leaking, before.leaking);
   const float ratio = cut.p_min / (1.f - cut.p_min);
@@ -1161,8 +1262,8 @@ TEST_F(ShadowsGl, CascadesMatchTheHardTruthOutsideTheEdgeBand) {
 // fewer of those pixels than VSM without P_min, on every view (not by much: its lookup has no
 // receiver plane, so a tilted receiver's own depths in the footprint light it too). In 16 bits it
 // is not claimed (on llvmpipe it leaks on more than VSM: the moment bias, 100 times larger, lets
-// light through). Both stay within the penumbra budget of
-// FilteredMethodsAreWithinThePenumbraBudgetOfTheSoftTruth.
+// light through). Both stay within the penumbra budget: below the fraction of pixels in
+// penumbra, what a method wrong by the whole amount on every penumbra pixel would score.
 TEST_F(ShadowsGl, MomentShadowMapsLeakLessThanVsm) {
   for (const char* view : {"overview", "aisle", "corner"}) {
     const FrameCamera cam = world->camera(view);
@@ -1171,19 +1272,14 @@ TEST_F(ShadowsGl, MomentShadowMapsLeakLessThanVsm) {
     std::size_t all_dark = 0;
     auto leak = [&](const ShadowSettings& s, bool only_where_pcf_is_dark) {
       const ImageF v = world->visibility(cam, s);
-      std::vector<bool> exclude(std::size_t(kW) * kH, false);
-      exclude_raster_mask(v, exclude);
+      std::vector<bool> exclude = outside_method_mask(v);
       exclude_raster_mask(pcf, exclude);
-      std::size_t dark = 0, leaking = 0;
-      for (int y = 0; y < kH; ++y)
-        for (int x = 0; x < kW; ++x) {
-          if (truth.at(x, y, 2) < 0.5f || truth.at(x, y, 1) > 0.f || exclude[std::size_t(y) * kW + x]) continue;
-          if (only_where_pcf_is_dark && pcf.at(x, y, 0) > 0.f) continue;
-          ++dark;
-          leaking += v.at(x, y, 0) > 0.1f;
-        }
-      all_dark = dark;
-      return leaking;
+      if (only_where_pcf_is_dark)
+        for (std::size_t i = 0; i < exclude.size(); ++i)
+          exclude[i] = exclude[i] || pcf.data[i * std::size_t(pcf.channels)] > 0.f;
+      const LightLeak l = light_leak(v, truth, &exclude);
+      all_dark = l.full_shadow;
+      return l.leaking;
     };
     std::printf("%s, lit > 0.1 in full shadow:", view);
     for (bool inner : {false, true}) {
