@@ -80,7 +80,7 @@ lightpass_image_test(10_frame.window_keeps_its_scene_when_the_new_one_fails
 # known to the pixel, the exact fragment count and the tonemap order at a bright edge.
 lightpass_gtests(10_msaa gl lightpass_10_frame unit/test_10_msaa_gl.cpp)
 # The whole frame: a size change mid-run, and each stage off and on again.
-lightpass_gtests(10_whole gl lightpass_10_frame unit/test_10_whole_gl.cpp)
+lightpass_gtests(10_whole gl lightpass_10_frame unit/test_10_whole_gl.cpp unit/test_10_stages_gl.cpp)
 # The program with --msaa 4: the street is chapter 03's frame except at its edges, where the
 # samples are averaged (a mean difference of a few steps over the image, and more than none).
 lightpass_image_test(10_frame.msaa_4_is_chapter_03s_street_with_resolved_edges "MSAA 4 samples" ${CMAKE_BINARY_DIR}/out/10_msaa.png

@@ -78,6 +78,11 @@ class WholeFrame {
   const ch05::RadianceTarget* radiance() const { return radiance_.get(); }
   ch05::DeferredRadiance& source() { return *source_; }
   const ch05::HdrPipeline& hdr() const { return hdr_; }  // its eye's state: the exposure it tonemapped with
+  // The stages the last render() ran (nullptr when its plan left one out): the tests compare
+  // each stage's own output with its chapter's (test_10_stages_gl.cpp).
+  const ch06::ShadowStage* shadow_stage() const { return shadows_.get(); }
+  const ch08::GiStage* gi_stage() const { return gi_.get(); }
+  const ch09::ClusteredLights* clustered_lights() const { return clustered_.get(); }
 
  private:
   void build(const std::vector<PlannedStage>& p);  // the radiance source with the stages the plan runs
