@@ -6,8 +6,8 @@
 // reconstruction (msm), or PCF over the penumbra a
 // blocker search finds for the sun as a disk (pcss); or with no map, by the sun's shadow volumes
 // counted in the stencil (volumes). The sun casts, and a spot light the scene marks (a
-// perspective map, hard or PCF); the
-// local lights keep chapter 03's path (visibility 1). The ray-traced truth that the tests
+// perspective map, hard or PCF), and the point lights it marks (a cube map each; --points all:
+// every point light); the other local lights keep chapter 03's path (visibility 1). The ray-traced truth that the tests
 // and the sweep measure against is shadow_truth.h.
 #include <algorithm>
 #include <chrono>
@@ -81,6 +81,10 @@ const CliSpec kCli{
               {"band", "cascades: the blend band, a fraction of each cascade's depth range", 0.1, 0, 0.5, false},
               {"shadow-distance", "cascades: metres of view depth they cover (0: the far plane or the scene's "
                                   "farthest corner)", 0, 0, 100000, false},
+              choice_knob("points", "which point lights cast, each from a cube map: those the scene marks "
+                                    "(casts_shadows; the atrium marks none), or every point light (up to 8)",
+                          {"marked", "all"}),
+              {"cube", "point lights: a cube map face's width and height in texels", 512, 16, 4096, true},
               {"sun", "multiplies directional lights, times what the scene asks for (the atrium: 4, its 0.4 lux "
                       "sun beside eight point lights shows the shadows only faintly at 1; other scenes: 1)", 1, 0, 1000,
                false},
@@ -107,6 +111,8 @@ std::vector<Shot> atrium_shots() {
   shots.push_back({"aisle", "pcss", {}, {}, kTexturedFloor});  // contact hardening: the column bases' sharp shadows
   shots.push_back({"corner", "pcf", {{"show", kVisibility}}});
   shots.push_back({"overview", "hard", {{"show", kMap}}});
+  // The eight point lights casting from cube maps (the atrium marks none: --points all).
+  shots.push_back({"corner", "pcf", {{"points", 1}}, {}, kTexturedFloor});
   return shots;
 }
 // [/references]
@@ -185,7 +191,9 @@ int main(int argc, char** argv) {
                                     .cascade_lambda = float(f.knob("lambda")),
                                     .cascade_distance = float(f.knob("shadow-distance")),
                                     .cascade_band = float(f.knob("band")),
-                                    .cascade_snap = f.knob_int("snap") != 0};
+                                    .cascade_snap = f.knob_int("snap") != 0,
+                                    .all_point_lights = f.knob_int("points") == 1,
+                                    .cube_size = f.knob_int("cube")};
       const int show = f.knob_int("show");
       const bool cascadable = settings.method == ShadowMethod::Hard || settings.method == ShadowMethod::Pcf ||
                               settings.method == ShadowMethod::PcfHardware || settings.method == ShadowMethod::Pcss;

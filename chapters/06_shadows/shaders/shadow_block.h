@@ -4,6 +4,7 @@
 // fills it and asserts the std140 offsets (vec4 and mat4 on 16 bytes, floats between).
 #define SHADOW_MAX_POISSON_TAPS 64
 #define SHADOW_MAX_CASCADES 4
+#define SHADOW_MAX_POINT_LIGHTS 8
 struct ShadowParameters {
   mat4 matrix;           // world to the sun map's clip space (orthographic)
   float texel_metres;    // one map texel, metres
@@ -42,5 +43,13 @@ struct ShadowParameters {
   float cascade_band;    // the blend band: the last fraction of a cascade's depth range
   float cascade_near;    // the camera's near plane: where the first cascade begins
   float unused2;
-};
 // [/shadow-block-cascades]
+// [shadow-block-points]
+  // Point lights' cube maps (cube_math.h): layer i of the cube map array is point light i's.
+  vec4 point_light[SHADOW_MAX_POINT_LIGHTS];  // xyz: its position; w: its faces' far plane, metres
+                                              // (0: no map this frame, its reach is off screen)
+  float point_count;     // lights with a cube map (the first point_count entries)
+  float point_map_size;  // texels a face side
+  float point_unused0, point_unused1;
+// [/shadow-block-points]
+};
