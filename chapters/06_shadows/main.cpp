@@ -112,7 +112,7 @@ std::vector<Shot> atrium_shots() {
   shots.push_back({"corner", "pcf", {{"show", kVisibility}}});
   shots.push_back({"overview", "hard", {{"show", kMap}}});
   // The eight point lights casting from cube maps (the atrium marks none: --points all).
-  shots.push_back({"corner", "pcf", {{"points", 1}}, {}, kTexturedFloor});
+  shots.push_back({"overview", "pcf", {{"points", 1}}, {}, kTexturedFloor});
   return shots;
 }
 // [/references]
@@ -257,6 +257,10 @@ int main(int argc, char** argv) {
         out << "sun shadows, " << f.mode << ": map " << settings.map_size << "x" << settings.map_size << " ("
             << shadows.allocated_bytes() / 1024 << " KiB), " << shadows.frustum().texel_world(settings.map_size) * 100.f
             << " cm per texel; frame took " << ms << " ms (wall clock, " << app.context().renderer() << ")\n";
+        if (!shadows.point_lights().empty())
+          out << "  point lights: " << shadows.point_lights().size() << " cube maps of 6 x " << settings.cube_size << "x"
+              << settings.cube_size << ", " << std::count(shadows.points_mapped().begin(), shadows.points_mapped().end(), true)
+              << " drawn this frame\n";
         const auto& cascades = shadows.cascades();
         for (std::size_t i = 0; i < cascades.size(); ++i)
           out << "  cascade " << i << ": view depth " << shadows.cascade_splits()[i] << " to "
