@@ -4,7 +4,6 @@
 // fills it and asserts the std140 offsets (vec4 and mat4 on 16 bytes, floats between).
 #define SHADOW_MAX_POISSON_TAPS 64
 #define SHADOW_MAX_CASCADES 4
-#define SHADOW_MAX_POINT_LIGHTS 8
 struct ShadowParameters {
   mat4 matrix;           // world to the sun map's clip space (orthographic)
   float texel_metres;    // one map texel, metres
@@ -45,6 +44,7 @@ struct ShadowParameters {
   float unused2;
 // [/shadow-block-cascades]
 // [shadow-block-points]
+#define SHADOW_MAX_POINT_LIGHTS 8
   // Point lights' cube maps (cube_math.h): layer i of the cube map array is point light i's.
   vec4 point_light[SHADOW_MAX_POINT_LIGHTS];  // xyz: its position; w: its faces' far plane, metres
                                               // (0: no map this frame, its reach is off screen)
