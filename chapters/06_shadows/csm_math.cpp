@@ -42,7 +42,9 @@ float csm_visibility(const std::vector<float>& basis, float d, int terms) {
     // sin(c (z - d)) from the filtered sin(c z) and cos(c z).
     sum += 2.f * (basis[std::size_t(2 * k - 2)] * std::cos(c * d) - basis[std::size_t(2 * k - 1)] * std::sin(c * d)) / c;
   }
-  return std::clamp(sum, 0.f, 1.f);
+  // Doubled: the series reads 1/2 on the occluder itself (x = 0), and a receiver there is lit;
+  // the step moves behind the occluder to where the series reaches 1/4.
+  return std::clamp(2.f * sum, 0.f, 1.f);
 }
 // [/csm-cpp]
 

@@ -21,7 +21,8 @@ float csm_coefficient(int k);           // c_k = (2k - 1) pi, k from 1
 float csm_step(float x, int terms);
 // The stored values of depth z: sin(c_k z), cos(c_k z) for k = 1..terms, interleaved.
 std::vector<float> csm_basis(float z, int terms);
-// Lit fraction from (filtered) basis values and the receiver's depth d, clamped to [0, 1].
+// Lit fraction from (filtered) basis values and the receiver's depth d: twice the series,
+// clamped to [0, 1] (a receiver on its occluder, where the series reads 1/2, is lit).
 float csm_visibility(const std::vector<float>& basis, float d, int terms);
 // The series' squared L2 distance from the step over one period, Parseval's tail:
 // sum over k > terms of (2 / c_k)^2.

@@ -57,7 +57,7 @@ const CliSpec kCli{
     .summary = "Shadows from the sun in the deferred frame: a depth map from a fitted orthographic frustum, looked up "
                "with one comparison, PCF, the hardware comparison sampler, VSM, ESM, four moments (MSM) or PCSS; or shadow volumes.",
     .default_scene = "assets/atrium/atrium.gltf",
-    .modes = {"pcf", "hard", "pcf-hardware", "vsm", "esm", "volumes", "pcss", "msm"},  // the chapter's recommendation first
+    .modes = {"pcf", "hard", "pcf-hardware", "vsm", "esm", "volumes", "pcss", "msm", "csm-fourier"},  // the chapter's recommendation first
     .knobs = {{"map", "shadow map width and height in texels (8192: 1.3 GiB with vsm or esm)", 1024, 16, 8192, true},
               {"kernel", "pcf: the k x k grid; vsm, esm: the box filter's width (odd)", 3, 1, 31, true},
               {"taps", "pcf: 0 for the k x k grid, or this many taps of a Poisson disk k texels across, rotated per "
@@ -81,6 +81,8 @@ const CliSpec kCli{
               {"band", "cascades: the blend band, a fraction of each cascade's depth range", 0.1, 0, 0.5, false},
               {"shadow-distance", "cascades: metres of view depth they cover (0: the far plane or the scene's "
                                   "farthest corner)", 0, 0, 100000, false},
+              {"terms", "csm-fourier: the terms of the step's Fourier series (two channels of the map each)", 4, 1,
+               kMaxCsmTerms, true},
               choice_knob("points", "which point lights cast, each from a cube map: those the scene marks "
                                     "(casts_shadows; the atrium marks none), or every point light (up to 8)",
                           {"marked", "all"}),
@@ -193,7 +195,8 @@ int main(int argc, char** argv) {
                                     .cascade_band = float(f.knob("band")),
                                     .cascade_snap = f.knob_int("snap") != 0,
                                     .all_point_lights = f.knob_int("points") == 1,
-                                    .cube_size = f.knob_int("cube")};
+                                    .cube_size = f.knob_int("cube"),
+                                    .csm_terms = f.knob_int("terms")};
       const int show = f.knob_int("show");
       const bool cascadable = settings.method == ShadowMethod::Hard || settings.method == ShadowMethod::Pcf ||
                               settings.method == ShadowMethod::PcfHardware || settings.method == ShadowMethod::Pcss;

@@ -30,7 +30,8 @@ static_assert(SHADOW_MAX_POINT_LIGHTS == kMaxPointShadows);
 namespace {
 // The stage's texture units, from the first the frame gave it (shadow_visibility.glsl reads
 // SHADOW_UNIT + these), and its one uniform block.
-enum Unit : int { kDepthUnit, kCompareUnit, kMomentsUnit, kFilterInputUnit, kVolumeUnit, kSpotUnit, kPointUnit, kUnitCount };
+enum Unit : int { kDepthUnit, kCompareUnit, kMomentsUnit, kFilterInputUnit, kVolumeUnit, kSpotUnit, kPointUnit, kCsmUnit,
+                  kUnitCount };
 }  // namespace
 
 ShadowMethod method_from_name(const std::string& name) {
@@ -124,6 +125,7 @@ ShadowStage::ShadowStage(const SceneGpu& scene, const Light& sun) : scene_(scene
   }
   block_ = gl::make_buffer(nullptr, sizeof(ShadowParameters), GL_DYNAMIC_STORAGE_BIT);
   glTextureStorage3D(point_maps_.id(), 1, GL_DEPTH_COMPONENT32F, 1, 1, 6);  // until a point light casts
+  glTextureStorage3D(csm_maps_.id(), 1, GL_RGBA32F, 1, 1, 1);               // until csm-fourier runs
 }
 
 void ShadowStage::reload_shaders() {
@@ -170,6 +172,8 @@ void ShadowStage::bind_hook_resources() const {
   glBindSampler(at.unit(kSpotUnit), nearest_.id());
   glBindTextureUnit(at.unit(kPointUnit), point_maps_.id());  // a 1-texel stand-in without point lights
   glBindSampler(at.unit(kPointUnit), nearest_.id());
+  glBindTextureUnit(at.unit(kCsmUnit), csm_maps_.id());
+  glBindSampler(at.unit(kCsmUnit), linear_.id());
 }
 // [/bind-hook]
 
@@ -189,6 +193,9 @@ void ShadowStage::allocate() {
   if (cascades < 1 || cascades > kMaxCascades)
     throw Error("shadow stage: between 1 and " + std::to_string(kMaxCascades) + " cascades (got " +
                 std::to_string(cascades) + ")");
+  if (cascades > 1 && settings_.method == ShadowMethod::CsmFourier)
+    throw Error("shadow stage: cascades work with the methods hard, pcf, pcf-hardware and pcss, not csm-fourier "
+                "(its filtered map is one layer)");
   if (cascades > 1 && filtered)
     throw Error("shadow stage: cascades work with the methods hard, pcf, pcf-hardware and pcss, not " +
                 kMethodNames[int(settings_.method)] + " (its filtered map is one layer)");
@@ -243,7 +250,9 @@ std::size_t ShadowStage::allocated_bytes() const {
   const std::size_t points = point_lights_.empty() ? 0  // the point lights' cube maps
                              : std::size_t(point_size_) * std::size_t(point_size_) * 6 * std::size_t(point_layers_) * 4;
   const std::size_t filtered = 2 * std::size_t(allocated_channels_) * std::size_t(allocated_bits_ / 8);  // map + scratch
-  return texels * (4 + (allocated_filtered_ ? filtered : 0)) + spot + points;
+  const std::size_t csm = settings_.method == ShadowMethod::CsmFourier  // the basis and its scratch, RGBA32F layers
+                              ? 2 * std::size_t(csm_size_) * std::size_t(csm_size_) * std::size_t(csm_layers_) * 16 : 0;
+  return texels * (4 + (allocated_filtered_ ? filtered : 0)) + spot + points + csm;
 }
 
 // [shadow-stage]
@@ -301,6 +310,8 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
   }
   // 1c. The point lights' cube maps (point_shadows.cpp).
   draw_point_maps(frame.camera(), metrics);
+  // 2'. Convolution shadow maps: the basis of the step's series, filtered (csm_stage.cpp).
+  if (settings_.method == ShadowMethod::CsmFourier) filter_csm(metrics);
   if (allocated_filtered_) {
     // 2. VSM / ESM: what the method filters, pre-filtered by a separable box.
     auto pass = timed(metrics, "shadow map: pre-filter");
@@ -377,6 +388,7 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
   block.cascade_near = splits_.empty() ? 0.f : splits_.front();
   block.point_count = float(point_lights_.size());
   block.point_map_size = float(point_size_);
+  block.csm_terms = float(settings_.csm_terms);
   for (std::size_t i = 0; i < point_lights_.size(); ++i)
     block.point_light[i] = glm::vec4(scene.lights[std::size_t(point_lights_[i])].position, points_mapped_[i] ? point_far_[i] : 0.f);
   for (std::size_t i = 0; i < cascades_.size(); ++i) {

@@ -14,6 +14,7 @@
 
 #include "chapters/02_gbuffer/deferred.h"
 #include "chapters/03_light_volumes/deferred_frame.h"
+#include "chapters/06_shadows/csm_math.h"
 #include "chapters/06_shadows/cube_math.h"
 #include "chapters/06_shadows/shadow_math.h"
 #include "chapters/06_shadows/shadow_volumes.h"
@@ -27,8 +28,11 @@ namespace lp::ch06 {
 // Pcss: the sun as a disk (sun_angular_radius), PCF over the penumbra a blocker search
 // estimates (shadow_math.h [pcss]). Msm: four filtered moments, the Hamburger reconstruction
 // (shadow_math.h [msm]).
-enum class ShadowMethod { Hard, Pcf, PcfHardware, Vsm, Esm, Volumes, Pcss, Msm };
-inline const std::vector<std::string> kMethodNames = {"hard", "pcf", "pcf-hardware", "vsm", "esm", "volumes", "pcss", "msm"};
+// CsmFourier: convolution shadow maps, the step's Fourier series of csm_terms terms, filtered
+// (csm_math.h [csm]).
+enum class ShadowMethod { Hard, Pcf, PcfHardware, Vsm, Esm, Volumes, Pcss, Msm, CsmFourier };
+inline const std::vector<std::string> kMethodNames = {"hard", "pcf", "pcf-hardware", "vsm", "esm", "volumes", "pcss", "msm",
+                                                      "csm-fourier"};
 ShadowMethod method_from_name(const std::string& name);  // throws Error for an unknown one
 
 struct ShadowSettings {
@@ -66,6 +70,7 @@ struct ShadowSettings {
   bool all_point_lights = false;
   int cube_size = 512;   // texels a face side
   int point_shown = 0;   // ShadowPicture::PointVisibility: which of point_lights()
+  int csm_terms = 4;     // csm-fourier: the series' terms, 1 to kMaxCsmTerms (two channels each)
 };
 
 // What the last frame's shadow volumes were (method Volumes).
@@ -151,6 +156,12 @@ class ShadowStage : public ch03::FrameStage {
   gl::Texture point_maps_{GL_TEXTURE_CUBE_MAP_ARRAY};
   std::vector<gl::Framebuffer> point_fbos_;
   int point_size_ = 0, point_layers_ = 0;
+  // Convolution shadow maps: the filtered basis, four values a layer (csm_math.h), and the
+  // horizontal pass's output; one framebuffer each with a colour attachment per layer.
+  gl::Texture csm_maps_{GL_TEXTURE_2D_ARRAY}, csm_scratch_{GL_TEXTURE_2D_ARRAY};
+  gl::Framebuffer csm_fbo_, csm_scratch_fbo_;
+  int csm_size_ = 0, csm_layers_ = 0;
+  void filter_csm(PassMetrics* metrics);  // csm_stage.cpp
   gl::Texture depth_{GL_TEXTURE_2D}, moments_{GL_TEXTURE_2D}, scratch_{GL_TEXTURE_2D};
   gl::Framebuffer depth_fbo_, moments_fbo_, scratch_fbo_;
   gl::Sampler nearest_, compare_, linear_;

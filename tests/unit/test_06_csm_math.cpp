@@ -75,8 +75,8 @@ TEST(CsmMath, TheSeriesRingsNearTheEdgeWhateverTheCount) {
 }
 
 // The map's values may be filtered: the reconstruction is linear in them, so the lookup of the
-// averaged basis is the average of the lookups (before the clamp), and with one depth it is the
-// truncated step itself.
+// averaged basis is the average of the lookups (before the doubling and the clamp), and with one
+// depth it is the truncated step itself.
 TEST(CsmMath, FilteringTheBasisAveragesTheReconstructedSteps) {
   const int terms = 4;
   const std::vector<float> depths = {0.2f, 0.35f, 0.8f};
@@ -89,8 +89,9 @@ TEST(CsmMath, FilteringTheBasisAveragesTheReconstructedSteps) {
     float expected = 0.f;
     for (float z : depths) expected += csm_step(z - d, terms) / float(depths.size());
     // Float sines and sums: a few ulps of terms of order 1.
-    EXPECT_NEAR(csm_visibility(average, d, terms), std::clamp(expected, 0.f, 1.f), 1e-5f) << d;
-    EXPECT_NEAR(csm_visibility(csm_basis(0.5f, terms), d, terms), std::clamp(csm_step(0.5f - d, terms), 0.f, 1.f), 1e-5f) << d;
+    EXPECT_NEAR(csm_visibility(average, d, terms), std::clamp(2.f * expected, 0.f, 1.f), 2e-5f) << d;
+    EXPECT_NEAR(csm_visibility(csm_basis(0.5f, terms), d, terms), std::clamp(2.f * csm_step(0.5f - d, terms), 0.f, 1.f),
+                2e-5f) << d;
   }
   EXPECT_THROW(csm_step(0.f, 0), lp::Error);
   EXPECT_THROW(csm_step(0.f, kMaxCsmTerms + 1), lp::Error);

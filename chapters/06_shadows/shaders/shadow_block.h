@@ -50,6 +50,7 @@ struct ShadowParameters {
                                               // (0: no map this frame, its reach is off screen)
   float point_count;     // lights with a cube map (the first point_count entries)
   float point_map_size;  // texels a face side
-  float point_unused0, point_unused1;
+  float csm_terms;       // convolution shadow maps: the series' terms (csm_math.h [csm])
+  float point_unused1;
 // [/shadow-block-points]
 };
