@@ -6,7 +6,7 @@ lightpass_gtests(06_shadows gl lightpass_06_shadows unit/test_06_shadows_gl.cpp 
 # The program: reference images per method (tests/reference/06_shadows/, made on llvmpipe
 # with --check --update-references), what a headless run reports, and bad input.
 set(P06 $<TARGET_FILE:06_shadows>)
-foreach(mode hard pcf pcf-hardware vsm esm volumes pcss msm)
+foreach(mode hard pcf pcf-hardware vsm esm volumes pcss msm csm-fourier)
   lightpass_program_test(06_shadows.reference.${mode} 0 "references match" ${P06} --check --mode ${mode} --out ${CHECK_OUT}/06_shadows)
 endforeach()
 lightpass_program_test(06_shadows.headless_reports_the_map 0 "sun shadows, pcf: map 512x512 \\(1024 KiB\\), [0-9.]+ cm per texel"

@@ -9,7 +9,7 @@
 namespace lp::ch06 {
 
 // [csm-stage]
-void ShadowStage::filter_csm(PassMetrics* metrics) {
+void ShadowStage::filter_csm(PassMetrics* metrics, GLuint depth_unit, GLuint input_unit) {
   const int n = settings_.map_size, terms = settings_.csm_terms;
   if (terms < 1 || terms > kMaxCsmTerms)
     throw Error("shadow stage: csm_terms must be between 1 and " + std::to_string(kMaxCsmTerms) + " (got " +
@@ -37,12 +37,14 @@ void ShadowStage::filter_csm(PassMetrics* metrics) {
   p.use();
   p.set("u_radius", settings_.kernel / 2);
   p.set("u_terms", terms);
-  // This pass's own units (HACKING: a stage's passes may use any unit; the hooks' are bound
-  // again before each light pass).
-  glBindTextureUnit(0, depth_.id());
-  glBindSampler(0, 0);
-  glBindTextureUnit(1, csm_scratch_.id());
-  glBindSampler(1, 0);
+  // On the stage's own units, never the frame's (the G-buffer's stay bound for the lights); the
+  // hooks' textures are bound again on them before each light pass.
+  glUniform1i(p.location("u_depth"), int(depth_unit));
+  glUniform1i(p.location("u_input"), int(input_unit));
+  glBindTextureUnit(depth_unit, depth_.id());
+  glBindSampler(depth_unit, 0);
+  glBindTextureUnit(input_unit, csm_scratch_.id());
+  glBindSampler(input_unit, 0);
   for (int step = 0; step < 2; ++step) {
     // 1. Horizontal, from the depths into the scratch array; 2. vertical, from it into the maps.
     glBindFramebuffer(GL_FRAMEBUFFER, step == 0 ? csm_scratch_fbo_.id() : csm_fbo_.id());

@@ -311,7 +311,8 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
   // 1c. The point lights' cube maps (point_shadows.cpp).
   draw_point_maps(frame.camera(), metrics);
   // 2'. Convolution shadow maps: the basis of the step's series, filtered (csm_stage.cpp).
-  if (settings_.method == ShadowMethod::CsmFourier) filter_csm(metrics);
+  if (settings_.method == ShadowMethod::CsmFourier)
+    filter_csm(metrics, slots().unit(kFilterInputUnit), slots().unit(kCsmUnit));
   if (allocated_filtered_) {
     // 2. VSM / ESM: what the method filters, pre-filtered by a separable box.
     auto pass = timed(metrics, "shadow map: pre-filter");

@@ -161,7 +161,7 @@ class ShadowStage : public ch03::FrameStage {
   gl::Texture csm_maps_{GL_TEXTURE_2D_ARRAY}, csm_scratch_{GL_TEXTURE_2D_ARRAY};
   gl::Framebuffer csm_fbo_, csm_scratch_fbo_;
   int csm_size_ = 0, csm_layers_ = 0;
-  void filter_csm(PassMetrics* metrics);  // csm_stage.cpp
+  void filter_csm(PassMetrics* metrics, GLuint depth_unit, GLuint input_unit);  // csm_stage.cpp
   gl::Texture depth_{GL_TEXTURE_2D}, moments_{GL_TEXTURE_2D}, scratch_{GL_TEXTURE_2D};
   gl::Framebuffer depth_fbo_, moments_fbo_, scratch_fbo_;
   gl::Sampler nearest_, compare_, linear_;

@@ -4,8 +4,8 @@
 // sin(c_k z), cos(c_k z), k = 1..u_terms, four to a layer of the target array; the second
 // averages the first's layers. The basis is linear in what the lookup reconstructs, so the
 // average of the basis is the basis of the average shadow test.
-layout(binding = 0) uniform sampler2D u_depth;
-layout(binding = 1) uniform sampler2DArray u_input;
+uniform sampler2D u_depth;       // on the stage's own units (ShadowStage::filter_csm)
+uniform sampler2DArray u_input;
 uniform ivec2 u_step;   // (1, 0) or (0, 1)
 uniform int u_radius;
 uniform int u_terms;    // 1 .. CSM_MAX_TERMS
