@@ -30,7 +30,7 @@ void ShadowStage::filter_csm(PassMetrics* metrics, GLuint depth_unit, GLuint inp
     glNamedFramebufferDrawBuffers(csm_scratch_fbo_.id(), GLsizei(layers), buffers.data());
     csm_size_ = n, csm_layers_ = layers;
   }
-  auto pass = timed(metrics, "shadow map: convolution basis, pre-filter");
+  auto pass = timed(metrics, "shadow map: pre-filter");  // the sweep's filter_ms column, as VSM's
   const ShaderProgram& p = program("02_gbuffer/shaders/fullscreen.vert", "06_shadows/shaders/csm_filter.frag", {});
   glDisable(GL_DEPTH_TEST);
   glDepthMask(GL_FALSE);
