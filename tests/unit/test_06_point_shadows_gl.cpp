@@ -16,7 +16,6 @@
 #include "chapters/06_shadows/shadow_truth.h"
 #include "common/paths.h"
 #include "common/target.h"
-#include "tests/unit/book_data.h"
 #include "tests/unit/gl_environment.h"
 
 using namespace lp;
