@@ -1,12 +1,13 @@
 # Chapter 06: shadows. Unit tests of the maths (no OpenGL), GPU tests (the methods against
 # the ray-traced truth, the hard cases), and the program: references per method, bad input.
-lightpass_gtests(06_shadows unit lightpass_06_shadows unit/test_06_shadow_math.cpp unit/test_06_shadow_metrics.cpp)
-lightpass_gtests(06_shadows gl lightpass_06_shadows unit/test_06_shadows_gl.cpp)
+lightpass_gtests(06_shadows unit lightpass_06_shadows unit/test_06_shadow_math.cpp unit/test_06_shadow_metrics.cpp
+                 unit/test_06_cube_math.cpp unit/test_06_csm_math.cpp)
+lightpass_gtests(06_shadows gl lightpass_06_shadows unit/test_06_shadows_gl.cpp unit/test_06_point_shadows_gl.cpp unit/test_06_csm_gl.cpp)
 
 # The program: reference images per method (tests/reference/06_shadows/, made on llvmpipe
 # with --check --update-references), what a headless run reports, and bad input.
 set(P06 $<TARGET_FILE:06_shadows>)
-foreach(mode hard pcf pcf-hardware vsm esm volumes pcss msm)
+foreach(mode hard pcf pcf-hardware vsm esm volumes pcss msm csm-fourier)
   lightpass_program_test(06_shadows.reference.${mode} 0 "references match" ${P06} --check --mode ${mode} --out ${CHECK_OUT}/06_shadows)
 endforeach()
 lightpass_program_test(06_shadows.headless_reports_the_map 0 "sun shadows, pcf: map 512x512 \\(1024 KiB\\), [0-9.]+ cm per texel"
@@ -28,6 +29,11 @@ lightpass_program_test(06_shadows.bad_cascades_with_vsm 2 "--cascades 4 needs th
 lightpass_program_test(06_shadows.bad_cascades_five 2 "--cascades must be between 1 and 4, got 5" ${P06} --cascades 5)
 lightpass_program_test(06_shadows.headless_reports_the_cascades 0 "cascade 3: view depth [0-9.]+ to [0-9.]+ m, [0-9.]+ cm per texel"
   ${P06} --headless --size 64x36 --mode hard --cascades 4 --out ${CMAKE_BINARY_DIR}/out/06_cascades.png)
+# Point lights: --points all gives each of the atrium's eight a cube map, and the report says so.
+lightpass_program_test(06_shadows.headless_reports_the_cube_maps 0 "point lights: 8 cube maps of 6 x 64x64, 8 drawn this frame"
+  ${P06} --headless --size 64x36 --points all --cube 64 --out ${CMAKE_BINARY_DIR}/out/06_points.png)
+lightpass_program_test(06_shadows.bad_cube 2 "--cube must be between 16 and 4096, got 8" ${P06} --cube 8)
+lightpass_program_test(06_shadows.bad_points 2 "--points must be one of: marked all; got 'some'" ${P06} --points some)
 # The sun is scaled only where the scene asks (the atrium's extras: 4): a model without lights,
 # lit by the default rig, keeps its light and does not clip to white (at 4 times, its lit faces do).
 set(P06_OUT ${CMAKE_BINARY_DIR}/out/06_scenes)

@@ -18,6 +18,8 @@
                       from four (MSM)
 06_light_frustum.svg  the sun's map box in a section of the atrium: across the light fitted to what the view
                       sees, along the light the whole scene's depth (a caster above the view)
+06_cube.svg           a point light's cube map in section (diagrams_06_cube.py)
+06_csm.svg            the shadow test's step and its Fourier series by terms (diagrams_06_csm.py)
 """
 import math
 import sys
@@ -25,6 +27,8 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from svgdraw import BAD, GOOD, GREY, INK, LIGHT, PALE, RAY, Svg, add  # noqa: E402
+from diagrams_06_csm import csm_figure  # noqa: E402
+from diagrams_06_cube import cube_figure  # noqa: E402
 
 DARK = "#444"
 
@@ -424,6 +428,8 @@ def main(out: Path):
     cascades_figure(out)
     snapping_figure(out)
     moments_figure(out)
+    cube_figure(out)
+    csm_figure(out)
 
 
 if __name__ == "__main__":

@@ -6,8 +6,8 @@
 // reconstruction (msm), or PCF over the penumbra a
 // blocker search finds for the sun as a disk (pcss); or with no map, by the sun's shadow volumes
 // counted in the stencil (volumes). The sun casts, and a spot light the scene marks (a
-// perspective map, hard or PCF); the
-// local lights keep chapter 03's path (visibility 1). The ray-traced truth that the tests
+// perspective map, hard or PCF), and the point lights it marks (a cube map each; --points all:
+// every point light); the other local lights keep chapter 03's path (visibility 1). The ray-traced truth that the tests
 // and the sweep measure against is shadow_truth.h.
 #include <algorithm>
 #include <chrono>
@@ -57,7 +57,7 @@ const CliSpec kCli{
     .summary = "Shadows from the sun in the deferred frame: a depth map from a fitted orthographic frustum, looked up "
                "with one comparison, PCF, the hardware comparison sampler, VSM, ESM, four moments (MSM) or PCSS; or shadow volumes.",
     .default_scene = "assets/atrium/atrium.gltf",
-    .modes = {"pcf", "hard", "pcf-hardware", "vsm", "esm", "volumes", "pcss", "msm"},  // the chapter's recommendation first
+    .modes = {"pcf", "hard", "pcf-hardware", "vsm", "esm", "volumes", "pcss", "msm", "csm-fourier"},  // the chapter's recommendation first
     .knobs = {{"map", "shadow map width and height in texels (8192: 1.3 GiB with vsm or esm)", 1024, 16, 8192, true},
               {"kernel", "pcf: the k x k grid; vsm, esm: the box filter's width (odd)", 3, 1, 31, true},
               {"taps", "pcf: 0 for the k x k grid, or this many taps of a Poisson disk k texels across, rotated per "
@@ -81,6 +81,12 @@ const CliSpec kCli{
               {"band", "cascades: the blend band, a fraction of each cascade's depth range", 0.1, 0, 0.5, false},
               {"shadow-distance", "cascades: metres of view depth they cover (0: the far plane or the scene's "
                                   "farthest corner)", 0, 0, 100000, false},
+              {"terms", "csm-fourier: the terms of the step's Fourier series (two channels of the map each)", 4, 1,
+               kMaxCsmTerms, true},
+              choice_knob("points", "which point lights cast, each from a cube map: those the scene marks "
+                                    "(casts_shadows; the atrium marks none), or every point light (up to 8)",
+                          {"marked", "all"}),
+              {"cube", "point lights: a cube map face's width and height in texels", 512, 16, 4096, true},
               {"sun", "multiplies directional lights, times what the scene asks for (the atrium: 4, its 0.4 lux "
                       "sun beside eight point lights shows the shadows only faintly at 1; other scenes: 1)", 1, 0, 1000,
                false},
@@ -107,6 +113,8 @@ std::vector<Shot> atrium_shots() {
   shots.push_back({"aisle", "pcss", {}, {}, kTexturedFloor});  // contact hardening: the column bases' sharp shadows
   shots.push_back({"corner", "pcf", {{"show", kVisibility}}});
   shots.push_back({"overview", "hard", {{"show", kMap}}});
+  // The eight point lights casting from cube maps (the atrium marks none: --points all).
+  shots.push_back({"overview", "pcf", {{"points", 1}}, {}, kTexturedFloor});
   return shots;
 }
 // [/references]
@@ -214,7 +222,10 @@ int main(int argc, char** argv) {
                                     .cascade_lambda = float(f.knob("lambda")),
                                     .cascade_distance = float(f.knob("shadow-distance")),
                                     .cascade_band = float(f.knob("band")),
-                                    .cascade_snap = f.knob_int("snap") != 0};
+                                    .cascade_snap = f.knob_int("snap") != 0,
+                                    .all_point_lights = f.knob_int("points") == 1,
+                                    .cube_size = f.knob_int("cube"),
+                                    .csm_terms = f.knob_int("terms")};
       const int show = f.knob_int("show");
       const bool cascadable = settings.method == ShadowMethod::Hard || settings.method == ShadowMethod::Pcf ||
                               settings.method == ShadowMethod::PcfHardware || settings.method == ShadowMethod::Pcss;
@@ -278,6 +289,10 @@ int main(int argc, char** argv) {
         out << "sun shadows, " << f.mode << ": map " << settings.map_size << "x" << settings.map_size << " ("
             << shadows.allocated_bytes() / 1024 << " KiB), " << shadows.frustum().texel_world(settings.map_size) * 100.f
             << " cm per texel; frame took " << ms << " ms (wall clock, " << app.context().renderer() << ")\n";
+        if (!shadows.point_lights().empty())
+          out << "  point lights: " << shadows.point_lights().size() << " cube maps of 6 x " << settings.cube_size << "x"
+              << settings.cube_size << ", " << std::count(shadows.points_mapped().begin(), shadows.points_mapped().end(), true)
+              << " drawn this frame\n";
         const auto& cascades = shadows.cascades();
         for (std::size_t i = 0; i < cascades.size(); ++i)
           out << "  cascade " << i << ": view depth " << shadows.cascade_splits()[i] << " to "

@@ -21,14 +21,17 @@ static_assert(SHADOW_MAX_POISSON_TAPS == kMaxPoissonTaps);
 static_assert(offsetof(ShadowParameters, view) == 112 && offsetof(ShadowParameters, extent) == 176 &&
               offsetof(ShadowParameters, poisson) == 192 && offsetof(ShadowParameters, spot_position) == 832 &&
               offsetof(ShadowParameters, cascade_matrix) == 864 && offsetof(ShadowParameters, cascade_far) == 1120 &&
-              offsetof(ShadowParameters, cascade_count) == 1184 && sizeof(ShadowParameters) == 1200,
+              offsetof(ShadowParameters, cascade_count) == 1184 && offsetof(ShadowParameters, point_light) == 1200 &&
+              offsetof(ShadowParameters, point_count) == 1328 && sizeof(ShadowParameters) == 1344,
               "std140: vec4 and mat4 members on 16 bytes");
 static_assert(SHADOW_MAX_CASCADES == kMaxCascades);
+static_assert(SHADOW_MAX_POINT_LIGHTS == kMaxPointShadows);
 
 namespace {
 // The stage's texture units, from the first the frame gave it (shadow_visibility.glsl reads
 // SHADOW_UNIT + these), and its one uniform block.
-enum Unit : int { kDepthUnit, kCompareUnit, kMomentsUnit, kFilterInputUnit, kVolumeUnit, kSpotUnit, kUnitCount };
+enum Unit : int { kDepthUnit, kCompareUnit, kMomentsUnit, kFilterInputUnit, kVolumeUnit, kSpotUnit, kPointUnit, kCsmUnit,
+                  kUnitCount };
 }  // namespace
 
 ShadowMethod method_from_name(const std::string& name) {
@@ -82,14 +85,26 @@ int shadowed_sun_index(const Scene& scene) {
   return shadowed_sun(scene) >= 0 ? 0 : -1;
 }
 
+std::vector<int> shadowed_point_lights(const Scene& scene, bool all) {
+  std::vector<int> out;
+  for (std::size_t i = 0; i < scene.lights.size() && out.size() < std::size_t(kMaxPointShadows); ++i) {
+    const Light& l = scene.lights[i];
+    if (l.type == LightType::Point && !light_defect(l) && (all || casts_shadows(scene, i))) out.push_back(int(i));
+  }
+  return out;
+}
+
 std::vector<std::string> unshadowed_casters(const Scene& scene) {
   std::vector<std::string> out;
   const int sun = shadowed_sun(scene), spot = shadowed_spot(scene);
+  const std::vector<int> points = shadowed_point_lights(scene);
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
     if (!casts_shadows(scene, i) || int(i) == sun || int(i) == spot) continue;
+    if (std::find(points.begin(), points.end(), int(i)) != points.end()) continue;
     std::string why = l.type == LightType::Directional ? "only the first directional light (the sun) has a map here"
-                      : l.type == LightType::Point     ? "a point light's cube map is an exercise of this chapter"
+                      : l.type == LightType::Point     ? "only the first " + std::to_string(kMaxPointShadows) +
+                                                          " marked point lights have cube maps here"
                       : l.outer_cone > kMaxSpotCone    ? "its cone is wider than a perspective map covers (" +
                                                           std::to_string(kMaxSpotCone) + " rad): a cube map's, an exercise"
                                                        : "only the first marked spot light has a map here";
@@ -114,6 +129,8 @@ ShadowStage::ShadowStage(const SceneGpu& scene, const Light& sun)
     glSamplerParameteri(s, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   }
   block_ = gl::make_buffer(nullptr, sizeof(ShadowParameters), GL_DYNAMIC_STORAGE_BIT);
+  glTextureStorage3D(point_maps_.id(), 1, GL_DEPTH_COMPONENT32F, 1, 1, 6);  // until a point light casts
+  glTextureStorage3D(csm_maps_.id(), 1, GL_RGBA32F, 1, 1, 1);               // until csm-fourier runs
 }
 
 void ShadowStage::reload_shaders() {
@@ -159,6 +176,10 @@ void ShadowStage::bind_hook_resources() const {
   glBindSampler(at.unit(kMomentsUnit), linear_.id());
   glBindTextureUnit(at.unit(kSpotUnit), spot_mapped_ ? spot_depth_.id() : depth_.id());
   glBindSampler(at.unit(kSpotUnit), nearest_.id());
+  glBindTextureUnit(at.unit(kPointUnit), point_maps_.id());  // a 1-texel stand-in without point lights
+  glBindSampler(at.unit(kPointUnit), nearest_.id());
+  glBindTextureUnit(at.unit(kCsmUnit), csm_maps_.id());
+  glBindSampler(at.unit(kCsmUnit), linear_.id());
 }
 // [/bind-hook]
 
@@ -178,6 +199,9 @@ void ShadowStage::allocate() {
   if (cascades < 1 || cascades > kMaxCascades)
     throw Error("shadow stage: between 1 and " + std::to_string(kMaxCascades) + " cascades (got " +
                 std::to_string(cascades) + ")");
+  if (cascades > 1 && settings_.method == ShadowMethod::CsmFourier)
+    throw Error("shadow stage: cascades work with the methods hard, pcf, pcf-hardware and pcss, not csm-fourier "
+                "(its filtered map is one layer)");
   if (cascades > 1 && filtered)
     throw Error("shadow stage: cascades work with the methods hard, pcf, pcf-hardware and pcss, not " +
                 kMethodNames[int(settings_.method)] + " (its filtered map is one layer)");
@@ -229,8 +253,12 @@ std::size_t ShadowStage::allocated_bytes() const {
   const std::size_t texels = std::size_t(allocated_size_) * std::size_t(allocated_size_) *
                              std::size_t(allocated_cascades_);
   const std::size_t spot = std::size_t(spot_size_) * std::size_t(spot_size_) * 4;  // the spot's depth map, if any
+  const std::size_t points = point_lights_.empty() ? 0  // the point lights' cube maps
+                             : std::size_t(point_size_) * std::size_t(point_size_) * 6 * std::size_t(point_layers_) * 4;
   const std::size_t filtered = 2 * std::size_t(allocated_channels_) * std::size_t(allocated_bits_ / 8);  // map + scratch
-  return texels * (4 + (allocated_filtered_ ? filtered : 0)) + spot;
+  const std::size_t csm = settings_.method == ShadowMethod::CsmFourier  // the basis and its scratch, RGBA32F layers
+                              ? 2 * std::size_t(csm_size_) * std::size_t(csm_size_) * std::size_t(csm_layers_) * 16 : 0;
+  return texels * (4 + (allocated_filtered_ ? filtered : 0)) + spot + points + csm;
 }
 
 // [shadow-stage]
@@ -286,6 +314,11 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
     p.set("u_light_view_projection", spot_frustum_.view_projection());
     scene_.draw([&](const Instance& inst, const Material&) { p.set("u_model", inst.model); }, SceneGpu::Primitives::Opaque);
   }
+  // 1c. The point lights' cube maps (point_shadows.cpp).
+  draw_point_maps(frame.camera(), metrics);
+  // 2'. Convolution shadow maps: the basis of the step's series, filtered (csm_stage.cpp).
+  if (settings_.method == ShadowMethod::CsmFourier)
+    filter_csm(metrics, slots().unit(kFilterInputUnit), slots().unit(kCsmUnit));
   if (allocated_filtered_) {
     // 2. VSM / ESM: what the method filters, pre-filtered by a separable box.
     auto pass = timed(metrics, "shadow map: pre-filter");
@@ -360,6 +393,11 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
   block.cascade_band = settings_.cascade_band;
   block.camera_depth = cascade_depth_plane_;
   block.cascade_near = splits_.empty() ? 0.f : splits_.front();
+  block.point_count = float(point_lights_.size());
+  block.point_map_size = float(point_size_);
+  block.csm_terms = float(settings_.csm_terms);
+  for (std::size_t i = 0; i < point_lights_.size(); ++i)
+    block.point_light[i] = glm::vec4(scene.lights[std::size_t(point_lights_[i])].position, points_mapped_[i] ? point_far_[i] : 0.f);
   for (std::size_t i = 0; i < cascades_.size(); ++i) {
     block.cascade_matrix[i] = cascades_[i].view_projection();
     block.cascade_far[int(i)] = splits_[i + 1];
@@ -545,6 +583,13 @@ bool ShadowStage::composite(ch03::DeferredFrame& frame, PassMetrics* metrics) {
       throw Error("shadow stage: the cascades picture needs a map method, not volumes");
     defines.push_back("SHOW_CASCADES 1");
   }
+  if (picture_ == ShadowPicture::PointVisibility) {
+    if (settings_.point_shown < 0 || std::size_t(settings_.point_shown) >= point_lights_.size() ||
+        settings_.method == ShadowMethod::Volumes)
+      throw Error("shadow stage: the point light's visibility needs point light " + std::to_string(settings_.point_shown) +
+                  " of the " + std::to_string(point_lights_.size()) + " with a cube map, and a map method");
+    defines.push_back("SHOW_POINT 1");
+  }
   if (picture_ == ShadowPicture::SpotVisibility) {
     if (!spot_ || settings_.method == ShadowMethod::Volumes)
       throw Error("shadow stage: the spot's visibility needs a spot light marked to cast and a map method");
@@ -559,6 +604,11 @@ bool ShadowStage::composite(ch03::DeferredFrame& frame, PassMetrics* metrics) {
   if (picture_ == ShadowPicture::SpotVisibility) {
     p.set("u_spot_direction", glm::normalize(spot_->direction));
     p.set("u_spot_cos_cone", std::cos(spot_->outer_cone));
+  }
+  if (picture_ == ShadowPicture::PointVisibility) {
+    const Light& l = scene_.scene().lights[std::size_t(point_lights_[std::size_t(settings_.point_shown)])];
+    p.set("u_point_position", l.position);
+    p.set("u_point_range", l.range);
   }
   full_screen_.draw();
   glEnable(GL_DEPTH_TEST);

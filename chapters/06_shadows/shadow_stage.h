@@ -14,6 +14,8 @@
 
 #include "chapters/02_gbuffer/deferred.h"
 #include "chapters/03_light_volumes/deferred_frame.h"
+#include "chapters/06_shadows/csm_math.h"
+#include "chapters/06_shadows/cube_math.h"
 #include "chapters/06_shadows/shadow_math.h"
 #include "chapters/06_shadows/shadow_volumes.h"
 #include "common/scene.h"
@@ -26,8 +28,11 @@ namespace lp::ch06 {
 // Pcss: the sun as a disk (sun_angular_radius), PCF over the penumbra a blocker search
 // estimates (shadow_math.h [pcss]). Msm: four filtered moments, the Hamburger reconstruction
 // (shadow_math.h [msm]).
-enum class ShadowMethod { Hard, Pcf, PcfHardware, Vsm, Esm, Volumes, Pcss, Msm };
-inline const std::vector<std::string> kMethodNames = {"hard", "pcf", "pcf-hardware", "vsm", "esm", "volumes", "pcss", "msm"};
+// CsmFourier: convolution shadow maps, the step's Fourier series of csm_terms terms, filtered
+// (csm_math.h [csm]).
+enum class ShadowMethod { Hard, Pcf, PcfHardware, Vsm, Esm, Volumes, Pcss, Msm, CsmFourier };
+inline const std::vector<std::string> kMethodNames = {"hard", "pcf", "pcf-hardware", "vsm", "esm", "volumes", "pcss", "msm",
+                                                      "csm-fourier"};
 ShadowMethod method_from_name(const std::string& name);  // throws Error for an unknown one
 
 struct ShadowSettings {
@@ -60,6 +65,12 @@ struct ShadowSettings {
   bool cascade_snap = true;       // the cascades' boxes on whole texels (no shimmer)
   // Tests: fit the cascades to this camera instead of the frame's (a map that stays where it is).
   std::optional<FrameCamera> cascade_camera;
+  // Point lights (cube_math.h): the scene's marked ones get a cube map, or, with
+  // all_point_lights, every point light (up to kMaxPointShadows; the atrium marks none).
+  bool all_point_lights = false;
+  int cube_size = 512;   // texels a face side
+  int point_shown = 0;   // ShadowPicture::PointVisibility: which of point_lights()
+  int csm_terms = 4;     // csm-fourier: the series' terms, 1 to kMaxCsmTerms (two channels each)
 };
 
 // What the last frame's shadow volumes were (method Volumes).
@@ -72,8 +83,9 @@ struct VolumeStats {
 // metres, unclamped (0 where the search finds no blocker; blue where the sun does not reach).
 // SpotVisibility: the marked spot light's visibility alone (blue where the spot does not reach).
 // Cascades: the sun's visibility tinted by the cascade each pixel reads (red, green, blue,
-// yellow; mixed in the blend bands).
-enum class ShadowPicture { None, Visibility, Map, Penumbra, SpotVisibility, Cascades };
+// yellow; mixed in the blend bands). PointVisibility: the visibility of point light
+// settings.point_shown alone (blue where it does not reach).
+enum class ShadowPicture { None, Visibility, Map, Penumbra, SpotVisibility, Cascades, PointVisibility };
 
 class ShadowStage : public ch03::FrameStage {
  public:
@@ -92,6 +104,11 @@ class ShadowStage : public ch03::FrameStage {
   // Whether the last frame drew the spot's map: not when the sphere its range reaches lies
   // outside the view (its light reaches no pixel on screen, so no map is needed).
   bool spot_mapped() const { return spot_mapped_; }
+  // The point lights with a cube map (indices in the scene's lights, shadowed_point_lights) and,
+  // for each, whether the last frame drew it (not when its range's sphere lies off screen).
+  const std::vector<int>& point_lights() const { return point_lights_; }
+  const std::vector<bool>& points_mapped() const { return points_mapped_; }
+  const std::vector<float>& point_far() const { return point_far_; }
   // Bytes the method keeps per frame: the depth map, and the moments with their filter target.
   std::size_t allocated_bytes() const;
   const VolumeStats& volume_stats() const { return volume_stats_; }
@@ -107,6 +124,7 @@ class ShadowStage : public ch03::FrameStage {
   void draw_volumes(ch03::DeferredFrame& frame, PassMetrics* metrics);
   void fit_cascades(const FrameCamera& camera);
   void draw_cascades(PassMetrics* metrics);
+  void draw_point_maps(const FrameCamera& camera, PassMetrics* metrics);  // point_shadows.cpp
   const ShaderProgram& program(const std::string& vertex, const std::string& fragment, std::vector<std::string> defines);
   const SceneGpu& scene_;
   Light sun_;
@@ -132,6 +150,19 @@ class ShadowStage : public ch03::FrameStage {
   glm::vec4 cascade_depth_plane_{0};
   gl::Texture cascade_depth_{GL_TEXTURE_2D_ARRAY};
   std::vector<gl::Framebuffer> cascade_fbos_;
+  // Point lights: one cube map array, a layer of six faces per light, each face its framebuffer.
+  std::vector<int> point_lights_;
+  std::vector<bool> points_mapped_;
+  std::vector<float> point_far_;
+  gl::Texture point_maps_{GL_TEXTURE_CUBE_MAP_ARRAY};
+  std::vector<gl::Framebuffer> point_fbos_;
+  int point_size_ = 0, point_layers_ = 0;
+  // Convolution shadow maps: the filtered basis, four values a layer (csm_math.h), and the
+  // horizontal pass's output; one framebuffer each with a colour attachment per layer.
+  gl::Texture csm_maps_{GL_TEXTURE_2D_ARRAY}, csm_scratch_{GL_TEXTURE_2D_ARRAY};
+  gl::Framebuffer csm_fbo_, csm_scratch_fbo_;
+  int csm_size_ = 0, csm_layers_ = 0;
+  void filter_csm(PassMetrics* metrics, GLuint depth_unit, GLuint input_unit);  // csm_stage.cpp
   gl::Texture depth_{GL_TEXTURE_2D}, moments_{GL_TEXTURE_2D}, scratch_{GL_TEXTURE_2D};
   gl::Framebuffer depth_fbo_, moments_fbo_, scratch_fbo_;
   gl::Sampler nearest_, compare_, linear_;
@@ -167,14 +198,15 @@ float scene_sun_scale(const Scene& scene);
 // extras {"lightpass": {"casts_shadows": true | false}}, Light::casts_shadows; the format is in
 // book/appendix-scenes.md) does as it says; an unmarked one casts if it is the sun (the first
 // directional light) and not otherwise. The sun gets its orthographic map, the first marked
-// spot light (of at most kMaxSpotCone) a perspective one (looked up hard with the method hard,
-// with PCF on the k x k grid with every other map method; with volumes it casts nothing). A
+// spot light (of at most kMaxSpotCone) a perspective one, the first kMaxPointShadows marked point
+// lights a cube map each (cube_math.h; looked up hard with the method hard, with PCF on the k x k
+// grid with every other map method; with volumes they cast nothing). A
 // light that does not cast keeps chapter 03's path: visibility 1, no map, no pass.
 bool casts_shadows(const Scene& scene, std::size_t light);
-// The lights marked to cast that this chapter cannot shadow (the sun's map and one spot light's
-// perspective map: another directional light, a point light's cube map, a second spot light
-// or one wider than kMaxSpotCone are the exercises), each named with why: for the program to
-// say so.
+// The lights marked to cast that this chapter cannot shadow (the sun's map, one spot light's
+// perspective map and kMaxPointShadows point lights' cube maps: another directional light, a
+// second spot light or one wider than kMaxSpotCone, a ninth point light), each named with why:
+// for the program to say so.
 std::vector<std::string> unshadowed_casters(const Scene& scene);
 // The spot light that gets a map: the first spot marked to cast with a cone of at most
 // kMaxSpotCone; its index in scene.lights, or -1.
@@ -184,6 +216,9 @@ int shadowed_sun(const Scene& scene);
 // That sun's index among the directional lights chapter 03's light set keeps (light_defect()
 // leaves some out): the `index` the visibility hook shadows (SHADOW_SUN_INDEX); -1 if none.
 int shadowed_sun_index(const Scene& scene);
+// The point lights that get a cube map: the first kMaxPointShadows point lights the light set
+// keeps that are marked to cast (or every one of them, with `all`); their indices.
+std::vector<int> shadowed_point_lights(const Scene& scene, bool all = false);
 // [/casts-shadows]
 
 }  // namespace lp::ch06

@@ -43,7 +43,7 @@ ImageF shadow_truth(const Scene&, const RayScene& rays, const FrameCamera& camer
 
 ImageF spot_shadow_truth(const RayScene& rays, const FrameCamera& camera, int width, int height, const Light& spot) {
   const std::vector<std::optional<SurfacePoint>> points = surface_points(primary_hits(rays, camera, width, height));
-  const glm::vec3 axis = glm::normalize(spot.direction);
+  const glm::vec3 axis = spot.type == LightType::Spot ? glm::normalize(spot.direction) : glm::vec3(0, 0, -1);
   const float cos_cone = std::cos(spot.outer_cone);
   return trace_image(width, height, 3, 0, [&](int x, int y, Pcg32&, float* out) {
     const auto& point = points[std::size_t(y) * std::size_t(width) + std::size_t(x)];
@@ -51,7 +51,7 @@ ImageF spot_shadow_truth(const RayScene& rays, const FrameCamera& camera, int wi
     const glm::vec3 to_light = spot.position - point->position;
     const float distance = glm::length(to_light);
     if (distance <= 0.f || glm::dot(point->normal, to_light) <= 0.f) return;  // facing away
-    if (glm::dot(-to_light / distance, axis) < cos_cone) return;              // outside the cone
+    if (spot.type == LightType::Spot && glm::dot(-to_light / distance, axis) < cos_cone) return;  // outside the cone
     if (spot.range > 0.f && distance > spot.range) return;
     out[2] = 1.f;
     out[0] = out[1] = rays.occluded(point->ray_towards(spot.position)) ? 0.f : 1.f;

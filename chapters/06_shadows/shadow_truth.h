@@ -36,6 +36,7 @@ ImageF cached_shadow_truth(const Scene& scene, const RayScene& rays, const Frame
 // A spot light's hard shadows: one occlusion ray per pixel from the surface point toward the
 // light's position. Channels as shadow_truth's: 0 visibility, 1 the same (a point light has no
 // penumbra), 2 the mask: a surface facing the light, inside its outer cone (and its range).
+// A point light's the same, with no cone.
 ImageF spot_shadow_truth(const RayScene& rays, const FrameCamera& camera, int width, int height, const Light& spot);
 // [/spot-truth]
 

@@ -73,6 +73,8 @@ std::vector<Variant> variants() {
   // PCSS for the soft truth's sun: the taps of its search and of its filter
   for (int taps : {16, 32, 64}) v.push_back({"taps " + std::to_string(taps), {.method = ShadowMethod::Pcss, .poisson_taps = taps}});
   v.push_back({"map 2048 taps 32", {.method = ShadowMethod::Pcss, .map_size = 2048, .poisson_taps = 32}});
+  // convolution shadow maps: the step's Fourier series by its terms (two channels each)
+  for (int t : {2, 4, 8}) v.push_back({"terms " + std::to_string(t), {.method = ShadowMethod::CsmFourier, .csm_terms = t}});
   return v;
 }
 

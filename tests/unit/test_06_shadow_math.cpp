@@ -442,16 +442,40 @@ TEST(ShadowLights, TheSunCastsUnlessMarkedAndOtherLightsOnlyWhenMarked) {
   s.lights[1].casts_shadows = true;
   for (std::size_t i = 0; i < s.lights.size(); ++i) EXPECT_TRUE(casts_shadows(s, i)) << i;
   EXPECT_EQ(shadowed_spot(s), 3);
+  // The marked point light gets a cube map (cube_math.h); the others are named.
+  EXPECT_EQ(shadowed_point_lights(s), std::vector<int>{0});
   const std::vector<std::string> notes = unshadowed_casters(s);
-  ASSERT_EQ(notes.size(), 4u);
-  EXPECT_NE(notes[0].find("light 'lamp'"), std::string::npos) << notes[0];
-  EXPECT_NE(notes[0].find("cube map"), std::string::npos) << notes[0];
-  EXPECT_NE(notes[1].find("light 'moon'"), std::string::npos) << notes[1];
-  EXPECT_NE(notes[1].find("only the first directional light"), std::string::npos) << notes[1];
-  EXPECT_NE(notes[2].find("light 'flood'"), std::string::npos) << notes[2];
-  EXPECT_NE(notes[2].find("wider than a perspective map covers"), std::string::npos) << notes[2];
-  EXPECT_NE(notes[3].find("light 'second'"), std::string::npos) << notes[3];
-  EXPECT_NE(notes[3].find("only the first marked spot light"), std::string::npos) << notes[3];
+  ASSERT_EQ(notes.size(), 3u);
+  EXPECT_NE(notes[0].find("light 'moon'"), std::string::npos) << notes[0];
+  EXPECT_NE(notes[0].find("only the first directional light"), std::string::npos) << notes[0];
+  EXPECT_NE(notes[1].find("light 'flood'"), std::string::npos) << notes[1];
+  EXPECT_NE(notes[1].find("wider than a perspective map covers"), std::string::npos) << notes[1];
+  EXPECT_NE(notes[2].find("light 'second'"), std::string::npos) << notes[2];
+  EXPECT_NE(notes[2].find("only the first marked spot light"), std::string::npos) << notes[2];
+}
+
+// Point lights: the marked ones get cube maps, at most kMaxPointShadows (the next is named), and
+// every point light with `all`; a light the light set leaves out (light_defect) gets none.
+TEST(ShadowLights, MarkedPointLightsGetCubeMapsUpToTheLimit) {
+  Scene s;
+  for (int i = 0; i < kMaxPointShadows + 2; ++i) {
+    Light l;
+    l.type = LightType::Point, l.name = "p" + std::to_string(i), l.intensity = 1.f;
+    l.casts_shadows = i != 1;  // p1 unmarked
+    s.lights.push_back(l);
+  }
+  std::vector<int> expected = {0};
+  for (int i = 2; i <= kMaxPointShadows; ++i) expected.push_back(i);
+  EXPECT_EQ(shadowed_point_lights(s), expected);
+  const std::vector<std::string> notes = unshadowed_casters(s);
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("light 'p9'"), std::string::npos) << notes[0];
+  EXPECT_NE(notes[0].find("only the first 8 marked point lights"), std::string::npos) << notes[0];
+  std::vector<int> all;
+  for (int i = 0; i < kMaxPointShadows; ++i) all.push_back(i);
+  EXPECT_EQ(shadowed_point_lights(s, true), all);
+  s.lights[0].intensity = -1.f;  // left out of the light set
+  EXPECT_EQ(shadowed_point_lights(s, true).front(), 1);
 }
 // [/marked-lights-tests]
 

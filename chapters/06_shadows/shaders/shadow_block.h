@@ -42,5 +42,15 @@ struct ShadowParameters {
   float cascade_band;    // the blend band: the last fraction of a cascade's depth range
   float cascade_near;    // the camera's near plane: where the first cascade begins
   float unused2;
-};
 // [/shadow-block-cascades]
+// [shadow-block-points]
+#define SHADOW_MAX_POINT_LIGHTS 8
+  // Point lights' cube maps (cube_math.h): layer i of the cube map array is point light i's.
+  vec4 point_light[SHADOW_MAX_POINT_LIGHTS];  // xyz: its position; w: its faces' far plane, metres
+                                              // (0: no map this frame, its reach is off screen)
+  float point_count;     // lights with a cube map (the first point_count entries)
+  float point_map_size;  // texels a face side
+  float csm_terms;       // convolution shadow maps: the series' terms (csm_math.h [csm])
+  float point_unused1;
+// [/shadow-block-points]
+};

@@ -3,8 +3,9 @@
 // SHADOW_VOLUMES, read from the visibility its shadow volumes left. ShadowStage::shader_hooks()
 // passes the method, its slots (SHADOW_UNIT, SHADOW_BLOCK) and which directional light is the
 // sun (SHADOW_SUN_INDEX, from shadowed_sun_index()). The C++ twins are in shadow_math.h. Only
-// the sun has a map, and the first spot light the scene marks to cast (shadow_stage.h
-// [casts-shadows]) a perspective one; the other lights keep visibility 1.
+// the sun has a map, the first spot light the scene marks to cast (shadow_stage.h
+// [casts-shadows]) a perspective one and the marked point lights a cube map each
+// (cube_math.h); the other lights keep visibility 1.
 #include "03_light_volumes/shaders/hooks/frame_pixel.glsl"
 #define SHADOW_HARD 0
 #define SHADOW_PCF 1
@@ -14,6 +15,7 @@
 #define SHADOW_VOLUMES 5
 #define SHADOW_PCSS 6
 #define SHADOW_MSM 7
+#define SHADOW_CSM_FOURIER 8
 #if !defined(SHADOW_METHOD) || !defined(SHADOW_UNIT) || !defined(SHADOW_BLOCK) || !defined(SHADOW_SUN_INDEX)
 #error the shadow hook needs SHADOW_METHOD, SHADOW_UNIT, SHADOW_BLOCK and SHADOW_SUN_INDEX (ShadowStage::shader_hooks)
 #endif
@@ -58,6 +60,8 @@ layout(binding = SHADOW_UNIT + 1) uniform sampler2DShadow sh_depth_compare;
 #endif
 layout(binding = SHADOW_UNIT + 2) uniform sampler2D sh_moments;
 layout(binding = SHADOW_UNIT + 5) uniform sampler2D sh_spot_depth;
+layout(binding = SHADOW_UNIT + 6) uniform samplerCubeArray sh_point_maps;
+layout(binding = SHADOW_UNIT + 7) uniform sampler2DArray sh_csm;
 
 // The map a lookup reads: the sun's one map, or the cascade chosen for the pixel (all share the
 // light's view, sh.view, and its depth range, sh.depth_range).
@@ -255,6 +259,21 @@ float sun_map_visibility(Surface s, vec3 to_light) {
   float quotient = (sw.x * z2 - b.x * (sw.x + z2) + b.y) / ((z2 - sw.y) * (q.z - z1));
   return 1.0 - clamp(sw.z + sw.w * quotient, 0.0, 1.0);
   // [/msm-glsl]
+#elif SHADOW_METHOD == SHADOW_CSM_FOURIER
+  // [csm-glsl]
+  // csm_math.h's csm_visibility: the step's series from the filtered sin(c_k z), cos(c_k z) and
+  // the receiver's depth, sin(c (z - d)) = sin(c z) cos(c d) - cos(c z) sin(c d); doubled and
+  // clamped, so that a receiver on its own occluder (the series' 1/2) reads lit.
+  int terms = int(sh.csm_terms);
+  float sum = 0.5;
+  for (int k = 1; k <= terms; ++k) {
+    vec4 layer = texture(sh_csm, vec3(q.xy, float((k - 1) / 2)));
+    vec2 b = (k & 1) == 1 ? layer.xy : layer.zw;
+    float c = float(2 * k - 1) * 3.14159265358979;
+    sum += 2.0 * (b.x * cos(c * q.z) - b.y * sin(c * q.z)) / c;
+  }
+  return clamp(2.0 * sum, 0.0, 1.0);
+  // [/csm-glsl]
 #else
 #error SHADOW_METHOD names no method
 #endif
@@ -309,7 +328,14 @@ float directional_visibility(int index, GpuLight light, Surface s) {
 // light's ray through that texel meets it (the perspective form of the receiver-plane bias:
 // in the light's view space the ray through the map's (u, v) is t (x tan, y tan, -1), x and y
 // in [-1, 1], and it meets the plane n . (X - p) = 0 at t = n . p / n . ray, its depth t).
+float point_visibility(int i, Surface s);
 float local_visibility(int index, GpuLight light, Surface s) {
+  if (light.position_type.w == LIGHT_POINT) {
+    // A point light with a cube map (found by its position, as the spot), or none: lit.
+    for (int i = 0; i < int(sh.point_count); ++i)
+      if (distance(light.position_type.xyz, sh.point_light[i].xyz) <= 1e-4) return point_visibility(i, s);
+    return 1.0;
+  }
   if (sh.spot_mapped == 0.0 || light.position_type.w != LIGHT_SPOT || distance(light.position_type.xyz, sh.spot_position) > 1e-4) return 1.0;
   vec3 to_light = normalize(sh.spot_position - s.position);
   float cos_theta = dot(s.normal, to_light);
@@ -345,4 +371,52 @@ float local_visibility(int index, GpuLight light, Surface s) {
   return lit / float((2 * r + 1) * (2 * r + 1));
 }
 // [/spot-glsl]
+
+// [point-glsl]
+// Point light i in its cube map (cube_math.h): the map holds, per direction from the light, the
+// distance to the nearest surface. The receiver, pushed out along its normal, is compared by its
+// own distance less the bias, both in texels of w(d) = 2 d / N (the spot's biases with tan = 1).
+// PCF's taps step a texel at a time across the face the direction falls on, a' = a + (x u + y v)
+// 2 / N with a the direction over its major axis and u, v the face's other two axes: a tap past
+// the face's edge is a direction on the next face, which the hardware reads there (no seam). Each
+// tap compares with the receiver's plane where the tap's ray meets it, t = n . (p - L) / n . a'.
+float point_visibility(int i, Surface s) {
+  vec4 light = sh.point_light[i];
+  if (light.w == 0.0) return 1.0;  // no map this frame: its reach lies off screen
+  vec3 to_light = light.xyz - s.position;
+  float d = length(to_light);
+  float cos_theta = dot(s.normal, to_light / max(d, 1e-6));
+  if (cos_theta <= 0.0) return 1.0;  // faces away: the light adds nothing anyway
+  cos_theta = clamp(cos_theta, 1e-4, 1.0);
+  float sin_theta = sqrt(1.0 - cos_theta * cos_theta);
+  float tan_theta = min(sin_theta / cos_theta, 10.0);
+  float texel = 2.0 * d / sh.point_map_size;
+  vec3 p = s.position + s.normal * (sh.normal_offset * texel * sin_theta);
+  vec3 from_light = p - light.xyz;
+  float receiver = length(from_light);
+  if (receiver >= light.w) return 1.0;  // beyond the far plane: nothing drawn there casts
+  float bias = texel * (sh.constant_bias + sh.slope_bias * tan_theta);
+#if SHADOW_METHOD == SHADOW_HARD
+  return receiver - bias <= texture(sh_point_maps, vec4(from_light, float(i))).r * light.w ? 1.0 : 0.0;
+#else
+  vec3 m = abs(from_light);
+  float major = max(m.x, max(m.y, m.z));
+  vec3 a = from_light / major;
+  vec3 u = m.x == major ? vec3(0, 1, 0) : vec3(1, 0, 0);
+  vec3 v = m.z == major ? vec3(0, 1, 0) : vec3(0, 0, 1);
+  float plane = dot(s.normal, from_light);  // n . (p - L), below 0: the receiver faces the light
+  int r = int(sh.pcf_radius);
+  float lit = 0.0;
+  for (int y = -r; y <= r; ++y)
+    for (int x = -r; x <= r; ++x) {
+      vec3 tap = a + (float(x) * u + float(y) * v) * (2.0 / sh.point_map_size);
+      float across = dot(s.normal, tap);
+      float t = across < -1e-4 ? plane / across : major;  // along tap: the plane's point, or the centre's
+      float distance_there = (r == 0 ? receiver : t * length(tap)) - bias;
+      lit += distance_there <= texture(sh_point_maps, vec4(tap, float(i))).r * light.w ? 1.0 : 0.0;
+    }
+  return lit / float((2 * r + 1) * (2 * r + 1));
+#endif
+}
+// [/point-glsl]
 #endif  // SHADOW_METHOD

@@ -8,6 +8,8 @@ uniform vec3 u_sun_direction;  // the way the sun shines
 uniform vec2 u_output_size;
 uniform vec3 u_spot_direction;  // SHOW_SPOT: the marked spot light's axis and cos(outer cone)
 uniform float u_spot_cos_cone;
+uniform vec3 u_point_position;  // SHOW_POINT: the point light's position and range (0: unbounded)
+uniform float u_point_range;
 layout(location = 0) out vec4 out_colour;
 void main() {
 #ifdef SHOW_MAP
@@ -25,6 +27,18 @@ void main() {
   return;
 #endif
   Surface s = decode_gbuffer(ivec2(gl_FragCoord.xy));
+#ifdef SHOW_POINT
+  // One point light's visibility alone; blue where it does not reach (facing away, beyond its
+  // range, the sky).
+  vec3 to_point = u_point_position - s.position;
+  if (s.is_sky || dot(s.normal, to_point) <= 0.0 || (u_point_range > 0.0 && length(to_point) > u_point_range)) {
+    out_colour = vec4(0.1, 0.15, 0.4, 1.0);
+    return;
+  }
+  GpuLight point = GpuLight(vec4(u_point_position, LIGHT_POINT), vec4(0.0), vec4(1.0), vec4(0.0));
+  out_colour = vec4(vec3(local_visibility(0, point, s)), 1.0);
+  return;
+#endif
 #ifdef SHOW_SPOT
   // The marked spot light's visibility alone; blue where it does not reach (outside its cone,
   // facing away, the sky).
