@@ -65,7 +65,9 @@ const lp::Chapter kChapter{
                       {"far", "far plane in metres (0: the camera's own); small values cut volumes", 0, 0, 10000, false},
                       {"exposure", "the exposure the light cut is relative to", 1, 0.01, 100, false},
                       {"cut", "cut each light where it is one sRGB step at black on the brightest material (off: at 1/256 of the source)", 1, 0, 1, true},
-                      {"count", "count fragments shaded and lit (atomic counters, costs a little time)", 1, 0, 1, true}}},
+                      {"count", "count fragments shaded and lit (atomic counters, costs a little time)", 1, 0, 1, true}},
+            // Down the street among its lamps' pools of light: the overview is mostly sky.
+            .opening = {"--view", "street_level"}},
     .references = references(),
     // [exercises]
     .exercises = {{.title = "the window that ends a light at its range",
