@@ -537,7 +537,7 @@ void draw_key_strip(ImageRGBA8& out, const HeatKey& key, int top, int x_begin, i
     draw_text(out, x0, label_y + text_h + 2 * scale, key.what, grey, scale);
   } else {
     // between the labels, centred; where it does not fit, it stays left and is clipped
-    const int w = text_width(key.what, scale), gap = 3 * scale;
+    const int w = text_width(key.what, scale), gap = 4 * scale;
     const int room = right_start - left_end - 2 * gap;
     const int x = w <= room ? left_end + gap + (room - w) / 2 : left_end + gap;
     ImageRGBA8 line = ImageRGBA8::blank(std::max(1, right_start - gap - x), text_h);
