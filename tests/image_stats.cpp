@@ -19,10 +19,11 @@
 //   --near OTHER MAX   that mean difference is at most MAX: two images that must look the same
 //                      where a pixel-by-pixel threshold would be the wrong test
 //   --region X Y W H   the checks after it (--mean, --lit, --matches, --differs-from, --near) see
-//                      only this rectangle (top-left X, Y) of the image and of the other image,
-//                      which must be the image's size: one part of a split picture
+//                      only this rectangle (top-left X, Y) of the image and of the other image
+//                      (which must hold it): one part of a split picture
 //   --other-at X Y     the checks after it take the other image's rectangle from (X, Y) instead:
-//                      a part of a picture moved within it (a split of two images' middles)
+//                      a part of a picture moved (a split of two images' middles, a tile of a
+//                      mosaic against the picture at the tile's size)
 // Exit code 0 when every check holds, 1 when one fails or an image cannot be read, 2 for a bad
 // command line.
 #include <cstdio>
@@ -91,7 +92,7 @@ int run(int argc, char** argv) {
   struct { int x = 0, y = 0, w = -1, h = -1, other_x = -1, other_y = -1; } region;  // w < 0: the whole image
   auto cut_at = [&](const ImageRGBA8& in, int x0, int y0) {
     if (region.w < 0) return in;
-    if (in.width != img.width || in.height != img.height) return ImageRGBA8::blank(1, 1);  // a size mismatch, reported
+    if (x0 + region.w > in.width || y0 + region.h > in.height) return ImageRGBA8::blank(1, 1);  // a size mismatch, reported
     ImageRGBA8 out = ImageRGBA8::blank(region.w, region.h);
     for (int y = 0; y < region.h; ++y) std::copy_n(in.at(x0, y0 + y), std::size_t(region.w) * 4, out.at(0, y));
     return out;
@@ -161,15 +162,12 @@ int run(int argc, char** argv) {
         throw UsageError("--region " + value(1) + " " + value(2) + " " + value(3) + " " + value(4) + " is not inside the " +
                          std::to_string(img.width) + "x" + std::to_string(img.height) + " image");
       region = {v[0], v[1], v[2], v[3], region.other_x, region.other_y};
-      if (region.other_x >= 0 && (region.other_x + v[2] > img.width || region.other_y + v[3] > img.height))
-        throw UsageError("--region's rectangle at --other-at is not inside the image");
       std::printf("region %d,%d %dx%d:\n", v[0], v[1], v[2], v[3]);
       i += 4;
     } else if (a == "--other-at") {
       const int x = static_cast<int>(number(value(1), "--other-at")), y = static_cast<int>(number(value(2), "--other-at"));
       if (region.w < 0) throw UsageError("--other-at needs a --region before it");
-      if (x < 0 || y < 0 || x + region.w > img.width || y + region.h > img.height)
-        throw UsageError("--other-at " + value(1) + " " + value(2) + ": the region is not inside the image there");
+      if (x < 0 || y < 0) throw UsageError("--other-at " + value(1) + " " + value(2) + ": negative");
       region.other_x = x, region.other_y = y;
       std::printf("region %d,%d %dx%d against the other image's at %d,%d:\n", region.x, region.y, region.w, region.h, x, y);
       i += 2;
