@@ -18,6 +18,7 @@
 #include "chapters/03_light_volumes/light_radius.h"
 #include "chapters/03_light_volumes/light_volumes.h"
 #include "common/app.h"
+#include "common/target.h"
 
 namespace {
 
@@ -159,6 +160,13 @@ int main(int argc, char** argv) {
           else volumes.draw_stencil_mask(frame.view(), f.knob_int("light"));
         }
         // [/frame]
+        if (show == kHeatShaded || show == kHeatLit) {  // the heat map's key, in the picture
+          ImageRGBA8 img = read_framebuffer(f.target, f.width, f.height);
+          draw_heat_key(img, {.full_scale = kHeatFullScale,
+                              .what = show == kHeatShaded ? "fragments shaded per pixel" : "fragments lit per pixel",
+                              .stops = kHeatRamp});
+          put_picture(img, f.target);
+        }
         app.metrics().set_allocation("G-buffer (chapter 02) + light buffer L1 + L2 RGBA16F + depth-stencil",
                                      frame.allocated_bytes());
       } else {
