@@ -483,13 +483,18 @@ namespace {
 
 // The key's colour at t in [0, 1]: the picture's own stops, or error_heatmap's ramp.
 void key_colour(const HeatKey& key, float t, std::uint8_t* rgba) {
-  if (key.stops.empty()) return ramp(t, rgba);
-  const float s = std::clamp(t, 0.0f, 1.0f) * float(key.stops.size() - 1);
-  const int i = std::min(int(s), int(key.stops.size()) - 2);
-  const float f = key.stops.size() == 1 ? 0.0f : s - float(i);
+  if (key.stops.empty() && !key.mixed_in_linear) return ramp(t, rgba);
+  static const std::vector<std::array<float, 3>> error_ramp = {{0, 0, 0}, {0, 0, 1}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}};
+  const std::vector<std::array<float, 3>>& stops = key.stops.empty() ? error_ramp : key.stops;
+  const float s = std::clamp(t, 0.0f, 1.0f) * float(stops.size() - 1);
+  const int i = std::max(0, std::min(int(s), int(stops.size()) - 2));
+  const float f = stops.size() == 1 ? 0.0f : s - float(i);
   for (int c = 0; c < 3; ++c) {
-    const float a = key.stops[std::size_t(i)][c], b = key.stops[std::min(std::size_t(i) + 1, key.stops.size() - 1)][c];
-    rgba[c] = std::uint8_t(std::lround(std::clamp(a + (b - a) * f, 0.0f, 1.0f) * 255.0f));
+    float a = stops[std::size_t(i)][c], b = stops[std::min(std::size_t(i) + 1, stops.size() - 1)][c];
+    if (key.mixed_in_linear) a = srgb_to_linear(a), b = srgb_to_linear(b);
+    float v = a + (b - a) * f;
+    if (key.mixed_in_linear) v = linear_to_srgb(v);
+    rgba[c] = std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
   }
   rgba[3] = 255;
 }

@@ -101,6 +101,9 @@ struct HeatKey {
   // Another picture's ramp: its colours (display values, 0..1), evenly spaced from 0 to
   // full_scale, e.g. chapter 03's count ramp. Empty: error_heatmap's.
   std::vector<std::array<float, 3>> stops = {};
+  // The picture mixed its ramp's colours in linear light (a shader writing to an sRGB target):
+  // the key mixes them so too, then encodes.
+  bool mixed_in_linear = false;
 };
 ImageRGBA8 with_heat_key(const ImageRGBA8& heat, const HeatKey& key);
 // The same key in one line under the bar, drawn over the bottom rows of `image` between

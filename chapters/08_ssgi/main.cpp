@@ -133,22 +133,6 @@ const Chapter kChapter{.cli = kCli,
                        .scene_references = {{"assets/atrium/atrium.gltf", atrium_shots()}},
                        .exercises = exercises()};
 
-// show_gi.frag's error ramp (black, blue, green, yellow, red) mixes in linear light and the
-// target encodes it: the key's stops, encoded, close enough together that its straight
-// segments follow the curve.
-std::vector<std::array<float, 3>> error_ramp() {
-  const std::array<std::array<float, 3>, 5> stops{{{0, 0, 0}, {0, 0, 1}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}}};
-  std::vector<std::array<float, 3>> out;
-  for (int i = 0; i <= 64; ++i) {
-    const float x = float(i) / 64 * 4;
-    const int k = std::min(int(x), 3);
-    std::array<float, 3> c{};
-    for (int j = 0; j < 3; ++j) c[j] = linear_to_srgb(stops[k][j] + (stops[k + 1][j] - stops[k][j]) * (x - float(k)));
-    out.push_back(c);
-  }
-  return out;
-}
-
 GiSettings settings_from(const Frame& f) {
   GiSettings s;
   s.samples = f.knob_int("samples");
@@ -263,7 +247,7 @@ int main(int argc, char** argv) {
           what << "indirect light x " << exposure;
           draw_label(img, f.width / 2 + 2, 2, what.str());
         } else {
-          draw_heat_key(img, {.full_scale = 0.2f, .what = "|indirect light - ray-traced truth|", .stops = error_ramp()});
+          draw_heat_key(img, {.full_scale = 0.2f, .what = "|indirect light - ray-traced truth|", .mixed_in_linear = true});  // show_gi.frag's ramp
         }
         put_picture(img, f.target);
       }

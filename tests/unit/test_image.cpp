@@ -524,6 +524,20 @@ TEST(HeatKey, DrawnOverTheBottomRowsOnThePicturesOwnRamp) {
   EXPECT_GT(white, 20) << "no labels under the bar";
 }
 
+// A picture that mixed the ramp in linear light (a shader into an sRGB target) gets a key
+// mixed so too: half way from black to blue is linear 0.5, encoded 188, not 128.
+TEST(HeatKey, MixedInLinearLightLikeItsPicture) {
+  lp::ImageRGBA8 image = lp::ImageRGBA8::blank(400, 100);
+  lp::draw_heat_key(image, {.full_scale = 1, .what = "", .mixed_in_linear = true});
+  const int bar_y = 100 - lp::heat_key_rows(400) + 4, x0 = 3, x1 = 400 - 3;
+  const int eighth = x0 + int(std::lround(0.125 * (x1 - 1 - x0)));  // half way to the first stop, blue
+  EXPECT_NEAR(image.at(eighth, bar_y)[2], 188, 3);
+  EXPECT_EQ(image.at(eighth, bar_y)[0], 0);
+  lp::ImageRGBA8 plain = lp::ImageRGBA8::blank(400, 100);
+  lp::draw_heat_key(plain, {.full_scale = 1, .what = ""});
+  EXPECT_NEAR(plain.at(eighth, bar_y)[2], 128, 3);
+}
+
 // A label is text on a dark box: readable over a white picture, and nothing outside the box.
 TEST(HeatKey, LabelIsTextOnADarkBox) {
   lp::ImageRGBA8 image = lp::ImageRGBA8::blank(320, 180);
