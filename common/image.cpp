@@ -479,43 +479,118 @@ std::string short_number(float v) {
 }
 }  // namespace
 
-ImageRGBA8 with_heat_key(const ImageRGBA8& heat, const HeatKey& key) {
-  require_valid(heat, "with_heat_key");
-  if (!(key.full_scale > 0.0f)) throw Error("with_heat_key: full_scale must be positive");
-  const int scale = std::max(1, heat.width / 400);  // text stays readable on large images
-  const int margin = 6 * scale, bar_h = 10 * scale, text_h = 8 * scale;
-  const int strip = margin + bar_h + 3 * scale + text_h + 2 * scale + text_h + margin;
-  ImageRGBA8 out = ImageRGBA8::blank(heat.width, heat.height + strip);
-  std::copy(heat.pixels.begin(), heat.pixels.end(), out.pixels.begin());
-  for (int y = heat.height; y < out.height; ++y)
-    for (int x = 0; x < out.width; ++x) {
-      std::uint8_t* p = out.at(x, y);
-      p[0] = p[1] = p[2] = 48, p[3] = 255;
+namespace {
+
+// The key's colour at t in [0, 1]: the picture's own stops, or error_heatmap's ramp.
+void key_colour(const HeatKey& key, float t, std::uint8_t* rgba) {
+  if (key.stops.empty() && !key.mixed_in_linear) return ramp(t, rgba);
+  static const std::vector<std::array<float, 3>> error_ramp = {{0, 0, 0}, {0, 0, 1}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}};
+  const std::vector<std::array<float, 3>>& stops = key.stops.empty() ? error_ramp : key.stops;
+  const float s = std::clamp(t, 0.0f, 1.0f) * float(stops.size() - 1);
+  const int i = std::max(0, std::min(int(s), int(stops.size()) - 2));
+  const float f = stops.size() == 1 ? 0.0f : s - float(i);
+  for (int c = 0; c < 3; ++c) {
+    float a = stops[std::size_t(i)][c], b = stops[std::min(std::size_t(i) + 1, stops.size() - 1)][c];
+    if (key.mixed_in_linear) a = srgb_to_linear(a), b = srgb_to_linear(b);
+    float v = a + (b - a) * f;
+    if (key.mixed_in_linear) v = linear_to_srgb(v);
+    rgba[c] = std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+  }
+  rgba[3] = 255;
+}
+
+void fill(ImageRGBA8& image, int x0, int y0, int x1, int y1, const std::uint8_t rgb[3]) {
+  for (int y = std::max(y0, 0); y < std::min(y1, image.height); ++y)
+    for (int x = std::max(x0, 0); x < std::min(x1, image.width); ++x) {
+      std::uint8_t* p = image.at(x, y);
+      p[0] = rgb[0], p[1] = rgb[1], p[2] = rgb[2], p[3] = 255;
     }
-  const int x0 = margin, x1 = std::max(x0 + 1, heat.width - margin), bar_y = heat.height + margin;
+}
+
+// The strip from row `top` down, between columns x_begin and x_end: a grey ground, the bar,
+// its ticks and labels; `what` on a line of its own (two_lines) or between the end labels.
+void draw_key_strip(ImageRGBA8& out, const HeatKey& key, int top, int x_begin, int x_end, int scale, bool two_lines) {
+  const int margin = (two_lines ? 6 : 3) * scale, bar_h = (two_lines ? 10 : 6) * scale, text_h = 8 * scale;
+  const std::uint8_t ground[3] = {48, 48, 48};
+  fill(out, x_begin, top, x_end, out.height, ground);
+  const int x0 = x_begin + margin, x1 = std::max(x0 + 1, x_end - margin), bar_y = top + margin;
   auto x_of = [&](float value) { return x0 + int(std::lround(double(value) / key.full_scale * (x1 - 1 - x0))); };
   for (int x = x0; x < x1; ++x) {
     const float value = float(x - x0) / float(std::max(1, x1 - 1 - x0)) * key.full_scale;
     float t = value / key.full_scale;
     if (key.threshold >= 0 && value > key.threshold) t = std::max(t, kFailingRampMin);
     std::uint8_t rgba[4];
-    ramp(t, rgba);
-    for (int y = bar_y; y < bar_y + bar_h; ++y) std::copy_n(rgba, 4, out.at(x, y));
+    key_colour(key, t, rgba);
+    for (int y = bar_y; y < bar_y + bar_h && y < out.height; ++y) std::copy_n(rgba, 4, out.at(x, y));
   }
   const std::uint8_t white[3] = {255, 255, 255}, grey[3] = {200, 200, 200};
-  const int label_y = bar_y + bar_h + 3 * scale;
+  const int label_y = bar_y + bar_h + (two_lines ? 3 : 2) * scale;
+  int left_end = x0, right_start = x1;
   auto tick = [&](float value, const std::string& label, bool right_aligned) {
     const int x = x_of(value);
-    for (int y = bar_y + bar_h; y < label_y; ++y)
-      for (int dx = 0; dx < scale && x + dx < out.width; ++dx) std::copy_n(white, 3, out.at(x + dx, y));
+    fill(out, x, bar_y + bar_h, x + scale, label_y, white);
     const int w = text_width(label, scale);
-    draw_text(out, right_aligned ? x - w + scale : x, label_y, label, white, scale);
+    const int lx = right_aligned ? x - w + scale : x;
+    draw_text(out, lx, label_y, label, white, scale);
+    if (right_aligned) right_start = std::min(right_start, lx);
+    else left_end = std::max(left_end, lx + w);
   };
   tick(0, "0", false);
   tick(key.full_scale, short_number(key.full_scale) + "+", true);
   if (key.threshold > 0 && key.threshold < key.full_scale) tick(key.threshold, short_number(key.threshold), false);
-  draw_text(out, x0, label_y + text_h + 2 * scale, key.what, grey, scale);
+  if (two_lines) {
+    draw_text(out, x0, label_y + text_h + 2 * scale, key.what, grey, scale);
+  } else {
+    // between the labels, centred; where it does not fit, it stays left and is clipped
+    const int w = text_width(key.what, scale), gap = 4 * scale;
+    const int room = right_start - left_end - 2 * gap;
+    const int x = w <= room ? left_end + gap + (room - w) / 2 : left_end + gap;
+    ImageRGBA8 line = ImageRGBA8::blank(std::max(1, right_start - gap - x), text_h);
+    draw_text(line, 0, 0, key.what, grey, scale);
+    for (int y = 0; y < line.height && label_y + y < out.height; ++y)
+      for (int lx = 0; lx < line.width && x + lx < out.width; ++lx)
+        if (line.at(lx, y)[3]) std::copy_n(line.at(lx, y), 4, out.at(x + lx, label_y + y));
+  }
+}
+
+}  // namespace
+
+ImageRGBA8 with_heat_key(const ImageRGBA8& heat, const HeatKey& key) {
+  require_valid(heat, "with_heat_key");
+  if (!(key.full_scale > 0.0f)) throw Error("with_heat_key: full_scale must be positive");
+  const int scale = std::max(1, heat.width / 400);  // text stays readable on large images
+  const int strip = 6 * scale + 10 * scale + 3 * scale + 8 * scale + 2 * scale + 8 * scale + 6 * scale;
+  ImageRGBA8 out = ImageRGBA8::blank(heat.width, heat.height + strip);
+  std::copy(heat.pixels.begin(), heat.pixels.end(), out.pixels.begin());
+  draw_key_strip(out, key, heat.height, 0, out.width, scale, true);
   return out;
+}
+
+int label_scale(int width) { return std::max(1, width / 400); }  // text stays readable on large images
+
+int heat_key_rows(int width) {
+  const int scale = label_scale(width);
+  return 3 * scale + 6 * scale + 2 * scale + 8 * scale + 2 * scale;
+}
+
+int draw_heat_key(ImageRGBA8& image, const HeatKey& key, int x_begin, int x_end) {
+  require_valid(image, "draw_heat_key");
+  if (!(key.full_scale > 0.0f)) throw Error("draw_heat_key: full_scale must be positive");
+  if (x_end < 0 || x_end > image.width) x_end = image.width;
+  x_begin = std::clamp(x_begin, 0, x_end);
+  const int rows = std::min(image.height, heat_key_rows(x_end - x_begin));
+  draw_key_strip(image, key, image.height - rows, x_begin, x_end, label_scale(x_end - x_begin), false);
+  return rows;
+}
+
+int draw_label(ImageRGBA8& image, int x, int y, const std::string& text) {
+  require_valid(image, "draw_label");
+  const int scale = label_scale(image.width), pad = 2 * scale;
+  const int w = text_width(text, scale) + 2 * pad, h = 7 * scale + 2 * pad;
+  const std::uint8_t box[3] = {24, 24, 24}, white[3] = {255, 255, 255};
+  fill(image, x, y, x + w, y + h, box);
+  draw_text(image, x + pad, y + pad + scale, text, white, scale);
+  return w;
 }
 
 // ---- float comparison -----------------------------------------------------------------

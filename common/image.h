@@ -2,6 +2,7 @@
 // Images on disk and in memory, and the comparisons the render tests and the
 // speed-versus-error sweeps are built on. Every image here stores its rows top to bottom;
 // OpenGL reads back bottom to top, so callers of glReadPixels use flip_vertically().
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -94,11 +95,26 @@ ImageRGBA8 diff_heatmap(const ImageRGBA8& actual, const ImageRGBA8& expected, in
 // is diff_heatmap()'s ramp (values above it start at full blue) and the threshold is marked;
 // without, error_heatmap()'s. Never for a reference image: those stay pictures alone.
 struct HeatKey {
-  float full_scale = 1;  // the value drawn red; "+" marks that larger values are red too
+  float full_scale = 1;  // the value drawn at the ramp's top; "+" marks that larger values are too
   std::string what;      // e.g. "largest channel difference, 8-bit steps"
   float threshold = -1;  // diff_heatmap's threshold, or < 0 for error_heatmap's plain ramp
+  // Another picture's ramp: its colours (display values, 0..1), evenly spaced from 0 to
+  // full_scale, e.g. chapter 03's count ramp. Empty: error_heatmap's.
+  std::vector<std::array<float, 3>> stops = {};
+  // The picture mixed its ramp's colours in linear light (a shader writing to an sRGB target):
+  // the key mixes them so too, then encodes.
+  bool mixed_in_linear = false;
 };
 ImageRGBA8 with_heat_key(const ImageRGBA8& heat, const HeatKey& key);
+// The same key in one line under the bar, drawn over the bottom rows of `image` between
+// columns x_begin and x_end (-1: the right edge), for the pictures a program shows at its own
+// size (the window and its PNG). Returns the rows it covered (heat_key_rows).
+int draw_heat_key(ImageRGBA8& image, const HeatKey& key, int x_begin = 0, int x_end = -1);
+int heat_key_rows(int width);  // the strip's height for a picture `width` pixels wide
+// A caption over a picture: white text on a dark box, the box's top-left at (x, y); the text
+// scaled with the picture as the key's is. Returns the box's width.
+int draw_label(ImageRGBA8& image, int x, int y, const std::string& text);
+int label_scale(int width);  // the text scale of keys and labels on a picture this wide
 // Text drawn into the image (stb_easy_font: about 6 pixels tall times `scale`), top-left at
 // (x, y), clipped to the image. Returns the width in pixels it took.
 int draw_text(ImageRGBA8& image, int x, int y, const std::string& text, const std::uint8_t rgb[3], int scale = 1);

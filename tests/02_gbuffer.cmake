@@ -5,13 +5,32 @@ lightpass_gtests(02_gbuffer gl lightpass_02_gbuffer unit/test_02_gbuffer_gl.cpp 
 
 # The program: reference images of the lit result and of every buffer, outputs, bad input.
 set(P02 $<TARGET_FILE:02_gbuffer>)
-foreach(mode deferred layout-source ambient-directional albedo normal depth specular exponent emissive position)
+foreach(mode deferred layout-source ambient-directional albedo normal depth specular exponent emissive position mosaic)
   lightpass_program_test(02_gbuffer.reference.${mode} 0 "references match" ${P02} --check --mode ${mode} --out ${CHECK_OUT}/02_gbuffer)
 endforeach()
-# The headless path writes the image --check compares (the default view and mode).
+# The headless path writes the image --check compares (the default view, the lit image).
 lightpass_image_test(02_gbuffer.headless_matches_the_reference "wrote .*02_headless.png" ${CMAKE_BINARY_DIR}/out/02_headless.png
   --matches ${CMAKE_SOURCE_DIR}/tests/reference/02_gbuffer/overview_deferred.png
-  RUN ${P02} --headless --size 320x180 --out ${CMAKE_BINARY_DIR}/out/02_headless.png)
+  RUN ${P02} --headless --size 320x180 --mode deferred --out ${CMAKE_BINARY_DIR}/out/02_headless.png)
+# The opening (./run 02 with nothing given) shows the G-buffer: --mode mosaic, the lit image
+# among the buffers it is computed from and chapter 01's forward image, each in a third of the
+# width and height, captioned. At 960x540 a tile is 320x180: below its caption, the lit tile is
+# the lit image's reference and the normal tile the normal buffer's picture, shrunk (a mean of
+# 3.9 and 2.5 steps on llvmpipe, the checkered floor's filtering); the two pictures are about
+# 100 steps apart, so at most 8: a tile showing another picture, or no mosaic, fails.
+add_test(NAME 02_gbuffer.opening_normal_buffer COMMAND ${P02} --headless --size 320x180 --mode normal
+         --out ${CMAKE_BINARY_DIR}/out/02_opening_normal.png)
+set_tests_properties(02_gbuffer.opening_normal_buffer PROPERTIES FIXTURES_SETUP opening02)
+lightpass_image_test(02_gbuffer.opening_shows_the_lit_image_among_its_buffers "wrote" ${CMAKE_BINARY_DIR}/out/02_opening.png
+  --region 0 24 320 156 --near ${CMAKE_SOURCE_DIR}/tests/reference/02_gbuffer/overview_deferred.png 8
+  --region 0 204 320 156 --other-at 0 24 --near ${CMAKE_BINARY_DIR}/out/02_opening_normal.png 8
+  RUN ${P02} --headless --size 960x540 --out ${CMAKE_BINARY_DIR}/out/02_opening.png)
+set_tests_properties(02_gbuffer.opening_shows_the_lit_image_among_its_buffers PROPERTIES FIXTURES_REQUIRED opening02)
+# --mode difference carries its legend: the key's bar ends red under its right end (the
+# differences there are black or dim blue), mean 80-100 steps over those rows with every pixel lit.
+lightpass_image_test(02_gbuffer.difference_has_its_key "wrote" ${CMAKE_BINARY_DIR}/out/02_difference.png
+  --region 296 162 20 6 --mean 80 100 --lit 1 1
+  RUN ${P02} --headless --size 320x180 --mode difference --out ${CMAKE_BINARY_DIR}/out/02_difference.png)
 lightpass_program_test(02_gbuffer.prints_bytes_per_pixel 0 "G-buffer layout 'ours': 16 bytes per pixel"
   ${P02} --headless --size 64x36 --out ${CMAKE_BINARY_DIR}/out/02_bytes.png)
 lightpass_program_test(02_gbuffer.source_layout_bytes 0 "G-buffer layout 'source': 20 bytes per pixel"
@@ -25,7 +44,7 @@ lightpass_program_test(02_gbuffer.bench_prints_both_passes 0 "\"name\":\"geometr
 foreach(layout ours source float xyz10 oct8 oct10 srgb-colour d32f reversed-z)
   lightpass_image_test(02_gbuffer.every_layout_renders.${layout} "G-buffer layout '${layout}'" ${CMAKE_BINARY_DIR}/out/02_layout_${layout}.png
     --near ${CMAKE_SOURCE_DIR}/tests/reference/02_gbuffer/overview_deferred.png 1
-    RUN ${P02} --headless --size 320x180 --layout ${layout} --out ${CMAKE_BINARY_DIR}/out/02_layout_${layout}.png)
+    RUN ${P02} --headless --size 320x180 --mode deferred --layout ${layout} --out ${CMAKE_BINARY_DIR}/out/02_layout_${layout}.png)
 endforeach()
 lightpass_program_test(02_gbuffer.bad_layout 2 "--layout must be one of: ours source .* reversed-z. got 'oct12'" ${P02} --layout oct12)
 # A layout is named, not numbered: an index is a usage error that lists the names.

@@ -5,7 +5,7 @@ lightpass_gtests(08_ssgi unit lightpass_08_ssgi unit/test_08_gi_math.cpp)
 lightpass_gtests(08_ssgi gl lightpass_08_ssgi unit/test_08_ssgi_gl.cpp unit/test_08_twins_gl.cpp unit/glsl_twin.cpp)
 
 set(P08 $<TARGET_FILE:08_ssgi>)
-lightpass_program_test(08_ssgi.reference.cornell 0 "16 of 16 references match" ${P08} --check --out ${CHECK_OUT}/08_ssgi)
+lightpass_program_test(08_ssgi.reference.cornell 0 "17 of 17 references match" ${P08} --check --out ${CHECK_OUT}/08_ssgi)
 lightpass_program_test(08_ssgi.reference.atrium 0 "2 of 2 references match"
   ${P08} --check --scene assets/atrium/atrium.gltf --out ${CHECK_OUT}/08_ssgi_atrium)
 lightpass_program_test(08_ssgi.headless_says_what_it_computed 0
@@ -13,6 +13,14 @@ lightpass_program_test(08_ssgi.headless_says_what_it_computed 0
   ${P08} --headless --size 160x90 --samples 17 --pattern regular --out ${CMAKE_BINARY_DIR}/out/08_headless.png)
 lightpass_program_test(08_ssgi.off_runs_no_pass 0 "no SSGI pass \\(mode off\\)"
   ${P08} --headless --size 160x90 --mode off --out ${CMAKE_BINARY_DIR}/out/08_off.png)
+# The opening (./run 08 with nothing given) shows the light the surfaces bounce: the lit box's
+# middle half beside the indirect light's (x 4), captioned. Below the captions, the left half is
+# the lit image's reference there and the right half the indirect light's, both moved in from
+# a quarter of the width: an opening without the split, or without the move, fails both.
+lightpass_image_test(08_ssgi.opening_shows_the_lit_image_beside_its_indirect_light "wrote" ${CMAKE_BINARY_DIR}/out/08_opening.png
+  --region 0 14 160 166 --other-at 80 14 --matches ${CMAKE_SOURCE_DIR}/tests/reference/08_ssgi/front_ssgi.png
+  --region 160 14 160 166 --other-at 80 14 --matches ${CMAKE_SOURCE_DIR}/tests/reference/08_ssgi/front_ssgi_show-indirect.png
+  RUN ${P08} --headless --size 320x180 --out ${CMAKE_BINARY_DIR}/out/08_opening.png)
 lightpass_program_test(08_ssgi.bad_samples 2 "--samples must be between 1 and 128, got 0" ${P08} --samples 0)
 lightpass_program_test(08_ssgi.bad_bounces 2 "--bounces must be between 1 and 2, got 3" ${P08} --bounces 3)
 lightpass_program_test(08_ssgi.bad_mode 2 "unknown mode 'rtgi'" ${P08} --mode rtgi)

@@ -12,9 +12,22 @@ endforeach()
 # volumes' (69 096 at 320x180 on the overview, the same count in both runs), no light dropped.
 lightpass_program_test(09_clustered.headless_reports_lit_pairs_and_no_drops 0
   "312 local lights, clustered: .*lights evaluated [0-9]+, lit 69096, .*3456 cells, [1-9][0-9]* list entries.*dropped 0"
-  ${P09} --headless --size 320x180 --out ${CMAKE_BINARY_DIR}/out/09_headless.png)
+  ${P09} --headless --size 320x180 --view overview --show result --out ${CMAKE_BINARY_DIR}/out/09_headless.png)
 lightpass_program_test(09_clustered.stencil_lights_the_same_pairs 0 "312 local lights, stencil: .*lit 69096,"
-  ${P09} --headless --size 320x180 --mode stencil --out ${CMAKE_BINARY_DIR}/out/09_headless_stencil.png)
+  ${P09} --headless --size 320x180 --view overview --show result --mode stencil --out ${CMAKE_BINARY_DIR}/out/09_headless_stencil.png)
+# The opening (./run 09 with nothing given) shows what culling does: down the street, the
+# image's left half beside the right half of the lights each pixel evaluated (its cell's list),
+# with captions and a key. Below the captions and above the key, the left half is the image's
+# reference and the right half the heat map's own render: an opening without the split, or on
+# another view, fails both.
+add_test(NAME 09_clustered.opening_heat_map COMMAND ${P09} --headless --size 320x180 --view street_level
+         --show heat-evaluated --out ${CMAKE_BINARY_DIR}/out/09_opening_heat.png)
+set_tests_properties(09_clustered.opening_heat_map PROPERTIES FIXTURES_SETUP opening09)
+lightpass_image_test(09_clustered.opening_shows_the_lights_evaluated_beside_the_image "wrote" ${CMAKE_BINARY_DIR}/out/09_opening.png
+  --region 0 14 160 166 --matches ${CMAKE_SOURCE_DIR}/tests/reference/09_clustered/street_level_clustered.png
+  --region 160 14 160 145 --matches ${CMAKE_BINARY_DIR}/out/09_opening_heat.png
+  RUN ${P09} --headless --size 320x180 --out ${CMAKE_BINARY_DIR}/out/09_opening.png)
+set_tests_properties(09_clustered.opening_shows_the_lights_evaluated_beside_the_image PROPERTIES FIXTURES_REQUIRED opening09)
 lightpass_program_test(09_clustered.bad_mode 2 "unknown mode 'forward'" ${P09} --mode forward)
 # --bench times the three passes apart, under the names the sweep reads.
 lightpass_program_test(09_clustered.bench_times_the_three_passes 0

@@ -2,7 +2,7 @@
 //
 //   image_stats IMAGE.png [--size WxH] [--background R,G,B] [--mean LO HI] [--lit LO HI]
 //               [--matches REFERENCE.png] [--differs-from OTHER.png MIN_MEAN_STEPS] [--near OTHER.png MAX_MEAN_STEPS]
-//               [--matches-right-of X REFERENCE.png]
+//               [--matches-right-of X REFERENCE.png] [--region X Y W H] [--other-at X Y]
 //
 // Prints the image's statistics, then checks each one asked for:
 //   --mean LO HI       the mean over every pixel's R, G and B, in 8-bit steps, lies in [LO, HI]
@@ -18,6 +18,12 @@
 //                      from OTHER is at least MIN: two images that must not look the same
 //   --near OTHER MAX   that mean difference is at most MAX: two images that must look the same
 //                      where a pixel-by-pixel threshold would be the wrong test
+//   --region X Y W H   the checks after it (--mean, --lit, --matches, --differs-from, --near) see
+//                      only this rectangle (top-left X, Y) of the image and of the other image
+//                      (which must hold it): one part of a split picture
+//   --other-at X Y     the checks after it take the other image's rectangle from (X, Y) instead:
+//                      a part of a picture moved (a split of two images' middles, a tile of a
+//                      mosaic against the picture at the tile's size)
 // Exit code 0 when every check holds, 1 when one fails or an image cannot be read, 2 for a bad
 // command line.
 #include <cstdio>
@@ -83,6 +89,18 @@ int run(int argc, char** argv) {
   std::printf("%s: %dx%d, mean %.2f steps, lit %.2f %% (brightest channel > %d steps above %d,%d,%d)\n", path.c_str(),
               img.width, img.height, s.mean, 100.0 * s.lit, kLitSteps, background[0], background[1], background[2]);
   int failed = 0;
+  struct { int x = 0, y = 0, w = -1, h = -1, other_x = -1, other_y = -1; } region;  // w < 0: the whole image
+  auto cut_at = [&](const ImageRGBA8& in, int x0, int y0) {
+    if (region.w < 0) return in;
+    if (x0 + region.w > in.width || y0 + region.h > in.height) return ImageRGBA8::blank(1, 1);  // a size mismatch, reported
+    ImageRGBA8 out = ImageRGBA8::blank(region.w, region.h);
+    for (int y = 0; y < region.h; ++y) std::copy_n(in.at(x0, y0 + y), std::size_t(region.w) * 4, out.at(0, y));
+    return out;
+  };
+  auto cut = [&](const ImageRGBA8& in) { return cut_at(in, region.x, region.y); };
+  auto cut_other = [&](const ImageRGBA8& in) {
+    return region.other_x < 0 ? cut(in) : cut_at(in, region.other_x, region.other_y);
+  };
   auto fail = [&](const std::string& why) {
     std::printf("FAIL: %s\n", why.c_str());
     failed = 1;
@@ -97,7 +115,8 @@ int run(int argc, char** argv) {
       ++i;
     } else if (a == "--mean" || a == "--lit") {
       const double lo = number(value(1), a.c_str()), hi = number(value(2), a.c_str());
-      const double v = a == "--mean" ? s.mean : s.lit;
+      const Stats r = region.w < 0 ? s : stats(cut(img), background);
+      const double v = a == "--mean" ? r.mean : r.lit;
       if (v < lo || v > hi) fail(a.substr(2) + " " + std::to_string(v) + " outside [" + value(1) + ", " + value(2) + "]");
       i += 2;
     } else if (a == "--size") {
@@ -107,7 +126,7 @@ int run(int argc, char** argv) {
         fail("size " + std::to_string(img.width) + "x" + std::to_string(img.height) + ", expected " + value(1));
       i += 1;
     } else if (a == "--matches") {
-      const CompareResult r = compare(img, load_png(value(1)));
+      const CompareResult r = compare(cut(img), cut_other(load_png(value(1))));
       std::printf("against %s: %s\n", value(1).c_str(), r.summary().c_str());
       if (!r.passed) fail("does not match " + value(1));
       i += 1;
@@ -130,11 +149,27 @@ int run(int argc, char** argv) {
     } else if (a == "--differs-from" || a == "--near") {
       const bool differ = a == "--differs-from";
       const double bound = number(value(2), a.c_str());
-      const CompareResult r = compare(img, load_png(value(1)));
+      const CompareResult r = compare(cut(img), cut_other(load_png(value(1))));
       std::printf("against %s: mean difference %.3f steps (%s %s wanted)\n", value(1).c_str(), r.mean_error,
                   differ ? "at least" : "at most", value(2).c_str());
       if (r.size_mismatch) fail("not the size of " + value(1));
       else if (differ ? r.mean_error < bound : r.mean_error > bound) fail(std::string(differ ? "too close to " : "too far from ") + value(1));
+      i += 2;
+    } else if (a == "--region") {
+      int v[4];
+      for (int k = 0; k < 4; ++k) v[k] = static_cast<int>(number(value(k + 1), "--region"));
+      if (v[0] < 0 || v[1] < 0 || v[2] < 1 || v[3] < 1 || v[0] + v[2] > img.width || v[1] + v[3] > img.height)
+        throw UsageError("--region " + value(1) + " " + value(2) + " " + value(3) + " " + value(4) + " is not inside the " +
+                         std::to_string(img.width) + "x" + std::to_string(img.height) + " image");
+      region = {v[0], v[1], v[2], v[3], region.other_x, region.other_y};
+      std::printf("region %d,%d %dx%d:\n", v[0], v[1], v[2], v[3]);
+      i += 4;
+    } else if (a == "--other-at") {
+      const int x = static_cast<int>(number(value(1), "--other-at")), y = static_cast<int>(number(value(2), "--other-at"));
+      if (region.w < 0) throw UsageError("--other-at needs a --region before it");
+      if (x < 0 || y < 0) throw UsageError("--other-at " + value(1) + " " + value(2) + ": negative");
+      region.other_x = x, region.other_y = y;
+      std::printf("region %d,%d %dx%d against the other image's at %d,%d:\n", region.x, region.y, region.w, region.h, x, y);
       i += 2;
     } else {
       throw UsageError("unknown option '" + a + "'");
@@ -151,7 +186,7 @@ int main(int argc, char** argv) {
   } catch (const UsageError& e) {
     std::fprintf(stderr, "image_stats: %s\nusage: image_stats IMAGE.png [--size WxH] [--background R,G,B] [--mean LO HI] "
                          "[--lit LO HI] [--matches REF.png] [--differs-from OTHER.png MIN_MEAN_STEPS] [--near OTHER.png MAX_MEAN_STEPS] "
-                         "[--matches-right-of X REF.png]\n", e.what());
+                         "[--matches-right-of X REF.png] [--region X Y W H] [--other-at X Y]\n", e.what());
     return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "image_stats: %s\n", e.what());

@@ -25,7 +25,7 @@ PASSES = [("depth_bounds_ms", "depth bounds"), ("assign_ms", "assign"), ("prepas
 
 # The pictures: (file, program arguments); 1920x1080 would take minutes a picture on llvmpipe.
 PICTURES = [
-    ("09_street_clustered.png", ["--view", "street_level", "--lights", "1000"]),
+    ("09_street_clustered.png", ["--view", "street_level", "--lights", "1000", "--show", "result"]),
     ("09_heat_tiled.png", ["--view", "street_level", "--lights", "1000", "--mode", "tiled", "--show", "heat-evaluated",
                            "--heat-scale", "200"]),
     ("09_heat_clustered.png", ["--view", "street_level", "--lights", "1000", "--show", "heat-evaluated",

@@ -13,6 +13,7 @@
 #include "chapters/02_gbuffer/deferred.h"
 #include "chapters/02_gbuffer/gbuffer.h"
 #include "common/app.h"
+#include "common/target.h"
 
 #include <imgui.h>
 
@@ -24,6 +25,7 @@ using namespace lp::ch02;
 std::vector<std::string> modes() {
   std::vector<std::string> m = {"deferred", "layout-source", "ambient-directional", "forward", "difference"};
   m.insert(m.end(), kBufferViews.begin(), kBufferViews.end());
+  m.push_back("mosaic");  // the lit image among its buffers
   return m;
 }
 
@@ -51,6 +53,7 @@ std::vector<Shot> references() {
     shots.push_back(shot);
   }
   shots.push_back({"corner", "normal", {{"layout", 4}}, {}, textured_floor});  // octahedral 8+8
+  shots.push_back({"overview", "mosaic", {}, {}, textured_floor});  // the opening, the README's picture
   return shots;
 }
 // [/references]
@@ -61,7 +64,9 @@ const lp::Chapter kChapter{
             .default_scene = "assets/atrium/atrium.gltf",
             .modes = modes(),
             .knobs = {{"lights", "lights to use (0: the scene's own; more adds point lights)", 0, 0, 100000, true},
-                      choice_knob("layout", "G-buffer layout (the table in the book)", layout_names())}},
+                      choice_knob("layout", "G-buffer layout (the table in the book)", layout_names())},
+            // The lit image among the buffers it is computed from: alone it looks like forward shading.
+            .opening = {"--mode", "mosaic"}},
     .references = references(),
     // The street's emissive buffer: its windows and lamps (a palette code each), the image
     // the GL test StreetEmissiveViewMatchesItsReference also holds in-process.
@@ -116,6 +121,10 @@ class DifferenceView {
   gl::Framebuffer fbo_;
 };
 
+// --mode mosaic's tiles, left to right, top to bottom: the lit image, the buffers, chapter 01's.
+const std::vector<std::string> kMosaic = {"deferred", "albedo", "specular", "normal", "depth", "exponent",
+                                          "position", "ambient-directional", "forward"};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -125,6 +134,7 @@ int main(int argc, char** argv) {
     BufferViewPass views;
     ch01::ForwardRenderer forward(app.scene_gpu());
     DifferenceView difference;
+    std::unique_ptr<OutputTarget> tile;  // --mode mosaic: each picture at full size, then shrunk into its tile
     ch01::LightBuffer lights;
     std::unique_ptr<GBuffer> gbuffer;
     std::set<std::string> reported;
@@ -176,6 +186,38 @@ int main(int argc, char** argv) {
         }
       }
       // [/frame]
+      if (f.mode == "mosaic") {  // the G-buffer just drawn, each picture of it in a tile, captioned
+        if (!tile || tile->width() != f.width || tile->height() != f.height)
+          tile = std::make_unique<OutputTarget>(f.width, f.height);
+        bind_output(f);
+        glClear(GL_COLOR_BUFFER_BIT);
+        for (std::size_t i = 0; i < kMosaic.size(); ++i) {
+          const std::string& picture = kMosaic[i];
+          tile->bind();
+          glClearColor(background.r, background.g, background.b, 1.f);
+          glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+          if (picture == "forward") forward.draw(f.camera, ch01::ForwardMode::PerPixel, lights);
+          else if (picture == "deferred") lighting.draw(*gbuffer, lights, ambient, background, LightSelection::All);
+          else if (picture == "ambient-directional")
+            lighting.draw(*gbuffer, lights, ambient, background, LightSelection::AmbientAndDirectional);
+          else views.draw(*gbuffer, buffer_view(picture), background);
+          const int col = int(i % 3), row = int(i / 3);  // row 0 at the top; OpenGL's rows start at the bottom
+          glBlitNamedFramebuffer(tile->framebuffer(), f.target, 0, 0, f.width, f.height, col * f.width / 3,
+                                 (2 - row) * f.height / 3, (col + 1) * f.width / 3, (3 - row) * f.height / 3,
+                                 GL_COLOR_BUFFER_BIT, GL_LINEAR);
+        }
+        ImageRGBA8 img = read_framebuffer(f.target, f.width, f.height);
+        for (std::size_t i = 0; i < kMosaic.size(); ++i) {
+          const std::string& m = kMosaic[i];
+          const std::string caption = m == "deferred"              ? "lit (deferred)"
+                                      : m == "forward"             ? "forward (ch. 1)"
+                                      : m == "ambient-directional" ? "no local lights"
+                                                                   : m;
+          draw_label(img, int(i % 3) * f.width / 3 + 1, int(i / 3) * f.height / 3 + 1, caption);
+        }
+        put_picture(img, f.target);
+        bind_output(f);
+      }
       if (f.mode == "difference") {  // the same frame forward, and the heat map of the two
         OutputTarget reference(f.width, f.height);
         reference.bind();
@@ -189,6 +231,9 @@ int main(int argc, char** argv) {
         glReadPixels(0, 0, f.width, f.height, GL_RGBA, GL_UNSIGNED_BYTE, deferred_image.pixels.data());
         flip_vertically(deferred_image);
         difference.draw(f, deferred_image, forward_image);
+        ImageRGBA8 keyed = read_framebuffer(f.target, f.width, f.height);  // the heat map's legend, in the picture
+        draw_heat_key(keyed, {.full_scale = 8, .what = "|deferred - forward|, largest channel, 8-bit steps", .threshold = 1});
+        put_picture(keyed, f.target);
         bind_output(f);
       }
 

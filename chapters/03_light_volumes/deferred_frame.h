@@ -18,6 +18,7 @@
 //   buffer than chapter 03's volumes; chapter 09's tiled and clustered culling.
 // Every hook does nothing by default: a frame without stages is chapter 03's image, bit for bit.
 // [/extending]
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <memory>
@@ -127,6 +128,10 @@ class VolumeLights : public LocalLightPass {
 
 // What render() draws, besides the image itself: chapter 03's pictures of its light buffer.
 enum class FrameShow { Image, DiffuseLight, SpecularLight, HeatShaded, HeatLit };
+// heat.frag's ramp, its stops as display values (0 at the first, heat_full_scale at the last):
+// what the heat maps' keys draw (common/image.h, HeatKey::stops).
+inline const std::vector<std::array<float, 3>> kHeatRamp = {
+    {0.0f, 0.0f, 0.0f}, {0.0f, 0.1f, 0.6f}, {0.0f, 0.6f, 0.3f}, {0.9f, 0.8f, 0.0f}, {0.9f, 0.1f, 0.0f}, {1.0f, 1.0f, 1.0f}};
 
 struct FrameSettings {
   FrameShow show = FrameShow::Image;

@@ -18,6 +18,7 @@
 #include "chapters/03_light_volumes/light_radius.h"
 #include "chapters/03_light_volumes/light_volumes.h"
 #include "common/app.h"
+#include "common/target.h"
 
 namespace {
 
@@ -65,7 +66,9 @@ const lp::Chapter kChapter{
                       {"far", "far plane in metres (0: the camera's own); small values cut volumes", 0, 0, 10000, false},
                       {"exposure", "the exposure the light cut is relative to", 1, 0.01, 100, false},
                       {"cut", "cut each light where it is one sRGB step at black on the brightest material (off: at 1/256 of the source)", 1, 0, 1, true},
-                      {"count", "count fragments shaded and lit (atomic counters, costs a little time)", 1, 0, 1, true}}},
+                      {"count", "count fragments shaded and lit (atomic counters, costs a little time)", 1, 0, 1, true}},
+            // Down the street among its lamps' pools of light: the overview is mostly sky.
+            .opening = {"--view", "street_level"}},
     .references = references(),
     // [exercises]
     .exercises = {{.title = "the window that ends a light at its range",
@@ -157,6 +160,13 @@ int main(int argc, char** argv) {
           else volumes.draw_stencil_mask(frame.view(), f.knob_int("light"));
         }
         // [/frame]
+        if (show == kHeatShaded || show == kHeatLit) {  // the heat map's key, in the picture
+          ImageRGBA8 img = read_framebuffer(f.target, f.width, f.height);
+          draw_heat_key(img, {.full_scale = kHeatFullScale,
+                              .what = show == kHeatShaded ? "fragments shaded per pixel" : "fragments lit per pixel",
+                              .stops = kHeatRamp});
+          put_picture(img, f.target);
+        }
         app.metrics().set_allocation("G-buffer (chapter 02) + light buffer L1 + L2 RGBA16F + depth-stencil",
                                      frame.allocated_bytes());
       } else {

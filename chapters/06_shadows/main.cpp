@@ -270,7 +270,9 @@ int main(int argc, char** argv) {
           if (std::ostream& out = app.report())
             out << "against the " << (channel == 0 ? "hard" : "soft") << " truth: mean |error| " << e.mean_abs
                 << ", p99 " << e.p99 << ", " << 100 * e.wrong << "% of " << e.pixels << " pixels wrong by > 0.5\n";
-          put_picture(error_heatmap(error, f.width, f.height, 1.f), f.target);
+          ImageRGBA8 heat = error_heatmap(error, f.width, f.height, 1.f);
+          draw_heat_key(heat, {.full_scale = 1, .what = channel == 0 ? "|visibility - hard truth|" : "|visibility - soft truth|"});
+          put_picture(heat, f.target);
         } else {
           put_picture(truth_picture(truth, show == kTruth ? 0 : 1), f.target);
         }

@@ -14,6 +14,7 @@
 #include "chapters/07_ssao/ao_stage.h"
 #include "chapters/07_ssao/ao_truth.h"
 #include "common/app.h"
+#include "common/target.h"
 #include "common/error.h"
 
 namespace {
@@ -169,6 +170,11 @@ int main(int argc, char** argv) {
       }
       frame.render(f.camera, {f.target, f.width, f.height}, &app.metrics());
       // [/frame]
+      if (show == kError) {  // the heat map's key, in the picture (show_ao.frag's ramp)
+        ImageRGBA8 img = read_framebuffer(f.target, f.width, f.height);
+        draw_heat_key(img, {.full_scale = 0.5f, .what = "|AO - ray-traced AO|", .mixed_in_linear = true});
+        put_picture(img, f.target);
+      }
       app.metrics().set_allocation("G-buffer (chapter 02) + light buffer (chapter 03)", frame.allocated_bytes());
       if (std::ostream& out = app.report()) {
         glFinish();

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <iostream>
+#include <sstream>
 
 #include <imgui.h>
 
@@ -28,7 +29,7 @@ namespace {
 using namespace lp;
 using namespace lp::ch08;
 
-enum Show { kImage, kIndirect, kAo, kTruth, kError, kBackFaces };  // --show's order
+enum Show { kImage, kIndirect, kAo, kTruth, kError, kBackFaces, kSplit };  // --show's order
 
 const CliSpec kCli{
     .program = "08_ssgi",
@@ -58,11 +59,15 @@ const CliSpec kCli{
                0, 0, kMaxGuardBand, false},
               choice_knob("show", "the lit image; the indirect light alone (albedo x L1_ind, x --exposure); the AO "
                                   "term; the ray-traced truth (the CPU traces --truth-samples rays per pixel, cached); "
-                                  "|SSGI - truth| as a heat map (red: 0.2); the back-face layer's light (albedo x L1)",
-                          {"image", "indirect", "ao", "truth", "error", "back-faces"}),
+                                  "|SSGI - truth| as a heat map (red: 0.2); the back-face layer's light (albedo x L1); "
+                                  "the lit image's left half beside the indirect light's right half",
+                          {"image", "indirect", "ao", "truth", "error", "back-faces", "split"}),
               {"exposure", "--show indirect/truth: the indirect light times this", 4, 0.1, 100, false},
               {"truth-samples", "--show truth/error: cosine-weighted rays per pixel", 256, 1, 4096, true},
-              {"ambient", "the scene's ambient light times this (the AO darkens only the ambient)", 1, 0, 1000, false}}};
+              {"ambient", "the scene's ambient light times this (the AO darkens only the ambient)", 1, 0, 1000, false}},
+    // The lit image beside the light its surfaces bounce (x --exposure): the bleeding is faint in
+    // the lit image alone.
+    .opening = {"--show", "split"}};
 
 // [references]
 // On a renderer other than the references' (a reader's GPU), the atrium's normal-mapped floor
@@ -78,6 +83,7 @@ const CompareOptions kCornerTies{.threshold = 3, .max_failing_fraction = 0.01};
 
 std::vector<Shot> cornell_shots() {
   return {{"front", "ssgi", {}},
+          {"front", "ssgi", {{"show", kSplit}}},  // the opening, the README's picture
           {"front", "ssao", {}},
           {"front", "off", {}},
           {"front", "ssgi", {{"show", kIndirect}}},
@@ -160,6 +166,7 @@ int main(int argc, char** argv) {
     frame.add_stage(gi);
     // 3. The guard band, when asked for: the frame drawn wider into its own target, cropped.
     std::unique_ptr<OutputTarget> wide;
+    std::unique_ptr<OutputTarget> split;  // --show split: the indirect light's half
 
     while (app.next_frame()) {
       const Frame& f = app.frame();
@@ -176,8 +183,8 @@ int main(int argc, char** argv) {
       const GiSettings settings = settings_from(f);
       const GuardBand band{guard_band_pixels(f.knob("guard-band"), f.height)};
       gi.set_guard_band(band.pixels);
-      auto render = [&](PassMetrics* metrics) {
-        if (band.pixels == 0) return frame.render(f.camera, {f.target, f.width, f.height}, metrics);
+      auto render = [&](PassMetrics* metrics, GLuint target) {
+        if (band.pixels == 0) return frame.render(f.camera, {target, f.width, f.height}, metrics);
         if (!wide || wide->width() != band.width(f.width) || wide->height() != band.height(f.height)) {
           // the wide frame obeys --size's own limit (16384) and this GL's texture size
           GLint gl_most = 0;
@@ -191,7 +198,7 @@ int main(int argc, char** argv) {
         }
         frame.render(band.widen(f.camera, f.width, f.height), {wide->framebuffer(), wide->width(), wide->height()},
                      metrics);
-        band.crop(wide->framebuffer(), f.target, f.width, f.height);
+        band.crop(wide->framebuffer(), target, f.width, f.height);
       };
       gi.set(mode_from(f), settings,
              show == kIndirect ? GiShow::Indirect : show == kAo ? GiShow::Ao : show == kBackFaces ? GiShow::BackFaces
@@ -209,7 +216,7 @@ int main(int argc, char** argv) {
           gi.set_picture(picture);
           gi.set(mode_from(f), settings, GiShow::Picture, ambient, exposure);
         } else {
-          render(nullptr);
+          render(nullptr, f.target);
           ImageF estimate = ImageF::blank(f.width, f.height, 4);
           if (gi.ran() && gi.settings().indirect) estimate = band.crop(gi.ssgi().read());
           gi.set_picture(gi_error_map(estimate, truth), 0.2f);
@@ -218,8 +225,32 @@ int main(int argc, char** argv) {
       }
       // 4. G-buffer, direct lights, the SSGI pass added (the back-face layer drawn and lit first
       //    when asked for), the composite (or the picture), the screen's part of a guard band
-      render(&app.metrics());
+      render(&app.metrics(), f.target);
       // [/frame]
+      // The split: the indirect light drawn too, the middle halves of both side by side (the
+      // box is in the middle); the captions and keys drawn into the picture.
+      if (show == kSplit || show == kError) {
+        ImageRGBA8 img = read_framebuffer(f.target, f.width, f.height);
+        if (show == kSplit) {
+          if (!split || split->width() != f.width || split->height() != f.height)
+            split = std::make_unique<OutputTarget>(f.width, f.height);
+          gi.set(mode_from(f), settings, GiShow::Indirect, ambient, exposure);
+          render(nullptr, split->framebuffer());
+          const ImageRGBA8 lit = img, indirect = read_framebuffer(split->framebuffer(), f.width, f.height);
+          const int half = f.width / 2, from = f.width / 4;
+          for (int y = 0; y < f.height; ++y) {
+            std::copy_n(lit.at(from, y), std::size_t(half) * 4, img.at(0, y));
+            std::copy_n(indirect.at(from, y), std::size_t(f.width - half) * 4, img.at(half, y));
+          }
+          draw_label(img, 2, 2, "lit image");
+          std::ostringstream what;
+          what << "indirect light x " << exposure;
+          draw_label(img, f.width / 2 + 2, 2, what.str());
+        } else {
+          draw_heat_key(img, {.full_scale = 0.2f, .what = "|indirect light - ray-traced truth|", .mixed_in_linear = true});  // show_gi.frag's ramp
+        }
+        put_picture(img, f.target);
+      }
       app.metrics().set_allocation("G-buffer (chapter 02) + light buffer (chapter 03)", frame.allocated_bytes());
       if (gi.drew_back_faces())
         app.metrics().set_allocation("back-face layer: G-buffer + light buffer", gi.back_faces().allocated_bytes());

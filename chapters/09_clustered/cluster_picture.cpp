@@ -1,5 +1,6 @@
 #include "chapters/09_clustered/cluster_picture.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace lp::ch09 {
@@ -21,7 +22,7 @@ ImageRGBA8 cluster_picture(const Grid& g, const std::vector<std::uint32_t>& coun
 }
 
 void ClusterPicture::draw(const Grid& grid, const std::vector<std::uint32_t>& counts, const ch03::FrameOutput& output,
-                          float full_scale) {
+                          float full_scale, int key_rows) {
   ImageRGBA8 img = cluster_picture(grid, counts, full_scale);
   flip_vertically(img);  // OpenGL's first row is the bottom one
   if (img.width != width_ || img.height != height_) {
@@ -33,7 +34,8 @@ void ClusterPicture::draw(const Grid& grid, const std::vector<std::uint32_t>& co
   glTextureSubImage2D(texture_.id(), 0, 0, 0, img.width, img.height, GL_RGBA, GL_UNSIGNED_BYTE, img.pixels.data());
   output.bind();
   glClear(GL_COLOR_BUFFER_BIT);
-  glBlitNamedFramebuffer(fbo_.id(), output.framebuffer, 0, 0, img.width, img.height, 0, 0, output.width, output.height,
+  const int bottom = std::clamp(key_rows, 0, output.height - 1);  // OpenGL's rows start at the bottom
+  glBlitNamedFramebuffer(fbo_.id(), output.framebuffer, 0, 0, img.width, img.height, 0, bottom, output.width, output.height,
                          GL_COLOR_BUFFER_BIT, GL_NEAREST);
 }
 

@@ -17,9 +17,10 @@ ImageRGBA8 cluster_picture(const Grid& grid, const std::vector<std::uint32_t>& c
 
 class ClusterPicture {
  public:
-  // Over the whole of `output` (nearest, stretched), replacing the image.
+  // Over the whole of `output` (nearest, stretched), replacing the image; with `key_rows`, over
+  // all but that many rows at the bottom (cleared), where the key goes.
   void draw(const Grid& grid, const std::vector<std::uint32_t>& counts, const ch03::FrameOutput& output,
-            float full_scale = 100.f);
+            float full_scale = 100.f, int key_rows = 0);
 
  private:
   gl::Texture texture_{GL_TEXTURE_2D};

@@ -7,7 +7,9 @@
 // are chapter 03's, so every mode gives chapter 03's image; the modes are chapter 03's
 // stencil volumes and the seven ways of this chapter (tiled with Harada's 2.5D depth mask
 // and Z-binning among them), `--show` draws the heat maps.
+#include <cmath>
 #include <chrono>
+#include <cstdio>
 #include <iostream>
 #include <memory>
 
@@ -21,13 +23,14 @@
 #include "chapters/09_clustered/clustered_forward.h"
 #include "chapters/09_clustered/clustered_lights.h"
 #include "common/app.h"
+#include "common/target.h"
 
 namespace {
 
 using namespace lp;
 using namespace lp::ch09;
 
-enum Show { kResult, kHeatEvaluated, kHeatLit, kClusters };  // --show's order
+enum Show { kResult, kHeatEvaluated, kHeatLit, kClusters, kSplit };  // --show's order
 
 std::vector<std::string> modes() {
   std::vector<std::string> m = {"clustered"};
@@ -52,6 +55,7 @@ std::vector<Shot> references() {
   std::vector<Shot> shots;
   for (const auto& m : modes()) shots.push_back({"street_level", m});
   shots.push_back({"street_level", "clustered-forward", {{"lights", 1000}, {"show", kHeatEvaluated}, {"heat-scale", 200}}, {}, kCounts});
+  shots.push_back({"street_level", "clustered", {{"show", kSplit}}, {}, kCounts});  // the opening, the README's picture
   shots.push_back({"inside_light", "clustered"});
   shots.push_back({"inside_light", "tiled"});
   for (const std::string m : {"tiled", "clustered"})
@@ -104,18 +108,50 @@ const lp::Chapter kChapter{
             .default_scene = "assets/street/street.gltf",
             .modes = modes(),
             .knobs = {{"lights", "local lights (0: the scene's own; more adds lights like them)", 0, 0, 1000000, true},
-                      choice_knob("show", "result, lights evaluated or lit per pixel, lights per cluster (the grid)",
-                                  {"result", "heat-evaluated", "heat-lit", "clusters"}),
+                      choice_knob("show", "result, lights evaluated or lit per pixel, lights per cluster (the grid), "
+                                          "or the image's left half beside the lights evaluated per pixel",
+                                  {"result", "heat-evaluated", "heat-lit", "clusters", "split"}),
                       {"tile", "tiled and zbin: tile size in pixels", 16, 1, 512, true},
                       {"clusters-x", "clustered: tiles across (DOOM 2016: 16)", 16, 1, 1024, true},
                       {"clusters-y", "clustered: tiles down (DOOM 2016: 9)", 9, 1, 1024, true},
                       {"slices", "clustered: exponential depth slices (DOOM 2016: 24)", 24, 1, 256, true},
                       {"bins", "zbin: exponential depth bins", 1024, 1, 16384, true},
                       {"heat-scale", "heat maps: lights per pixel or per cluster shown white", 100, 1, 1e7, false},
-                      {"count", "count lights evaluated and lit (atomic counters, costs a little time)", 1, 0, 1, true}}},
+                      {"count", "count lights evaluated and lit (atomic counters, costs a little time)", 1, 0, 1, true}},
+            // Down the street, the lit image beside the lights each pixel evaluated: the cells' lists.
+            .opening = {"--view", "street_level", "--show", "split"}},
     .references = references(),
     .exercises = exercises(),
 };
+
+// The keys drawn into the picture (the window and its PNG): what a heat map's colours count,
+// which slice of the grid is which, the split's halves.
+void draw_keys(const Frame& f, int show, const Grid& grid) {
+  ImageRGBA8 img = read_framebuffer(f.target, f.width, f.height);
+  const float full = float(f.knob("heat-scale"));
+  if (show == kSplit) {
+    const int half = f.width / 2;
+    draw_label(img, 2, 2, "image");
+    draw_label(img, half + 2, 2, "lights evaluated");
+    draw_heat_key(img, {.full_scale = full, .what = "lights per pixel", .stops = ch03::kHeatRamp}, half);
+  } else if (show == kHeatEvaluated || show == kHeatLit) {
+    draw_heat_key(img, {.full_scale = full,
+                        .what = show == kHeatEvaluated ? "lights evaluated per pixel" : "lights that lit the pixel",
+                        .stops = ch03::kHeatRamp});
+  } else if (show == kClusters) {  // cluster_picture's layout: slices left to right, top to bottom
+    const int rows = heat_key_rows(f.width), cols = int(std::ceil(std::sqrt(double(grid.slices))));
+    const int w = cols * (grid.tiles_x + 1) - 1, h = ((grid.slices + cols - 1) / cols) * (grid.tiles_y + 1) - 1;
+    for (int k = 0; k < grid.slices && grid.slices > 1; ++k) {  // tiles: one slice, each tile its own depth range
+      const int x = (k % cols) * (grid.tiles_x + 1) * f.width / w, y = (k / cols) * (grid.tiles_y + 1) * (f.height - rows) / h;
+      char range[64];
+      std::snprintf(range, sizeof range, "%d: %.3g-%.3g m", k, slice_start(grid, k), slice_start(grid, k + 1));
+      const int room = grid.tiles_x * f.width / w;
+      draw_label(img, x, y, text_width(range, label_scale(f.width)) + 4 * label_scale(f.width) <= room ? range : std::to_string(k));
+    }
+    draw_heat_key(img, {.full_scale = full, .what = grid.slices > 1 ? "lights per cluster, slices near to far" : "lights per tile"});
+  }
+  put_picture(img, f.target);
+}
 
 }  // namespace
 
@@ -125,6 +161,7 @@ int main(int argc, char** argv) {
     ClusteredLights clustered(frame.volumes());
     ClusteredForward forward(frame, app.scene_gpu());
     ClusterPicture picture;
+    std::unique_ptr<OutputTarget> heat;  // --show split: the heat map's half
     double lights_key = -1;
     std::uint64_t warned_frame = 0;
 
@@ -173,7 +210,22 @@ int main(int argc, char** argv) {
       frame.render(f.camera, {f.target, f.width, f.height}, &app.metrics(),
                    {.show = frame_show, .heat_full_scale = float(f.knob("heat-scale"))});
       // 4. The grid itself: each cell's light count, slice by slice, over the image.
-      if (show == kClusters && ours) picture.draw(lists.grid(), lists.cell_counts(), {f.target, f.width, f.height}, float(f.knob("heat-scale")));
+      if (show == kClusters && ours)
+        picture.draw(lists.grid(), lists.cell_counts(), {f.target, f.width, f.height}, float(f.knob("heat-scale")),
+                     heat_key_rows(f.width));
+      // The split: the heat map drawn too, its right half over the image's.
+      if (show == kSplit) {
+        if (!heat || heat->width() != f.width || heat->height() != f.height)
+          heat = std::make_unique<OutputTarget>(f.width, f.height);
+        frame.render(f.camera, {heat->framebuffer(), f.width, f.height}, nullptr,
+                     {.show = ch03::FrameShow::HeatShaded, .heat_full_scale = float(f.knob("heat-scale"))});
+        glDisable(GL_FRAMEBUFFER_SRGB);  // a copy of the bytes
+        glBlitNamedFramebuffer(heat->framebuffer(), f.target, f.width / 2, 0, f.width, f.height, f.width / 2, 0, f.width,
+                               f.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        glEnable(GL_FRAMEBUFFER_SRGB);
+      }
+      // 5. The keys.
+      if (show != kResult && (ours || show != kClusters)) draw_keys(f, show, lists.grid());
 
       // What it did: lights evaluated against lit, the lists, any overflow.
       std::uint64_t evaluated = 0, lit = 0;

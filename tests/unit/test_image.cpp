@@ -495,6 +495,68 @@ TEST(HeatKey, AddsARampAndLabelsBelowThePicture) {
   EXPECT_GT(white, 20) << "no labels under the bar";
 }
 
+// The key a program draws into its own picture: over the bottom rows only, between the columns
+// asked for, on the picture's own ramp (here chapter 03's, which ends white), with its labels.
+TEST(HeatKey, DrawnOverTheBottomRowsOnThePicturesOwnRamp) {
+  lp::ImageRGBA8 image = lp::ImageRGBA8::blank(320, 180);
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = std::uint8_t(i * 7);
+  const lp::ImageRGBA8 original = image;
+  const lp::HeatKey key{.full_scale = 100, .what = "lights evaluated per pixel", .stops = {{0, 0, 0}, {0, 0.1f, 0.6f}, {1, 1, 1}}};
+  const int rows = lp::draw_heat_key(image, key, 160);
+  ASSERT_EQ(rows, lp::heat_key_rows(160));
+  ASSERT_GT(rows, 10);
+  ASSERT_LT(rows, 180 / 4) << "the key hides the picture";
+  const int top = 180 - rows;
+  EXPECT_TRUE(std::equal(original.pixels.begin(), original.pixels.begin() + std::ptrdiff_t(top) * 320 * 4, image.pixels.begin()))
+      << "the picture above the key changed";
+  for (int y = top; y < 180; ++y)
+    EXPECT_TRUE(std::equal(original.at(0, y), original.at(160, y), image.at(0, y))) << "left of the key changed, row " << y;
+  const int bar_y = top + 4;
+  const std::uint8_t* left = image.at(160 + 3, bar_y);
+  const std::uint8_t* middle = image.at(160 + 3 + (320 - 3 - 1 - 163) / 2, bar_y);
+  const std::uint8_t* right = image.at(320 - 4, bar_y);
+  EXPECT_EQ(left[0] + left[1] + left[2], 0);
+  EXPECT_NEAR(middle[2], 0.6 * 255, 3) << "the middle stop, not error_heatmap's green";
+  EXPECT_EQ(right[0] + right[1] + right[2], 3 * 255) << "the ramp's top is the stops' last, white";
+  int white = 0;
+  for (int y = bar_y + 7; y < 180; ++y)
+    for (int x = 160; x < 320; ++x) white += image.at(x, y)[0] == 255 && image.at(x, y)[1] == 255;
+  EXPECT_GT(white, 20) << "no labels under the bar";
+}
+
+// A picture that mixed the ramp in linear light (a shader into an sRGB target) gets a key
+// mixed so too: half way from black to blue is linear 0.5, encoded 188, not 128.
+TEST(HeatKey, MixedInLinearLightLikeItsPicture) {
+  lp::ImageRGBA8 image = lp::ImageRGBA8::blank(400, 100);
+  lp::draw_heat_key(image, {.full_scale = 1, .what = "", .mixed_in_linear = true});
+  const int bar_y = 100 - lp::heat_key_rows(400) + 4, x0 = 3, x1 = 400 - 3;
+  const int eighth = x0 + int(std::lround(0.125 * (x1 - 1 - x0)));  // half way to the first stop, blue
+  EXPECT_NEAR(image.at(eighth, bar_y)[2], 188, 3);
+  EXPECT_EQ(image.at(eighth, bar_y)[0], 0);
+  lp::ImageRGBA8 plain = lp::ImageRGBA8::blank(400, 100);
+  lp::draw_heat_key(plain, {.full_scale = 1, .what = ""});
+  EXPECT_NEAR(plain.at(eighth, bar_y)[2], 128, 3);
+}
+
+// A label is text on a dark box: readable over a white picture, and nothing outside the box.
+TEST(HeatKey, LabelIsTextOnADarkBox) {
+  lp::ImageRGBA8 image = lp::ImageRGBA8::blank(320, 180);
+  std::fill(image.pixels.begin(), image.pixels.end(), std::uint8_t(255));
+  const int w = lp::draw_label(image, 10, 20, "slice 0");
+  EXPECT_EQ(w, lp::text_width("slice 0") + 4);
+  int dark = 0, white_inside = 0;
+  for (int y = 20; y < 20 + 11; ++y)
+    for (int x = 10; x < 10 + w; ++x) {
+      dark += image.at(x, y)[0] < 50;
+      white_inside += image.at(x, y)[0] == 255;
+    }
+  EXPECT_GT(dark, w * 11 / 2) << "no dark box";
+  EXPECT_GT(white_inside, 10) << "no text on it";
+  EXPECT_EQ(image.at(9, 20)[0], 255);
+  EXPECT_EQ(image.at(10 + w, 20)[0], 255);
+  EXPECT_EQ(image.at(10, 19)[0], 255);
+}
+
 TEST(HeatKey, TextIsDrawnAndClipped) {
   lp::ImageRGBA8 image = lp::ImageRGBA8::blank(20, 10);
   const std::uint8_t white[3] = {255, 255, 255};
@@ -505,4 +567,5 @@ TEST(HeatKey, TextIsDrawnAndClipped) {
     for (int x = 0; x < 20; ++x) lit += image.at(x, y)[0] == 255;
   EXPECT_GT(lit, 3);
   EXPECT_THROW(lp::with_heat_key(image, {.full_scale = 0}), lp::Error);
+  EXPECT_THROW(lp::draw_heat_key(image, {.full_scale = 0}), lp::Error);
 }
