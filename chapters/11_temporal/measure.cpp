@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include "common/error.h"
 #include "common/target.h"
@@ -111,6 +112,22 @@ std::vector<PathFrame> measure_path(const SceneGpu& scene, const CameraPath& pat
   std::vector<PathFrame> out;
   std::vector<int> since_disocclusion(std::size_t(w) * h, 1 << 20);  // frames since each pixel was hidden
   ImageF last_image, last_truth, last_motion;
+  auto truth_of = [&](int i, const auto& compute) {
+    if (o.truths && std::size_t(i) < o.truths->size() && (*o.truths)[std::size_t(i)].width == w) return (*o.truths)[std::size_t(i)];
+    std::string file;
+    if (!o.truth_dir.empty()) {
+      char n[64];
+      std::snprintf(n, sizeof n, "/truth_%dx%d_%03d.pfm", w, h, i);
+      file = o.truth_dir + n;
+    }
+    ImageF t = !file.empty() && std::filesystem::exists(file) ? load_pfm(file) : compute();
+    if (!file.empty() && !std::filesystem::exists(file)) save_pfm(file, t);
+    if (o.truths) {
+      if (o.truths->size() <= std::size_t(i)) o.truths->resize(std::size_t(i) + 1);
+      (*o.truths)[std::size_t(i)] = t;
+    }
+    return t;
+  };
   for (int i = 0; i < end; ++i) {
     const FrameCamera camera = frame_camera(path.camera(scene.scene(), i), float(w) / float(h));
     const bool cut = path.cut_at(i);
@@ -124,7 +141,7 @@ std::vector<PathFrame> measure_path(const SceneGpu& scene, const CameraPath& pat
     last_motion = motion;
     if (i < o.first) continue;
     const ImageF image = encode_srgb(read_linear(target.framebuffer(), w, h));
-    const ImageF truth = encode_srgb(supersampled(truth_frame, camera, w, h, truth_settings, o.truth_grid));
+    const ImageF truth = truth_of(i, [&] { return encode_srgb(supersampled(truth_frame, camera, w, h, truth_settings, o.truth_grid)); });
     PathFrame f{.frame = i, .cut = cut};
     if (!o.dump_prefix.empty()) {
       char n[16];

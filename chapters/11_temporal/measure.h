@@ -51,6 +51,12 @@ struct PathRunOptions {
   float still_change = 1.f / 255.f;  // flicker: pixels whose truth changed less than this
   int truth_grid = 4;
   std::string dump_prefix;  // non-empty: each measured frame and its truth written as <prefix>NNN_{image,truth}.png
+  // Non-null: the truths by frame, filled on first use and reused by the next variant (the
+  // truth does not depend on the variant, and it is 16 frames of each measured one).
+  std::vector<ImageF>* truths = nullptr;
+  // Non-empty: the truths also kept as <truth_dir>/truth_<w>x<h>_NNN.pfm and read back when
+  // there (for repeated runs of the same path and settings; the caller clears it when they change).
+  std::string truth_dir;
 };
 
 // Plays `path` with `settings` from its frame 0 (the frames before `first` drawn, not

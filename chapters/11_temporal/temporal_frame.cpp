@@ -28,6 +28,7 @@ void TemporalFrame::render(const FrameCamera& camera, const ch03::FrameOutput& o
   if (new_shot) taa_.reset();
   // The blend's weights use the exposure chapter 05's eye last tonemapped with.
   taa_.set(s.taa, whole_.radiance() ? whole_.hdr().adaptation().state_buffer() : 0);
+  taa_.set_jitter(jitter_);
   whole_.render(jittered(camera, jitter_, output.width, output.height), output, s.whole, dt, new_shot, metrics);
   previous_ = camera;
   sequence_ = true;
