@@ -81,6 +81,8 @@ std::vector<Variant> variants() {
   v.back().settings.taa.gamma = 0.f;
   v.push_back({"TAA, one weight", base});
   v.back().settings.taa.alpha_moving = base.taa.alpha;
+  v.push_back({"this frame rebuilt, no history", base});  // what the history adds, over the rebuilt pixel
+  v.back().settings.taa.alpha = v.back().settings.taa.alpha_moving = 1.f;
   return v;
 }
 // [/variants]

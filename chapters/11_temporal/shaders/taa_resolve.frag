@@ -133,25 +133,25 @@ void main() {
       float d = texelFetch(u_motion, q, 0).w;
       if (d < nearest) { nearest = d; nearest_p = q; }
     }
-  // The history is stored in half floats (a relative step of 2^-11): a box narrower than twice
-  // that (a flat colour) would clip the history's own rounding, and the clip's shrink towards
-  // the centre would move its brightness with it.
+  // [/neighbourhood]
   // [variance-clip]
-  // Variance clipping (Salvi 2016): one outlier widens the extremes' box, not mean +- gamma sigma.
+  // Variance clipping (Salvi 2016): the box mean +- gamma sigma within the extremes, which one
+  // outlier widens. It always holds this frame's pixel: at an edge that can lie beyond one
+  // sigma, and a history equal to it must not be pulled towards the mean.
   if (u_gamma > 0.0) {
     vec3 mu = m1 / 9.0, sigma = sqrt(max(m2 / 9.0 - mu * mu, vec3(0.0)));
-    // The box always holds this frame's pixel: at an edge it can lie beyond one sigma, and a
-    // history equal to it must not be pulled towards the mean.
     vec3 own_y = u_clip == 2 ? rgb_to_ycocg(centre) : centre;
     lo = min(max(lo, mu - u_gamma * sigma), own_y);
     hi = max(min(hi, mu + u_gamma * sigma), own_y);
   }
   // [/variance-clip]
-  if (u_unjitter != 0) centre = filtered / weights;
+  // The history is stored in half floats (a relative step of 2^-11): a box narrower than twice
+  // that (a flat colour) would clip the history's own rounding, and the clip's shrink towards
+  // the centre would move its brightness with it.
   float slack = max(max(hi.x, hi.y), max(hi.z, 1e-6)) / 1024.0;
   lo -= slack;
   hi += slack;
-  // [/neighbourhood]
+  if (u_unjitter != 0) centre = filtered / weights;
   // [reproject]
   vec4 own = texelFetch(u_motion, p, 0);
   vec2 uv_then = uv - texelFetch(u_motion, nearest_p, 0).xy;
