@@ -116,9 +116,11 @@ std::vector<PathFrame> measure_path(const SceneGpu& scene, const CameraPath& pat
     if (o.truths && std::size_t(i) < o.truths->size() && (*o.truths)[std::size_t(i)].width == w) return (*o.truths)[std::size_t(i)];
     std::string file;
     if (!o.truth_dir.empty()) {
+      // Named by path, size, grid and frame; the caller clears the folder when the scene or
+      // the frame's settings change.
       char n[64];
-      std::snprintf(n, sizeof n, "/truth_%dx%d_%03d.pfm", w, h, i);
-      file = o.truth_dir + n;
+      std::snprintf(n, sizeof n, "_%dx%d_grid%d_%03d.pfm", w, h, o.truth_grid, i);
+      file = o.truth_dir + "/truth_" + path.scene + "_" + path.name + n;
     }
     ImageF t = !file.empty() && std::filesystem::exists(file) ? load_pfm(file) : compute();
     if (!file.empty() && !std::filesystem::exists(file)) save_pfm(file, t);

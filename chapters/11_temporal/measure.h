@@ -54,8 +54,9 @@ struct PathRunOptions {
   // Non-null: the truths by frame, filled on first use and reused by the next variant (the
   // truth does not depend on the variant, and it is 16 frames of each measured one).
   std::vector<ImageF>* truths = nullptr;
-  // Non-empty: the truths also kept as <truth_dir>/truth_<w>x<h>_NNN.pfm and read back when
-  // there (for repeated runs of the same path and settings; the caller clears it when they change).
+  // Non-empty: the truths also kept as <truth_dir>/truth_<scene>_<path>_<w>x<h>_grid<g>_NNN.pfm
+  // and read back when there (repeated runs of one path; the caller clears it when the scene's
+  // content or the frame's settings change).
   std::string truth_dir;
 };
 

@@ -159,6 +159,19 @@ int main(int argc, char** argv) {
     if (s.frames < 1) throw UsageError("--frames must be at least 1");
     if (s.first < 0 || s.first > 100000) throw UsageError("--first must be between 0 and 100000");
     if (s.count < -1 || s.count > 100000) throw UsageError("--count must be -1 (to the end) or between 0 and 100000");
+    // Every name in --methods must be a variant: a typo would otherwise measure nothing, silently.
+    for (std::size_t start = 0; !s.methods.empty() && start <= s.methods.size();) {
+      const std::size_t end = std::min(s.methods.find(';', start), s.methods.size());
+      const std::string name = s.methods.substr(start, end - start);
+      bool known = false;
+      std::string names;
+      for (const Variant& v : variants()) {
+        known = known || v.name == name;
+        names += (names.empty() ? "" : "; ") + v.name;
+      }
+      if (!known) throw UsageError("--methods: no variant named '" + name + "' (the variants: " + names + ")");
+      start = end + 1;
+    }
     std::filesystem::create_directories(s.out);
     if (!s.truth_dir.empty()) std::filesystem::create_directories(s.truth_dir);
     auto context = Context::create({.headless = true, .width = s.width, .height = s.height});
