@@ -107,6 +107,10 @@ std::vector<PathFrame> measure_path(const SceneGpu& scene, const CameraPath& pat
   const int end = o.count < 0 ? path.frames() : std::min(path.frames(), o.first + o.count);
   TemporalFrame frame(scene), truth_frame(scene);
   OutputTarget target(w, h);
+  // The motion pass runs for every variant, so ghosting and convergence count the same pixels
+  // with and without TAA (it writes only its own targets: the image does not change).
+  TemporalSettings measured = settings;
+  measured.motion_alone = true;
   TemporalSettings truth_settings = settings;
   truth_settings.taa.enabled = false;
   std::vector<PathFrame> out;
@@ -133,7 +137,7 @@ std::vector<PathFrame> measure_path(const SceneGpu& scene, const CameraPath& pat
   for (int i = 0; i < end; ++i) {
     const FrameCamera camera = frame_camera(path.camera(scene.scene(), i), float(w) / float(h));
     const bool cut = path.cut_at(i);
-    frame.render(camera, {target.framebuffer(), w, h}, settings, 1.f / path.fps, cut);
+    frame.render(camera, {target.framebuffer(), w, h}, measured, 1.f / path.fps, cut);
     // Disocclusion from the motion alone (the C++ twin), whatever the resolve did with it.
     const ImageF motion = read_texture_rgba(frame.motion().current(), w, h);
     std::vector<std::uint8_t> hidden;
@@ -156,6 +160,13 @@ std::vector<PathFrame> measure_path(const SceneGpu& scene, const CameraPath& pat
     std::vector<std::uint8_t> ghost(since_disocclusion.size());
     for (std::size_t k = 0; k < ghost.size(); ++k) ghost[k] = since_disocclusion[k] < o.ghost_frames ? 1 : 0;
     f.ghost_error = mean_error(image, truth, ghost, &f.ghost_pixels);
+    const int bins = std::max(1, o.ghost_frames * 2);
+    f.since_error.resize(std::size_t(bins));
+    f.since_pixels.resize(std::size_t(bins));
+    for (int k = 0; k < bins; ++k) {
+      for (std::size_t q = 0; q < ghost.size(); ++q) ghost[q] = since_disocclusion[q] == k ? 1 : 0;
+      f.since_error[std::size_t(k)] = mean_error(image, truth, ghost, &f.since_pixels[std::size_t(k)]);
+    }
     if (!cut && last_truth.width == w) {
       std::vector<std::uint8_t> still(std::size_t(w) * h, 0);
       std::vector<std::uint8_t> all(std::size_t(w) * h, 1);

@@ -41,6 +41,10 @@ struct PathFrame {
   bool cut = false;
   double error = 0, edge_error = 0, ghost_error = 0, flicker = 0;
   std::size_t edge_pixels = 0, ghost_pixels = 0, still_pixels = 0;
+  // Convergence: error and pixel count on the pixels disoccluded exactly k frames ago, k = 0 ..
+  // ghost_frames * 2 - 1 (0: this frame).
+  std::vector<double> since_error;
+  std::vector<std::size_t> since_pixels;
 };
 
 struct PathRunOptions {

@@ -97,6 +97,11 @@ void sweep_path(const Settings& s, const SceneGpu& gpu, const std::string& rende
       << "# truth: 16 frames on a 4x4 grid of jitter, no history, averaged in linear light\n"
       << "method,frame,cut,error,edge_error,edge_pixels,ghost_error,ghost_pixels,flicker,still_pixels," << csv_measure_columns()
       << "\n";
+  const std::string conv_file = s.out + "/11_convergence_" + stem + "_" + s.path + (software ? "_llvmpipe" : "") + ".csv";
+  std::ofstream conv(conv_file);
+  conv << "# " << renderer << ", " << s.width << "x" << s.height << ", path " << s.path << " of " << stem
+       << "; error on the pixels disoccluded exactly k frames ago, pooled over the path's frames (0: this frame)\n"
+       << "method,frames_since,error,pixels\n";
   std::vector<ImageF> truths;  // one truth per frame, for every variant
   for (const Variant& v : variants()) {
     if (!chosen(s, v.name)) continue;
@@ -115,10 +120,20 @@ void sweep_path(const Settings& s, const SceneGpu& gpu, const std::string& rende
           << csv_measure_values(renderer, s.width, s.height, 1) << '\n';
       edge += f.edge_error;
     }
+    // Pooled: each frame's mean weighed by its pixel count.
+    for (std::size_t k = 0; !frames.empty() && k < frames[0].since_error.size(); ++k) {
+      double sum = 0;
+      std::size_t n = 0;
+      for (const PathFrame& f : frames) {
+        sum += f.since_error[k] * double(f.since_pixels[k]);
+        n += f.since_pixels[k];
+      }
+      conv << csv_quoted(v.name) << ',' << k << ',' << (n ? sum / double(n) : 0.0) << ',' << n << '\n';
+    }
     std::cout << v.name << ": mean edge error " << (frames.empty() ? 0.0 : edge / double(frames.size())) << " over "
               << frames.size() << " frames\n";
   }
-  std::cout << "wrote " << file << '\n';
+  std::cout << "wrote " << file << " and " << conv_file << '\n';
 }
 
 void sweep_cost(const Settings& s, const SceneGpu& gpu, const std::string& renderer, bool software) {

@@ -23,7 +23,7 @@ void TemporalFrame::render(const FrameCamera& camera, const ch03::FrameOutput& o
   const bool new_shot = cut || !sequence_;
   const bool taa = s.taa.enabled;
   jitter_ = taa || s.jitter_alone ? jitter_offset(index_, s.jitter_period) : glm::vec2(0);
-  motion_.set_enabled(taa);
+  motion_.set_enabled(taa || s.motion_alone);
   motion_.set_cameras(camera, new_shot ? camera : previous_);
   if (new_shot) taa_.reset();
   // The blend's weights use the exposure chapter 05's eye last tonemapped with.
