@@ -15,6 +15,8 @@ lightpass_program_test(11_temporal.reference.street_shop 0 "4 of 4 references ma
 # The sweep's options (the sweep itself is long on llvmpipe: 16 truth frames per path frame).
 lightpass_program_test(11_temporal.sweep_unknown_option 2 "unknown option '--fast'" $<TARGET_FILE:11_temporal_sweep> --fast)
 lightpass_program_test(11_temporal.sweep_bad_frames 2 "--frames must be at least 1" $<TARGET_FILE:11_temporal_sweep> --frames 0)
+lightpass_program_test(11_temporal.sweep_unknown_method 2 "--methods: no variant named 'TAA, sharp'"
+  $<TARGET_FILE:11_temporal_sweep> --methods "TAA, sharp")
 # The chapter's exercises (main.cpp's list; the book's "Exercises"): solutions pass, stubs fail,
 # and a plausible wrong answer to each (tests/exercises/wrong/11_temporal/) fails.
 lightpass_exercise_tests(11_temporal 3 WRONG 1 2 3)

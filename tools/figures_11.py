@@ -11,6 +11,7 @@ size; a GPU's file without the suffix once measured there):
 11_path_<scene>_<path>_<tag>.svg          the error of each frame along the path, no AA against TAA,
                                           on edges (solid) and over the whole image (dashed)
 11_path_<scene>_<path>_variants_<tag>.svg the edge error of TAA with each of its parts switched off
+11_convergence_<scene>_<path>_<tag>.svg   the error on pixels disoccluded k frames ago, against k
 """
 import subprocess
 import sys
@@ -46,6 +47,17 @@ def path_plots(d: Path, csv: Path, stem: str, tag: str, where: str):
          "frame of the path (30 a second)", "mean |image − truth| on edges (sRGB, 0..1)")
 
 
+CONVERGENCE = ("no AA", "TAA", "TAA, pixel as sampled", "TAA, no disocclusion test", "this frame rebuilt, no history")
+
+
+def convergence_plot(d: Path, csv: Path, stem: str, tag: str, where: str):
+    notes, rows = read_csv(csv)
+    lines = [Series(m, [(float(r["frames_since"]), float(r["error"])) for r in rows if r["method"] == m],
+                    dashed=(m != "TAA")) for m in CONVERGENCE if any(r["method"] == m for r in rows)]
+    plot(d / f"{stem}_{tag}.svg", f"Convergence after a disocclusion ({where})", notes[0] if notes else "", lines,
+         "frames since the pixel's surface was hidden", "mean |image − truth| (sRGB, 0..1)")
+
+
 def pictures(build: Path, d: Path):
     exe = build / "chapters" / "11_temporal" / "11_temporal"
     for name, args in PICTURES:
@@ -64,6 +76,11 @@ def main(argv):
             path_plots(d, csv, name[: -len("_llvmpipe")], "llvmpipe", "llvmpipe")
         elif name.endswith("_h200"):
             path_plots(d, csv, name[: -len("_h200")], "h200", "NVIDIA H200")
+    for csv in sorted(d.glob("11_convergence_*.csv")):
+        name = csv.stem
+        for suffix, where in (("_llvmpipe", "llvmpipe"), ("_h200", "NVIDIA H200")):
+            if name.endswith(suffix):
+                convergence_plot(d, csv, name[: -len(suffix)], suffix[1:], where)
     if png:
         pictures(png, d)
 

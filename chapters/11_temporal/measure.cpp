@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include "common/error.h"
 #include "common/target.h"
@@ -106,15 +107,37 @@ std::vector<PathFrame> measure_path(const SceneGpu& scene, const CameraPath& pat
   const int end = o.count < 0 ? path.frames() : std::min(path.frames(), o.first + o.count);
   TemporalFrame frame(scene), truth_frame(scene);
   OutputTarget target(w, h);
+  // The motion pass runs for every variant, so ghosting and convergence count the same pixels
+  // with and without TAA (it writes only its own targets: the image does not change).
+  TemporalSettings measured = settings;
+  measured.motion_alone = true;
   TemporalSettings truth_settings = settings;
   truth_settings.taa.enabled = false;
   std::vector<PathFrame> out;
   std::vector<int> since_disocclusion(std::size_t(w) * h, 1 << 20);  // frames since each pixel was hidden
   ImageF last_image, last_truth, last_motion;
+  auto truth_of = [&](int i, const auto& compute) {
+    if (o.truths && std::size_t(i) < o.truths->size() && (*o.truths)[std::size_t(i)].width == w) return (*o.truths)[std::size_t(i)];
+    std::string file;
+    if (!o.truth_dir.empty()) {
+      // Named by path, size, grid and frame; the caller clears the folder when the scene or
+      // the frame's settings change.
+      char n[64];
+      std::snprintf(n, sizeof n, "_%dx%d_grid%d_%03d.pfm", w, h, o.truth_grid, i);
+      file = o.truth_dir + "/truth_" + path.scene + "_" + path.name + n;
+    }
+    ImageF t = !file.empty() && std::filesystem::exists(file) ? load_pfm(file) : compute();
+    if (!file.empty() && !std::filesystem::exists(file)) save_pfm(file, t);
+    if (o.truths) {
+      if (o.truths->size() <= std::size_t(i)) o.truths->resize(std::size_t(i) + 1);
+      (*o.truths)[std::size_t(i)] = t;
+    }
+    return t;
+  };
   for (int i = 0; i < end; ++i) {
     const FrameCamera camera = frame_camera(path.camera(scene.scene(), i), float(w) / float(h));
     const bool cut = path.cut_at(i);
-    frame.render(camera, {target.framebuffer(), w, h}, settings, 1.f / path.fps, cut);
+    frame.render(camera, {target.framebuffer(), w, h}, measured, 1.f / path.fps, cut);
     // Disocclusion from the motion alone (the C++ twin), whatever the resolve did with it.
     const ImageF motion = read_texture_rgba(frame.motion().current(), w, h);
     std::vector<std::uint8_t> hidden;
@@ -124,7 +147,7 @@ std::vector<PathFrame> measure_path(const SceneGpu& scene, const CameraPath& pat
     last_motion = motion;
     if (i < o.first) continue;
     const ImageF image = encode_srgb(read_linear(target.framebuffer(), w, h));
-    const ImageF truth = encode_srgb(supersampled(truth_frame, camera, w, h, truth_settings, o.truth_grid));
+    const ImageF truth = truth_of(i, [&] { return encode_srgb(supersampled(truth_frame, camera, w, h, truth_settings, o.truth_grid)); });
     PathFrame f{.frame = i, .cut = cut};
     if (!o.dump_prefix.empty()) {
       char n[16];
@@ -137,6 +160,13 @@ std::vector<PathFrame> measure_path(const SceneGpu& scene, const CameraPath& pat
     std::vector<std::uint8_t> ghost(since_disocclusion.size());
     for (std::size_t k = 0; k < ghost.size(); ++k) ghost[k] = since_disocclusion[k] < o.ghost_frames ? 1 : 0;
     f.ghost_error = mean_error(image, truth, ghost, &f.ghost_pixels);
+    const int bins = std::max(1, o.ghost_frames * 2);
+    f.since_error.resize(std::size_t(bins));
+    f.since_pixels.resize(std::size_t(bins));
+    for (int k = 0; k < bins; ++k) {
+      for (std::size_t q = 0; q < ghost.size(); ++q) ghost[q] = since_disocclusion[q] == k ? 1 : 0;
+      f.since_error[std::size_t(k)] = mean_error(image, truth, ghost, &f.since_pixels[std::size_t(k)]);
+    }
     if (!cut && last_truth.width == w) {
       std::vector<std::uint8_t> still(std::size_t(w) * h, 0);
       std::vector<std::uint8_t> all(std::size_t(w) * h, 1);

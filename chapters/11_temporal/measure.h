@@ -41,6 +41,10 @@ struct PathFrame {
   bool cut = false;
   double error = 0, edge_error = 0, ghost_error = 0, flicker = 0;
   std::size_t edge_pixels = 0, ghost_pixels = 0, still_pixels = 0;
+  // Convergence: error and pixel count on the pixels disoccluded exactly k frames ago, k = 0 ..
+  // ghost_frames * 2 - 1 (0: this frame).
+  std::vector<double> since_error;
+  std::vector<std::size_t> since_pixels;
 };
 
 struct PathRunOptions {
@@ -51,6 +55,13 @@ struct PathRunOptions {
   float still_change = 1.f / 255.f;  // flicker: pixels whose truth changed less than this
   int truth_grid = 4;
   std::string dump_prefix;  // non-empty: each measured frame and its truth written as <prefix>NNN_{image,truth}.png
+  // Non-null: the truths by frame, filled on first use and reused by the next variant (the
+  // truth does not depend on the variant, and it is 16 frames of each measured one).
+  std::vector<ImageF>* truths = nullptr;
+  // Non-empty: the truths also kept as <truth_dir>/truth_<scene>_<path>_<w>x<h>_grid<g>_NNN.pfm
+  // and read back when there (repeated runs of one path; the caller clears it when the scene's
+  // content or the frame's settings change).
+  std::string truth_dir;
 };
 
 // Plays `path` with `settings` from its frame 0 (the frames before `first` drawn, not

@@ -9,6 +9,7 @@
 // error over the path's frames as a plot:
 //   tools/plot.py --csv out/11_temporal/11_path_street_shop_walk_llvmpipe.csv --x frame
 //                 --y edge_error --group method --title "Edge error along the walk" --out walk.svg
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -35,7 +36,22 @@ struct Settings {
   int width = 160, height = 90;
   int first = 0, count = -1;  // the path's frames measured; -1: to its end
   int frames = 10;            // the cost's measured frames
+  std::string methods;        // a ';'-separated list of variant names; empty: all
+  std::string dump;           // non-empty: each measured frame and its truth as PNGs under this prefix
+  bool no_cost = false;       // the path only
+  std::string truth_dir;      // non-empty: the truths kept there as PFM between runs
 };
+
+bool chosen(const Settings& s, const std::string& name) {
+  if (s.methods.empty()) return true;
+  std::size_t start = 0;
+  while (start <= s.methods.size()) {
+    const std::size_t end = std::min(s.methods.find(';', start), s.methods.size());
+    if (s.methods.substr(start, end - start) == name) return true;
+    start = end + 1;
+  }
+  return false;
+}
 
 // [variants]
 struct Variant {
@@ -59,6 +75,14 @@ std::vector<Variant> variants() {
   v.back().settings.taa.filter = HistoryFilter::Bilinear;
   v.push_back({"TAA, linear blend", base});
   v.back().settings.taa.tonemapped = false;
+  v.push_back({"TAA, pixel as sampled", base});
+  v.back().settings.taa.unjitter = false;
+  v.push_back({"TAA, extremes' box", base});
+  v.back().settings.taa.gamma = 0.f;
+  v.push_back({"TAA, one weight", base});
+  v.back().settings.taa.alpha_moving = base.taa.alpha;
+  v.push_back({"this frame rebuilt, no history", base});  // what the history adds, over the rebuilt pixel
+  v.back().settings.taa.alpha = v.back().settings.taa.alpha_moving = 1.f;
   return v;
 }
 // [/variants]
@@ -73,9 +97,22 @@ void sweep_path(const Settings& s, const SceneGpu& gpu, const std::string& rende
       << "# truth: 16 frames on a 4x4 grid of jitter, no history, averaged in linear light\n"
       << "method,frame,cut,error,edge_error,edge_pixels,ghost_error,ghost_pixels,flicker,still_pixels," << csv_measure_columns()
       << "\n";
+  const std::string conv_file = s.out + "/11_convergence_" + stem + "_" + s.path + (software ? "_llvmpipe" : "") + ".csv";
+  std::ofstream conv(conv_file);
+  conv << "# " << renderer << ", " << s.width << "x" << s.height << ", path " << s.path << " of " << stem
+       << "; error on the pixels disoccluded exactly k frames ago, pooled over the path's frames (0: this frame)\n"
+       << "method,frames_since,error,pixels\n";
+  std::vector<ImageF> truths;  // one truth per frame, for every variant
   for (const Variant& v : variants()) {
-    const std::vector<PathFrame> frames =
-        measure_path(gpu, path, v.settings, {.width = s.width, .height = s.height, .first = s.first, .count = s.count});
+    if (!chosen(s, v.name)) continue;
+    std::string dump;
+    if (!s.dump.empty()) {
+      dump = s.dump + v.name + "_";
+      for (char& c : dump) if (c == ' ' || c == ',') c = '_';
+    }
+    const std::vector<PathFrame> frames = measure_path(
+        gpu, path, v.settings, {.width = s.width, .height = s.height, .first = s.first, .count = s.count, .dump_prefix = dump,
+                   .truths = &truths, .truth_dir = s.truth_dir});
     double edge = 0;
     for (const PathFrame& f : frames) {
       csv << csv_quoted(v.name) << ',' << f.frame << ',' << int(f.cut) << ',' << f.error << ',' << f.edge_error << ','
@@ -83,10 +120,20 @@ void sweep_path(const Settings& s, const SceneGpu& gpu, const std::string& rende
           << csv_measure_values(renderer, s.width, s.height, 1) << '\n';
       edge += f.edge_error;
     }
+    // Pooled: each frame's mean weighed by its pixel count.
+    for (std::size_t k = 0; !frames.empty() && k < frames[0].since_error.size(); ++k) {
+      double sum = 0;
+      std::size_t n = 0;
+      for (const PathFrame& f : frames) {
+        sum += f.since_error[k] * double(f.since_pixels[k]);
+        n += f.since_pixels[k];
+      }
+      conv << csv_quoted(v.name) << ',' << k << ',' << (n ? sum / double(n) : 0.0) << ',' << n << '\n';
+    }
     std::cout << v.name << ": mean edge error " << (frames.empty() ? 0.0 : edge / double(frames.size())) << " over "
               << frames.size() << " frames\n";
   }
-  std::cout << "wrote " << file << '\n';
+  std::cout << "wrote " << file << " and " << conv_file << '\n';
 }
 
 void sweep_cost(const Settings& s, const SceneGpu& gpu, const std::string& renderer, bool software) {
@@ -98,7 +145,7 @@ void sweep_cost(const Settings& s, const SceneGpu& gpu, const std::string& rende
       << "method,pass,ms,min_ms," << csv_measure_columns() << '\n';
   OutputTarget target(s.width, s.height);
   for (const Variant& v : variants()) {
-    if (v.name != "no AA" && v.name != "TAA") continue;
+    if ((v.name != "no AA" && v.name != "TAA") || !chosen(s, v.name)) continue;
     TemporalFrame frame(gpu);
     PassMetrics metrics;
     int i = 0;
@@ -120,17 +167,33 @@ int main(int argc, char** argv) {
   Settings s;
   return run_sweep(argc, argv, "11_temporal_sweep", [&](SweepArgs& args) {
     args.text("--out", s.out).text("--scene", s.scene).text("--path", s.path).size("--size", s.width, s.height)
-        .integer("--first", s.first).integer("--count", s.count).integer("--frames", s.frames);
+        .integer("--first", s.first).integer("--count", s.count).integer("--frames", s.frames)
+        .text("--methods", s.methods).text("--dump", s.dump).flag("--no-cost", s.no_cost)
+        .text("--truth-dir", s.truth_dir);
   }, [&] {
     if (s.frames < 1) throw UsageError("--frames must be at least 1");
     if (s.first < 0 || s.first > 100000) throw UsageError("--first must be between 0 and 100000");
     if (s.count < -1 || s.count > 100000) throw UsageError("--count must be -1 (to the end) or between 0 and 100000");
+    // Every name in --methods must be a variant: a typo would otherwise measure nothing, silently.
+    for (std::size_t start = 0; !s.methods.empty() && start <= s.methods.size();) {
+      const std::size_t end = std::min(s.methods.find(';', start), s.methods.size());
+      const std::string name = s.methods.substr(start, end - start);
+      bool known = false;
+      std::string names;
+      for (const Variant& v : variants()) {
+        known = known || v.name == name;
+        names += (names.empty() ? "" : "; ") + v.name;
+      }
+      if (!known) throw UsageError("--methods: no variant named '" + name + "' (the variants: " + names + ")");
+      start = end + 1;
+    }
     std::filesystem::create_directories(s.out);
+    if (!s.truth_dir.empty()) std::filesystem::create_directories(s.truth_dir);
     auto context = Context::create({.headless = true, .width = s.width, .height = s.height});
     const Scene scene = load_scene(from_root(s.scene));
     path_named(s.scene, s.path);  // an unknown path says so before anything is drawn
     const SceneGpu gpu(scene);
     sweep_path(s, gpu, context->renderer(), context->is_software());
-    sweep_cost(s, gpu, context->renderer(), context->is_software());
+    if (!s.no_cost) sweep_cost(s, gpu, context->renderer(), context->is_software());
   });
 }

@@ -67,6 +67,10 @@ void TaaStage::after_composite(ch03::DeferredFrame& frame, PassMetrics* metrics)
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, exposure_state_);
   resolve_.set("u_has_exposure", int(exposure_state_ != 0));
   resolve_.set("u_reset", int(reset));
+  resolve_.set("u_jitter", jitter_);
+  resolve_.set("u_unjitter", int(settings_.unjitter));
+  resolve_.set("u_gamma", settings_.gamma);
+  resolve_.set("u_alpha_moving", settings_.alpha_moving);
   glBindVertexArray(empty_.id());
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glBindSampler(1, 0);

@@ -26,6 +26,9 @@ struct TaaSettings {
   bool reject_disocclusion = true;                   // history dropped where the surface was hidden
   float depth_tolerance = 0.05f;                     // relative: a depth this far from the last frame's is another surface
   bool tonemapped = true;                            // blend in a tonemapped space (weights 1 / (1 + exposed luminance))
+  bool unjitter = true;                              // this frame's pixel rebuilt at its centre from the 3x3's jittered samples
+  float gamma = 1.f;                                 // > 0: variance clip, the box mean +- gamma sigma; 0: the extremes
+  float alpha_moving = 0.5f;                         // this frame's weight where the surface moves a pixel a frame or more
 };
 // [/taa-settings]
 
@@ -39,6 +42,7 @@ class TaaStage : public ch03::FrameStage {
     settings_ = settings;
     exposure_state_ = exposure_state;
   }
+  void set_jitter(glm::vec2 offset) { jitter_ = offset; }  // this frame's, in pixels
   void reset() { reset_ = true; }  // the next frame starts the history again (a camera cut)
 
   void after_composite(ch03::DeferredFrame& frame, PassMetrics* metrics) override;
@@ -54,6 +58,7 @@ class TaaStage : public ch03::FrameStage {
   ShaderProgram resolve_;
   TaaSettings settings_;
   GLuint exposure_state_ = 0;
+  glm::vec2 jitter_{0};
   bool reset_ = true;
   gl::Texture history_[2] = {gl::Texture(GL_TEXTURE_2D), gl::Texture(GL_TEXTURE_2D)}, rejected_{GL_TEXTURE_2D};  // sized by resize()
   gl::Framebuffer fbo_[2];

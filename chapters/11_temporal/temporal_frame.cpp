@@ -23,11 +23,12 @@ void TemporalFrame::render(const FrameCamera& camera, const ch03::FrameOutput& o
   const bool new_shot = cut || !sequence_;
   const bool taa = s.taa.enabled;
   jitter_ = taa || s.jitter_alone ? jitter_offset(index_, s.jitter_period) : glm::vec2(0);
-  motion_.set_enabled(taa);
+  motion_.set_enabled(taa || s.motion_alone);
   motion_.set_cameras(camera, new_shot ? camera : previous_);
   if (new_shot) taa_.reset();
   // The blend's weights use the exposure chapter 05's eye last tonemapped with.
   taa_.set(s.taa, whole_.radiance() ? whole_.hdr().adaptation().state_buffer() : 0);
+  taa_.set_jitter(jitter_);
   whole_.render(jittered(camera, jitter_, output.width, output.height), output, s.whole, dt, new_shot, metrics);
   previous_ = camera;
   sequence_ = true;

@@ -19,6 +19,7 @@ struct TemporalSettings {
   TaaSettings taa;                 // taa.enabled false: chapter 10's frame, no jitter, no motion
   unsigned jitter_period = 8;      // Halton(2, 3) points before the pattern repeats
   bool jitter_alone = false;       // jitter without TAA too (tests: the frames TAA would blend)
+  bool motion_alone = false;       // the motion pass without TAA too (measure.h: disocclusion for every variant)
 };
 // [/temporal-settings]
 

@@ -17,6 +17,10 @@ uniform int u_has_exposure;
 // Chapter 05's eye (its ExposureState): the exposure the last frame was tonemapped with.
 layout(std430, binding = 0) readonly buffer Eye { float eye_target, eye_adapted, eye_exposure, eye_mean_log, eye_count; };
 uniform int u_reset;
+uniform vec2 u_jitter;         // this frame's offset in pixels (x right, y up)
+uniform int u_unjitter;        // this frame's pixel rebuilt at its centre from the 3x3's samples
+uniform float u_gamma;         // > 0: the box is the neighbourhood's mean +- gamma sigma (within its extremes)
+uniform float u_alpha_moving;  // this frame's weight where the surface moved a pixel or more
 
 layout(location = 0) out vec4 out_color;
 layout(location = 1) out float out_rejected;
@@ -117,7 +121,8 @@ void main() {
   // [neighbourhood]
   // This frame's 3x3: the box the history must fall in, and the nearest surface, whose
   // motion an edge pixel takes (the edge moves with the object in front).
-  vec3 lo = vec3(1e30), hi = vec3(-1e30);
+  vec3 lo = vec3(1e30), hi = vec3(-1e30), m1 = vec3(0.0), m2 = vec3(0.0), filtered = vec3(0.0);
+  float weights = 0.0;
   float nearest = 1e30;
   ivec2 nearest_p = p;
   for (int dy = -1; dy <= 1; ++dy)
@@ -127,16 +132,36 @@ void main() {
       vec3 y = u_clip == 2 ? rgb_to_ycocg(c) : c;
       lo = min(lo, y);
       hi = max(hi, y);
+      m1 += y;
+      m2 += y * y;
+      // q's sample lies at q's centre less the jitter; a Gaussian fit of Blackman-Harris
+      // (Karis 2014) weighs it by its distance from p's centre.
+      vec2 off = vec2(dx, dy) - u_jitter;
+      float wq = exp(-2.29 * dot(off, off));
+      filtered += wq * c;
+      weights += wq;
       float d = texelFetch(u_motion, q, 0).w;
       if (d < nearest) { nearest = d; nearest_p = q; }
     }
+  // [/neighbourhood]
+  // [variance-clip]
+  // Variance clipping (Salvi 2016): the box mean +- gamma sigma within the extremes, which one
+  // outlier widens. It always holds this frame's pixel: at an edge that can lie beyond one
+  // sigma, and a history equal to it must not be pulled towards the mean.
+  if (u_gamma > 0.0) {
+    vec3 mu = m1 / 9.0, sigma = sqrt(max(m2 / 9.0 - mu * mu, vec3(0.0)));
+    vec3 own_y = u_clip == 2 ? rgb_to_ycocg(centre) : centre;
+    lo = min(max(lo, mu - u_gamma * sigma), own_y);
+    hi = max(min(hi, mu + u_gamma * sigma), own_y);
+  }
+  // [/variance-clip]
   // The history is stored in half floats (a relative step of 2^-11): a box narrower than twice
   // that (a flat colour) would clip the history's own rounding, and the clip's shrink towards
   // the centre would move its brightness with it.
   float slack = max(max(hi.x, hi.y), max(hi.z, 1e-6)) / 1024.0;
   lo -= slack;
   hi += slack;
-  // [/neighbourhood]
+  if (u_unjitter != 0) centre = filtered / weights;
   // [reproject]
   vec4 own = texelFetch(u_motion, p, 0);
   vec2 uv_then = uv - texelFetch(u_motion, nearest_p, 0).xy;
@@ -147,7 +172,10 @@ void main() {
     vec3 history = to_space(u_filter == 1 ? history_catmull_rom(uv_then) : texture(u_history, uv_then).rgb);
     if (u_clip == 1) history = clamp(history, lo, hi);
     if (u_clip == 2) history = ycocg_to_rgb(clip_to_box(lo, hi, rgb_to_ycocg(history)));
-    result = mix(history, centre, u_alpha);
+    // A moving surface's history was resampled every frame and has blurred: this frame
+    // weighs more the more it moved, up to a pixel a frame.
+    float moved = length(texelFetch(u_motion, nearest_p, 0).xy * vec2(size));
+    result = mix(history, centre, mix(u_alpha, u_alpha_moving, clamp(moved, 0.0, 1.0)));
   }
   // [/reproject]
   out_color = vec4(from_space(result), here.a);
