@@ -17,14 +17,14 @@ spec = importlib.util.spec_from_loader("measure", loader)
 measure = importlib.util.module_from_spec(spec)
 loader.exec_module(measure)
 
-HEADER = "view,method,setting,map,kernel,pmin,c,bytes,depth_ms,filter_ms,global_ms,frame_ms,hard_mean,hard_wrong_pct,soft_mean,soft_p99,renderer,width,height,frames\n"
+HEADER = "view,method,setting,map,kernel,pmin,c,bytes,depth_ms,filter_ms,global_ms,frame_ms,hard_mean,hard_wrong_pct,soft_mean,soft_p99,penumbra_soft,renderer,width,height,frames\n"
 
 
 def shadows_csv(path: Path, note: str, times: dict):
     """A crafted 06_shadows CSV: one view, one row per method with the given frame time."""
     lines = [f"# {note}\n", HEADER]
     for i, (method, ms) in enumerate(times.items()):
-        lines.append(f"overview,{method},s,1024,3,0,0,0,0,0,0,{ms},0,0,{0.01 * (i + 1)},0,x,64,36,1\n")
+        lines.append(f"overview,{method},s,1024,3,0,0,0,0,0,0,{ms},0,0,{0.01 * (i + 1)},0,{0.1 * (i + 1)},x,64,36,1\n")
     path.write_text("".join(lines))
 
 
