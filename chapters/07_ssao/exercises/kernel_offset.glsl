@@ -1,47 +1,11 @@
 // Exercise 2 of chapter 07: placing the classic kernel's points.
-// `./run 07 --exercise 2 --show ao` computes the AO with these functions; add `--check`.
+// `./run 07 --exercise 2 --show ao` computes the AO with this function; add `--check`.
 //
 // p is the pixel's point in view space (the camera looks down -z); `offset` is a kernel
 // point in the surface's tangent frame turned into world space (t, b, n are world vectors).
-// Place the point at radius * offset from p, in view space: a world direction needs the
+// Return the point at radius * offset from p, in view space: a world direction needs the
 // view matrix's rotation, mat3(u_view), before it is added to a view-space point (a
 // widespread tutorial adds it unturned, and its AO then changes as the camera turns).
-// Only the line marked below is yours; the rest is the chapter's.
-// The fraction of the kernel's points, scaled to `radius` and rotated by the noise vector r,
-// that the depth buffer hides: the classic estimate of 1 - A.
-float classic_hidden(vec3 p, vec3 t, vec3 b, vec3 n, vec3 r, float radius) {
-  float hidden = 0.0;
-  for (int i = 0; i < u_samples; ++i) {
-    vec3 k = u_kernel[i].xyz;
-    if (u_noise_on != 0) k = k - 2.0 * dot(k, r) * r;  // reflect: the height above the surface stays
-    vec3 offset = k.x * t + k.y * b + k.z * n;         // world space
-    vec3 q = p;  // exercise 2: place the kernel point here
-    vec4 clip = u_projection * vec4(q, 1.0);
-    if (clip.w <= 0.0) continue;
-    vec2 ndc = clip.xy / clip.w;
-    if (any(greaterThan(abs(ndc), vec2(1.0)))) continue;  // off the screen: nothing known, counts as open
-    ivec2 sp = clamp(ivec2((ndc * 0.5 + 0.5) * gb_size.xy), ivec2(0), ivec2(gb_size.xy) - 1);
-    float depth = texelFetch(gb_depth, sp, 0).r;
-    if (sky_depth(depth)) continue;
-    float scene = view_depth(world_at(sp, depth));  // what the depth buffer holds there
-    float sample_depth = -q.z;
-    // hidden when the stored surface is in front of the point; the range check fades
-    // occluders far in front of the pixel (a column before a distant wall)
-    float range = smoothstep(0.0, 1.0, radius / max(abs(-p.z - scene), 1e-6));
-    hidden += (scene <= sample_depth - u_bias * radius ? 1.0 : 0.0) * range;
-  }
-  return hidden / float(u_samples);
-}
-float classic_ao(ivec2 pixel, Surface s) {
-  vec3 p = (u_view * vec4(s.position, 1.0)).xyz;  // view space: the camera looks down -z
-  vec3 t, b;
-  basis(s.normal, t, b);                           // the tangent frame, in world space
-  int tile = (pixel.x & 3) + 4 * (pixel.y & 3);
-  float a = 1.0 - classic_hidden(p, t, b, s.normal, u_noise[tile].xyz, u_radius);
-  // The source's two radii: the same kernel at R / 5, rotated by the tile's next vector (so the
-  // two sets' points do not line up), its visibility multiplying the wide one's. Within R / 5 of
-  // a contact both see the occluder and A is darker than the wide radius alone; beyond R / 5
-  // the narrow set sees nothing and A is the wide radius's.
-  if (u_two_radii != 0) a *= 1.0 - classic_hidden(p, t, b, s.normal, u_noise[(tile + 5) & 15].xyz, 0.2 * u_radius);
-  return a;
+vec3 kernel_point(vec3 p, vec3 offset, float radius) {
+  return p;  // exercise 2: place the kernel point here
 }

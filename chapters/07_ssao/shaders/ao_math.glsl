@@ -20,7 +20,12 @@ vec3 reflect_about(vec3 k, vec3 r) { return k - 2.0 * dot(k, r) * r; }
 
 // The classic's range check: an occluder whose depth is `gap` from the pixel's counts fully
 // within the radius and fades beyond it (a column before a distant wall).
+// With --exercise 1 the reader's range_weight (chapters/07_ssao/exercises/range_check.glsl) stands in.
+#ifdef EXERCISE_RANGE_CHECK
+#include EXERCISE_RANGE_CHECK
+#else
 float range_weight(float radius, float gap) { return smoothstep(0.0, 1.0, radius / max(abs(gap), 1e-6)); }
+#endif
 
 // The 2D disk's spiral: sample i of n at radius sqrt((i + 0.5) / n) of the disk's and angle
 // i times the golden angle, plus `turn`; (radius, angle).
@@ -37,6 +42,10 @@ float bunnell_occlusion(vec3 p, vec3 np, vec3 e, vec3 ne, float area) {
   v *= inversesqrt(d2);
   return (1.0 - inversesqrt(1.0 + area / (PI * d2))) * abs(dot(ne, v)) * clamp(4.0 * dot(np, v), 0.0, 1.0);
 }
+// With --exercise 3 the reader's form factor (chapters/07_ssao/exercises/disk_form_factor.glsl) stands in.
+#ifdef EXERCISE_DISK_FORM_FACTOR
+#include EXERCISE_DISK_FORM_FACTOR
+#else
 float form_factor_occlusion(vec3 p, vec3 np, vec3 e, vec3 ne, float area) {
   vec3 v = e - p;
   float d2 = dot(v, v);
@@ -44,6 +53,7 @@ float form_factor_occlusion(vec3 p, vec3 np, vec3 e, vec3 ne, float area) {
   v *= inversesqrt(d2);
   return area * abs(dot(ne, v)) * max(dot(np, v), 0.0) / (PI * d2 + area);
 }
+#endif
 
 // The blur's similarity: a neighbour at view depth z with normal n counts (1) when within
 // depth_threshold of the centre's depth zc, relative to it, and within acos(normal_threshold)

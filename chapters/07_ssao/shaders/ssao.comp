@@ -32,14 +32,22 @@ vec3 world_at(ivec2 pixel, float depth) { return reconstruct_position(vec2(pixel
 float view_depth(vec3 world) { return -(u_view * vec4(world, 1.0)).z; }
 
 #ifdef AO_CLASSIC
-// Exercises 1 and 2 (chapters/07_ssao/exercises/) stand in for the classic estimate.
-#ifdef EXERCISE_RANGE_CHECK
-#include EXERCISE_RANGE_CHECK
-#else
+// [classic]
+// A kernel point in view space: `offset` is a world-space direction (the tangent frame's),
+// turned by the view's rotation before it is added to the view-space point p.
+// With --exercise 2 the reader's kernel_point (chapters/07_ssao/exercises/kernel_offset.glsl) stands in.
 #ifdef EXERCISE_KERNEL_OFFSET
 #include EXERCISE_KERNEL_OFFSET
 #else
-// [classic]
+vec3 kernel_point(vec3 p, vec3 offset, float radius) {
+#ifdef AO_TUTORIAL_BUG
+  return p + radius * offset;                   // the bug: a world offset on a view-space point
+#else
+  return p + radius * (mat3(u_view) * offset);  // both in view space
+#endif
+}
+#endif
+
 // The fraction of the kernel's points, scaled to `radius` and rotated by the noise vector r,
 // that the depth buffer hides: the classic estimate of 1 - A.
 float classic_hidden(vec3 p, vec3 t, vec3 b, vec3 n, vec3 r, float radius) {
@@ -48,11 +56,7 @@ float classic_hidden(vec3 p, vec3 t, vec3 b, vec3 n, vec3 r, float radius) {
     vec3 k = u_kernel[i].xyz;
     if (u_noise_on != 0) k = reflect_about(k, r);      // the height above the surface stays
     vec3 offset = k.x * t + k.y * b + k.z * n;         // world space
-#ifdef AO_TUTORIAL_BUG
-    vec3 q = p + radius * offset;                      // the bug: a world offset on a view-space point
-#else
-    vec3 q = p + radius * (mat3(u_view) * offset);     // both in view space
-#endif
+    vec3 q = kernel_point(p, offset, radius);          // in view space
     // [classic-test]
     vec4 clip = u_projection * vec4(q, 1.0);
     if (clip.w <= 0.0) continue;
@@ -86,14 +90,8 @@ float classic_ao(ivec2 pixel, Surface s) {
 }
 // [/classic]
 #endif
-#endif
-#endif
 
 #ifdef AO_DISK
-// Exercise 3 (chapters/07_ssao/exercises/disk_form_factor.glsl) stands in for the disk estimate.
-#ifdef EXERCISE_DISK_FORM_FACTOR
-#include EXERCISE_DISK_FORM_FACTOR
-#else
 // [disk]
 float disk_ao(ivec2 pixel, Surface s) {
   float zr = view_depth(s.position);
@@ -146,7 +144,6 @@ float disk_ao(ivec2 pixel, Surface s) {
   return 1.0 - clamp(occlusion, 0.0, 1.0);
 }
 // [/disk]
-#endif
 #endif
 
 
