@@ -35,11 +35,7 @@ void ShadowStage::draw_point_maps(const FrameCamera& camera, PassMetrics* metric
   // comparison per texel, the same along any ray from the light, whatever the face.
   const ShaderProgram& p = programs_.get({{GL_VERTEX_SHADER, "06_shadows/shaders/point_depth.vert"},
                                           {GL_FRAGMENT_SHADER, "06_shadows/shaders/point_depth.frag"}}, {});
-  glDisable(GL_BLEND), glDisable(GL_STENCIL_TEST), glDisable(GL_SCISSOR_TEST), glDisable(GL_CULL_FACE);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glDepthMask(GL_TRUE);
-  glClearDepth(1.0);
+  depth_pass_state();
   p.use();
   const glm::mat4 view_projection = camera.projection * camera.view;
   for (std::size_t i = 0; i < point_lights_.size(); ++i) {

@@ -133,6 +133,14 @@ ShadowStage::ShadowStage(const SceneGpu& scene, const Light& sun)
   glTextureStorage3D(csm_maps_.id(), 1, GL_RGBA32F, 1, 1, 1);               // until csm-fourier runs
 }
 
+void ShadowStage::depth_pass_state() {
+  glDisable(GL_BLEND), glDisable(GL_STENCIL_TEST), glDisable(GL_SCISSOR_TEST), glDisable(GL_CULL_FACE);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glClearDepth(1.0);
+}
+
 void ShadowStage::reload_shaders() {
   programs_.reload();
 }
@@ -280,11 +288,7 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
     const ShaderProgram& p = program("06_shadows/shaders/shadow_depth.vert", "06_shadows/shaders/shadow_depth.frag", {});
     glBindFramebuffer(GL_FRAMEBUFFER, depth_fbo_.id());
     glViewport(0, 0, n, n);
-    glDisable(GL_BLEND), glDisable(GL_STENCIL_TEST), glDisable(GL_SCISSOR_TEST), glDisable(GL_CULL_FACE);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glClearDepth(1.0);
+    depth_pass_state();
     glClear(GL_DEPTH_BUFFER_BIT);
     p.use();
     p.set("u_light_view_projection", frustum_.view_projection());
@@ -444,11 +448,7 @@ void ShadowStage::draw_cascades(PassMetrics* metrics) {
   auto pass = timed(metrics, "shadow map: depth from the sun");
   const int n = settings_.map_size;
   const ShaderProgram& p = program("06_shadows/shaders/shadow_depth.vert", "06_shadows/shaders/shadow_depth.frag", {});
-  glDisable(GL_BLEND), glDisable(GL_STENCIL_TEST), glDisable(GL_SCISSOR_TEST), glDisable(GL_CULL_FACE);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glDepthMask(GL_TRUE);
-  glClearDepth(1.0);
+  depth_pass_state();
   p.use();
   for (std::size_t i = 0; i < cascades_.size(); ++i) {
     glBindFramebuffer(GL_FRAMEBUFFER, cascade_fbos_[i].id());

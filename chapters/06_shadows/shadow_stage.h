@@ -125,6 +125,8 @@ class ShadowStage : public ch03::FrameStage {
   void fit_cascades(const FrameCamera& camera);
   void draw_cascades(PassMetrics* metrics);
   void draw_point_maps(const FrameCamera& camera, PassMetrics* metrics);  // point_shadows.cpp
+  // Every depth-from-a-light pass's state, set before its draws: depth only, both faces.
+  static void depth_pass_state();
   const ShaderProgram& program(const std::string& vertex, const std::string& fragment, std::vector<std::string> defines);
   const SceneGpu& scene_;
   Light sun_;
