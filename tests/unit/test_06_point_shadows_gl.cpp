@@ -218,10 +218,10 @@ TEST(PointShadowsGlSeams, NoLightLeaksAcrossTheCubeFacesSeams) {
         for (int x = 0; x + 1 < kW; ++x) {
           if (!usable(x, y)) continue;
           const CubeFace face = cube_face_coords(hits[std::size_t(y) * kW + std::size_t(x)]->position - l.position).face;
-          for (const auto [u, w] : {std::pair{x + 1, y}, std::pair{x, y + 1}}) {
+          for (const auto& [u, w] : {std::pair{x + 1, y}, std::pair{x, y + 1}}) {
             if (!usable(u, w)) continue;
             if (cube_face_coords(hits[std::size_t(w) * kW + std::size_t(u)]->position - l.position).face == face) continue;
-            for (const auto [px, py] : {std::pair{x, y}, std::pair{u, w}}) {
+            for (const auto& [px, py] : {std::pair{x, y}, std::pair{u, w}}) {
               ++seam, seam_dark += truth.at(px, py, 0) < 0.5f;
               wrong += std::abs(v.at(px, py, 0) - truth.at(px, py, 0)) > 0.5f;
             }
