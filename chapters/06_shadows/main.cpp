@@ -5,8 +5,9 @@
 // on filtered moments (vsm), filtered exp(c z) in log space (esm), four moments and the Hamburger
 // reconstruction (msm), or PCF over the penumbra a
 // blocker search finds for the sun as a disk (pcss); or with no map, by the sun's shadow volumes
-// counted in the stencil (volumes). The sun casts, and a spot light the scene marks (a
-// perspective map, hard or PCF), and the point lights it marks (a cube map each; --points all:
+// counted in the stencil (volumes). The sun casts, and the spot lights the scene marks (a
+// perspective map each in a tile of one atlas, hard or PCF; --spots all: every spot light), and
+// the point lights it marks (a cube map each; --points all:
 // every point light); the other local lights keep chapter 03's path (visibility 1). The ray-traced truth that the tests
 // and the sweep measure against is shadow_truth.h.
 #include <algorithm>
@@ -87,6 +88,9 @@ const CliSpec kCli{
                                     "(casts_shadows; the atrium marks none), or every point light (up to 8)",
                           {"marked", "all"}),
               {"cube", "point lights: a cube map face's width and height in texels", 512, 16, 4096, true},
+              choice_knob("spots", "which spot lights cast, each from a tile of one atlas --map texels a side: "
+                                   "those the scene marks (casts_shadows), or every spot light (up to 16)",
+                          {"marked", "all"}),
               {"sun", "multiplies directional lights, times what the scene asks for (the atrium: 4, its 0.4 lux "
                       "sun beside eight point lights shows the shadows only faintly at 1; other scenes: 1)", 1, 0, 1000,
                false},
@@ -225,7 +229,8 @@ int main(int argc, char** argv) {
                                     .cascade_snap = f.knob_int("snap") != 0,
                                     .all_point_lights = f.knob_int("points") == 1,
                                     .cube_size = f.knob_int("cube"),
-                                    .csm_terms = f.knob_int("terms")};
+                                    .csm_terms = f.knob_int("terms"),
+                                    .all_spot_lights = f.knob_int("spots") == 1};
       const int show = f.knob_int("show");
       const bool cascadable = settings.method == ShadowMethod::Hard || settings.method == ShadowMethod::Pcf ||
                               settings.method == ShadowMethod::PcfHardware || settings.method == ShadowMethod::Pcss;
@@ -295,6 +300,10 @@ int main(int argc, char** argv) {
           out << "  point lights: " << shadows.point_lights().size() << " cube maps of 6 x " << settings.cube_size << "x"
               << settings.cube_size << ", " << std::count(shadows.points_mapped().begin(), shadows.points_mapped().end(), true)
               << " drawn this frame\n";
+        if (!shadows.spot_lights().empty())
+          out << "  spot lights: " << shadows.spot_lights().size() << " tiles of " << shadows.spot_tile(0).size << "x"
+              << shadows.spot_tile(0).size << " in a " << settings.map_size << "x" << settings.map_size << " atlas, "
+              << std::count(shadows.spots_mapped().begin(), shadows.spots_mapped().end(), true) << " drawn this frame\n";
         const auto& cascades = shadows.cascades();
         for (std::size_t i = 0; i < cascades.size(); ++i)
           out << "  cascade " << i << ": view depth " << shadows.cascade_splits()[i] << " to "

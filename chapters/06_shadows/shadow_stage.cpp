@@ -19,13 +19,16 @@ using glm::mat4, glm::vec2, glm::vec3, glm::vec4;
 using glsl::ShadowParameters;
 static_assert(SHADOW_MAX_POISSON_TAPS == kMaxPoissonTaps);
 static_assert(offsetof(ShadowParameters, view) == 112 && offsetof(ShadowParameters, extent) == 176 &&
-              offsetof(ShadowParameters, poisson) == 192 && offsetof(ShadowParameters, spot_position) == 832 &&
-              offsetof(ShadowParameters, cascade_matrix) == 864 && offsetof(ShadowParameters, cascade_far) == 1120 &&
-              offsetof(ShadowParameters, cascade_count) == 1184 && offsetof(ShadowParameters, point_light) == 1200 &&
-              offsetof(ShadowParameters, point_count) == 1328 && sizeof(ShadowParameters) == 1344,
-              "std140: vec4 and mat4 members on 16 bytes");
+              offsetof(ShadowParameters, poisson) == 192 && offsetof(ShadowParameters, cascade_matrix) == 704 &&
+              offsetof(ShadowParameters, cascade_far) == 960 && offsetof(ShadowParameters, cascade_count) == 1024 &&
+              offsetof(ShadowParameters, point_light) == 1040 && offsetof(ShadowParameters, point_count) == 1168 &&
+              offsetof(ShadowParameters, spot_count) == 1180 && offsetof(ShadowParameters, spot) == 1184 &&
+              sizeof(glsl::SpotTile) == 176 && offsetof(glsl::SpotTile, tile) == 160 &&
+              sizeof(ShadowParameters) == 1184 + 176 * SHADOW_MAX_SPOTS,
+              "std140: vec4 and mat4 members on 16 bytes, the spots' records 176 bytes apart");
 static_assert(SHADOW_MAX_CASCADES == kMaxCascades);
 static_assert(SHADOW_MAX_POINT_LIGHTS == kMaxPointShadows);
+static_assert(SHADOW_MAX_SPOTS == kMaxSpotShadows);
 
 namespace {
 // The stage's texture units, from the first the frame gave it (shadow_visibility.glsl reads
@@ -64,12 +67,19 @@ bool casts_shadows(const Scene& scene, std::size_t light) {
   return true;
 }
 
-int shadowed_spot(const Scene& scene) {
-  for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+std::vector<int> shadowed_spot_lights(const Scene& scene, bool all) {
+  std::vector<int> out;
+  for (std::size_t i = 0; i < scene.lights.size() && out.size() < std::size_t(kMaxSpotShadows); ++i) {
     const Light& l = scene.lights[i];
-    if (l.type == LightType::Spot && casts_shadows(scene, i) && l.outer_cone <= kMaxSpotCone) return int(i);
+    if (l.type == LightType::Spot && !light_defect(l) && (all || casts_shadows(scene, i)) && l.outer_cone <= kMaxSpotCone)
+      out.push_back(int(i));
   }
-  return -1;
+  return out;
+}
+
+int shadowed_spot(const Scene& scene) {
+  const std::vector<int> spots = shadowed_spot_lights(scene);
+  return spots.empty() ? -1 : spots.front();
 }
 
 int shadowed_sun(const Scene& scene) {
@@ -96,18 +106,20 @@ std::vector<int> shadowed_point_lights(const Scene& scene, bool all) {
 
 std::vector<std::string> unshadowed_casters(const Scene& scene) {
   std::vector<std::string> out;
-  const int sun = shadowed_sun(scene), spot = shadowed_spot(scene);
-  const std::vector<int> points = shadowed_point_lights(scene);
+  const int sun = shadowed_sun(scene);
+  const std::vector<int> points = shadowed_point_lights(scene), spots = shadowed_spot_lights(scene);
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
-    if (!casts_shadows(scene, i) || int(i) == sun || int(i) == spot) continue;
+    if (!casts_shadows(scene, i) || int(i) == sun) continue;
     if (std::find(points.begin(), points.end(), int(i)) != points.end()) continue;
+    if (std::find(spots.begin(), spots.end(), int(i)) != spots.end()) continue;
     std::string why = l.type == LightType::Directional ? "only the first directional light (the sun) has a map here"
                       : l.type == LightType::Point     ? "only the first " + std::to_string(kMaxPointShadows) +
                                                           " marked point lights have cube maps here"
                       : l.outer_cone > kMaxSpotCone    ? "its cone is wider than a perspective map covers (" +
                                                           std::to_string(kMaxSpotCone) + " rad): a cube map's, an exercise"
-                                                       : "only the first marked spot light has a map here";
+                                                       : "only the first " + std::to_string(kMaxSpotShadows) +
+                                                          " marked spot lights have a tile of the atlas here";
     out.push_back("light '" + l.name + "' is marked casts_shadows, but " + why + ": it keeps chapter 03's path (no shadow)");
   }
   return out;
@@ -115,7 +127,6 @@ std::vector<std::string> unshadowed_casters(const Scene& scene) {
 
 ShadowStage::ShadowStage(const SceneGpu& scene, const Light& sun)
     : scene_(scene), sun_(sun), sun_index_(shadowed_sun_index(scene.scene())) {
-  if (const int spot = shadowed_spot(scene.scene()); spot >= 0) spot_ = scene.scene().lights[std::size_t(spot)];
   glSamplerParameteri(nearest_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glSamplerParameteri(nearest_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glSamplerParameteri(compare_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
@@ -139,6 +150,12 @@ void ShadowStage::depth_pass_state() {
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
   glClearDepth(1.0);
+}
+
+std::optional<Light> ShadowStage::spot() const {
+  const std::vector<int> spots = shadowed_spot_lights(scene_.scene(), settings_.all_spot_lights);
+  if (spots.empty()) return std::nullopt;
+  return scene_.scene().lights[std::size_t(spots.front())];
 }
 
 void ShadowStage::reload_shaders() {
@@ -182,7 +199,7 @@ void ShadowStage::bind_hook_resources() const {
   glBindSampler(at.unit(kCompareUnit), compare_.id());
   glBindTextureUnit(at.unit(kMomentsUnit), allocated_filtered_ ? moments_.id() : depth_.id());
   glBindSampler(at.unit(kMomentsUnit), linear_.id());
-  glBindTextureUnit(at.unit(kSpotUnit), spot_mapped_ ? spot_depth_.id() : depth_.id());
+  glBindTextureUnit(at.unit(kSpotUnit), spot_size_ > 0 ? spot_atlas_.id() : depth_.id());  // the spots' atlas
   glBindSampler(at.unit(kSpotUnit), nearest_.id());
   glBindTextureUnit(at.unit(kPointUnit), point_maps_.id());  // a 1-texel stand-in without point lights
   glBindSampler(at.unit(kPointUnit), nearest_.id());
@@ -260,7 +277,7 @@ std::size_t ShadowStage::allocated_bytes() const {
     return std::size_t(volume_width_) * std::size_t(volume_height_) + volume_buffer_bytes_;
   const std::size_t texels = std::size_t(allocated_size_) * std::size_t(allocated_size_) *
                              std::size_t(allocated_cascades_);
-  const std::size_t spot = std::size_t(spot_size_) * std::size_t(spot_size_) * 4;  // the spot's depth map, if any
+  const std::size_t spot = spot_lights_.empty() ? 0 : std::size_t(spot_size_) * std::size_t(spot_size_) * 4;  // the atlas
   const std::size_t points = point_lights_.empty() ? 0  // the point lights' cube maps
                              : std::size_t(point_size_) * std::size_t(point_size_) * 6 * std::size_t(point_layers_) * 4;
   const std::size_t filtered = 2 * std::size_t(allocated_channels_) * std::size_t(allocated_bits_ / 8);  // map + scratch
@@ -294,30 +311,8 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
     p.set("u_light_view_projection", frustum_.view_projection());
     scene_.draw([&](const Instance& inst, const Material&) { p.set("u_model", inst.model); }, SceneGpu::Primitives::Opaque);
   }
-  // Only what the scene needs: no map for a spot whose reach lies off screen (an unbounded
-  // spot, range 0, always has one).
-  spot_mapped_ = spot_ && (!(spot_->range > 0.f) ||
-                           sphere_in_view(spot_->position, spot_->range, frame.camera().projection * frame.camera().view));
-  if (spot_mapped_) {
-    // 1b. The marked spot light's perspective map: the same depth pass from its frustum.
-    auto pass = timed(metrics, "shadow map: depth from the spot light");
-    if (spot_size_ != n) {
-      spot_depth_ = gl::make_texture_2d(GL_DEPTH_COMPONENT32F, n, n);
-      spot_fbo_ = gl::Framebuffer();
-      glNamedFramebufferTexture(spot_fbo_.id(), GL_DEPTH_ATTACHMENT, spot_depth_.id(), 0);
-      glNamedFramebufferDrawBuffer(spot_fbo_.id(), GL_NONE);
-      spot_size_ = n;
-    }
-    spot_frustum_ = fit_spot_frustum(spot_->position, spot_->direction, spot_->outer_cone, spot_->range,
-                                     scene.bounds_min, scene.bounds_max);
-    const ShaderProgram& p = program("06_shadows/shaders/shadow_depth.vert", "06_shadows/shaders/shadow_depth.frag", {});
-    glBindFramebuffer(GL_FRAMEBUFFER, spot_fbo_.id());
-    glViewport(0, 0, n, n);
-    glClear(GL_DEPTH_BUFFER_BIT);
-    p.use();
-    p.set("u_light_view_projection", spot_frustum_.view_projection());
-    scene_.draw([&](const Instance& inst, const Material&) { p.set("u_model", inst.model); }, SceneGpu::Primitives::Opaque);
-  }
+  // 1b. The spot lights' perspective maps, a tile each of one atlas (spot_atlas.cpp).
+  draw_spot_atlas(frame.camera(), metrics);
   // 1c. The point lights' cube maps (point_shadows.cpp).
   draw_point_maps(frame.camera(), metrics);
   // 2'. Convolution shadow maps: the basis of the step's series, filtered (csm_stage.cpp).
@@ -387,12 +382,17 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
     slot[int(i % 2) * 2] = poisson_[i].x;
     slot[int(i % 2) * 2 + 1] = poisson_[i].y;
   }
-  block.spot_matrix = spot_frustum_.view_projection();
-  block.spot_view = spot_frustum_.view;
-  block.spot_position = spot_ ? spot_->position : glm::vec3(0);
-  block.spot_mapped = spot_mapped_ ? 1.f : 0.f;
-  block.spot_near = spot_frustum_.near, block.spot_far = spot_frustum_.far;
-  block.spot_tan_cone = spot_frustum_.tan_cone, block.spot_map_size = float(n);
+  block.spot_count = float(spot_lights_.size());
+  for (std::size_t i = 0; i < spot_lights_.size(); ++i) {
+    const SpotFrustum& f = spot_frustums_[i];
+    const AtlasTile tile = spot_tile(int(i));
+    glsl::SpotTile& t = block.spot[i];
+    t.matrix = f.view_projection();
+    t.view = f.view;
+    t.position = glm::vec4(scene.lights[std::size_t(spot_lights_[i])].position, spots_mapped_[i] ? 1.f : 0.f);
+    t.frustum = glm::vec4(f.near, f.far, f.tan_cone, float(tile.size));
+    t.tile = glm::vec4(tile.corner, tile.side, 0.f);
+  }
   block.cascade_count = float(cascades_.size());
   block.cascade_band = settings_.cascade_band;
   block.camera_depth = cascade_depth_plane_;
@@ -591,8 +591,10 @@ bool ShadowStage::composite(ch03::DeferredFrame& frame, PassMetrics* metrics) {
     defines.push_back("SHOW_POINT 1");
   }
   if (picture_ == ShadowPicture::SpotVisibility) {
-    if (!spot_ || settings_.method == ShadowMethod::Volumes)
-      throw Error("shadow stage: the spot's visibility needs a spot light marked to cast and a map method");
+    if (settings_.spot_shown < 0 || std::size_t(settings_.spot_shown) >= spot_lights_.size() ||
+        settings_.method == ShadowMethod::Volumes)
+      throw Error("shadow stage: the spot light's visibility needs spot light " + std::to_string(settings_.spot_shown) +
+                  " of the " + std::to_string(spot_lights_.size()) + " with a tile of the atlas, and a map method");
     defines.push_back("SHOW_SPOT 1");
   }
   const ShaderProgram& p = program("02_gbuffer/shaders/fullscreen.vert", "06_shadows/shaders/show_visibility.frag", defines);
@@ -602,8 +604,10 @@ bool ShadowStage::composite(ch03::DeferredFrame& frame, PassMetrics* metrics) {
   p.set("u_sun_direction", glm::normalize(sun_.direction));
   p.set("u_output_size", glm::vec2(frame.output().width, frame.output().height));
   if (picture_ == ShadowPicture::SpotVisibility) {
-    p.set("u_spot_direction", glm::normalize(spot_->direction));
-    p.set("u_spot_cos_cone", std::cos(spot_->outer_cone));
+    const Light& l = scene_.scene().lights[std::size_t(spot_lights_[std::size_t(settings_.spot_shown)])];
+    p.set("u_spot_position", l.position);
+    p.set("u_spot_direction", glm::normalize(l.direction));
+    p.set("u_spot_cos_cone", std::cos(l.outer_cone));
   }
   if (picture_ == ShadowPicture::PointVisibility) {
     const Light& l = scene_.scene().lights[std::size_t(point_lights_[std::size_t(settings_.point_shown)])];

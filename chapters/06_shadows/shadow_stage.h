@@ -18,6 +18,7 @@
 #include "chapters/06_shadows/cube_math.h"
 #include "chapters/06_shadows/shadow_math.h"
 #include "chapters/06_shadows/shadow_volumes.h"
+#include "chapters/06_shadows/spot_atlas.h"
 #include "common/scene.h"
 #include "common/camera.h"
 #include "common/shader.h"
@@ -71,6 +72,10 @@ struct ShadowSettings {
   int cube_size = 512;   // texels a face side
   int point_shown = 0;   // ShadowPicture::PointVisibility: which of point_lights()
   int csm_terms = 4;     // csm-fourier: the series' terms, 1 to kMaxCsmTerms (two channels each)
+  // Spot lights (spot_atlas.h): the scene's marked ones get a tile of the one atlas, map_size
+  // texels a side, or, with all_spot_lights, every spot light (up to kMaxSpotShadows).
+  bool all_spot_lights = false;
+  int spot_shown = 0;    // ShadowPicture::SpotVisibility: which of spot_lights()
 };
 
 // What the last frame's shadow volumes were (method Volumes).
@@ -81,7 +86,8 @@ struct VolumeStats {
 
 // What composite() draws instead of the image. Penumbra (method Pcss): the filter's radius in
 // metres, unclamped (0 where the search finds no blocker; blue where the sun does not reach).
-// SpotVisibility: the marked spot light's visibility alone (blue where the spot does not reach).
+// SpotVisibility: the visibility of spot light settings.spot_shown alone (blue where it does not
+// reach).
 // Cascades: the sun's visibility tinted by the cascade each pixel reads (red, green, blue,
 // yellow; mixed in the blend bands). PointVisibility: the visibility of point light
 // settings.point_shown alone (blue where it does not reach).
@@ -89,8 +95,8 @@ enum class ShadowPicture { None, Visibility, Map, Penumbra, SpotVisibility, Casc
 
 class ShadowStage : public ch03::FrameStage {
  public:
-  // `sun`: the directional light that casts; the scene's bounds give the casters. The first spot
-  // light the scene marks to cast (casts_shadows below), if any, gets a perspective map too.
+  // `sun`: the directional light that casts; the scene's bounds give the casters. The spot lights
+  // the scene marks to cast (casts_shadows below) get a perspective map each, a tile of one atlas.
   ShadowStage(const SceneGpu& scene, const Light& sun);
   void reload_shaders();
   void set(const ShadowSettings& settings, ShadowPicture picture = ShadowPicture::None);
@@ -99,11 +105,18 @@ class ShadowStage : public ch03::FrameStage {
   // The last frame's cascades (empty with one map) and their splits (view depths, count + 1).
   const std::vector<LightFrustum>& cascades() const { return cascades_; }
   const std::vector<float>& cascade_splits() const { return splits_; }
-  const std::optional<Light>& spot() const { return spot_; }          // the spot light with a map
-  const SpotFrustum& spot_frustum() const { return spot_frustum_; }
-  // Whether the last frame drew the spot's map: not when the sphere its range reaches lies
-  // outside the view (its light reaches no pixel on screen, so no map is needed).
-  bool spot_mapped() const { return spot_mapped_; }
+  // The spot lights with a tile in the atlas (indices in the scene's lights, shadowed_spot_lights)
+  // and, for each, its frustum, its tile, and whether the last frame drew it: not when the
+  // sphere its range reaches lies outside the view (its light reaches no pixel on screen).
+  const std::vector<int>& spot_lights() const { return spot_lights_; }
+  const std::vector<SpotFrustum>& spot_frustums() const { return spot_frustums_; }
+  const std::vector<bool>& spots_mapped() const { return spots_mapped_; }
+  AtlasTile spot_tile(int i) const { return spot_atlas_tile(i, int(spot_lights_.size()), spot_size_); }
+  // The first of them, as the settings choose them (before a frame, too), its frustum and
+  // whether it was drawn.
+  std::optional<Light> spot() const;
+  SpotFrustum spot_frustum() const { return spot_frustums_.empty() ? SpotFrustum{} : spot_frustums_.front(); }
+  bool spot_mapped() const { return !spots_mapped_.empty() && spots_mapped_.front(); }
   // The point lights with a cube map (indices in the scene's lights, shadowed_point_lights) and,
   // for each, whether the last frame drew it (not when its range's sphere lies off screen).
   const std::vector<int>& point_lights() const { return point_lights_; }
@@ -125,6 +138,7 @@ class ShadowStage : public ch03::FrameStage {
   void fit_cascades(const FrameCamera& camera);
   void draw_cascades(PassMetrics* metrics);
   void draw_point_maps(const FrameCamera& camera, PassMetrics* metrics);  // point_shadows.cpp
+  void draw_spot_atlas(const FrameCamera& camera, PassMetrics* metrics);  // spot_atlas.cpp
   // Every depth-from-a-light pass's state, set before its draws: depth only, both faces.
   static void depth_pass_state();
   const ShaderProgram& program(const std::string& vertex, const std::string& fragment, std::vector<std::string> defines);
@@ -134,10 +148,11 @@ class ShadowStage : public ch03::FrameStage {
   ShadowSettings settings_;
   ShadowPicture picture_ = ShadowPicture::None;
   LightFrustum frustum_;
-  std::optional<Light> spot_;
-  bool spot_mapped_ = false;
-  SpotFrustum spot_frustum_;
-  gl::Texture spot_depth_{GL_TEXTURE_2D};
+  // Spot lights: one depth atlas, a tile per light, drawn through one framebuffer.
+  std::vector<int> spot_lights_;
+  std::vector<bool> spots_mapped_;
+  std::vector<SpotFrustum> spot_frustums_;
+  gl::Texture spot_atlas_{GL_TEXTURE_2D};
   gl::Framebuffer spot_fbo_;
   int spot_size_ = 0;
   int allocated_size_ = 0;
@@ -199,19 +214,22 @@ float scene_sun_scale(const Scene& scene);
 // Which lights cast shadows in this chapter. A light marked in the scene (the light node's
 // extras {"lightpass": {"casts_shadows": true | false}}, Light::casts_shadows; the format is in
 // book/appendix-scenes.md) does as it says; an unmarked one casts if it is the sun (the first
-// directional light) and not otherwise. The sun gets its orthographic map, the first marked
-// spot light (of at most kMaxSpotCone) a perspective one, the first kMaxPointShadows marked point
+// directional light) and not otherwise. The sun gets its orthographic map, the first
+// kMaxSpotShadows marked spot lights (of at most kMaxSpotCone) a perspective one each in a tile of
+// one atlas (spot_atlas.h), the first kMaxPointShadows marked point
 // lights a cube map each (cube_math.h; looked up hard with the method hard, with PCF on the k x k
 // grid with every other map method; with volumes they cast nothing). A
 // light that does not cast keeps chapter 03's path: visibility 1, no map, no pass.
 bool casts_shadows(const Scene& scene, std::size_t light);
-// The lights marked to cast that this chapter cannot shadow (the sun's map, one spot light's
-// perspective map and kMaxPointShadows point lights' cube maps: another directional light, a
-// second spot light or one wider than kMaxSpotCone, a ninth point light), each named with why:
-// for the program to say so.
+// The lights marked to cast that this chapter cannot shadow (the sun's map, kMaxSpotShadows spot
+// lights' tiles and kMaxPointShadows point lights' cube maps: another directional light, a
+// seventeenth spot light or one wider than kMaxSpotCone, a ninth point light), each named with
+// why: for the program to say so.
 std::vector<std::string> unshadowed_casters(const Scene& scene);
-// The spot light that gets a map: the first spot marked to cast with a cone of at most
-// kMaxSpotCone; its index in scene.lights, or -1.
+// The spot lights that get a tile of the atlas: the first kMaxSpotShadows spot lights the light
+// set keeps that are marked to cast (or every one of them, with `all`) with a cone of at most
+// kMaxSpotCone; their indices. shadowed_spot: the first of the marked ones, or -1.
+std::vector<int> shadowed_spot_lights(const Scene& scene, bool all = false);
 int shadowed_spot(const Scene& scene);
 // The sun that gets a map: the first directional light, if it casts; its index, or -1.
 int shadowed_sun(const Scene& scene);

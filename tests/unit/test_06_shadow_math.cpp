@@ -415,9 +415,9 @@ TEST(ShadowMath, SpotFrustumHoldsTheSpotsCone) {
 
 // [marked-lights-tests]
 // Which lights cast (shadow_stage.h [casts-shadows]): unmarked, only the sun (the first
-// directional light, wherever it is in the list); a mark overrides, either way; the first
-// marked spot of at most kMaxSpotCone gets a map; and a marked light the chapter has no map
-// for is named, with why, the sun and that spot never.
+// directional light, wherever it is in the list); a mark overrides, either way; the marked
+// spots of at most kMaxSpotCone get a map; and a marked light the chapter has no map for is
+// named, with why, the sun and those spots never.
 TEST(ShadowLights, TheSunCastsUnlessMarkedAndOtherLightsOnlyWhenMarked) {
   auto light = [](LightType type, const char* name) {
     Light l;
@@ -444,14 +444,37 @@ TEST(ShadowLights, TheSunCastsUnlessMarkedAndOtherLightsOnlyWhenMarked) {
   EXPECT_EQ(shadowed_spot(s), 3);
   // The marked point light gets a cube map (cube_math.h); the others are named.
   EXPECT_EQ(shadowed_point_lights(s), std::vector<int>{0});
+  // Both marked spots of a cone a map covers get a tile of the atlas (spot_atlas.h).
+  EXPECT_EQ(shadowed_spot_lights(s), (std::vector<int>{3, 5}));
   const std::vector<std::string> notes = unshadowed_casters(s);
-  ASSERT_EQ(notes.size(), 3u);
+  ASSERT_EQ(notes.size(), 2u);
   EXPECT_NE(notes[0].find("light 'moon'"), std::string::npos) << notes[0];
   EXPECT_NE(notes[0].find("only the first directional light"), std::string::npos) << notes[0];
   EXPECT_NE(notes[1].find("light 'flood'"), std::string::npos) << notes[1];
   EXPECT_NE(notes[1].find("wider than a perspective map covers"), std::string::npos) << notes[1];
-  EXPECT_NE(notes[2].find("light 'second'"), std::string::npos) << notes[2];
-  EXPECT_NE(notes[2].find("only the first marked spot light"), std::string::npos) << notes[2];
+}
+
+// Spot lights: the marked ones get a tile, at most kMaxSpotShadows (the next is named), and every
+// spot light with `all`; one wider than kMaxSpotCone never.
+TEST(ShadowLights, MarkedSpotLightsGetTilesUpToTheLimit) {
+  Scene s;
+  for (int i = 0; i <= kMaxSpotShadows + 1; ++i) {
+    Light l;
+    l.type = LightType::Spot, l.name = "spot" + std::to_string(i), l.intensity = 1.f, l.outer_cone = 0.5f;
+    l.casts_shadows = i != 0;  // the first unmarked
+    s.lights.push_back(l);
+  }
+  const std::vector<int> marked = shadowed_spot_lights(s);
+  ASSERT_EQ(marked.size(), std::size_t(kMaxSpotShadows));
+  EXPECT_EQ(marked.front(), 1);
+  EXPECT_EQ(marked.back(), kMaxSpotShadows);
+  const std::vector<std::string> notes = unshadowed_casters(s);
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("light 'spot" + std::to_string(kMaxSpotShadows + 1) + "'"), std::string::npos) << notes[0];
+  EXPECT_NE(notes[0].find("marked spot lights have a tile"), std::string::npos) << notes[0];
+  EXPECT_EQ(shadowed_spot_lights(s, true).front(), 0);
+  s.lights[0].outer_cone = kMaxSpotCone + 0.1f;
+  EXPECT_EQ(shadowed_spot_lights(s, true).front(), 1);
 }
 
 // Point lights: the marked ones get cube maps, at most kMaxPointShadows (the next is named), and

@@ -4,6 +4,17 @@
 // fills it and asserts the std140 offsets (vec4 and mat4 on 16 bytes, floats between).
 #define SHADOW_MAX_POISSON_TAPS 64
 #define SHADOW_MAX_CASCADES 4
+#define SHADOW_MAX_SPOTS 16
+// [spot-tile]
+// A spot light's perspective frustum (shadow_math.h [spot-frustum]) and its tile of the atlas.
+struct SpotTile {
+  mat4 matrix;           // world to the spot's clip space (perspective)
+  mat4 view;             // world to its view space (looking down -z)
+  vec4 position;         // xyz: the light's position; w: 1 when its tile was drawn this frame
+  vec4 frustum;          // near and far plane (metres), tan(outer cone), the tile's texels a side
+  vec4 tile;             // xy: the tile's lower-left corner in the atlas's (u, v); z: its side
+};
+// [/spot-tile]
 struct ShadowParameters {
   mat4 matrix;           // world to the sun map's clip space (orthographic)
   float texel_metres;    // one map texel, metres
@@ -23,12 +34,8 @@ struct ShadowParameters {
   float msm_optimized;   // MSM: 1 when the map holds the optimised 16-bit moments
   float tan_sun_radius;  // PCSS: tan(the sun's angular radius)
   vec4 poisson[SHADOW_MAX_POISSON_TAPS / 2];  // the unit-disk taps, two a vec4 (xy, zw)
-  mat4 spot_matrix;      // world to the marked spot light's clip space (perspective)
-  mat4 spot_view;        // world to its view space (looking down -z)
-  vec3 spot_position;
-  float spot_mapped;     // 1 when the spot's map was drawn this frame
-  float spot_near, spot_far, spot_tan_cone, spot_map_size;  // its frustum (metres) and map (texels)
-  // ... the cascades' fields ([shadow-block-cascades])
+  // ... the cascades' fields ([shadow-block-cascades]), the point lights' and the spots' tiles
+  // in the atlas ([shadow-block-spots])
 // [/shadow-block]
 // [shadow-block-cascades]
   // Cascades (shadow_math.h [cascades]), when SHADOW_CASCADES > 1: the sun's maps are the layers
@@ -51,6 +58,10 @@ struct ShadowParameters {
   float point_count;     // lights with a cube map (the first point_count entries)
   float point_map_size;  // texels a face side
   float csm_terms;       // convolution shadow maps: the series' terms (csm_math.h [csm])
-  float point_unused1;
+  float spot_count;      // spot lights with a tile in the atlas (the first spot_count entries of spot)
 // [/shadow-block-points]
+// [shadow-block-spots]
+  // The marked spot lights, each in its tile of the one spot atlas (shadow_math.h [spot-atlas]).
+  SpotTile spot[SHADOW_MAX_SPOTS];
+// [/shadow-block-spots]
 };

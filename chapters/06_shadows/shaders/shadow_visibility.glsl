@@ -3,9 +3,9 @@
 // SHADOW_VOLUMES, read from the visibility its shadow volumes left. ShadowStage::shader_hooks()
 // passes the method, its slots (SHADOW_UNIT, SHADOW_BLOCK) and which directional light is the
 // sun (SHADOW_SUN_INDEX, from shadowed_sun_index()). The C++ twins are in shadow_math.h. Only
-// the sun has a map, the first spot light the scene marks to cast (shadow_stage.h
-// [casts-shadows]) a perspective one and the marked point lights a cube map each
-// (cube_math.h); the other lights keep visibility 1.
+// the sun has a map, the spot lights the scene marks to cast (shadow_stage.h [casts-shadows]) a
+// perspective one each in a tile of one atlas (spot_atlas.h) and the marked point lights a cube
+// map each (cube_math.h); the other lights keep visibility 1.
 #include "03_light_volumes/shaders/hooks/frame_pixel.glsl"
 #define SHADOW_HARD 0
 #define SHADOW_PCF 1
@@ -40,7 +40,7 @@ float local_visibility(int index, GpuLight light, Surface s) { return 1.0; }
 #include "06_shadows/shaders/shadow_block.h"
 layout(std140, binding = SHADOW_BLOCK) uniform ShadowBlock { ShadowParameters sh; };
 // The stage's units: the sun's map read raw (nearest) and through the comparison sampler,
-// VSM's or ESM's filtered map, and the spot's map (+3 is the pre-filter's input, +4 the volumes').
+// VSM's or ESM's filtered map, and the spots' atlas (+3 is the pre-filter's input, +4 the volumes').
 // With cascades (SHADOW_CASCADES > 1) the sun's maps are the layers of an array, on the same
 // units; SHADOW_DEPTH and SHADOW_COMPARE read the layer of the cascade being looked up.
 #ifndef SHADOW_CASCADES
@@ -59,7 +59,7 @@ layout(binding = SHADOW_UNIT + 1) uniform sampler2DShadow sh_depth_compare;
 #define SHADOW_COMPARE(uvz) texture(sh_depth_compare, uvz)
 #endif
 layout(binding = SHADOW_UNIT + 2) uniform sampler2D sh_moments;
-layout(binding = SHADOW_UNIT + 5) uniform sampler2D sh_spot_depth;
+layout(binding = SHADOW_UNIT + 5) uniform sampler2D sh_spot_atlas;
 layout(binding = SHADOW_UNIT + 6) uniform samplerCubeArray sh_point_maps;
 layout(binding = SHADOW_UNIT + 7) uniform sampler2DArray sh_csm;
 
@@ -320,15 +320,17 @@ float directional_visibility(int index, GpuLight light, Surface s) {
 }
 
 // [spot-glsl]
-// The marked spot light (found by its position: the light order is chapter 03's) in its
-// perspective map. Distances are linear, metres along the spot's axis (clip w); a texel there
-// is w(d) = 2 d tan(cone) / N wide, and the biases are shadow_math.h's [bias] in units of it:
-// the normal offset, the constant and the slope-scaled parts. Hard: one comparison; every
-// other map method: PCF on a k x k grid, each tap compared with the receiver's plane where the
-// light's ray through that texel meets it (the perspective form of the receiver-plane bias:
-// in the light's view space the ray through the map's (u, v) is t (x tan, y tan, -1), x and y
-// in [-1, 1], and it meets the plane n . (X - p) = 0 at t = n . p / n . ray, its depth t).
+// A marked spot light (found by its position: the light order is chapter 03's) in its tile of
+// the atlas. Distances are linear, metres along the spot's axis (clip w); a texel there is
+// w(d) = 2 d tan(cone) / N wide (N: the tile's side), and the biases are shadow_math.h's [bias]
+// in units of it: the normal offset, the constant and the slope-scaled parts. Hard: one
+// comparison; every other map method: PCF on a k x k grid, each tap compared with the
+// receiver's plane where the light's ray through that texel meets it (the perspective form of
+// the receiver-plane bias: in the light's view space the ray through the map's (u, v) is
+// t (x tan, y tan, -1), x and y in [-1, 1], and it meets the plane n . (X - p) = 0 at
+// t = n . p / n . ray, its depth t).
 float point_visibility(int i, Surface s);
+float spot_visibility(int i, Surface s);
 float local_visibility(int index, GpuLight light, Surface s) {
   if (light.position_type.w == LIGHT_POINT) {
     // A point light with a cube map (found by its position, as the spot), or none: lit.
@@ -336,17 +338,36 @@ float local_visibility(int index, GpuLight light, Surface s) {
       if (distance(light.position_type.xyz, sh.point_light[i].xyz) <= 1e-4) return point_visibility(i, s);
     return 1.0;
   }
-  if (sh.spot_mapped == 0.0 || light.position_type.w != LIGHT_SPOT || distance(light.position_type.xyz, sh.spot_position) > 1e-4) return 1.0;
-  vec3 to_light = normalize(sh.spot_position - s.position);
+  if (light.position_type.w != LIGHT_SPOT) return 1.0;
+  for (int i = 0; i < int(sh.spot_count); ++i)
+    if (distance(light.position_type.xyz, sh.spot[i].position.xyz) <= 1e-4) return spot_visibility(i, s);
+  return 1.0;
+}
+
+// [atlas-glsl]
+// spot_atlas.h's spot_atlas_uv: a tile-local (u, v) clamped to the centres of the tile's border
+// texels, then placed in the tile. A PCF tap past the tile's edge reads the tile's own border,
+// never the neighbour's depths.
+vec2 spot_atlas_uv(SpotTile t, vec2 uv) {
+  float half_texel = 0.5 / t.frustum.w;
+  return t.tile.xy + clamp(uv, vec2(half_texel), vec2(1.0 - half_texel)) * t.tile.z;
+}
+// [/atlas-glsl]
+
+float spot_visibility(int i, Surface s) {
+  SpotTile t = sh.spot[i];
+  if (t.position.w == 0.0) return 1.0;  // no tile this frame: its reach lies off screen
+  vec3 to_light = normalize(t.position.xyz - s.position);
   float cos_theta = dot(s.normal, to_light);
   if (cos_theta <= 0.0) return 1.0;  // faces away: the light adds nothing anyway
   cos_theta = clamp(cos_theta, 1e-4, 1.0);
   float sin_theta = sqrt(1.0 - cos_theta * cos_theta);
   float tan_theta = min(sin_theta / cos_theta, 10.0);
-  float d = (sh.spot_matrix * vec4(s.position, 1.0)).w;
-  float texel = 2.0 * d * sh.spot_tan_cone / sh.spot_map_size;
-  vec4 clip = sh.spot_matrix * vec4(s.position + s.normal * (sh.normal_offset * texel * sin_theta), 1.0);
-  if (clip.w <= sh.spot_near) return 1.0;
+  float d = (t.matrix * vec4(s.position, 1.0)).w;
+  float size = t.frustum.w, tan_cone = t.frustum.z;
+  float texel = 2.0 * d * tan_cone / size;
+  vec4 clip = t.matrix * vec4(s.position + s.normal * (sh.normal_offset * texel * sin_theta), 1.0);
+  if (clip.w <= t.frustum.x) return 1.0;
   vec3 window = clip.xyz / clip.w * 0.5 + 0.5;
   if (any(lessThan(window.xy, vec2(0.0))) || any(greaterThan(window.xy, vec2(1.0))) || window.z > 1.0) return 1.0;
 #if SHADOW_METHOD == SHADOW_HARD
@@ -355,16 +376,16 @@ float local_visibility(int index, GpuLight light, Surface s) {
   int r = int(sh.pcf_radius);
 #endif
   float bias = texel * (sh.constant_bias + sh.slope_bias * tan_theta);
-  vec3 p_view = (sh.spot_view * vec4(s.position + s.normal * (sh.normal_offset * texel * sin_theta), 1.0)).xyz;
-  vec3 n_view = mat3(sh.spot_view) * s.normal;
-  float n = sh.spot_near, f = sh.spot_far, lit = 0.0;
+  vec3 p_view = (t.view * vec4(s.position + s.normal * (sh.normal_offset * texel * sin_theta), 1.0)).xyz;
+  vec3 n_view = mat3(t.view) * s.normal;
+  float n = t.frustum.x, f = t.frustum.y, lit = 0.0;
   for (int y = -r; y <= r; ++y)
     for (int x = -r; x <= r; ++x) {
-      vec2 uv = window.xy + vec2(x, y) / sh.spot_map_size;
-      vec3 ray = vec3((2.0 * uv - 1.0) * sh.spot_tan_cone, -1.0);
+      vec2 uv = window.xy + vec2(x, y) / size;
+      vec3 ray = vec3((2.0 * uv - 1.0) * tan_cone, -1.0);
       float across = dot(n_view, ray);
       float receiver = (r == 0 || abs(across) < 1e-4 ? clip.w : dot(n_view, p_view) / across) - bias;
-      float z = 2.0 * texture(sh_spot_depth, uv).r - 1.0;
+      float z = 2.0 * texture(sh_spot_atlas, spot_atlas_uv(t, uv)).r - 1.0;
       float stored = 2.0 * n * f / (f + n - z * (f - n));  // the map's depth, linear
       lit += receiver <= stored ? 1.0 : 0.0;
     }

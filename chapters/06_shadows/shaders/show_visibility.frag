@@ -6,7 +6,8 @@
 #include FRAME_VISIBILITY
 uniform vec3 u_sun_direction;  // the way the sun shines
 uniform vec2 u_output_size;
-uniform vec3 u_spot_direction;  // SHOW_SPOT: the marked spot light's axis and cos(outer cone)
+uniform vec3 u_spot_position;   // SHOW_SPOT: the spot light's position, axis and cos(outer cone)
+uniform vec3 u_spot_direction;
 uniform float u_spot_cos_cone;
 uniform vec3 u_point_position;  // SHOW_POINT: the point light's position and range (0: unbounded)
 uniform float u_point_range;
@@ -40,14 +41,14 @@ void main() {
   return;
 #endif
 #ifdef SHOW_SPOT
-  // The marked spot light's visibility alone; blue where it does not reach (outside its cone,
-  // facing away, the sky).
-  vec3 from_spot = normalize(s.position - sh.spot_position);
+  // One spot light's visibility alone; blue where it does not reach (outside its cone, facing
+  // away, the sky).
+  vec3 from_spot = normalize(s.position - u_spot_position);
   if (s.is_sky || dot(s.normal, -from_spot) <= 0.0 || dot(from_spot, u_spot_direction) < u_spot_cos_cone) {
     out_colour = vec4(0.1, 0.15, 0.4, 1.0);
     return;
   }
-  GpuLight spot = GpuLight(vec4(sh.spot_position, LIGHT_SPOT), vec4(u_spot_direction, 0.0), vec4(1.0), vec4(0.0));
+  GpuLight spot = GpuLight(vec4(u_spot_position, LIGHT_SPOT), vec4(u_spot_direction, 0.0), vec4(1.0), vec4(0.0));
   out_colour = vec4(vec3(local_visibility(0, spot, s)), 1.0);
   return;
 #endif
