@@ -35,6 +35,10 @@ lightpass_program_test(06_shadows.headless_reports_the_cube_maps 0 "point lights
   ${P06} --headless --size 64x36 --points all --cube 64 --out ${CMAKE_BINARY_DIR}/out/06_points.png)
 lightpass_program_test(06_shadows.bad_cube 2 "--cube must be between 16 and 4096, got 8" ${P06} --cube 8)
 lightpass_program_test(06_shadows.bad_points 2 "--points must be one of: marked all; got 'some'" ${P06} --points some)
+# Spot lights: --spots all gives each of the street's twelve spots a tile of one atlas.
+lightpass_program_test(06_shadows.headless_reports_the_spot_atlas 0 "spot lights: 12 tiles of 256x256 in a 1024x1024 atlas, 12 drawn"
+  ${P06} --headless --size 64x36 --scene assets/street/street.gltf --spots all --out ${CMAKE_BINARY_DIR}/out/06_spots.png)
+lightpass_program_test(06_shadows.bad_spots 2 "--spots must be one of: marked all; got 'some'" ${P06} --spots some)
 # The sun is scaled only where the scene asks (the atrium's extras: 4): a model without lights,
 # lit by the default rig, keeps its light and does not clip to white (at 4 times, its lit faces do).
 set(P06_OUT ${CMAKE_BINARY_DIR}/out/06_scenes)

@@ -1,10 +1,4 @@
-// [shadow-block]
-// What the visibility hook knows of the maps, written once for both languages: GLSL includes
-// it in shadow_visibility.glsl (uniform block ShadowBlock), C++ in shadow_stage.cpp, which
-// fills it and asserts the std140 offsets (vec4 and mat4 on 16 bytes, floats between).
-#define SHADOW_MAX_POISSON_TAPS 64
-#define SHADOW_MAX_CASCADES 4
-#define SHADOW_MAX_SPOTS 16
+#define SHADOW_MAX_SPOTS 16  // spot_atlas.h's kMaxSpotShadows
 // [spot-tile]
 // A spot light's perspective frustum (shadow_math.h [spot-frustum]) and its tile of the atlas.
 struct SpotTile {
@@ -15,6 +9,12 @@ struct SpotTile {
   vec4 tile;             // xy: the tile's lower-left corner in the atlas's (u, v); z: its side
 };
 // [/spot-tile]
+// [shadow-block]
+// What the visibility hook knows of the maps, written once for both languages: GLSL includes
+// it in shadow_visibility.glsl (uniform block ShadowBlock), C++ in shadow_stage.cpp, which
+// fills it and asserts the std140 offsets (vec4 and mat4 on 16 bytes, floats between).
+#define SHADOW_MAX_POISSON_TAPS 64
+#define SHADOW_MAX_CASCADES 4
 struct ShadowParameters {
   mat4 matrix;           // world to the sun map's clip space (orthographic)
   float texel_metres;    // one map texel, metres
