@@ -7,7 +7,8 @@ Every method and setting, cost against error (the mean, the error over the penum
 leaking into full shadow), from the main sweep's CSVs (the H200's at 1080p, and llvmpipe's);
 PCSS against the fixed PCF kernels: the error against the soft truth (the sun as a disk of
 0.02 rad, PCSS's light) against the time of the global pass that does the lookups, one plot per
-renderer whose 06_shadows_pcss CSV is there (llvmpipe's, and the H200's once the GPU run made it).
+renderer whose 06_shadows_pcss CSV is there (llvmpipe's, and the H200's once the GPU run made it);
+convolution shadow maps by their terms beside the hard map, PCF and VSM (the main sweep's rows).
 """
 import sys
 from pathlib import Path
@@ -69,12 +70,37 @@ def method_pareto(d: Path, csv_name: str, where: str, suffix: str, only=None):
              "ms per frame: depth pass + pre-filter + lookups (log scale)", label, xlog=True, ylog=ylog)
 
 
+def csm_terms(d: Path, csv_name: str, where: str, out: str):
+    """Convolution shadow maps at 2, 4 and 8 terms, joined in order, beside the hard map, PCF and
+    VSM at their settings: the shadow's whole cost against the error over the soft truth's
+    penumbra and the light leaking into full shadow (the ringing), one plot each."""
+    if not (d / csv_name).exists():
+        return
+    notes, rows = read_csv(d / csv_name)
+    rows = [r for r in rows if r["view"] == "overview"]
+    cost = lambda r: float(r["depth_ms"]) + float(r["filter_ms"]) + float(r["global_ms"])  # noqa: E731
+    leak_pct = lambda r: 100.0 * float(r["leak"]) / max(1.0, float(r["full_shadow"]))  # noqa: E731
+    for suffix, value, label, what in (("", lambda r: float(r["hard_mean"]), "mean |visibility - hard truth|",
+                                        "error against the hard truth"),
+                                       ("_leak", leak_pct, "% of the pixels in full shadow lit > 0.1",
+                                        "light leaking into full shadow")):
+        series = [Series("csm-fourier", [(cost(r), value(r), r["setting"]) for r in rows if r["method"] == "csm-fourier"],
+                         in_order=True)]
+        for m in ("hard", "pcf", "vsm"):
+            series.append(Series(m, [(cost(r), value(r), r["setting"]) for r in rows
+                                     if r["method"] == m and "poisson" not in r["setting"]], line=False))
+        plot(d / out.replace(".svg", f"{suffix}.svg"), f"Convolution maps: {what} ({where})",
+             notes[0] if notes else "", [s for s in series if s.points],
+             "ms per frame: depth pass + pre-filter + lookups (log scale)", label, xlog=True)
+
+
 def main(d: Path):
     method_pareto(d, "06_shadows_1080p_h200.csv", "NVIDIA H200, 1920x1080", "_1080p_h200")
     # llvmpipe's: only the plots the book shows (the H200's mean-error plots stand for both).
     method_pareto(d, "06_shadows_llvmpipe.csv", "llvmpipe", "_llvmpipe", only=("penumbra", "box", "leak"))
     pcss_pareto(d, "06_shadows_pcss_llvmpipe.csv", "llvmpipe", "06_pcss_pareto_llvmpipe.svg")
     pcss_pareto(d, "06_shadows_pcss_h200.csv", "NVIDIA H200", "06_pcss_pareto_h200.svg")
+    csm_terms(d, "06_shadows_1080p_h200.csv", "H200, 1920x1080", "06_csm_terms_1080p_h200.svg")
 
 
 if __name__ == "__main__":

@@ -7,7 +7,7 @@
 // and the frames measured.
 //
 //   06_shadows_sweep [--out DIR] [--size WxH] [--frames N] [--truth-samples N]
-//                    [--only main|pcf|moments|volumes|pcss|cascades|msm]
+//                    [--only main|pcf|moments|volumes|pcss|cascades|msm|points|atlas]
 //   -> DIR/06_shadows.csv, and 06_shadows_moments.csv: VSM and ESM with the filtered map in
 //      RG32F and in RG16F (..._llvmpipe.csv on llvmpipe); --only pcf: the main CSV's PCF rows
 //      alone (the grid and the Poisson disk) into 06_shadows_pcf.csv; 06_shadows_pcss.csv:
@@ -15,7 +15,10 @@
 //      the soft truth of its own sun); 06_shadows_cascades.csv: cascaded maps on the street
 //      (chapter 03's street, its moon alone), error by cascade count and map size, and shimmer
 //      as the camera steps, with and without snapping; 06_shadows_msm.csv: moment shadow maps
-//      against VSM and ESM on the atrium's views: light leaking, error, cost and bytes
+//      against VSM and ESM on the atrium's views: light leaking, error, cost and bytes;
+//      06_shadows_points.csv: the atrium's point lights from cube maps, hard and PCF, by the
+//      number that cast and the face size; 06_shadows_atlas.csv: marked spot lights in the
+//      atlas, hard and PCF, by the number of tiles and the atlas size
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -215,6 +218,100 @@ void cascade_rows(const Settings& s, const std::string& renderer, bool software)
 }
 // [/cascade-rows]
 
+double local_ms(const Measurement& m) {  // chapter 03's local-light pass, whatever its strategy
+  double ms = 0;
+  for (const PassMeasurement& p : m.passes)
+    if (p.name.rfind("local lights", 0) == 0) ms += p.mean_ms;
+  return ms;
+}
+
+// [local-rows]
+// Point lights' cube maps and the spots' atlas on the atrium's overview: for each setting the
+// lights that cast (the scene's first `count` point lights marked, or `count` of the GL test's
+// four spots added and marked), each light's visibility alone against one ray per pixel toward
+// it (spot_shadow_truth), over the pixels it reaches, no band: the wrong pixels and the mean
+// |error| summed over the lights' pixels; the depth pass that draws the maps, chapter 03's local
+// pass that looks them up, the frame, and the bytes.
+void local_rows(const Settings& s, const std::string& renderer, bool software, bool spots) {
+  const std::string stem = spots ? "/06_shadows_atlas" : "/06_shadows_points";
+  const std::string file = s.out + stem + (software ? "_llvmpipe.csv" : ".csv");
+  std::ofstream csv(file);
+  csv << "# " << (software ? "llvmpipe CPU time: " : "GPU time: ") << renderer << ", " << s.width << "x" << s.height
+      << ", atrium overview; " << (spots ? "spot lights in the atlas (--map texels a side)" : "point lights' cube maps")
+      << "; error: each light's visibility against its ray-traced hard shadows over the pixels it reaches\n"
+      << "# made by: 06_shadows_sweep --size " << s.width << "x" << s.height << " --frames " << s.frames << " --only "
+      << (spots ? "atlas" : "points") << "\n"
+      << "view,kind,method,lights,size,tile,bytes,maps_ms,local_ms,frame_ms,reached,hard_wrong_pct,hard_mean,"
+      << csv_measure_columns() << "\n";
+  // The GL test SpotAtlasGl's four spots: 3 m up in the aisle, aimed past the columns.
+  auto spot = [](const std::string& name, glm::vec3 at, glm::vec3 to, float cone) {
+    Light l;
+    l.name = name, l.type = LightType::Spot, l.intensity = 40.f, l.position = at, l.direction = glm::normalize(to);
+    l.outer_cone = cone, l.inner_cone = 0.8f * cone, l.casts_shadows = true;
+    return l;
+  };
+  const std::vector<Light> four = {
+      spot("spot_a", {1, 3, 1.5f}, {3.5f, -3, 0}, 0.8f), spot("spot_b", {-1, 3, 0.5f}, {-3.5f, -3, 1.5f}, 0.7f),
+      spot("spot_c", {0.5f, 2.5f, 5}, {3, -3, -2}, 0.8f), spot("spot_d", {-1.5f, 3.5f, 7}, {-2.5f, -3, -1}, 0.9f)};
+  const std::vector<int> counts = spots ? std::vector<int>{1, 2, 4} : std::vector<int>{1, 2, 4, 8};
+  const std::vector<int> sizes = spots ? std::vector<int>{1024, 2048} : std::vector<int>{256, 512, 1024};
+  for (int count : counts) {
+    Scene scene = load_scene(from_root("assets/atrium/atrium.gltf"));
+    int marked = 0;
+    if (spots) scene.lights.insert(scene.lights.end(), four.begin(), four.begin() + count);
+    else
+      for (Light& l : scene.lights)
+        if (l.type == LightType::Point && marked < count) l.casts_shadows = true, ++marked;
+    SceneGpu gpu(scene);
+    RayScene rays(scene);
+    ch03::DeferredFrame frame(gpu);
+    frame.volumes().set_lights(ch03::build_light_set(
+        scene.lights, ch03::cut_threshold(1.f, ch03::peak_reflectance(scene)), frame.volumes().shapes()));
+    ShadowStage stage(gpu, find_sun(scene));
+    frame.add_stage(stage);
+    OutputTarget image(s.width, s.height);
+    ColourTarget visibility(s.width, s.height, GL_RGBA32F);
+    const FrameCamera camera = frame_camera(scene.camera("overview"), float(s.width) / s.height);
+    const std::vector<int> lights = spots ? shadowed_spot_lights(scene) : shadowed_point_lights(scene);
+    if (int(lights.size()) != count) throw Error("06_shadows_sweep: " + std::to_string(lights.size()) + " lights cast, not " +
+                                                 std::to_string(count));
+    std::vector<ImageF> truths;
+    for (int i : lights) truths.push_back(spot_shadow_truth(rays, camera, s.width, s.height, scene.lights[std::size_t(i)]));
+    for (ShadowMethod method : {ShadowMethod::Hard, ShadowMethod::Pcf})
+      for (int size : sizes) {
+        ShadowSettings x{.method = method};
+        if (spots) x.map_size = size;
+        else x.cube_size = size;
+        double wrong = 0, error = 0;
+        std::size_t reached = 0;
+        for (int k = 0; k < count; ++k) {
+          if (spots) x.spot_shown = k;
+          else x.point_shown = k;
+          stage.set(x, spots ? ShadowPicture::SpotVisibility : ShadowPicture::PointVisibility);
+          frame.render(camera, {visibility.framebuffer(), s.width, s.height});
+          const VisibilityError e = visibility_error(visibility.read(), truths[std::size_t(k)], 0);
+          wrong += e.wrong * double(e.pixels), error += e.mean_abs * double(e.pixels), reached += e.pixels;
+        }
+        stage.set(x);
+        PassMetrics metrics;
+        const Measurement m = measure(metrics, [&] { frame.render(camera, {image.framebuffer(), s.width, s.height}, &metrics); },
+                                      {.frames = s.frames});
+        const double maps = pass_ms(m, spots ? "shadow map: the spot lights' atlas" : "shadow map: cube maps of the point lights");
+        const int tile = spots ? stage.spot_tile(0).size : size;
+        const double n = std::max<double>(double(reached), 1.0);
+        csv << "overview," << (spots ? "atlas" : "cube") << ',' << kMethodNames[int(method)] << ',' << count << ',' << size
+            << ',' << tile << ',' << stage.allocated_bytes() << ',' << maps << ',' << local_ms(m) << ',' << m.total_ms()
+            << ',' << reached << ',' << 100 * wrong / n << ',' << error / n << ','
+            << csv_measure_values(renderer, s.width, s.height, m.frames) << "\n";
+        std::cout << (spots ? "atlas " : "cube maps ") << kMethodNames[int(method)] << ", " << count << " lights, " << size
+                  << ": maps " << maps << " ms, local " << local_ms(m) << " ms, wrong " << 100 * wrong / n << "% of "
+                  << reached << std::endl;
+      }
+  }
+  std::cout << "wrote " << file << '\n';
+}
+// [/local-rows]
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -224,8 +321,9 @@ int main(int argc, char** argv) {
         .integer("--truth-samples", s.truth_samples).text("--only", s.only);
   }, [&] {
     if (!s.only.empty() && s.only != "main" && s.only != "pcf" && s.only != "moments" && s.only != "volumes" &&
-        s.only != "pcss" && s.only != "cascades" && s.only != "msm")
-      throw UsageError("--only must be main, pcf, moments, volumes, pcss, cascades or msm, not '" + s.only + "'");
+        s.only != "pcss" && s.only != "cascades" && s.only != "msm" && s.only != "points" && s.only != "atlas")
+      throw UsageError("--only must be main, pcf, moments, volumes, pcss, cascades, msm, points or atlas, not '" + s.only +
+                       "'");
     std::filesystem::create_directories(s.out);
     auto context = Context::create({.headless = true, .width = s.width, .height = s.height});
     const std::string renderer = context->renderer();
@@ -549,5 +647,7 @@ int main(int argc, char** argv) {
       std::cout << "wrote " << file << '\n';
     }
     // [/msm-rows]
+    if (s.only.empty() || s.only == "points") local_rows(s, renderer, software, false);
+    if (s.only.empty() || s.only == "atlas") local_rows(s, renderer, software, true);
   });
 }
