@@ -39,6 +39,11 @@ std::vector<std::string> ClusteredLights::pass_names(const std::string& mode) {
           "local lights: " + mode + ": shade"};
 }
 
+const std::vector<std::string>& ClusteredLights::zbin_assign_parts() {
+  static const std::vector<std::string> parts = {"clear", "sort", "bins", "tiles", "floor lists"};
+  return parts;
+}
+
 namespace glsl {
 using glm::vec4;
 #include "chapters/09_clustered/shaders/cluster_light.h"  // struct ClusterLight, shared with GLSL
@@ -217,12 +222,12 @@ std::vector<std::string> ClusteredLights::build_lists(int w, int h, const ch03::
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
   // 2. Assign: each cell's lights into the index list (grown first if an earlier draw's did not fit).
-  {
+  //    Z-binning times its steps apart instead ("<mode>: assign: sort" ...: zbin_assign_parts).
+  if (zbin) {
+    assign_zbin(defines, camera);
+  } else {
     auto pass = timed(metrics_, names[1]);
-    if (zbin)
-      assign_zbin(defines, camera);
-    else
-      assign(defines, camera);
+    assign(defines, camera);
   }
   return defines;
 }
@@ -288,32 +293,45 @@ void ClusteredLights::assign_zbin(const std::vector<std::string>& defines, const
   size(zbins_, zbins_bytes_, std::size_t(settings_.zbins) * 8);
   size(masks_, masks_bytes_, std::size_t(mask_bytes));
   size(sort_, sort_bytes_, (kSortKeys + std::size_t(light_count_)) * 4);
-  const std::uint32_t zero = 0, empty_range[2] = {0xFFFFFFFFu, 0u};
-  glClearNamedBufferSubData(sort_.id(), GL_R32UI, 0, GLsizeiptr(kSortKeys * 4), GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  glClearNamedBufferData(zbins_.id(), GL_RG32UI, GL_RG_INTEGER, GL_UNSIGNED_INT, empty_range);
-  glClearNamedBufferData(masks_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  // Each step timed apart, so that a sweep can say where the assignment's time goes: the
+  // clears (the tile masks are tiles x lights bits), the sort, the bins' ranges, the tiles' bits.
+  const std::string part = pass_names(name())[1] + ": ";
   const bool floor = settings_.floor;
   grow_if_an_earlier_draw_overflowed();  // the floor's lists are the index list; others: the late stats read
-  const ListState start{0, floor ? capacity_ : 0, 0, 0, 0, 0, 0, 0};
-  glNamedBufferSubData(state_.id(), 0, sizeof(start), &start);
+  {
+    auto pass = timed(metrics_, part + "clear");
+    const std::uint32_t zero = 0, empty_range[2] = {0xFFFFFFFFu, 0u};
+    glClearNamedBufferSubData(sort_.id(), GL_R32UI, 0, GLsizeiptr(kSortKeys * 4), GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glClearNamedBufferData(zbins_.id(), GL_RG32UI, GL_RG_INTEGER, GL_UNSIGNED_INT, empty_range);
+    glClearNamedBufferData(masks_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    const ListState start{0, floor ? capacity_ : 0, 0, 0, 0, 0, 0, 0};
+    glNamedBufferSubData(state_.id(), 0, sizeof(start), &start);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  }
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, order_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, zbins_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, masks_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, sort_.id());
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-  // Keys, scan, scatter, bins, tiles: one invocation per light except the scan's one group.
+  // Keys, scan, scatter (the sort), bins, tiles: one invocation per light except the scan's one group.
   const GLuint groups = GLuint((light_count_ + 255) / 256);
-  for (int step = 1; step <= 5; ++step) {
-    if (light_count_ == 0) break;
-    std::vector<std::string> d = defines;
-    d.push_back("STEP " + std::to_string(step));
-    const ShaderProgram& p = program(GL_COMPUTE_SHADER, "09_clustered/shaders/zbin.comp", d);
-    set_grid_uniforms(p, camera);
-    p.use();
-    glDispatchCompute(step == 2 ? 1 : groups, 1, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-  }
+  auto steps = [&](const std::string& what, int first, int last) {
+    if (light_count_ == 0) return;
+    auto pass = timed(metrics_, part + what);
+    for (int step = first; step <= last; ++step) {
+      std::vector<std::string> d = defines;
+      d.push_back("STEP " + std::to_string(step));
+      const ShaderProgram& p = program(GL_COMPUTE_SHADER, "09_clustered/shaders/zbin.comp", d);
+      set_grid_uniforms(p, camera);
+      p.use();
+      glDispatchCompute(step == 2 ? 1 : groups, 1, 1);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+  };
+  steps("sort", 1, 3);
+  steps("bins", 4, 4);
+  steps("tiles", 5, 5);
   if (floor) {  // each pixel's exact list, into the index list (bound where the sort's scratch was)
+    auto floor_pass = timed(metrics_, part + "floor lists");
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, indices_.id());
     const ShaderProgram& p = program(GL_COMPUTE_SHADER, "09_clustered/shaders/zbin_floor.comp", defines);
     set_grid_uniforms(p, camera);

@@ -96,10 +96,14 @@ class ClusteredLights : public ch03::LocalLightPass {
   explicit ClusteredLights(const ch03::LightVolumes& volumes, ClusterSettings settings = {});
   std::string name() const override { return mode_name(settings_); }
   void draw(const ch03::LightBuffer& light, const ch03::SurfaceView& view, ch03::LightVolumes::Output output) override;
-  // Times its three passes apart: "<mode>: depth bounds", "<mode>: assign", "<mode>: shade".
+  // Times its three passes apart: "<mode>: depth bounds", "<mode>: assign", "<mode>: shade"
+  // (Z-binning: the assignment as its parts, "<mode>: assign: sort" ...).
   bool times_own_passes() const override { return true; }
   void set_metrics(PassMetrics* metrics) override { metrics_ = metrics; }
   static std::vector<std::string> pass_names(const std::string& mode);
+  // Z-binning times its assignment's steps apart, each "<assign pass>: <part>": the clears,
+  // the sort, the bins' ranges, the tiles' bits, and the floor's exact lists (zbin-floor).
+  static const std::vector<std::string>& zbin_assign_parts();
   // Passes 1 and 2 alone (depth bounds, assign) for a w x h image seen as `view`: the lists
   // draw() shades from, and a forward pass's (ClusteredForward). Returns the shaders' defines.
   std::vector<std::string> build_lists(int w, int h, const ch03::SurfaceView& view);
