@@ -1,7 +1,7 @@
 # Chapter 09: tiled and clustered light culling. Unit tests of the grid maths (no OpenGL),
 # GPU tests on a headless context (the cross-check against chapter 03, counts, hard cases).
 lightpass_gtests(09_clustered unit lightpass_09_clustered unit/test_09_clustered.cpp)
-lightpass_gtests(09_clustered gl lightpass_09_clustered unit/test_09_clustered_gl.cpp)
+lightpass_gtests(09_clustered gl lightpass_09_clustered unit/test_09_clustered_gl.cpp unit/test_09_twins_gl.cpp unit/glsl_twin.cpp)
 
 # The program: reference images (every mode, inside a light, the heat maps and the grid).
 set(P09 $<TARGET_FILE:09_clustered>)

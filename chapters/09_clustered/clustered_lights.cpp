@@ -4,6 +4,7 @@
 #include <bit>
 #include <cstddef>
 #include <cstring>
+#include <limits>
 
 #include "common/error.h"
 
@@ -46,13 +47,16 @@ const std::vector<std::string>& ClusteredLights::zbin_assign_parts() {
 
 namespace glsl {
 using glm::vec4;
-#include "chapters/09_clustered/shaders/cluster_light.h"  // struct ClusterLight, shared with GLSL
+#include "chapters/09_clustered/shaders/cluster_light.h"  // ClusterLight, ClusterSpot, shared with GLSL
 }  // namespace glsl
 
 namespace {
-// The GPU's record of a light: chapter 03's packing plus its kind.
+// The GPU's records of a light and of a spot's cone (cluster_light.h).
 using GpuClusterLight = glsl::ClusterLight;
-static_assert(sizeof(GpuClusterLight) == 64 && offsetof(GpuClusterLight, kind) == 48);
+using GpuClusterSpot = glsl::ClusterSpot;
+static_assert(sizeof(GpuClusterLight) == 32 && offsetof(GpuClusterLight, radiance_inv_range2) == 16);
+static_assert(sizeof(GpuClusterSpot) == 16);
+static_assert(sizeof(ClusterRecords::Light) == sizeof(GpuClusterLight) && sizeof(ClusterRecords::Spot) == sizeof(GpuClusterSpot));
 
 struct ListState {
   std::uint32_t head, capacity, cells_over, over_lo, over_hi, needed_lo, needed_hi, max_count;
@@ -71,6 +75,29 @@ void set4i(const ShaderProgram& p, const char* name, int a, int b, int c, int d)
 constexpr std::size_t kMaxLights = std::size_t(1) << 22;
 }  // namespace
 
+// [pack]
+ClusterRecords pack_cluster_lights(const ch03::LightSet& set) {
+  // 1 / range^2 (0 without a range), capped where it would overflow: 0 times it stays 0.
+  auto inv_range2 = [](float range) {
+    return range > 0.f ? std::min(1.f / (range * range), std::numeric_limits<float>::max()) : 0.f;
+  };
+  ClusterRecords r;
+  r.lights.reserve(set.local_count());
+  for (const auto& p : set.points)
+    r.lights.push_back({p.position_radius, glm::vec4(glm::vec3(p.radiance_range), inv_range2(p.radiance_range.w))});
+  r.first_spot = int(r.lights.size());
+  for (const auto* spots : {&set.cones, &set.wide_spots})
+    for (const auto& s : *spots) {
+      r.lights.push_back({s.position_radius, glm::vec4(glm::vec3(s.radiance_range), inv_range2(s.radiance_range.w))});
+      // The cone folded: (dot(-l, dir) - cos outer) * scale = dot(-l, dir * scale) - cos outer * scale.
+      const glm::vec3 dir = glm::vec3(ch03::unpack(s).direction_range);
+      const float cos_outer = s.direction_cone.z, scale = s.direction_cone.w;
+      r.spots.push_back({glm::vec4(dir * scale, -cos_outer * scale)});
+    }
+  return r;
+}
+// [/pack]
+
 ClusteredLights::ClusteredLights(const ch03::LightVolumes& volumes, ClusterSettings settings)
     : volumes_(volumes), settings_(settings) {}
 
@@ -86,15 +113,16 @@ void ClusteredLights::upload_lights() {
   if (set.local_count() > kMaxLights)
     throw Error("clustered lights: " + std::to_string(set.local_count()) + " local lights, at most " +
                 std::to_string(kMaxLights));
-  std::vector<GpuClusterLight> g;
-  g.reserve(set.local_count());
-  for (const auto& p : set.points) g.push_back({p.position_radius, p.radiance_range, glm::vec4(0), glm::vec4(0)});
-  for (const auto* spots : {&set.cones, &set.wide_spots})
-    for (const auto& s : *spots) g.push_back({s.position_radius, s.radiance_range, s.direction_cone, glm::vec4(1, 0, 0, 0)});
-  lights_bytes_ = std::max<std::size_t>(g.size() * sizeof(GpuClusterLight), 64);
-  glNamedBufferData(lights_.id(), GLsizeiptr(lights_bytes_), nullptr, GL_STATIC_DRAW);
-  if (!g.empty()) glNamedBufferSubData(lights_.id(), 0, GLsizeiptr(g.size() * sizeof(GpuClusterLight)), g.data());
-  light_count_ = int(g.size());
+  const ClusterRecords g = pack_cluster_lights(set);
+  const std::size_t light_bytes = std::max<std::size_t>(g.lights.size() * sizeof(GpuClusterLight), 32);
+  const std::size_t spot_bytes = std::max<std::size_t>(g.spots.size() * sizeof(GpuClusterSpot), 16);
+  glNamedBufferData(lights_.id(), GLsizeiptr(light_bytes), nullptr, GL_STATIC_DRAW);
+  glNamedBufferData(spots_.id(), GLsizeiptr(spot_bytes), nullptr, GL_STATIC_DRAW);
+  if (!g.lights.empty()) glNamedBufferSubData(lights_.id(), 0, GLsizeiptr(g.lights.size() * sizeof(GpuClusterLight)), g.lights.data());
+  if (!g.spots.empty()) glNamedBufferSubData(spots_.id(), 0, GLsizeiptr(g.spots.size() * sizeof(GpuClusterSpot)), g.spots.data());
+  lights_bytes_ = light_bytes + spot_bytes;
+  light_count_ = int(g.lights.size());
+  first_spot_ = g.first_spot;
   points_ = set.points;
   cones_ = set.cones;
   wide_ = set.wide_spots;
@@ -109,6 +137,7 @@ void ClusteredLights::set_grid_uniforms(const ShaderProgram& p, const FrameCamer
   set4i(p, "u_tiles", grid_.tiles_x, grid_.tiles_y, grid_.slices, light_count_);
   p.set("u_depth_range", glm::vec2(grid_.znear, grid_.zfar));
   glProgramUniform1i(p.id(), glGetUniformLocation(p.id(), "u_zbins"), settings_.zbins);  // -1 (none): ignored
+  glProgramUniform1i(p.id(), glGetUniformLocation(p.id(), "u_first_spot"), first_spot_);
 }
 
 // [draw]
@@ -203,6 +232,7 @@ std::vector<std::string> ClusteredLights::build_lists(int w, int h, const ch03::
     glNamedBufferData(state_.id(), sizeof(ListState), nullptr, GL_DYNAMIC_COPY);
   }
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, lights_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, spots_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, cells_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, bounds_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, indices_.id());
@@ -388,6 +418,7 @@ void ClusteredLights::bind_for_forward(const ShaderProgram& program, const Frame
   program.use();
   set_grid_uniforms(program, camera);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, lights_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, spots_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, cells_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, indices_.id());
   if (counting) {
