@@ -755,6 +755,7 @@ void App::print_bench(const Measurement& m) const {
     passes.push_back(pass);
   }
   j["total_ms"] = m.total_ms();
+  j["cpu_ms"] = m.cpu_ms;  // the CPU's time per frame beside the GPU's total (common/measure.h)
   j["render_target_bytes"] = metrics_.allocated_bytes();
   auto& alloc = j["allocations"] = nlohmann::json::array();
   for (const auto& a : metrics_.allocations()) alloc.push_back({{"name", a.name}, {"bytes", a.bytes}});

@@ -44,6 +44,7 @@ MeasureLoop::MeasureLoop(PassMetrics& metrics, MeasureOptions options) : metrics
     glFinish();
     frame_start_ = std::chrono::steady_clock::now();
   }
+  cpu_start_ = std::chrono::steady_clock::now();
 }
 
 double MeasureLoop::block_mean_ms() const {
@@ -59,6 +60,14 @@ void MeasureLoop::start_block() {
 }
 
 bool MeasureLoop::frame_done() {
+  // The frame's CPU time ends here, before this function's own glFinish and read-backs.
+  if (!warming_) cpu_ms_ += 1e3 * seconds(std::chrono::steady_clock::now() - cpu_start_);
+  const bool more = step();
+  cpu_start_ = std::chrono::steady_clock::now();
+  return more;
+}
+
+bool MeasureLoop::step() {
   if (!warming_ && options_.wall_clock) {
     glFinish();
     wall_ms_ += 1e3 * seconds(std::chrono::steady_clock::now() - frame_start_);
@@ -116,6 +125,7 @@ Measurement MeasureLoop::result() const {
   m.warmup_seconds = warmup_seconds_;
   m.settled = settled_;
   m.wall_ms = measured_ > 0 && options_.wall_clock ? wall_ms_ / measured_ : 0.0;
+  m.cpu_ms = measured_ > 0 ? cpu_ms_ / measured_ : 0.0;
   m.software = metrics_.software();
   return m;
 }

@@ -64,6 +64,11 @@ struct Measurement {
   bool settled = false;     // the warm-up ended because times settled (false: it stopped at
                             // max_seconds with times still moving, or was skipped)
   double wall_ms = 0;       // with MeasureOptions::wall_clock: mean wall-clock ms per frame
+  // Mean CPU (wall-clock) ms per measured frame from the frame's start to its end, without
+  // the measurement's own read-back: the time to submit it. A read-back that waits for the GPU
+  // inside the frame shows here, where the GPU's pass times cannot show it. On llvmpipe it
+  // holds the rendering too (the CPU draws).
+  double cpu_ms = 0;
   bool software = false;    // llvmpipe: the times are CPU times (glFinish around each pass)
 
   const PassMeasurement& pass(const std::string& name) const;  // throws Error if never measured
@@ -82,6 +87,7 @@ class MeasureLoop {
   bool warming_up() const { return warming_; }
 
  private:
+  bool step();  // frame_done() without its CPU clock
   double block_mean_ms() const;
   void start_block();
   PassMetrics& metrics_;
@@ -90,8 +96,8 @@ class MeasureLoop {
   int warmup_frames_ = 0, block_count_ = 0, block_frames_ = 0, measured_ = 0;
   double previous_block_ms_ = -1;
   bool settled_ = false;
-  double warmup_seconds_ = 0, wall_ms_ = 0;
-  std::chrono::steady_clock::time_point start_, block_start_, frame_start_;
+  double warmup_seconds_ = 0, wall_ms_ = 0, cpu_ms_ = 0;
+  std::chrono::steady_clock::time_point start_, block_start_, frame_start_, cpu_start_;
 };
 
 // Warm-up, then options.frames frames of `frame`, all read back.

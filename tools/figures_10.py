@@ -170,7 +170,9 @@ def budget_csv(out: Path, jsons):
         first = json.load(open(jsons[0]))
         f.write(f"# the whole frame's passes (10_frame --bench --mode whole), GPU time: {first['renderer']}, "
                 f"{first['width']}x{first['height']}\n")
-        w.writerow(["scene", "culling", "gi", "order", "pass", "ms", "total_ms", "renderer", "width", "height", "frames"])
+        # cpu_ms: the CPU's time per frame (submission, and any read-back that waits), beside the GPU's
+        w.writerow(["scene", "culling", "gi", "order", "pass", "ms", "total_ms", "cpu_ms", "renderer", "width", "height",
+                    "frames"])
         for path in jsons:
             b = json.load(open(path))
             scene = Path(b["scene"]).stem
@@ -180,8 +182,9 @@ def budget_csv(out: Path, jsons):
             ao, indirect = float(knobs.get("ao", 1)), float(knobs.get("indirect", 1))
             gi = "ao+indirect" if indirect else "ao" if ao else "none"
             for i, p in enumerate(b["passes"]):
-                w.writerow([scene, culling, gi, i, p["name"], f"{p['mean_ms']:.6g}", f"{b['total_ms']:.6g}", b["renderer"],
-                            b["width"], b["height"], b["frames"]])
+                cpu = f"{b['cpu_ms']:.6g}" if "cpu_ms" in b else ""  # JSONs from before it was measured
+                w.writerow([scene, culling, gi, i, p["name"], f"{p['mean_ms']:.6g}", f"{b['total_ms']:.6g}", cpu,
+                            b["renderer"], b["width"], b["height"], b["frames"]])
 
 
 def budget_plot(d: Path, csv_path: Path, out: Path):
@@ -192,10 +195,10 @@ def budget_plot(d: Path, csv_path: Path, out: Path):
     for r in rows:
         key = (r["scene"], r["culling"], r.get("gi", ""))
         if not bars or bars[-1][0] != key:
-            bars.append((key, []))
+            bars.append((key, [], r.get("cpu_ms") or ""))
         bars[-1][1].append((r["pass"], float(r["ms"])))
     names = []
-    for _, parts in bars:
+    for _, parts, _ in bars:
         for n, _ in parts:
             stage = n.split(":")[0]
             if stage not in names:
@@ -203,13 +206,13 @@ def budget_plot(d: Path, csv_path: Path, out: Path):
     colours = ["#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f", "#edc948", "#b07aa1", "#ff9da7", "#9c755f",
                "#bab0ac", "#1f77b4", "#8c564b"]
     width, left, top, bar_h, gap = 960, 260, 50, 26, 14
-    longest = max(sum(ms for _, ms in parts) for _, parts in bars)
+    longest = max(sum(ms for _, ms in parts) for _, parts, _ in bars)
     scale = (width - left - 80) / longest
     height = top + len(bars) * (bar_h + gap) + 30 + 18 * ((len(names) + 3) // 4)
     svg = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" font-family="sans-serif" font-size="12">',
            f'<text x="10" y="20" font-size="15">The frame budget: GPU time per pass</text>',
            f'<text x="10" y="38" fill="#555">{esc(note)}</text>']
-    for i, ((scene, culling, gi), parts) in enumerate(bars):
+    for i, ((scene, culling, gi), parts, cpu) in enumerate(bars):
         y = top + i * (bar_h + gap)
         svg.append(f'<text x="{left - 6}" y="{y + bar_h * 0.65}" text-anchor="end">{esc(scene)}, {esc(culling)}, {esc(gi)}</text>')
         x = left
@@ -218,7 +221,9 @@ def budget_plot(d: Path, csv_path: Path, out: Path):
             c = colours[names.index(n.split(":")[0]) % len(colours)]
             svg.append(f'<rect x="{x:.2f}" y="{y}" width="{max(w, 0.5):.2f}" height="{bar_h}" fill="{c}"><title>{esc(n)}: {ms:.3f} ms</title></rect>')
             x += w
-        svg.append(f'<text x="{x + 4:.1f}" y="{y + bar_h * 0.65}">{sum(ms for _, ms in parts):.2f} ms</text>')
+        # the CPU's time per frame beside the GPU's, where the bench measured it
+        beside = f" (CPU {float(cpu):.2f} ms)" if cpu else ""
+        svg.append(f'<text x="{x + 4:.1f}" y="{y + bar_h * 0.65}">{sum(ms for _, ms in parts):.2f} ms{beside}</text>')
     y0 = top + len(bars) * (bar_h + gap) + 10
     for k, n in enumerate(names):
         x, y = 10 + (k % 4) * 220, y0 + (k // 4) * 18

@@ -4,6 +4,7 @@
 #include <bit>
 #include <cstddef>
 #include <cstring>
+#include <limits>
 
 #include "common/error.h"
 
@@ -39,15 +40,23 @@ std::vector<std::string> ClusteredLights::pass_names(const std::string& mode) {
           "local lights: " + mode + ": shade"};
 }
 
+const std::vector<std::string>& ClusteredLights::zbin_assign_parts() {
+  static const std::vector<std::string> parts = {"clear", "sort", "bins", "tiles", "floor lists"};
+  return parts;
+}
+
 namespace glsl {
 using glm::vec4;
-#include "chapters/09_clustered/shaders/cluster_light.h"  // struct ClusterLight, shared with GLSL
+#include "chapters/09_clustered/shaders/cluster_light.h"  // ClusterLight, ClusterSpot, shared with GLSL
 }  // namespace glsl
 
 namespace {
-// The GPU's record of a light: chapter 03's packing plus its kind.
+// The GPU's records of a light and of a spot's cone (cluster_light.h).
 using GpuClusterLight = glsl::ClusterLight;
-static_assert(sizeof(GpuClusterLight) == 64 && offsetof(GpuClusterLight, kind) == 48);
+using GpuClusterSpot = glsl::ClusterSpot;
+static_assert(sizeof(GpuClusterLight) == 32 && offsetof(GpuClusterLight, radiance_inv_range2) == 16);
+static_assert(sizeof(GpuClusterSpot) == 16);
+static_assert(sizeof(ClusterRecords::Light) == sizeof(GpuClusterLight) && sizeof(ClusterRecords::Spot) == sizeof(GpuClusterSpot));
 
 struct ListState {
   std::uint32_t head, capacity, cells_over, over_lo, over_hi, needed_lo, needed_hi, max_count;
@@ -66,6 +75,29 @@ void set4i(const ShaderProgram& p, const char* name, int a, int b, int c, int d)
 constexpr std::size_t kMaxLights = std::size_t(1) << 22;
 }  // namespace
 
+// [pack]
+ClusterRecords pack_cluster_lights(const ch03::LightSet& set) {
+  // 1 / range^2 (0 without a range), capped where it would overflow: 0 times it stays 0.
+  auto inv_range2 = [](float range) {
+    return range > 0.f ? std::min(1.f / (range * range), std::numeric_limits<float>::max()) : 0.f;
+  };
+  ClusterRecords r;
+  r.lights.reserve(set.local_count());
+  for (const auto& p : set.points)
+    r.lights.push_back({p.position_radius, glm::vec4(glm::vec3(p.radiance_range), inv_range2(p.radiance_range.w))});
+  r.first_spot = int(r.lights.size());
+  for (const auto* spots : {&set.cones, &set.wide_spots})
+    for (const auto& s : *spots) {
+      r.lights.push_back({s.position_radius, glm::vec4(glm::vec3(s.radiance_range), inv_range2(s.radiance_range.w))});
+      // The cone folded: (dot(-l, dir) - cos outer) * scale = dot(-l, dir * scale) - cos outer * scale.
+      const glm::vec3 dir = glm::vec3(ch03::unpack(s).direction_range);
+      const float cos_outer = s.direction_cone.z, scale = s.direction_cone.w;
+      r.spots.push_back({glm::vec4(dir * scale, -cos_outer * scale)});
+    }
+  return r;
+}
+// [/pack]
+
 ClusteredLights::ClusteredLights(const ch03::LightVolumes& volumes, ClusterSettings settings)
     : volumes_(volumes), settings_(settings) {}
 
@@ -81,15 +113,16 @@ void ClusteredLights::upload_lights() {
   if (set.local_count() > kMaxLights)
     throw Error("clustered lights: " + std::to_string(set.local_count()) + " local lights, at most " +
                 std::to_string(kMaxLights));
-  std::vector<GpuClusterLight> g;
-  g.reserve(set.local_count());
-  for (const auto& p : set.points) g.push_back({p.position_radius, p.radiance_range, glm::vec4(0), glm::vec4(0)});
-  for (const auto* spots : {&set.cones, &set.wide_spots})
-    for (const auto& s : *spots) g.push_back({s.position_radius, s.radiance_range, s.direction_cone, glm::vec4(1, 0, 0, 0)});
-  lights_bytes_ = std::max<std::size_t>(g.size() * sizeof(GpuClusterLight), 64);
-  glNamedBufferData(lights_.id(), GLsizeiptr(lights_bytes_), nullptr, GL_STATIC_DRAW);
-  if (!g.empty()) glNamedBufferSubData(lights_.id(), 0, GLsizeiptr(g.size() * sizeof(GpuClusterLight)), g.data());
-  light_count_ = int(g.size());
+  const ClusterRecords g = pack_cluster_lights(set);
+  const std::size_t light_bytes = std::max<std::size_t>(g.lights.size() * sizeof(GpuClusterLight), 32);
+  const std::size_t spot_bytes = std::max<std::size_t>(g.spots.size() * sizeof(GpuClusterSpot), 16);
+  glNamedBufferData(lights_.id(), GLsizeiptr(light_bytes), nullptr, GL_STATIC_DRAW);
+  glNamedBufferData(spots_.id(), GLsizeiptr(spot_bytes), nullptr, GL_STATIC_DRAW);
+  if (!g.lights.empty()) glNamedBufferSubData(lights_.id(), 0, GLsizeiptr(g.lights.size() * sizeof(GpuClusterLight)), g.lights.data());
+  if (!g.spots.empty()) glNamedBufferSubData(spots_.id(), 0, GLsizeiptr(g.spots.size() * sizeof(GpuClusterSpot)), g.spots.data());
+  lights_bytes_ = light_bytes + spot_bytes;
+  light_count_ = int(g.lights.size());
+  first_spot_ = g.first_spot;
   points_ = set.points;
   cones_ = set.cones;
   wide_ = set.wide_spots;
@@ -104,6 +137,7 @@ void ClusteredLights::set_grid_uniforms(const ShaderProgram& p, const FrameCamer
   set4i(p, "u_tiles", grid_.tiles_x, grid_.tiles_y, grid_.slices, light_count_);
   p.set("u_depth_range", glm::vec2(grid_.znear, grid_.zfar));
   glProgramUniform1i(p.id(), glGetUniformLocation(p.id(), "u_zbins"), settings_.zbins);  // -1 (none): ignored
+  glProgramUniform1i(p.id(), glGetUniformLocation(p.id(), "u_first_spot"), first_spot_);
 }
 
 // [draw]
@@ -198,6 +232,7 @@ std::vector<std::string> ClusteredLights::build_lists(int w, int h, const ch03::
     glNamedBufferData(state_.id(), sizeof(ListState), nullptr, GL_DYNAMIC_COPY);
   }
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, lights_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, spots_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, cells_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, bounds_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, indices_.id());
@@ -217,12 +252,12 @@ std::vector<std::string> ClusteredLights::build_lists(int w, int h, const ch03::
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
   // 2. Assign: each cell's lights into the index list (grown first if an earlier draw's did not fit).
-  {
+  //    Z-binning times its steps apart instead ("<mode>: assign: sort" ...: zbin_assign_parts).
+  if (zbin) {
+    assign_zbin(defines, camera);
+  } else {
     auto pass = timed(metrics_, names[1]);
-    if (zbin)
-      assign_zbin(defines, camera);
-    else
-      assign(defines, camera);
+    assign(defines, camera);
   }
   return defines;
 }
@@ -288,32 +323,45 @@ void ClusteredLights::assign_zbin(const std::vector<std::string>& defines, const
   size(zbins_, zbins_bytes_, std::size_t(settings_.zbins) * 8);
   size(masks_, masks_bytes_, std::size_t(mask_bytes));
   size(sort_, sort_bytes_, (kSortKeys + std::size_t(light_count_)) * 4);
-  const std::uint32_t zero = 0, empty_range[2] = {0xFFFFFFFFu, 0u};
-  glClearNamedBufferSubData(sort_.id(), GL_R32UI, 0, GLsizeiptr(kSortKeys * 4), GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  glClearNamedBufferData(zbins_.id(), GL_RG32UI, GL_RG_INTEGER, GL_UNSIGNED_INT, empty_range);
-  glClearNamedBufferData(masks_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  // Each step timed apart, so that a sweep can say where the assignment's time goes: the
+  // clears (the tile masks are tiles x lights bits), the sort, the bins' ranges, the tiles' bits.
+  const std::string part = pass_names(name())[1] + ": ";
   const bool floor = settings_.floor;
   grow_if_an_earlier_draw_overflowed();  // the floor's lists are the index list; others: the late stats read
-  const ListState start{0, floor ? capacity_ : 0, 0, 0, 0, 0, 0, 0};
-  glNamedBufferSubData(state_.id(), 0, sizeof(start), &start);
+  {
+    auto pass = timed(metrics_, part + "clear");
+    const std::uint32_t zero = 0, empty_range[2] = {0xFFFFFFFFu, 0u};
+    glClearNamedBufferSubData(sort_.id(), GL_R32UI, 0, GLsizeiptr(kSortKeys * 4), GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glClearNamedBufferData(zbins_.id(), GL_RG32UI, GL_RG_INTEGER, GL_UNSIGNED_INT, empty_range);
+    glClearNamedBufferData(masks_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    const ListState start{0, floor ? capacity_ : 0, 0, 0, 0, 0, 0, 0};
+    glNamedBufferSubData(state_.id(), 0, sizeof(start), &start);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  }
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, order_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, zbins_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, masks_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, sort_.id());
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-  // Keys, scan, scatter, bins, tiles: one invocation per light except the scan's one group.
+  // Keys, scan, scatter (the sort), bins, tiles: one invocation per light except the scan's one group.
   const GLuint groups = GLuint((light_count_ + 255) / 256);
-  for (int step = 1; step <= 5; ++step) {
-    if (light_count_ == 0) break;
-    std::vector<std::string> d = defines;
-    d.push_back("STEP " + std::to_string(step));
-    const ShaderProgram& p = program(GL_COMPUTE_SHADER, "09_clustered/shaders/zbin.comp", d);
-    set_grid_uniforms(p, camera);
-    p.use();
-    glDispatchCompute(step == 2 ? 1 : groups, 1, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-  }
+  auto steps = [&](const std::string& what, int first, int last) {
+    if (light_count_ == 0) return;
+    auto pass = timed(metrics_, part + what);
+    for (int step = first; step <= last; ++step) {
+      std::vector<std::string> d = defines;
+      d.push_back("STEP " + std::to_string(step));
+      const ShaderProgram& p = program(GL_COMPUTE_SHADER, "09_clustered/shaders/zbin.comp", d);
+      set_grid_uniforms(p, camera);
+      p.use();
+      glDispatchCompute(step == 2 ? 1 : groups, 1, 1);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+  };
+  steps("sort", 1, 3);
+  steps("bins", 4, 4);
+  steps("tiles", 5, 5);
   if (floor) {  // each pixel's exact list, into the index list (bound where the sort's scratch was)
+    auto floor_pass = timed(metrics_, part + "floor lists");
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, indices_.id());
     const ShaderProgram& p = program(GL_COMPUTE_SHADER, "09_clustered/shaders/zbin_floor.comp", defines);
     set_grid_uniforms(p, camera);
@@ -370,6 +418,7 @@ void ClusteredLights::bind_for_forward(const ShaderProgram& program, const Frame
   program.use();
   set_grid_uniforms(program, camera);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, lights_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, spots_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, cells_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, indices_.id());
   if (counting) {

@@ -91,15 +91,35 @@ struct EvalCounts {
   double evaluated_per_lit() const { return lit ? double(evaluated) / double(lit) : 0.0; }
 };
 
+// The records the GPU reads (shaders/cluster_light.h), packed from chapter 03's light set in
+// light order: a record per light, then a cone per spot (light first_spot + k has cone k).
+// As glm types: the header's struct is a GLSL one.
+struct ClusterRecords {
+  struct Light {
+    glm::vec4 position_radius, radiance_inv_range2;
+  };
+  struct Spot {
+    glm::vec4 axis_offset;
+  };
+  std::vector<Light> lights;
+  std::vector<Spot> spots;
+  int first_spot = 0;
+};
+ClusterRecords pack_cluster_lights(const ch03::LightSet& set);
+
 class ClusteredLights : public ch03::LocalLightPass {
  public:
   explicit ClusteredLights(const ch03::LightVolumes& volumes, ClusterSettings settings = {});
   std::string name() const override { return mode_name(settings_); }
   void draw(const ch03::LightBuffer& light, const ch03::SurfaceView& view, ch03::LightVolumes::Output output) override;
-  // Times its three passes apart: "<mode>: depth bounds", "<mode>: assign", "<mode>: shade".
+  // Times its three passes apart: "<mode>: depth bounds", "<mode>: assign", "<mode>: shade"
+  // (Z-binning: the assignment as its parts, "<mode>: assign: sort" ...).
   bool times_own_passes() const override { return true; }
   void set_metrics(PassMetrics* metrics) override { metrics_ = metrics; }
   static std::vector<std::string> pass_names(const std::string& mode);
+  // Z-binning times its assignment's steps apart, each "<assign pass>: <part>": the clears,
+  // the sort, the bins' ranges, the tiles' bits, and the floor's exact lists (zbin-floor).
+  static const std::vector<std::string>& zbin_assign_parts();
   // Passes 1 and 2 alone (depth bounds, assign) for a w x h image seen as `view`: the lists
   // draw() shades from, and a forward pass's (ClusteredForward). Returns the shaders' defines.
   std::vector<std::string> build_lists(int w, int h, const ch03::SurfaceView& view);
@@ -157,8 +177,8 @@ class ClusteredLights : public ch03::LocalLightPass {
   std::vector<ch03::PointInstance> points_;
   std::vector<ch03::SpotInstance> cones_, wide_;
   bool uploaded_ = false;
-  int light_count_ = 0;
-  gl::Buffer lights_, cells_, bounds_, indices_, state_;
+  int light_count_ = 0, first_spot_ = 0;
+  gl::Buffer lights_, spots_, cells_, bounds_, indices_, state_;
   std::size_t lights_bytes_ = 0, cells_bytes_ = 0, bounds_bytes_ = 0;
   // Z-binning's: the sorted order, each bin's range, each tile's bits, the sort's scratch.
   gl::Buffer order_, zbins_, masks_, sort_;

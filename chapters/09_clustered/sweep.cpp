@@ -8,7 +8,9 @@
 // --density: the fair case instead (density.h): lights scaled so that every surface pixel
 // sees 8, 32 or 128 lit lights on average, 1 000 to 1 000 000 lights, several views along the
 // street, the median and 95th percentile over the views (09_density*.csv), with each
-// method's shading as a multiple of the floor's (zbin-floor: exact per-pixel lists).
+// method's shading as a multiple of the floor's (zbin-floor: exact per-pixel lists), the CPU's
+// time per frame (cpu_ms: submission, so that a read-back that waits shows) and Z-binning's
+// assignment by its timed parts (clear, sort, bins, tiles, the floor's lists).
 // --grid: the same at 100 000 and 1 000 000 lights for each grid: tiled's tile size,
 // clustered's tiles and slices, Z-binning's tile size and bins (09_grid*.csv).
 //   09_clustered_sweep [--out DIR] [--size WxH] [--frames N] [--max-lights N] [--stencil-max N] [--density] [--grid]
@@ -52,6 +54,15 @@ struct Settings {
   int target = 0;           // one target density alone (0: every one)
   static constexpr int kViewsUnset = -1000000;
 };
+
+// A pass's mean time, or the sum of its parts' ("<name>: <part>": Z-binning's assignment);
+// 0 when neither was drawn.
+double pass_ms(const Measurement& t, const std::string& name) {
+  double ms = 0;
+  for (const PassMeasurement& p : t.passes)
+    if (p.name == name || p.name.rfind(name + ": ", 0) == 0) ms += p.mean_ms;
+  return ms;
+}
 
 // [density-sweep]
 // The fair case. For each target density and light count: the street's lights_for_count(n)
@@ -112,14 +123,20 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
   const std::string name = std::string(s.grid ? "09_grid" : "09_density") + (s.target > 0 ? "_d" + std::to_string(s.target) : "");
   const std::string rows_file = s.out + "/" + name + label + ".csv", summary_file = s.out + "/" + name + "_summary" + label + ".csv";
   std::ofstream rows(rows_file), summary(summary_file);
+  // cpu_ms: the CPU's time per frame (submission; a read-back that waits shows here), and
+  // Z-binning's assignment by its parts (0 for the other methods; the summary's are medians).
+  std::string parts_header;
+  for (const std::string& part : ch09::ClusteredLights::zbin_assign_parts())
+    parts_header += "assign_" + std::string(part == "floor lists" ? "floor" : part) + "_ms,";
   const std::string header = std::string("# ") + (software ? "llvmpipe CPU time: " : "GPU time: ") + context.renderer() + ", " +
                              std::to_string(s.width) + "x" + std::to_string(s.height) + ", street, " + std::to_string(views.size()) +
                              " views along it from " + s.view + ", lights scaled to a density (chapters/09_clustered/density.h)\n";
   rows << header << "target_density,lights,view,method,grid,range_scale,surface_pixels,lit,density,evaluated,evaluated_per_lit,"
-       << "depth_bounds_ms,assign_ms,shade_ms,local_ms,list_bytes,list_entries,cells_over," << csv_measure_columns() << "\n";
+       << "depth_bounds_ms,assign_ms,shade_ms,local_ms,list_bytes,list_entries,cells_over,cpu_ms,"
+       << parts_header << csv_measure_columns() << "\n";
   summary << header << "target_density,lights,method,grid,range_scale,density,lit,evaluated_per_lit,local_median_ms,local_p95_ms,"
-          << "assign_median_ms,assign_p95_ms,shade_median_ms,shade_p95_ms,shade_per_floor,list_bytes_max,views,"
-          << csv_measure_columns() << "\n";
+          << "assign_median_ms,assign_p95_ms,shade_median_ms,shade_p95_ms,shade_per_floor,list_bytes_max,views,cpu_median_ms,"
+          << parts_header << csv_measure_columns() << "\n";
   // A cell that overflows is shaded from every light for a frame, very slow with a million
   // lights: on a GPU the lists start at 2^26 entries (256 MiB), so they rarely grow.
   ch09::ClusterSettings base_settings;
@@ -181,7 +198,8 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
         const std::string& method = methods[mi].mode;
         const std::string& grid = methods[mi].grid;
         ch09::ClusteredLights& pass = *passes[mi];
-        std::vector<double> local, assign, shade;
+        std::vector<double> local, assign, shade, cpu;
+        std::vector<std::vector<double>> assign_parts(ch09::ClusteredLights::zbin_assign_parts().size());
         std::uint64_t lit = 0, surface = 0, evaluated = 0;
         std::size_t bytes = 0;
         int frames = 0;
@@ -203,7 +221,13 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
           options.warmup = {.block_frames = 2, .block_seconds = 0.05, .min_seconds = 0.1, .tolerance = 0.03, .max_seconds = 2};
           const Measurement t = measure(metrics, [&] { render(view, pass, &metrics); }, options);
           const auto names = ch09::ClusteredLights::pass_names(method);
-          const double parts[3] = {t.pass(names[0]).mean_ms, t.pass(names[1]).mean_ms, t.pass(names[2]).mean_ms};
+          const double parts[3] = {pass_ms(t, names[0]), pass_ms(t, names[1]), pass_ms(t, names[2])};
+          std::string parts_values;
+          for (std::size_t k = 0; k < assign_parts.size(); ++k) {
+            assign_parts[k].push_back(pass_ms(t, names[1] + ": " + ch09::ClusteredLights::zbin_assign_parts()[k]));
+            parts_values += std::to_string(assign_parts[k].back()) + ",";
+          }
+          cpu.push_back(t.cpu_ms);
           const ch09::ClusterStats& st = pass.wait_stats();
           local.push_back(parts[0] + parts[1] + parts[2]);
           assign.push_back(parts[1]);
@@ -217,7 +241,8 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
                << c.surface << ','
                << c.lit << ',' << c.density() << ',' << c.evaluated << ',' << c.evaluated_per_lit() << ',' << parts[0] << ','
                << parts[1] << ',' << parts[2] << ',' << local.back() << ',' << st.bytes << ',' << st.indices << ','
-               << st.cells_over << ',' << csv_measure_values(context.renderer(), s.width, s.height, t.frames) << std::endl;
+               << st.cells_over << ',' << t.cpu_ms << ',' << parts_values
+               << csv_measure_values(context.renderer(), s.width, s.height, t.frames) << std::endl;
         }
         if (local.empty()) continue;  // not timed (warned above)
         const double shade_median = ch09::quantile(shade, 0.5);
@@ -228,7 +253,9 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
                 << (lit ? double(evaluated) / double(lit) : 0.0) << ',' << ch09::quantile(local, 0.5) << ','
                 << ch09::quantile(local, 0.95) << ',' << ch09::quantile(assign, 0.5) << ',' << ch09::quantile(assign, 0.95)
                 << ',' << shade_median << ',' << ch09::quantile(shade, 0.95) << ',' << per_floor << ',' << bytes << ','
-                << views.size() << ',' << csv_measure_values(context.renderer(), s.width, s.height, frames) << std::endl;
+                << views.size() << ',' << ch09::quantile(cpu, 0.5) << ',';
+        for (const std::vector<double>& p : assign_parts) summary << ch09::quantile(p, 0.5) << ',';
+        summary << csv_measure_values(context.renderer(), s.width, s.height, frames) << std::endl;
         std::cout << target_density << " per pixel, " << n << " lights, " << method << " (" << grid << "): local lights "
                   << ch09::quantile(local, 0.5) << " ms median, " << ch09::quantile(local, 0.95) << " p95; evaluated per lit "
                   << (lit ? double(evaluated) / double(lit) : 0.0) << "; shading " << per_floor << " x the floor's" << std::endl;
@@ -285,7 +312,7 @@ int main(int argc, char** argv) {
     std::ofstream csv(file);
     csv << "# " << timer << ", " << s.width << "x" << s.height << ", street, view " << s.view << "\n"
         << "lights,method,total_ms,local_ms,depth_bounds_ms,assign_ms,prepass_ms,shade_ms,list_bytes,list_entries,regrown,"
-        << "cells_over,evaluated,lit,evaluated_per_lit," << csv_measure_columns() << "\n";
+        << "cells_over,evaluated,lit,evaluated_per_lit,cpu_ms," << csv_measure_columns() << "\n";
     const float threshold = ch03::cut_threshold(1.f, ch03::peak_reflectance(scene));
     for (int n : {1, 10, 100, 1000, 10000, 100000}) {
       if (n > s.max_lights) break;
@@ -349,14 +376,15 @@ int main(int argc, char** argv) {
           for (int k = 0; k < 3; ++k) local += parts[k + 1] = t.pass(names[k]).mean_ms;
         } else {
           const auto names = ch09::ClusteredLights::pass_names(method);
-          for (int k = 0; k < 3; ++k) local += parts[k == 2 ? 3 : k] = t.pass(names[k]).mean_ms;
+          for (int k = 0; k < 3; ++k) local += parts[k == 2 ? 3 : k] = pass_ms(t, names[k]);
         }
         const bool ours = method != "stencil";
         const ch09::ClusterStats& st = ours ? pass.wait_stats() : pass.stats();
         csv << n << ',' << method << ',' << t.total_ms() << ',' << local << ',' << parts[0] << ',' << parts[1] << ','
             << parts[2] << ',' << parts[3] << ',' << (ours ? st.bytes : 0) << ',' << (ours ? st.indices : 0) << ',' << (ours ? st.regrown : 0)
             << ',' << (ours ? st.cells_over : 0) << ',' << evaluated << ',' << lit << ','
-            << (lit ? double(evaluated) / double(lit) : 0.0) << ',' << csv_measure_values(context->renderer(), s.width, s.height, t.frames)
+            << (lit ? double(evaluated) / double(lit) : 0.0) << ',' << t.cpu_ms << ','
+            << csv_measure_values(context->renderer(), s.width, s.height, t.frames)
             << std::endl;  // a row at a time: a long GPU run cut short keeps what it measured
         std::cout << n << " lights, " << method << ": " << t.total_ms() << " ms (local lights " << local << "), evaluated "
                   << evaluated << ", lit " << lit << (ours && st.cells_over ? ", CELLS OVER " + std::to_string(st.cells_over) : "")

@@ -4,7 +4,9 @@
 // of a destructor.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <optional>
+#include <thread>
 #include <stdexcept>
 #include <type_traits>
 
@@ -86,6 +88,33 @@ TEST_F(MetricsGl, MeasureReportsEveryFrameItDrewAndItsFragments) {
   EXPECT_LE(m.pass("fill").min_ms, m.pass("fill").mean_ms);
   EXPECT_EQ(m.warmup_frames, 0);
   EXPECT_THROW(m.pass("never drawn"), Error);
+}
+
+// The CPU time of a frame is what its callback took, each frame's own: frames that each
+// stall 30 ms on the CPU (as a read-back waiting for the GPU would) report at least 30 ms,
+// and no more than the whole measurement took per frame (so frames are not summed or counted
+// from the start).
+TEST_F(MetricsGl, CpuTimeIsEachFramesOwnAndShowsAStall) {
+  Empty target(16, 16);
+  PassMetrics metrics;
+  const int frames = 3;
+  const auto began = std::chrono::steady_clock::now();
+  Measurement m = measure(metrics, [&] {
+    {
+      auto p = metrics.pass("fill");
+      fill();
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  }, {.frames = frames, .skip_warmup = true});
+  const double elapsed_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count();
+  EXPECT_GE(m.cpu_ms, 30.0);
+  EXPECT_LE(m.cpu_ms * frames, elapsed_ms) << "the frames' CPU times overlap or count the measurement's own";
+  // Without the stall the frames' CPU time loses those 30 ms each.
+  Measurement quick = measure(metrics, [&] {
+    auto p = metrics.pass("fill");
+    fill();
+  }, {.frames = frames, .skip_warmup = true});
+  EXPECT_LT(quick.cpu_ms, m.cpu_ms);
 }
 
 TEST_F(MetricsGl, WarmupRunsAtLeastItsMinimumTimeAndTwoBlocks) {

@@ -1,9 +1,19 @@
 // A light as the culling and shading passes read it, written once for both languages: GLSL
-// includes it in grid.glsl (the Lights buffer, std430), C++ in clustered_lights.cpp, which
-// packs it from chapter 03's light set and asserts its size (four vec4: no padding).
+// includes it in grid.glsl (the Lights and Spots buffers, std430), C++ in clustered_lights.cpp,
+// which packs it from chapter 03's light set and asserts its size (no padding). What a pair
+// (pixel, light) needs is precomputed here, so that shading a pair does one division.
+// Guarded: grid.glsl and light_pair.glsl both include it.
+#ifndef CLUSTER_LIGHT_H
+#define CLUSTER_LIGHT_H
 struct ClusterLight {
-  vec4 position_radius;  // xyz world position, w the cut
-  vec4 radiance_range;   // chapter 03's packing (light_instances.h)
-  vec4 direction_cone;   // spots only
-  vec4 kind;             // x: 1 for a spot
+  vec4 position_radius;      // xyz world position, w the cut
+  vec4 radiance_inv_range2;  // rgb colour x intensity, w 1 / range^2 (0: no range): the window without a division
 };
+// A spot's cone, in its own record: the spots are the last lights of the light order (points,
+// cones, wide spots), light i >= u_first_spot reads cluster_spots[i - u_first_spot], and a point
+// reads nothing more. Chapter 01's cone t = (dot(-l, dir) - cos outer) / (cos inner - cos outer),
+// folded to t = dot(-l, axis) + offset.
+struct ClusterSpot {
+  vec4 axis_offset;  // xyz: the direction it shines / (cos inner - cos outer), w: -cos outer / (cos inner - cos outer)
+};
+#endif

@@ -86,10 +86,13 @@ ivec2 tile_of(ivec2 pixel) { return pixel / u_grid.zw; }
 // Cells in the order the assignment dispatches them: x fastest, then y, then the slice.
 int cell_index(ivec2 tile, int slice) { return (slice * u_tiles.y + tile.y) * u_tiles.x + tile.x; }
 
-// The lights, in chapter 03's light order (points, cones, wide spots), as chapter 03 packs
-// them (light_instances.h) plus which kind each is.
+// The lights, in chapter 03's light order (points, cones, wide spots), from chapter 03's
+// packing (light_instances.h) with what shading a pair needs precomputed; the spots' cones
+// apart, from light u_first_spot on.
 #include "09_clustered/shaders/cluster_light.h"
 layout(std430, binding = 0) readonly buffer Lights { ClusterLight cluster_lights[]; };
+layout(std430, binding = 9) readonly buffer Spots { ClusterSpot cluster_spots[]; };
+uniform int u_first_spot;  // the first spot of the light order (the lights before it are points)
 // Each cell's list: where it starts in the index list and how many lights it holds.
 layout(std430, binding = 1) buffer Cells { uvec2 cells[]; };
 layout(std430, binding = 4) buffer Indices { uint light_indices[]; };

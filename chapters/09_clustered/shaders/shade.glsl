@@ -1,13 +1,13 @@
-// Pass 3 for one pixel: its cell's lights, each lit with chapter 03's local_light(), in the
-// order the list holds them (light order). The compute pass (shade.comp) and the
+// Pass 3 for one pixel: its cell's lights, each lit as chapter 03's local_light() lights it
+// (light_pair.glsl: the same formulas, precomputed per light), in the order the list holds
+// them (light order). The compute pass (shade.comp) and the
 // full-screen fragment pass (shade.frag) both call shade_pixel(); they differ only in how
 // the sum reaches the light buffer.
 #include "01_forward/shaders/lighting.glsl"
 #include "02_gbuffer/shaders/gbuffer.glsl"
 #include FRAME_VISIBILITY
-#include "03_light_volumes/shaders/light_instance.glsl"
-#include "03_light_volumes/shaders/local_light.glsl"
 #include "09_clustered/shaders/grid.glsl"
+#include "09_clustered/shaders/light_pair.glsl"
 #ifdef ZBIN
 #include "09_clustered/shaders/zbin.glsl"
 #endif
@@ -26,22 +26,19 @@ layout(std430, binding = 2) readonly buffer Bounds { uint bounds[]; };
 
 // The k-th light of a cell's list, added to the pixel's sums. A cell whose list did not fit
 // (assign.comp: kEveryLight) is shaded from every light in light order: slower, never wrong.
-// Light i of the light order (record c), added to the pixel's sums.
-void add_record(Surface s, int i, ClusterLight c, inout vec3 diffuse, inout vec3 specular, inout uint lit) {
-  GpuLight light = c.kind.x > 0.5 ? unpack_spot(c.position_radius, c.radiance_range, c.direction_cone)
-                                  : unpack_point(c.position_radius, c.radiance_range);
-  vec3 d, sp;
-  local_light(light, c.position_radius.w, i, s, d, sp);
-  diffuse += d;
-  specular += s.specular * sp;
-  if (any(greaterThan(d + sp, vec3(0.0)))) ++lit;
+// Light i of the light order (record c, and its cone when it is a spot: cluster_light.h),
+// added to the pixel's sums.
+vec4 cone_of(int i) { return i >= u_first_spot ? cluster_spots[i - u_first_spot].axis_offset : vec4(0.0); }
+void add_record(Surface s, vec3 to_eye, int i, ClusterLight c, vec4 cone, inout vec3 diffuse, inout vec3 specular,
+                inout uint lit) {
+  light_pair(c, i >= u_first_spot, cone, i, s, to_eye, diffuse, specular, lit);
 }
 
 uint light_of(uvec2 list, uint k) { return list.x == kEveryLight ? k : light_indices[list.x + k]; }
 
-void add_light(Surface s, uvec2 list, uint k, inout vec3 diffuse, inout vec3 specular, inout uint lit) {
+void add_light(Surface s, vec3 to_eye, uvec2 list, uint k, inout vec3 diffuse, inout vec3 specular, inout uint lit) {
   int i = int(light_of(list, k));
-  add_record(s, i, cluster_lights[i], diffuse, specular, lit);
+  add_record(s, to_eye, i, cluster_lights[i], cone_of(i), diffuse, specular, lit);
 }
 
 #ifdef ZBIN
@@ -52,13 +49,13 @@ const int kZShade = 0, kZCount = 1, kZWrite = 2;
 layout(std430, binding = 8) buffer FloorLists { uint floor_lights[]; };  // the exact lists, per pixel
 #endif
 // The light of the lowest bit left in mask word w (if any), visited; its bit cleared.
-void zbin_take(Surface s, uint w, int op, inout uint m, inout uint at, inout vec3 diffuse, inout vec3 specular,
-               inout uint lit) {
+void zbin_take(Surface s, vec3 to_eye, uint w, int op, inout uint m, inout uint at, inout vec3 diffuse,
+               inout vec3 specular, inout uint lit) {
   if (m == 0u) return;
   int i = int(light_indices[w * 32u + uint(findLSB(m))]);
   m &= m - 1u;
   if (op == kZShade) {
-    add_record(s, i, cluster_lights[i], diffuse, specular, lit);
+    add_record(s, to_eye, i, cluster_lights[i], cone_of(i), diffuse, specular, lit);
     return;
   }
   // The floor's lists: the lights local_light() would not end at their cut, exactly.
@@ -73,7 +70,7 @@ void zbin_take(Surface s, uint w, int op, inout uint m, inout uint at, inout vec
 // [zbin-loop]
 // Z-binning: the lights of the pixel's depth bin's range whose bit its tile has set, in
 // sorted (depth) order. Four bits an iteration, for llvmpipe's loop limit (see the lists' loop).
-void zbin_visit(Surface s, ivec2 pixel, int op, inout uint at, inout vec3 diffuse, inout vec3 specular,
+void zbin_visit(Surface s, vec3 to_eye, ivec2 pixel, int op, inout uint at, inout vec3 diffuse, inout vec3 specular,
                 inout uint evaluated, inout uint lit) {
   uvec2 range = zbin_range(zbin_of(view_depth(s.position)));
   uint base = uint(cell_index(tile_of(pixel), 0)) * zbin_words();
@@ -84,10 +81,10 @@ void zbin_visit(Surface s, ivec2 pixel, int op, inout uint at, inout vec3 diffus
       if (w == range.y >> 5u) m &= 0xFFFFFFFFu >> (31u - (range.y & 31u));
       evaluated += uint(bitCount(m));
       while (m != 0u) {
-        zbin_take(s, w, op, m, at, diffuse, specular, lit);
-        zbin_take(s, w, op, m, at, diffuse, specular, lit);
-        zbin_take(s, w, op, m, at, diffuse, specular, lit);
-        zbin_take(s, w, op, m, at, diffuse, specular, lit);
+        zbin_take(s, to_eye, w, op, m, at, diffuse, specular, lit);
+        zbin_take(s, to_eye, w, op, m, at, diffuse, specular, lit);
+        zbin_take(s, to_eye, w, op, m, at, diffuse, specular, lit);
+        zbin_take(s, to_eye, w, op, m, at, diffuse, specular, lit);
       }
     }
 }
@@ -112,6 +109,7 @@ void shade_surface(Surface s, ivec2 pixel, out vec3 diffuse, out vec3 specular, 
   diffuse = specular = vec3(0.0);
   evaluated = lit = 0u;
   if (s.is_sky) return;
+  vec3 to_eye = normalize(gb_eye.xyz - s.position);  // the pixel's, for each of its lights
 #ifdef FLOOR
   // The floor: the pixel's exact list (zbin_floor.comp), no culling left to do; a pixel
   // whose list did not fit falls back to the Z-binning below.
@@ -119,7 +117,7 @@ void shade_surface(Surface s, ivec2 pixel, out vec3 diffuse, out vec3 specular, 
   if (exact.x != kEveryLight) {
     for (uint k = 0u; k < exact.y; ++k) {
       int i = int(floor_lights[exact.x + k]);
-      add_record(s, i, cluster_lights[i], diffuse, specular, lit);
+      add_record(s, to_eye, i, cluster_lights[i], cone_of(i), diffuse, specular, lit);
     }
     evaluated = exact.y;
     count_pixel(evaluated, lit);
@@ -128,7 +126,7 @@ void shade_surface(Surface s, ivec2 pixel, out vec3 diffuse, out vec3 specular, 
 #endif
 #ifdef ZBIN
   uint unused = 0u;
-  zbin_visit(s, pixel, kZShade, unused, diffuse, specular, evaluated, lit);
+  zbin_visit(s, to_eye, pixel, kZShade, unused, diffuse, specular, evaluated, lit);
   count_pixel(evaluated, lit);
   return;
 #endif
@@ -141,10 +139,10 @@ void shade_surface(Surface s, ivec2 pixel, out vec3 diffuse, out vec3 specular, 
   // Four lights an iteration: llvmpipe ends a shader's loops after 65 535 iterations in all
   // (gallivm's loop limiter), and a tile's list can hold 100 000 lights (262 140 at most here).
   for (uint k = 0u; k < list.y; k += 4u) {
-    add_light(s, list, k, diffuse, specular, lit);
-    if (k + 1u < list.y) add_light(s, list, k + 1u, diffuse, specular, lit);
-    if (k + 2u < list.y) add_light(s, list, k + 2u, diffuse, specular, lit);
-    if (k + 3u < list.y) add_light(s, list, k + 3u, diffuse, specular, lit);
+    add_light(s, to_eye, list, k, diffuse, specular, lit);
+    if (k + 1u < list.y) add_light(s, to_eye, list, k + 1u, diffuse, specular, lit);
+    if (k + 2u < list.y) add_light(s, to_eye, list, k + 2u, diffuse, specular, lit);
+    if (k + 3u < list.y) add_light(s, to_eye, list, k + 3u, diffuse, specular, lit);
   }
   evaluated = list.y;
   // [/shade-loop]

@@ -13,6 +13,7 @@ layout(binding = 1, rgba16f) uniform image2D u_l2;
 
 const uint kChunk = uint(STAGE_TILE * STAGE_TILE);
 shared ClusterLight s_light[kChunk];
+shared vec4 s_cone[kChunk];
 shared int s_index[kChunk];
 
 void main() {
@@ -25,6 +26,7 @@ void main() {
   uvec2 list = cells[cell_index(ivec2(gl_WorkGroupID.xy), 0)];
   uint t = gl_LocalInvocationIndex;
   vec3 diffuse = vec3(0.0), specular = vec3(0.0);
+  vec3 to_eye = normalize(gb_eye.xyz - s.position);
   uint lit = 0u;
   // [stage]
   for (uint base = 0u; base < list.y; base += kChunk) {
@@ -32,11 +34,12 @@ void main() {
     if (t < n) {
       uint i = light_of(list, base + t);
       s_light[t] = cluster_lights[i];
+      s_cone[t] = cone_of(int(i));
       s_index[t] = int(i);
     }
     barrier();
     if (shaded)
-      for (uint k = 0u; k < n; ++k) add_record(s, s_index[k], s_light[k], diffuse, specular, lit);
+      for (uint k = 0u; k < n; ++k) add_record(s, to_eye, s_index[k], s_light[k], s_cone[k], diffuse, specular, lit);
     barrier();
   }
   // [/stage]

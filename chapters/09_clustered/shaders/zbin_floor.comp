@@ -18,7 +18,8 @@ void main() {
   Surface s = decode_gbuffer(pixel);
   vec3 diffuse = vec3(0.0), specular = vec3(0.0);
   uint n = 0u, evaluated = 0u, lit = 0u;
-  if (!s.is_sky) zbin_visit(s, pixel, kZCount, n, diffuse, specular, evaluated, lit);
+  vec3 to_eye = vec3(0.0);  // (counting and writing lists light nothing)
+  if (!s.is_sky) zbin_visit(s, to_eye, pixel, kZCount, n, diffuse, specular, evaluated, lit);
   cells[cell] = uvec2(0u);
   if (n == 0u) return;
   if (atomicAdd(state.needed_lo, n) > 0xFFFFFFFFu - n) atomicAdd(state.needed_hi, 1u);
@@ -36,5 +37,5 @@ void main() {
     return;
   }
   cells[cell] = uvec2(at, n);
-  zbin_visit(s, pixel, kZWrite, at, diffuse, specular, evaluated, lit);
+  zbin_visit(s, to_eye, pixel, kZWrite, at, diffuse, specular, evaluated, lit);
 }
