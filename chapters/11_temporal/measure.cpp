@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 
 #include "chapters/07_ssao/ao_truth.h"
 #include "common/error.h"
@@ -36,9 +37,11 @@ ImageF decode_srgb_for_png(const ImageF& encoded) {
 }  // namespace
 
 // [disocclusion-twin-body]
-std::vector<std::uint8_t> disocclusion_mask(const ImageF& now, const ImageF& then, float tolerance, float slope) {
+std::vector<std::uint8_t> disocclusion_mask(const ImageF& now, const ImageF& then, float tolerance, float slope,
+                                            std::vector<float>* margin) {
   const int w = now.width, h = now.height;
   std::vector<std::uint8_t> mask(std::size_t(w) * h, 0);
+  if (margin) margin->assign(mask.size(), std::numeric_limits<float>::infinity());
   auto z = [&](int x, int y) { return now.at(std::clamp(x, 0, w - 1), std::clamp(y, 0, h - 1), 2); };
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
@@ -57,7 +60,9 @@ std::vector<std::uint8_t> disocclusion_mask(const ImageF& now, const ImageF& the
           }
         const float dx = std::min(std::abs(z(x + 1, y) - depth_then), std::abs(depth_then - z(x - 1, y)));
         const float dy = std::min(std::abs(z(x, y - 1) - depth_then), std::abs(depth_then - z(x, y + 1)));
-        hidden = nearest > tolerance * depth_then + slope * (dx + dy);
+        const float threshold = tolerance * depth_then + slope * (dx + dy);
+        hidden = nearest > threshold;
+        if (margin) (*margin)[std::size_t(y) * w + x] = (nearest - threshold) / depth_then;
       }
       mask[std::size_t(y) * w + x] = hidden ? 1 : 0;
     }

@@ -27,8 +27,10 @@ ImageF encode_srgb(const ImageF& linear);
 // `tolerance` (relative) of the depth it had there, plus `slope` pixels of the depth's change
 // along the surface (the smaller one-sided difference per axis), or where it was outside the
 // last image.
+// `margin`, when given: per pixel, how far the nearest depth lies from the threshold, relative
+// to the depth (negative: kept; infinite where outside the last image).
 std::vector<std::uint8_t> disocclusion_mask(const ImageF& motion_now, const ImageF& motion_then, float tolerance,
-                                            float slope = 1.5f);
+                                            float slope = 1.5f, std::vector<float>* margin = nullptr);
 // [/disocclusion-twin]
 
 // 1 where the 3x3 neighbourhood of the (sRGB-encoded) truth spans more than `range` in luma:

@@ -67,6 +67,8 @@ std::vector<Variant> variants() {
   v.push_back({"TAA", base});
   v.push_back({"TAA, no disocclusion test", base});
   v.back().settings.taa.reject_disocclusion = false;
+  v.push_back({"TAA, relative depth test", base});  // no slack for the surface's slope (step 6)
+  v.back().settings.taa.depth_slope = 0.f;
   v.push_back({"TAA, no clip", base});
   v.back().settings.taa.clip = HistoryClip::Off;
   v.push_back({"TAA, RGB clamp", base});
