@@ -14,6 +14,7 @@
 #include "chapters/11_temporal/camera_path.h"
 #include "chapters/11_temporal/measure.h"
 #include "chapters/11_temporal/temporal_frame.h"
+#include "common/error.h"
 #include "common/paths.h"
 #include "common/target.h"
 #include "tests/unit/gl_environment.h"
@@ -418,4 +419,30 @@ TEST(TemporalGl, StillTemporalAoOfEightPartsIsTheWholeKernel) {
   std::printf("still, frame 7: 8 parts of 4 accumulated %.6f, 32 at once %.6f; largest difference %g\n", accumulated[0].error,
               at_once[0].error, worst);
   EXPECT_LE(worst, 1e-5f);
+}
+
+// Bad settings say what is wrong: a kernel part outside the kernel's parts (chapter 07 refuses
+// it before any pass), and half-resolution AO, which the accumulation cannot move by
+// full-resolution motion.
+TEST(TemporalGl, TemporalAoRefusesSettingsItCannotUse) {
+  const CameraPath& path = path_named("assets/street_shop/street_shop.gltf", "walk");
+  const AoPathOptions o{.width = 32, .height = 18, .first = 0, .count = 1};
+  auto message = [&](const ch07::AoSettings& ao, const TemporalAoSettings& t) {
+    try {
+      measure_ao_path(street_gpu(), path, ao, t, o);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  ch07::AoSettings part;
+  part.kernel_parts = 2;
+  part.kernel_part = 2;
+  TemporalAoSettings off;
+  off.enabled = false;
+  EXPECT_NE(message(part, off).find("kernel_part must be in [0, kernel_parts)"), std::string::npos) << message(part, off);
+  ch07::AoSettings half;
+  half.scale = 2;
+  EXPECT_NE(message(half, {}).find("accumulate full-resolution AO"), std::string::npos) << message(half, {});
+  EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }
