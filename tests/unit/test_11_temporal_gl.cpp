@@ -338,7 +338,7 @@ StillDrops drops_on_a_still_camera(const char* view, float depth_slope) {  // ov
         auto inv = [&](int dx, int dy) { return 1.f / m.at(std::clamp(x + dx, 0, kW - 1), std::clamp(y + dy, 0, kH - 1), 3); };
         const float z = inv(0, 0);
         bool edge = false;
-        for (const auto [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}, std::pair{1, 1}, std::pair{1, -1}})
+        for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}, std::pair{1, 1}, std::pair{1, -1}})
           edge = edge || std::abs(inv(dx, dy) + inv(-dx, -dy) - 2.f * z) > 0.01f * z;
         d.off_edges += !edge;
       }
