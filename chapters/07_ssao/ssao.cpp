@@ -21,14 +21,17 @@ const ShaderProgram& Ssao::program(const std::string& file, const ch02::GBuffer&
 }
 
 void Ssao::upload_kernel(const ShaderProgram& p, const AoSettings& s) {
-  if (kernel_samples_ != s.samples || kernel_energy_ != s.energy_minimised) {
-    kernel_ = s.energy_minimised ? energy_minimised_kernel(s.samples, kKernelSeed) : random_kernel(s.samples, kKernelSeed);
-    kernel_samples_ = s.samples;
+  const int all = s.samples * s.kernel_parts;
+  if (kernel_samples_ != all || kernel_energy_ != s.energy_minimised) {
+    kernel_ = s.energy_minimised ? energy_minimised_kernel(all, kKernelSeed) : random_kernel(all, kKernelSeed);
+    kernel_samples_ = all;
     kernel_energy_ = s.energy_minimised;
   }
-  std::vector<glm::vec4> k(kernel_.size()), n(noise_.size());
-  for (std::size_t i = 0; i < k.size(); ++i) k[i] = glm::vec4(kernel_[i], 0.f);
-  for (std::size_t i = 0; i < n.size(); ++i) n[i] = glm::vec4(noise_[i], 0.f);
+  std::vector<glm::vec4> k(std::size_t(s.samples)), n(noise_.size());
+  for (std::size_t i = 0; i < k.size(); ++i) k[i] = glm::vec4(kernel_[i * std::size_t(s.kernel_parts) + std::size_t(s.kernel_part)], 0.f);
+  const float c = std::cos(s.turn), t = std::sin(s.turn);  // the tile's vectors lie in the tangent plane (z = 0)
+  for (std::size_t i = 0; i < n.size(); ++i)
+    n[i] = glm::vec4(c * noise_[i].x - t * noise_[i].y, t * noise_[i].x + c * noise_[i].y, noise_[i].z, 0.f);
   glProgramUniform4fv(p.id(), p.location("u_kernel[0]"), GLsizei(k.size()), &k[0].x);
   glProgramUniform4fv(p.id(), p.location("u_noise[0]"), GLsizei(n.size()), &n[0].x);
 }
@@ -40,6 +43,11 @@ void Ssao::compute(const ch02::GBuffer& gbuffer, const FrameCamera& camera, cons
                 std::to_string(s.samples) + ")");
   if (!(s.reach > 0.f) || !(s.power > 0.f) || !(s.falloff > 0.f) || s.falloff > 1.f || std::isnan(s.thickness))
     throw Error("ssao: reach and power must be positive, falloff in (0, 1] and thickness a number");
+  if (s.kernel_parts < 1 || s.kernel_parts > kMaxSamples || s.kernel_part < 0 || s.kernel_part >= s.kernel_parts ||
+      s.samples * s.kernel_parts > 4 * kMaxSamples)
+    throw Error("ssao: kernel_part must be in [0, kernel_parts) and samples x kernel_parts at most " +
+                std::to_string(4 * kMaxSamples) + " (got part " + std::to_string(s.kernel_part) + " of " +
+                std::to_string(s.kernel_parts) + ")");
   if (!(s.radius > 0.f)) throw Error("ssao: the radius must be positive (got " + std::to_string(s.radius) + ")");
   if (s.scale != 1 && s.scale != 2 && s.scale != 4) throw Error("ssao: scale must be 1, 2 or 4");
   const int w = (gbuffer.width() + s.scale - 1) / s.scale, h = (gbuffer.height() + s.scale - 1) / s.scale;

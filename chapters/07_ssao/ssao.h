@@ -60,6 +60,13 @@ struct AoSettings {
   // XeGTAO have it). Negative: the method's own, kDiskThickness or kGtaoThickness below.
   // ssao.comp [thickness].
   float thickness = -1.f;
+  // The noise tile's vectors turned about the normal by this angle (radians): chapter 11 turns
+  // it every frame, so that frames accumulated over time see other directions.
+  float turn = 0.f;
+  // classic: the kernel made of samples x kernel_parts points, of which this frame takes every
+  // kernel_parts-th from kernel_part on (every distance from the centre in each part): chapter
+  // 11 takes the next part each frame, so kernel_parts frames together are the whole kernel.
+  int kernel_parts = 1, kernel_part = 0;
   // The tutorial bug, for the test that catches it: the kernel turned into world space and
   // added to the view-space position.
   bool tutorial_bug = false;

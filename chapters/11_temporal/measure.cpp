@@ -4,7 +4,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 
+#include "chapters/07_ssao/ao_truth.h"
 #include "common/error.h"
 #include "common/target.h"
 
@@ -35,9 +37,12 @@ ImageF decode_srgb_for_png(const ImageF& encoded) {
 }  // namespace
 
 // [disocclusion-twin-body]
-std::vector<std::uint8_t> disocclusion_mask(const ImageF& now, const ImageF& then, float tolerance) {
+std::vector<std::uint8_t> disocclusion_mask(const ImageF& now, const ImageF& then, float tolerance, float slope,
+                                            std::vector<float>* margin) {
   const int w = now.width, h = now.height;
   std::vector<std::uint8_t> mask(std::size_t(w) * h, 0);
+  if (margin) margin->assign(mask.size(), std::numeric_limits<float>::infinity());
+  auto z = [&](int x, int y) { return now.at(std::clamp(x, 0, w - 1), std::clamp(y, 0, h - 1), 2); };
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       // Rows top first here; the motion's uv has v up.
@@ -53,7 +58,11 @@ std::vector<std::uint8_t> disocclusion_mask(const ImageF& now, const ImageF& the
             const int qx = std::clamp(bx + i, 0, w - 1), qy = std::clamp(by + j, 0, h - 1);
             nearest = std::min(nearest, std::abs(then.at(qx, h - 1 - qy, 3) - depth_then));
           }
-        hidden = nearest > tolerance * depth_then;
+        const float dx = std::min(std::abs(z(x + 1, y) - depth_then), std::abs(depth_then - z(x - 1, y)));
+        const float dy = std::min(std::abs(z(x, y - 1) - depth_then), std::abs(depth_then - z(x, y + 1)));
+        const float threshold = tolerance * depth_then + slope * (dx + dy);
+        hidden = nearest > threshold;
+        if (margin) (*margin)[std::size_t(y) * w + x] = (nearest - threshold) / depth_then;
       }
       mask[std::size_t(y) * w + x] = hidden ? 1 : 0;
     }
@@ -141,7 +150,7 @@ std::vector<PathFrame> measure_path(const SceneGpu& scene, const CameraPath& pat
     // Disocclusion from the motion alone (the C++ twin), whatever the resolve did with it.
     const ImageF motion = read_texture_rgba(frame.motion().current(), w, h);
     std::vector<std::uint8_t> hidden;
-    if (!cut && last_motion.width == w) hidden = disocclusion_mask(motion, last_motion, o.disocclusion_tolerance);
+    if (!cut && last_motion.width == w) hidden = disocclusion_mask(motion, last_motion, o.disocclusion_tolerance, o.disocclusion_slope);
     for (std::size_t k = 0; k < since_disocclusion.size(); ++k)
       since_disocclusion[k] = cut ? (1 << 20) : hidden.empty() ? since_disocclusion[k] + 1 : hidden[k] ? 0 : since_disocclusion[k] + 1;
     last_motion = motion;
@@ -185,5 +194,62 @@ std::vector<PathFrame> measure_path(const SceneGpu& scene, const CameraPath& pat
   return out;
 }
 // [/measure-path]
+
+// [measure-ao-path]
+std::vector<AoPathFrame> measure_ao_path(const SceneGpu& scene, const CameraPath& path, const ch07::AoSettings& settings,
+                                         const TemporalAoSettings& temporal, const AoPathOptions& o) {
+  const int w = o.width, h = o.height;
+  if (w < 1 || h < 1 || w > 4096 || h > 4096) throw Error("measure_ao_path: a size of " + std::to_string(w) + "x" + std::to_string(h));
+  if (o.bins < 1 || o.bins > 1024) throw Error("measure_ao_path: bins must be 1 to 1024");
+  const int end = o.count < 0 ? path.frames() : std::min(path.frames(), o.first + o.count);
+  ch03::DeferredFrame frame(scene);
+  ch07::AoStage ao;
+  MotionStage motion(scene);
+  TemporalAoStage accumulated(ao, motion);
+  frame.add_stage(ao);
+  frame.add_stage(motion);
+  frame.add_stage(accumulated);
+  accumulated.set(temporal);
+  OutputTarget target(w, h);
+  std::vector<AoPathFrame> out;
+  std::vector<int> since(std::size_t(w) * h, 1 << 20);
+  ImageF last_motion;
+  FrameCamera last;
+  int start = 0;  // the last cut's frame
+  for (int i = 0; i < end; ++i) {
+    const FrameCamera camera = frame_camera(path.camera(scene.scene(), i), float(w) / float(h));
+    const bool cut = i == 0 || path.cut_at(i);
+    if (cut) start = i;
+    ao.set(frame_ao(settings, temporal, unsigned(i - start)), ch07::AoShow::Ao, glm::vec3(1.f));  // shown: the pass runs whatever the scene's ambient
+    motion.set_cameras(camera, cut ? camera : last);
+    if (cut) accumulated.reset();
+    frame.render(camera, {target.framebuffer(), w, h});
+    last = camera;
+    const ImageF m = read_texture_rgba(motion.current(), w, h);
+    std::vector<std::uint8_t> hidden;
+    if (!cut && last_motion.width == w) hidden = disocclusion_mask(m, last_motion, temporal.depth_tolerance, temporal.depth_slope);
+    for (std::size_t k = 0; k < since.size(); ++k)
+      since[k] = cut ? (1 << 20) : hidden.empty() ? since[k] + 1 : hidden[k] ? 0 : since[k] + 1;
+    last_motion = m;
+    if (i < o.first) continue;
+    const ImageF a = ao.ssao().read_full(w, h);
+    const ImageF truth = ch07::cached_ray_traced_ao(scene.scene(), camera, w, h, {.radius = settings.radius, .samples = o.truth_samples});
+    AoPathFrame f{.frame = i, .error = ch07::ao_errors(a, truth).mean_abs, .ao = a};
+    f.since_error.assign(std::size_t(o.bins), 0.0);
+    f.since_pixels.assign(std::size_t(o.bins), 0);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const std::size_t q = std::size_t(y) * w + x;
+        if (since[q] >= o.bins || truth.at(x, y, 0) < 0.f) continue;
+        f.since_error[std::size_t(since[q])] += std::abs(double(a.at(x, y, 0)) - truth.at(x, y, 0));
+        ++f.since_pixels[std::size_t(since[q])];
+      }
+    for (int k = 0; k < o.bins; ++k)
+      if (f.since_pixels[std::size_t(k)]) f.since_error[std::size_t(k)] /= double(f.since_pixels[std::size_t(k)]);
+    out.push_back(f);
+  }
+  return out;
+}
+// [/measure-ao-path]
 
 }  // namespace lp::ch11

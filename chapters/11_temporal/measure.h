@@ -8,7 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "chapters/07_ssao/ssao.h"
 #include "chapters/11_temporal/camera_path.h"
+#include "chapters/11_temporal/temporal_ao.h"
 #include "chapters/11_temporal/temporal_frame.h"
 #include "common/image.h"
 
@@ -22,8 +24,13 @@ ImageF encode_srgb(const ImageF& linear);
 // [disocclusion-twin]
 // The C++ twin of taa_resolve.frag's disocclusion test, on motion targets read back (motion.h):
 // 1 where none of the four last-frame depths around where the pixel's surface was lies within
-// `tolerance` (relative) of the depth it had there, or where it was outside the last image.
-std::vector<std::uint8_t> disocclusion_mask(const ImageF& motion_now, const ImageF& motion_then, float tolerance);
+// `tolerance` (relative) of the depth it had there, plus `slope` pixels of the depth's change
+// along the surface (the smaller one-sided difference per axis), or where it was outside the
+// last image.
+// `margin`, when given: per pixel, how far the nearest depth lies from the threshold, relative
+// to the depth (negative: kept; infinite where outside the last image).
+std::vector<std::uint8_t> disocclusion_mask(const ImageF& motion_now, const ImageF& motion_then, float tolerance,
+                                            float slope = 1.5f, std::vector<float>* margin = nullptr);
 // [/disocclusion-twin]
 
 // 1 where the 3x3 neighbourhood of the (sRGB-encoded) truth spans more than `range` in luma:
@@ -52,6 +59,7 @@ struct PathRunOptions {
   int first = 0, count = -1;  // the path's frames [first, first + count); -1: to the end
   int ghost_frames = 4;       // a pixel counts for ghosting this many frames after its disocclusion
   float disocclusion_tolerance = 0.05f;
+  float disocclusion_slope = 1.5f;  // TaaSettings::depth_slope's
   float still_change = 1.f / 255.f;  // flicker: pixels whose truth changed less than this
   int truth_grid = 4;
   std::string dump_prefix;  // non-empty: each measured frame and its truth written as <prefix>NNN_{image,truth}.png
@@ -70,5 +78,27 @@ struct PathRunOptions {
 // measured one's history is never disturbed.
 std::vector<PathFrame> measure_path(const SceneGpu& scene, const CameraPath& path, const TemporalSettings& settings,
                                     const PathRunOptions& options);
+
+// [ao-path]
+// Chapter 07's AO along a path against its ray-traced truth (chapter 07's, cached), frame by
+// frame: `ao` each frame (with temporal.enabled, its noise turned by ao_turn(frame) and
+// accumulated; without, the frame's own), measured on chapter 03's frame with the AO shown.
+struct AoPathFrame {
+  int frame = 0;
+  double error = 0;  // mean |A - truth| over the pixels that see a surface
+  ImageF ao;         // A, one channel, rows top first
+  // The same on the pixels disoccluded exactly k frames ago (k = 0 .. bins - 1), and how many.
+  std::vector<double> since_error;
+  std::vector<std::size_t> since_pixels;
+};
+struct AoPathOptions {
+  int width = 160, height = 90;
+  int first = 0, count = -1;  // the path's frames measured, as PathRunOptions'
+  int truth_samples = 256;    // rays a pixel of the truth (its standard error <= 0.5 / sqrt of it)
+  int bins = 8;
+};
+std::vector<AoPathFrame> measure_ao_path(const SceneGpu& scene, const CameraPath& path, const ch07::AoSettings& ao,
+                                         const TemporalAoSettings& temporal, const AoPathOptions& options);
+// [/ao-path]
 
 }  // namespace lp::ch11

@@ -40,6 +40,8 @@ struct Settings {
   std::string dump;           // non-empty: each measured frame and its truth as PNGs under this prefix
   bool no_cost = false;       // the path only
   std::string truth_dir;      // non-empty: the truths kept there as PFM between runs
+  bool ao = false;            // also chapter 07's AO along the path, per frame and accumulated
+  int ao_width = 0, ao_height = 0;  // its size (0: --size)
 };
 
 bool chosen(const Settings& s, const std::string& name) {
@@ -67,6 +69,8 @@ std::vector<Variant> variants() {
   v.push_back({"TAA", base});
   v.push_back({"TAA, no disocclusion test", base});
   v.back().settings.taa.reject_disocclusion = false;
+  v.push_back({"TAA, relative depth test", base});  // no slack for the surface's slope (step 6)
+  v.back().settings.taa.depth_slope = 0.f;
   v.push_back({"TAA, no clip", base});
   v.back().settings.taa.clip = HistoryClip::Off;
   v.push_back({"TAA, RGB clamp", base});
@@ -136,6 +140,57 @@ void sweep_path(const Settings& s, const SceneGpu& gpu, const std::string& rende
   std::cout << "wrote " << file << " and " << conv_file << '\n';
 }
 
+// [ao-sweep]
+// Chapter 07's classic AO along the path against its ray-traced truth: 4 points a frame alone,
+// the same 4 points a frame accumulated (temporal_ao.h: a part of a 32-point kernel a frame),
+// and 32 points a frame alone. Writes 11_ao_<scene>_<path>[_llvmpipe].csv (per frame) and
+// 11_ao_convergence_<scene>_<path>[_llvmpipe].csv (error against frames since a disocclusion).
+void sweep_ao(const Settings& s, const SceneGpu& gpu, const std::string& renderer, bool software) {
+  const CameraPath& path = path_named(s.scene, s.path);
+  const int w = s.ao_width > 0 ? s.ao_width : s.width, h = s.ao_height > 0 ? s.ao_height : s.height;
+  const std::string stem = std::filesystem::path(s.scene).stem().string(), tail = stem + "_" + s.path + (software ? "_llvmpipe" : "") + ".csv";
+  std::ofstream csv(s.out + "/11_ao_" + tail), conv(s.out + "/11_ao_convergence_" + tail);
+  csv << "# " << renderer << ", " << w << "x" << h << ", path " << s.path << " of " << stem
+      << "; chapter 07's classic AO (R 0.5, blurred) against its ray-traced truth (256 rays a pixel): mean |A - truth|\n"
+      << "method,frame,error," << csv_measure_columns() << '\n';
+  conv << "# " << renderer << ", " << w << "x" << h << ", path " << s.path << " of " << stem
+       << "; AO error on the pixels disoccluded exactly k frames ago, pooled over the path's frames\n"
+       << "method,frames_since,error,pixels\n";
+  ch07::AoSettings four;
+  four.samples = 4;
+  ch07::AoSettings many = four;
+  many.samples = 32;
+  TemporalAoSettings on, off;
+  off.enabled = false;
+  const struct {
+    const char* name;
+    ch07::AoSettings ao;
+    TemporalAoSettings temporal;
+  } methods[] = {{"4 points a frame", four, off}, {"4 points accumulated", four, on}, {"32 points a frame", many, off}};
+  for (const auto& m : methods) {
+    const std::vector<AoPathFrame> frames =
+        measure_ao_path(gpu, path, m.ao, m.temporal, {.width = w, .height = h, .first = s.first, .count = s.count});
+    double sum = 0;
+    for (const AoPathFrame& f : frames) {
+      csv << csv_quoted(m.name) << ',' << f.frame << ',' << f.error << ',' << csv_measure_values(renderer, w, h, 1) << '\n';
+      sum += f.error;
+    }
+    for (std::size_t k = 0; !frames.empty() && k < frames[0].since_error.size(); ++k) {
+      double e = 0;
+      std::size_t n = 0;
+      for (const AoPathFrame& f : frames) {
+        e += f.since_error[k] * double(f.since_pixels[k]);
+        n += f.since_pixels[k];
+      }
+      conv << csv_quoted(m.name) << ',' << k << ',' << (n ? e / double(n) : 0.0) << ',' << n << '\n';
+    }
+    std::cout << m.name << ": mean AO error " << (frames.empty() ? 0.0 : sum / double(frames.size())) << " over "
+              << frames.size() << " frames\n";
+  }
+  std::cout << "wrote " << s.out << "/11_ao_" << tail << " and " << s.out << "/11_ao_convergence_" << tail << '\n';
+}
+// [/ao-sweep]
+
 void sweep_cost(const Settings& s, const SceneGpu& gpu, const std::string& renderer, bool software) {
   const CameraPath& path = path_named(s.scene, s.path);
   const std::string file = s.out + "/11_cost" + std::string(software ? "_llvmpipe" : "") + ".csv";
@@ -169,7 +224,7 @@ int main(int argc, char** argv) {
     args.text("--out", s.out).text("--scene", s.scene).text("--path", s.path).size("--size", s.width, s.height)
         .integer("--first", s.first).integer("--count", s.count).integer("--frames", s.frames)
         .text("--methods", s.methods).text("--dump", s.dump).flag("--no-cost", s.no_cost)
-        .text("--truth-dir", s.truth_dir);
+        .text("--truth-dir", s.truth_dir).flag("--ao", s.ao).size("--ao-size", s.ao_width, s.ao_height);
   }, [&] {
     if (s.frames < 1) throw UsageError("--frames must be at least 1");
     if (s.first < 0 || s.first > 100000) throw UsageError("--first must be between 0 and 100000");
@@ -194,6 +249,7 @@ int main(int argc, char** argv) {
     path_named(s.scene, s.path);  // an unknown path says so before anything is drawn
     const SceneGpu gpu(scene);
     sweep_path(s, gpu, context->renderer(), context->is_software());
+    if (s.ao) sweep_ao(s, gpu, context->renderer(), context->is_software());
     if (!s.no_cost) sweep_cost(s, gpu, context->renderer(), context->is_software());
   });
 }

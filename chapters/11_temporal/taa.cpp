@@ -63,6 +63,7 @@ void TaaStage::after_composite(ch03::DeferredFrame& frame, PassMetrics* metrics)
   resolve_.set("u_clip", int(settings_.clip));
   resolve_.set("u_reject_disocclusion", int(settings_.reject_disocclusion));
   resolve_.set("u_depth_tolerance", settings_.depth_tolerance);
+  resolve_.set("u_depth_slope", settings_.depth_slope);
   resolve_.set("u_tonemapped", int(settings_.tonemapped));
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, exposure_state_);
   resolve_.set("u_has_exposure", int(exposure_state_ != 0));

@@ -25,6 +25,7 @@ struct TaaSettings {
   HistoryClip clip = HistoryClip::ClipYCoCg;         // the history held to this frame's 3x3 neighbourhood
   bool reject_disocclusion = true;                   // history dropped where the surface was hidden
   float depth_tolerance = 0.05f;                     // relative: a depth this far from the last frame's is another surface
+  float depth_slope = 1.5f;                          // pixels: plus the depth's change along the surface over this many
   bool tonemapped = true;                            // blend in a tonemapped space (weights 1 / (1 + exposed luminance))
   bool unjitter = true;                              // this frame's pixel rebuilt at its centre from the 3x3's jittered samples
   float gamma = 1.f;                                 // > 0: variance clip, the box mean +- gamma sigma; 0: the extremes

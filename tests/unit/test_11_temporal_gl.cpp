@@ -4,6 +4,7 @@
 // down (measure.h).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <numeric>
@@ -13,6 +14,7 @@
 #include "chapters/11_temporal/camera_path.h"
 #include "chapters/11_temporal/measure.h"
 #include "chapters/11_temporal/temporal_frame.h"
+#include "common/error.h"
 #include "common/paths.h"
 #include "common/target.h"
 #include "tests/unit/gl_environment.h"
@@ -260,8 +262,10 @@ TEST(TemporalGl, OnAFastPanTaaEdgesAreNearerTheTruthThanNoAa) {
 // Disocclusion: along the walk, every pixel whose surface was hidden last frame by the stated
 // rule (measure.h's C++ twin of the resolve's test, on the motion targets read back) has its
 // history dropped by the resolve, and every other pixel keeps it. The two compute the same rule
-// in float on the same data: only a pixel whose depth difference lies within float rounding
-// (10^-6 relative) of the tolerance may go either way; of 14 400 pixels we allow two each way.
+// in float on the same data: only a pixel whose nearest depth lies within float rounding of the
+// threshold may go either way. The threshold's terms are depths and differences of neighbouring
+// depths, each good to a few ulps of the depth (2^-24 relative): a pixel within 10^-5 of the
+// depth of it is excused, and no other.
 TEST(TemporalGl, TheResolveDropsTheHistoryOfEveryDisoccludedPixel) {
   const CameraPath& path = path_named("assets/street_shop/street_shop.gltf", "walk");
   TemporalSettings s = defaults();
@@ -274,21 +278,171 @@ TEST(TemporalGl, TheResolveDropsTheHistoryOfEveryDisoccludedPixel) {
   const ImageF now = read_texture_rgba(frame.motion().current(), kW, kH);
   const ImageF then = read_texture_rgba(frame.motion().previous(), kW, kH);
   const ImageF rejected = read_texture_rgba(frame.taa().rejected(), kW, kH);
-  const std::vector<std::uint8_t> hidden = disocclusion_mask(now, then, s.taa.depth_tolerance);
-  int disoccluded = 0, dropped = 0, kept_elsewhere = 0;
+  std::vector<float> margin;
+  const std::vector<std::uint8_t> hidden = disocclusion_mask(now, then, s.taa.depth_tolerance, s.taa.depth_slope, &margin);
+  int disoccluded = 0, dropped = 0, kept_elsewhere = 0, excused = 0;
   for (int y = 0; y < kH; ++y)
     for (int x = 0; x < kW; ++x) {
+      const std::size_t k = std::size_t(y) * kW + x;
+      if (std::abs(margin[k]) < 1e-5f) {  // on the threshold: either answer is the rule in float
+        ++excused;
+        continue;
+      }
       const bool r = rejected.at(x, y, 0) > 0.5f;
-      if (hidden[std::size_t(y) * kW + x]) {
+      if (hidden[k]) {
         ++disoccluded;
         dropped += r;
       } else {
         kept_elsewhere += !r;
       }
     }
-  std::printf("%d disoccluded, %d of them dropped; %d of %d others kept\n", disoccluded, dropped, kept_elsewhere,
-              kW * kH - disoccluded);
+  std::printf("%d disoccluded, %d of them dropped; %d of %d others kept; %d on the threshold\n", disoccluded, dropped,
+              kept_elsewhere, kW * kH - disoccluded - excused, excused);
   EXPECT_GT(disoccluded, 20);  // the walk uncovers something every frame
-  EXPECT_GE(dropped, disoccluded - 2);
-  EXPECT_GE(kept_elsewhere, kW * kH - disoccluded - 2);
+  EXPECT_EQ(dropped, disoccluded);
+  EXPECT_EQ(kept_elsewhere, kW * kH - disoccluded - excused);
+  EXPECT_LE(excused, 2);  // a coincidence, not a habit
+}
+
+// A hard case: a still camera under jitter uncovers nothing, yet on the street seen at a grazing
+// angle the depth changes so fast from pixel to pixel that the last frame's samples, taken up to
+// 1.5 pixels away (the footprint's half texel and the two jitters), hold depths beyond a
+// relative tolerance: the history was dropped there frame after frame, and the street
+// flickered. The test widened by the depth's change along the surface (the resolve's
+// depth_slack) may still drop a pixel whose 3x3 is not one plane (its sample may land on
+// either side of an edge under jitter), and no other.
+namespace {
+struct StillDrops {
+  int dropped = 0, off_edges = 0;
+};
+StillDrops drops_on_a_still_camera(const char* view, float depth_slope) {  // over frames 1 to 5
+  TemporalSettings s = defaults();
+  s.whole.indirect = s.whole.ao = false;
+  s.taa.depth_slope = depth_slope;
+  TemporalFrame frame(street_gpu());
+  OutputTarget target(kW, kH);
+  const FrameCamera camera = frame_camera(street().camera(view), float(kW) / float(kH));
+  StillDrops d;
+  for (int i = 0; i < 6; ++i) {
+    frame.render(camera, {target.framebuffer(), kW, kH}, s, 1.f / 30.f, i == 0);
+    if (i == 0) continue;  // the first frame has no history to keep
+    const ImageF rejected = read_texture_rgba(frame.taa().rejected(), kW, kH);
+    const ImageF m = read_texture_rgba(frame.motion().current(), kW, kH);
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        if (rejected.at(x, y, 0) < 0.5f) continue;
+        ++d.dropped;
+        // One plane across the 3x3: its 1 / depth is affine in the pixel, so on each line of
+        // three through the pixel the middle is the mean of the ends (within 1 %: the G-buffer's
+        // positions are not exact). Anything else (an edge, a crease, a curve) is excused.
+        auto inv = [&](int dx, int dy) { return 1.f / m.at(std::clamp(x + dx, 0, kW - 1), std::clamp(y + dy, 0, kH - 1), 3); };
+        const float z = inv(0, 0);
+        bool edge = false;
+        for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}, std::pair{1, 1}, std::pair{1, -1}})
+          edge = edge || std::abs(inv(dx, dy) + inv(-dx, -dy) - 2.f * z) > 0.01f * z;
+        d.off_edges += !edge;
+      }
+  }
+  return d;
+}
+}  // namespace
+
+TEST(TemporalGl, AStillCameraUnderJitterKeepsTheHistoryOfTheGrazingStreet) {
+  const StillDrops slope = drops_on_a_still_camera("street_level", 1.5f), flat = drops_on_a_still_camera("street_level", 0.f);
+  std::printf("street_level, 5 frames: slope-aware test drops %d (%d off edges); relative alone %d (%d off edges)\n",
+              slope.dropped, slope.off_edges, flat.dropped, flat.off_edges);
+  EXPECT_GT(flat.off_edges, 100);  // the hard case is there: the relative test alone drops the street
+  EXPECT_EQ(slope.off_edges, 0);
+}
+
+// Temporal AO (temporal_ao.h) along the walk against chapter 07's ray-traced truth: chapter 07's
+// classic AO with 4 points a pixel, a part of a 32-point kernel turned each frame and
+// accumulated, against the same 4 points a frame alone (the same samples, without the
+// accumulation pass) and against 32 points a frame alone (8 times the samples).
+namespace {
+double mean_ao_error(const std::vector<AoPathFrame>& frames) {
+  double sum = 0;
+  for (const AoPathFrame& f : frames) sum += f.error;
+  return frames.empty() ? 0.0 : sum / double(frames.size());
+}
+}  // namespace
+
+TEST(TemporalGl, TemporalAoIsNearerTheTruthThanTheFrameAloneAtEqualSamples) {
+  const CameraPath& path = path_named("assets/street_shop/street_shop.gltf", "walk");
+  const AoPathOptions o{.width = kW, .height = kH, .first = 12, .count = 4};
+  ch07::AoSettings four;
+  four.samples = 4;
+  ch07::AoSettings many = four;
+  many.samples = 32;
+  TemporalAoSettings on, off;
+  off.enabled = false;
+  const auto temporal = measure_ao_path(street_gpu(), path, four, on, o);
+  const auto alone = measure_ao_path(street_gpu(), path, four, off, o);
+  const auto alone32 = measure_ao_path(street_gpu(), path, many, off, o);
+  ASSERT_EQ(temporal.size(), 4u);
+  const double t = mean_ao_error(temporal), a = mean_ao_error(alone), a32 = mean_ao_error(alone32);
+  std::printf("AO error along the walk, frames 12-15: 4 samples accumulated %.4f, 4 alone %.4f, 32 alone %.4f\n", t, a, a32);
+  for (const AoPathFrame& f : {temporal.back(), alone.back()}) {
+    std::printf("  since disocclusion:");
+    for (std::size_t k = 0; k < f.since_error.size(); ++k) std::printf(" %zu:%.4f(%zu)", k, f.since_error[k], f.since_pixels[k]);
+    std::printf("\n");
+  }
+  // A regression bound: accumulated, the 4 points a frame must recover at least half of what 8
+  // times the samples gain over them (measured: two thirds; what is lost is the history's
+  // resampling as the camera moves).
+  EXPECT_LT(t, a - 0.5 * (a - a32));
+}
+
+// On a still camera the accumulation is exact: with the history's reach the kernel's 8 parts
+// (a running mean over them) and no turn, 8 frames of 4 points each are chapter 07's AO with the
+// whole 32-point kernel (its A is linear in the points, and the blur's weights depend only on
+// the surfaces). Allowed: float rounding of the 8 blends (a few ulps of 1; 1e-5).
+TEST(TemporalGl, StillTemporalAoOfEightPartsIsTheWholeKernel) {
+  const CameraPath still{"still", "street_shop", 30.f, {{0.f, "shops", {0, 0, 0}, 0.f, 0.f}, {1.f, "shops", {0, 0, 0}, 0.f, 0.f}}};
+  ch07::AoSettings four;
+  four.samples = 4;
+  ch07::AoSettings whole = four;
+  whole.samples = 32;
+  TemporalAoSettings t;
+  t.max_frames = t.kernel_parts = 8;
+  t.turn = false;
+  TemporalAoSettings off;
+  off.enabled = false;
+  const AoPathOptions o{.width = kW, .height = kH, .first = 7, .count = 1};
+  const auto accumulated = measure_ao_path(street_gpu(), still, four, t, o);
+  const auto at_once = measure_ao_path(street_gpu(), still, whole, off, o);
+  ASSERT_EQ(accumulated.size(), 1u);
+  ASSERT_EQ(at_once.size(), 1u);
+  float worst = 0;
+  for (std::size_t k = 0; k < at_once[0].ao.data.size(); ++k)
+    worst = std::max(worst, std::abs(accumulated[0].ao.data[k] - at_once[0].ao.data[k]));
+  std::printf("still, frame 7: 8 parts of 4 accumulated %.6f, 32 at once %.6f; largest difference %g\n", accumulated[0].error,
+              at_once[0].error, worst);
+  EXPECT_LE(worst, 1e-5f);
+}
+
+// Bad settings say what is wrong: a kernel part outside the kernel's parts (chapter 07 refuses
+// it before any pass), and half-resolution AO, which the accumulation cannot move by
+// full-resolution motion.
+TEST(TemporalGl, TemporalAoRefusesSettingsItCannotUse) {
+  const CameraPath& path = path_named("assets/street_shop/street_shop.gltf", "walk");
+  const AoPathOptions o{.width = 32, .height = 18, .first = 0, .count = 1};
+  auto message = [&](const ch07::AoSettings& ao, const TemporalAoSettings& t) {
+    try {
+      measure_ao_path(street_gpu(), path, ao, t, o);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  ch07::AoSettings part;
+  part.kernel_parts = 2;
+  part.kernel_part = 2;
+  TemporalAoSettings off;
+  off.enabled = false;
+  EXPECT_NE(message(part, off).find("kernel_part must be in [0, kernel_parts)"), std::string::npos) << message(part, off);
+  ch07::AoSettings half;
+  half.scale = 2;
+  EXPECT_NE(message(half, {}).find("accumulate full-resolution AO"), std::string::npos) << message(half, {});
+  EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }

@@ -4,14 +4,11 @@
 // frame's 3x3 neighbourhood in YCoCg, and dropped where the surface was hidden last frame.
 layout(binding = 0) uniform sampler2D u_current;          // this frame's radiance (jittered)
 layout(binding = 1) uniform sampler2D u_history;          // the last result (bilinear sampler)
-layout(binding = 2) uniform sampler2D u_motion;           // motion.h: xy uv motion, z depth then, w depth now
-layout(binding = 3) uniform sampler2D u_previous_motion;  // the last frame's (its w: the last depths)
 
 uniform float u_alpha;
 uniform int u_filter;  // 0 bilinear, 1 Catmull-Rom
 uniform int u_clip;    // 0 off, 1 clamp in RGB, 2 clip in YCoCg
 uniform int u_reject_disocclusion;
-uniform float u_depth_tolerance;
 uniform int u_tonemapped;
 uniform int u_has_exposure;
 // Chapter 05's eye (its ExposureState): the exposure the last frame was tonemapped with.
@@ -91,26 +88,7 @@ vec3 clip_to_box(vec3 lo, vec3 hi, vec3 q) {
 // [/clip-box]
 #endif
 
-// With --exercise 3 the reader's disoccluded (chapters/11_temporal/exercises/) stands in.
-#ifdef EXERCISE_DISOCCLUDED
-#include EXERCISE_DISOCCLUDED
-#else
-// [disocclusion]
-// Hidden last frame: none of the four last-frame depths around where this surface was lies
-// within the tolerance of the depth it had there.
-bool disoccluded(vec2 uv_then, float depth_then) {
-  vec2 size = vec2(textureSize(u_previous_motion, 0));
-  ivec2 base = ivec2(floor(uv_then * size - 0.5));
-  float nearest = 1e30;
-  for (int j = 0; j <= 1; ++j)
-    for (int i = 0; i <= 1; ++i) {
-      ivec2 q = clamp(base + ivec2(i, j), ivec2(0), ivec2(size) - 1);
-      nearest = min(nearest, abs(texelFetch(u_previous_motion, q, 0).w - depth_then));
-    }
-  return nearest > u_depth_tolerance * depth_then;
-}
-// [/disocclusion]
-#endif
+#include "11_temporal/shaders/disocclusion.glsl"
 
 void main() {
   ivec2 size = textureSize(u_current, 0);
@@ -166,7 +144,7 @@ void main() {
   vec4 own = texelFetch(u_motion, p, 0);
   vec2 uv_then = uv - texelFetch(u_motion, nearest_p, 0).xy;
   bool rejected = u_reset != 0 || any(lessThan(uv_then, vec2(0.0))) || any(greaterThan(uv_then, vec2(1.0)));
-  if (!rejected && u_reject_disocclusion != 0) rejected = disoccluded(uv - own.xy, own.z);
+  if (!rejected && u_reject_disocclusion != 0) rejected = disoccluded(uv - own.xy, own.z, depth_slack(p, size, own.z));
   vec3 result = centre;
   if (!rejected) {
     vec3 history = to_space(u_filter == 1 ? history_catmull_rom(uv_then) : texture(u_history, uv_then).rgb);

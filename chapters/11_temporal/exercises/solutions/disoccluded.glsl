@@ -1,5 +1,5 @@
 // Exercise 3 of chapter 11, solved: the same function as 11_temporal/shaders/taa_resolve.frag.
-bool disoccluded(vec2 uv_then, float depth_then) {
+bool disoccluded(vec2 uv_then, float depth_then, float slack) {
   vec2 size = vec2(textureSize(u_previous_motion, 0));
   ivec2 base = ivec2(floor(uv_then * size - 0.5));
   float nearest = 1e30;
@@ -8,5 +8,5 @@ bool disoccluded(vec2 uv_then, float depth_then) {
       ivec2 q = clamp(base + ivec2(i, j), ivec2(0), ivec2(size) - 1);
       nearest = min(nearest, abs(texelFetch(u_previous_motion, q, 0).w - depth_then));
     }
-  return nearest > u_depth_tolerance * depth_then;
+  return nearest > u_depth_tolerance * depth_then + slack;
 }
