@@ -110,7 +110,8 @@ void MsaaFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outpu
         ShaderProgram({vs, {GL_FRAGMENT_SHADER, "10_frame/shaders/msaa_shade.frag"}}, per_sample),
         ShaderProgram({vs, {GL_FRAGMENT_SHADER, "10_frame/shaders/msaa_resolve.frag"}}, d),
         ShaderProgram({vs, {GL_FRAGMENT_SHADER, "10_frame/shaders/msaa_mark.frag"}}, d),
-        ShaderProgram({vs, {GL_FRAGMENT_SHADER, "10_frame/shaders/msaa_centre_depth.frag"}}, d)});
+        ShaderProgram({vs, {GL_FRAGMENT_SHADER, "10_frame/shaders/msaa_centre_depth.frag"}}, d),
+        ShaderProgram({vs, {GL_FRAGMENT_SHADER, "10_frame/shaders/msaa_resolve_radiance.frag"}}, d)});
     programs_samples_ = s.samples;
   }
   Programs& p = *programs_;
@@ -228,8 +229,17 @@ void MsaaFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outpu
   }
   glDisable(GL_STENCIL_TEST);
 
-  // 5. The resolve into the output: tonemap each sample, then average (or the wrong order).
-  {
+  // 5. The resolve into the output: tonemap each sample, then average (or the wrong order);
+  //    or, for chapter 05's HDR chain, radiance averaged with the tone curve's weights.
+  if (s.output == MsaaOutput::Radiance) {
+    auto pass = timed(metrics, "msaa: float resolve (tonemap-resolve-inverse)");
+    output.bind();
+    glBindTextureUnit(0, radiance_.id());
+    p.resolve_radiance.use();
+    p.resolve_radiance.set("u_exposure", s.exposure);
+    p.resolve_radiance.set("u_resolve_first", int(s.order == ResolveOrder::ResolveFirst));
+    fullscreen(empty_);
+  } else {
     auto pass = timed(metrics, "msaa: tonemap + resolve");
     output.bind();
     glBindTextureUnit(0, radiance_.id());

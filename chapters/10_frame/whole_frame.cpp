@@ -2,6 +2,7 @@
 
 #include "chapters/04_neon/neon_scene.h"
 #include "chapters/05_hdr/hdr_math.h"
+#include "common/error.h"
 
 namespace lp::ch10 {
 
@@ -24,25 +25,34 @@ WholeFrame::WholeFrame(const Scene& scene)
 // [plan]
 std::vector<PlannedStage> WholeFrame::plan(const WholeFrameSettings& s) const {
   const bool ambient = glm::length(scene_.ambient) > 0.f;
-  auto off = [](bool wanted, bool possible, const std::string& lacking) {
-    return !wanted ? std::string("switched off") : !possible ? lacking : std::string();
+  // With MSAA, the stages that read the G-buffer one sample per pixel are not run.
+  const bool msaa = s.msaa > 1;
+  const std::string no_msaa = "no MSAA yet: --msaa 1 runs it";
+  auto off = [&](bool wanted, bool possible, const std::string& lacking, bool with_msaa = false) {
+    return !wanted ? std::string("switched off") : !possible ? lacking : msaa && !with_msaa ? no_msaa : std::string();
   };
   std::vector<PlannedStage> p;
   const bool glass = s.transparency != Method::Off;
-  p.push_back({"G-buffer (chapter 02)", true, "", "scene", "G-buffer"});
-  p.push_back({"shadow map of the sun (chapter 06)", s.shadows && has_sun_, off(s.shadows, has_sun_, "no directional light that casts shadows"),
+  const bool clustered = s.clustered && !msaa;
+  const std::string samples = msaa ? ", " + std::to_string(s.msaa) + " samples" : "";
+  p.push_back({"G-buffer (chapter 02" + samples + ")", true, "", "scene", "G-buffer"});
+  p.push_back({"shadow map of the sun (chapter 06)", s.shadows && has_sun_ && !msaa, off(s.shadows, has_sun_, "no directional light that casts shadows"),
                "scene", "shadow map"});
-  p.push_back({"global light: ambient + directional (chapter 03)", true, "", "G-buffer + shadow map", "light buffer"});
-  p.push_back({s.clustered ? "local lights: clusters (chapter 09)" : "local lights: stencil volumes (chapter 03)", true, "",
-               s.clustered ? "G-buffer + light lists" : "G-buffer + stencil", "light buffer"});
-  p.push_back({"neon tubes (chapter 04)", s.neon && !neon_lights_.empty(), off(s.neon, !neon_lights_.empty(), "no neon tubes"),
+  p.push_back({std::string("global light: ambient + directional (chapter 03") + (msaa ? "; per sample on edges, chapter 10)" : ")"), true, "",
+               "G-buffer + shadow map", "light buffer"});
+  p.push_back({clustered ? "local lights: clusters (chapter 09)"
+               : msaa    ? "local lights: stencil volumes (chapter 03; per sample on edges, chapter 10)"
+                         : "local lights: stencil volumes (chapter 03)",
+               true, "", clustered ? "G-buffer + light lists" : "G-buffer + stencil", "light buffer"});
+  p.push_back({"neon tubes (chapter 04)", s.neon && !neon_lights_.empty() && !msaa, off(s.neon, !neon_lights_.empty(), "no neon tubes"),
                "G-buffer + stencil", "light buffer"});
-  p.push_back({"ambient occlusion (chapters 07, 08)", s.ao && ambient, off(s.ao, ambient, "no ambient light"), "G-buffer",
+  p.push_back({"ambient occlusion (chapters 07, 08)", s.ao && ambient && !msaa, off(s.ao, ambient, "no ambient light"), "G-buffer",
                "light buffer"});
-  p.push_back({"indirect light, one bounce (chapter 08)", s.indirect, off(s.indirect, true, ""), "G-buffer + light buffer",
+  p.push_back({"indirect light, one bounce (chapter 08)", s.indirect && !msaa, off(s.indirect, true, ""), "G-buffer + light buffer",
                "light buffer"});
-  p.push_back({"composite into float radiance (chapter 03)", true, "", "G-buffer + light buffer", "radiance RGBA16F"});
-  p.push_back({"glass (chapter 10)", glass && has_glass_, off(glass, has_glass_, "no alphaMode BLEND material"),
+  p.push_back({msaa ? "composite, then the float resolve of the samples (chapters 03, 10)" : "composite into float radiance (chapter 03)",
+               true, "", "G-buffer + light buffer", "radiance RGBA16F"});
+  p.push_back({"glass (chapter 10)", glass && has_glass_ && !msaa, off(glass, has_glass_, "no alphaMode BLEND material"),
                "light lists + shadow map + depth", "radiance RGBA16F"});
   p.push_back({"log-average, adaptation, bloom, tonemap (chapter 05)", true, "", "radiance RGBA16F", "sRGB8 output"});
   return p;
@@ -62,6 +72,7 @@ std::string WholeFrame::key(const std::vector<PlannedStage>& p) {
 void WholeFrame::build(const std::vector<PlannedStage>& p) {
   const bool shadows = p[kShadowMap].runs, neon = p[kNeon].runs, ao = p[kAo].runs, indirect = p[kIndirect].runs,
              glass = p[kGlass].runs;
+  msaa_.reset();  // it reads the lights of the source made below
   glass_.reset();
   gi_.reset();
   shadows_.reset();
@@ -144,10 +155,24 @@ void WholeFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outp
   }
   // [one-frame]
   // 3. The frame into float radiance: G-buffer, shadow map, lights, tubes, AO + indirect,
-  //    composite, glass (chapter 03's DeferredFrame::render with the stages above).
+  //    composite, glass (chapter 03's DeferredFrame::render with the stages above), or with
+  //    MSAA chapter 10's multisampled frame, lit by the same lights, resolved into radiance.
   if (!radiance_ || radiance_->width() != output.width || radiance_->height() != output.height)
     radiance_ = std::make_unique<ch05::RadianceTarget>(output.width, output.height, GL_RGBA16F, neon_ || glass_);
-  source_->render(camera, *radiance_, metrics);
+  if (s.msaa > 1) {
+    if (!later_.empty()) throw Error("--msaa: a later chapter's stages (chapter 11's) run in chapter 03's frame, which has no MSAA");
+    source_->update_lights();
+    if (!msaa_) msaa_ = std::make_unique<MsaaFrame>(source_->scene_gpu(), frame.volumes());
+    msaa_->set_emissive_scale(s.glow);
+    // The resolve's weights bend where the eye's last exposure puts the curve's knee (1 before any).
+    const float eye = cut.age >= 0 && cut.read > 0.f ? cut.read : 1.f;
+    msaa_->render(camera, {radiance_->framebuffer(), output.width, output.height},
+                  {.samples = s.msaa, .order = s.msaa_order, .show = s.msaa_edges ? MsaaShow::Edges : MsaaShow::Image,
+                   .output = MsaaOutput::Radiance, .exposure = eye},
+                  metrics);
+  } else {
+    source_->render(camera, *radiance_, metrics);
+  }
   // 4. Chapter 05's HDR stage into the sRGB8 output.
   hdr_.process(radiance_->texture(), output.width, output.height, hdr, output.framebuffer, metrics);
   feedback_.end_frame(hdr_.adaptation().state_buffer());
@@ -160,6 +185,7 @@ std::size_t WholeFrame::allocated_bytes() const {
   if (radiance_) b += radiance_->bytes();
   if (shadows_) b += shadows_->allocated_bytes();
   if (glass_) b += glass_->allocated_bytes();
+  if (msaa_) b += msaa_->allocated_bytes();
   return b + hdr_.allocated_bytes() + (clustered_ ? clustered_->stats().bytes : 0);
 }
 
