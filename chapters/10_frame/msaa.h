@@ -125,6 +125,10 @@ class MsaaFrame {
   void render(const FrameCamera& camera, const ch03::FrameOutput& output, const MsaaSettings& settings,
               PassMetrics* metrics = nullptr);
 
+  // The last render()'s samples resolved again into `output` (step 5 alone), e.g. with another
+  // exposure for the radiance resolve's weights.
+  void resolve(const ch03::FrameOutput& output, const MsaaSettings& settings, PassMetrics* metrics = nullptr);
+
   const MsaaCounts& counts() const { return counts_; }
   // Where the rasteriser put each sample within its pixel (0..1) in the last render().
   const std::vector<glm::vec2>& sample_positions() const { return positions_; }

@@ -164,12 +164,20 @@ void WholeFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outp
     source_->update_lights();
     if (!msaa_) msaa_ = std::make_unique<MsaaFrame>(source_->scene_gpu(), frame.volumes());
     msaa_->set_emissive_scale(s.glow);
-    // The resolve's weights bend where the eye's last exposure puts the curve's knee (1 before any).
-    const float eye = cut.age >= 0 && cut.read > 0.f ? cut.read : 1.f;
-    msaa_->render(camera, {radiance_->framebuffer(), output.width, output.height},
-                  {.samples = s.msaa, .order = s.msaa_order, .show = s.msaa_edges ? MsaaShow::Edges : MsaaShow::Image,
-                   .output = MsaaOutput::Radiance, .exposure = eye},
-                  metrics);
+    // The resolve's weights bend where the eye's exposure puts the curve's knee: the last one
+    // read back. A new shot has none yet: its samples are resolved with the knee at 1, chapter
+    // 05 measures that frame's exposure, and (one wait for the GPU, on a new shot only) the
+    // samples are resolved again with it, the eye reset to start from the new image.
+    const ch03::FrameOutput into{radiance_->framebuffer(), output.width, output.height};
+    MsaaSettings m{.samples = s.msaa, .order = s.msaa_order, .show = s.msaa_edges ? MsaaShow::Edges : MsaaShow::Image,
+                   .output = MsaaOutput::Radiance, .exposure = cut.age >= 0 && cut.read > 0.f ? cut.read : 1.f};
+    msaa_->render(camera, into, m, metrics);
+    if (cut.age < 0 && m.order == ResolveOrder::TonemapFirst) {
+      hdr_.process(radiance_->texture(), output.width, output.height, hdr, output.framebuffer);
+      m.exposure = hdr_.adaptation().read().exposure;
+      hdr_.reset_adaptation(1.f);
+      msaa_->resolve(into, m);  // (the first is the one timed: the same pass)
+    }
   } else {
     source_->render(camera, *radiance_, metrics);
   }
