@@ -25,25 +25,18 @@ WholeFrame::WholeFrame(const Scene& scene)
 // [plan]
 std::vector<PlannedStage> WholeFrame::plan(const WholeFrameSettings& s) const {
   const bool ambient = glm::length(scene_.ambient) > 0.f;
-  // With MSAA, the stages that read the G-buffer one sample per pixel are not run.
-  const bool msaa = s.msaa > 1;
-  const std::string no_msaa = "no MSAA yet: --msaa 1 runs it";
-  auto off = [&](bool wanted, bool possible, const std::string& lacking, bool with_msaa = false) {
-    return !wanted ? std::string("switched off") : !possible ? lacking : msaa && !with_msaa ? no_msaa : std::string();
+  const bool msaa = s.msaa > 1, glass = s.transparency != Method::Off, clustered = s.clustered && !msaa;
+  auto off = [&](bool wanted, bool possible, const std::string& lacking) {  // why not; with MSAA, any stage without it
+    return !wanted ? std::string("switched off") : !possible ? lacking : msaa ? "no MSAA yet: --msaa 1 runs it" : "";
   };
+  const std::string per_sample = msaa ? "; per sample on edges, chapter 10)" : ")";
   std::vector<PlannedStage> p;
-  const bool glass = s.transparency != Method::Off;
-  const bool clustered = s.clustered && !msaa;
-  const std::string samples = msaa ? ", " + std::to_string(s.msaa) + " samples" : "";
-  p.push_back({"G-buffer (chapter 02" + samples + ")", true, "", "scene", "G-buffer"});
+  p.push_back({"G-buffer (chapter 02" + (msaa ? ", " + std::to_string(s.msaa) + " samples)" : ")"), true, "", "scene", "G-buffer"});
   p.push_back({"shadow map of the sun (chapter 06)", s.shadows && has_sun_ && !msaa, off(s.shadows, has_sun_, "no directional light that casts shadows"),
                "scene", "shadow map"});
-  p.push_back({std::string("global light: ambient + directional (chapter 03") + (msaa ? "; per sample on edges, chapter 10)" : ")"), true, "",
-               "G-buffer + shadow map", "light buffer"});
-  p.push_back({clustered ? "local lights: clusters (chapter 09)"
-               : msaa    ? "local lights: stencil volumes (chapter 03; per sample on edges, chapter 10)"
-                         : "local lights: stencil volumes (chapter 03)",
-               true, "", clustered ? "G-buffer + light lists" : "G-buffer + stencil", "light buffer"});
+  p.push_back({"global light: ambient + directional (chapter 03" + per_sample, true, "", "G-buffer + shadow map", "light buffer"});
+  p.push_back({clustered ? "local lights: clusters (chapter 09)" : "local lights: stencil volumes (chapter 03" + per_sample, true, "",
+               clustered ? "G-buffer + light lists" : "G-buffer + stencil", "light buffer"});
   p.push_back({"neon tubes (chapter 04)", s.neon && !neon_lights_.empty() && !msaa, off(s.neon, !neon_lights_.empty(), "no neon tubes"),
                "G-buffer + stencil", "light buffer"});
   p.push_back({"ambient occlusion (chapters 07, 08)", s.ao && ambient && !msaa, off(s.ao, ambient, "no ambient light"), "G-buffer",
@@ -159,34 +152,40 @@ void WholeFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outp
   //    MSAA chapter 10's multisampled frame, lit by the same lights, resolved into radiance.
   if (!radiance_ || radiance_->width() != output.width || radiance_->height() != output.height)
     radiance_ = std::make_unique<ch05::RadianceTarget>(output.width, output.height, GL_RGBA16F, neon_ || glass_);
-  if (s.msaa > 1) {
-    if (!later_.empty()) throw Error("--msaa: a later chapter's stages (chapter 11's) run in chapter 03's frame, which has no MSAA");
-    source_->update_lights();
-    if (!msaa_) msaa_ = std::make_unique<MsaaFrame>(source_->scene_gpu(), frame.volumes());
-    msaa_->set_emissive_scale(s.glow);
-    // The resolve's weights bend where the eye's exposure puts the curve's knee: the last one
-    // read back. A new shot has none yet: its samples are resolved with the knee at 1, chapter
-    // 05 measures that frame's exposure, and (one wait for the GPU, on a new shot only) the
-    // samples are resolved again with it, the eye reset to start from the new image.
-    const ch03::FrameOutput into{radiance_->framebuffer(), output.width, output.height};
-    MsaaSettings m{.samples = s.msaa, .order = s.msaa_order, .show = s.msaa_edges ? MsaaShow::Edges : MsaaShow::Image,
-                   .output = MsaaOutput::Radiance, .exposure = cut.age >= 0 && cut.read > 0.f ? cut.read : 1.f};
-    msaa_->render(camera, into, m, metrics);
-    if (cut.age < 0 && m.order == ResolveOrder::TonemapFirst) {
-      hdr_.process(radiance_->texture(), output.width, output.height, hdr, output.framebuffer);
-      m.exposure = hdr_.adaptation().read().exposure;
-      hdr_.reset_adaptation(1.f);
-      msaa_->resolve(into, m);  // (the first is the one timed: the same pass)
-    }
-  } else {
-    source_->render(camera, *radiance_, metrics);
-  }
+  if (s.msaa > 1) render_msaa(camera, output, s, hdr, cut, metrics);
+  else source_->render(camera, *radiance_, metrics);
   // 4. Chapter 05's HDR stage into the sRGB8 output.
   hdr_.process(radiance_->texture(), output.width, output.height, hdr, output.framebuffer, metrics);
   feedback_.end_frame(hdr_.adaptation().state_buffer());
   // [/one-frame]
 }
 // [/render]
+
+// [msaa]
+// With MSAA: chapter 10's multisampled frame lit by chapter 03's frame's lights (its volumes),
+// resolved into the radiance chapter 05's chain reads.
+void WholeFrame::render_msaa(const FrameCamera& camera, const ch03::FrameOutput& output, const WholeFrameSettings& s,
+                             const ch05::HdrSettings& hdr, const ch05::ExposureEstimate& cut, PassMetrics* metrics) {
+  if (!later_.empty()) throw Error("--msaa: a later chapter's stages (chapter 11's) run in chapter 03's frame, which has no MSAA");
+  source_->update_lights();
+  if (!msaa_) msaa_ = std::make_unique<MsaaFrame>(source_->scene_gpu(), source_->volumes());
+  msaa_->set_emissive_scale(s.glow);
+  // The resolve's weights bend where the eye's exposure puts the curve's knee: the last one
+  // read back. A new shot has none yet: its samples are resolved with the knee at 1, chapter
+  // 05 measures that frame's exposure, and (one wait for the GPU, on a new shot only) the
+  // samples are resolved again with it, the eye reset to start from the new image.
+  const ch03::FrameOutput into{radiance_->framebuffer(), output.width, output.height};
+  MsaaSettings m{.samples = s.msaa, .order = s.msaa_order, .show = s.msaa_edges ? MsaaShow::Edges : MsaaShow::Image,
+                 .output = MsaaOutput::Radiance, .exposure = cut.age >= 0 && cut.read > 0.f ? cut.read : 1.f};
+  msaa_->render(camera, into, m, metrics);
+  if (cut.age < 0 && m.order == ResolveOrder::TonemapFirst) {
+    hdr_.process(radiance_->texture(), output.width, output.height, hdr, output.framebuffer);
+    m.exposure = hdr_.adaptation().read().exposure;
+    hdr_.reset_adaptation(1.f);
+    msaa_->resolve(into, m);  // (the first is the one timed: the same pass)
+  }
+}
+// [/msaa]
 
 std::size_t WholeFrame::allocated_bytes() const {
   std::size_t b = source_ ? source_->allocated_bytes() : 0;

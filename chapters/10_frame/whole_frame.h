@@ -99,6 +99,9 @@ class WholeFrame {
  private:
   void build(const std::vector<PlannedStage>& p);  // the radiance source with the stages the plan runs
   static std::string key(const std::vector<PlannedStage>& p);  // which stages run: one character each
+  // Step 3 with MSAA: its frame into radiance_, the resolve weighted at the eye's exposure.
+  void render_msaa(const FrameCamera& camera, const ch03::FrameOutput& output, const WholeFrameSettings& s,
+                   const ch05::HdrSettings& hdr, const ch05::ExposureEstimate& cut, PassMetrics* metrics);
 
   std::unique_ptr<SceneGpu> owned_;  // when made from a Scene
   const SceneGpu& gpu_;
