@@ -66,7 +66,7 @@ Truth downsample(const ImageRGBA8& big) {
 }
 
 // The pixels MSAA marked (lit per sample), from --msaa-view edges: its red (light 1e4, 0, 0)
-// leaves green and blue at 0 only where a pixel is marked.
+// leaves green and blue at 0 (and red above it) only where a pixel is marked, however many are.
 std::vector<bool> marked_pixels(WholeFrame& frame, const Scene& scene) {
   WholeFrameSettings s = msaa_settings(4);
   s.msaa_edges = true;
@@ -75,7 +75,7 @@ std::vector<bool> marked_pixels(WholeFrame& frame, const Scene& scene) {
   for (int y = 0; y < kH; ++y)
     for (int x = 0; x < kW; ++x) {
       const std::uint8_t* p = edges.at(x, y);
-      marked[std::size_t(y) * kW + x] = p[0] > 200 && p[1] == 0 && p[2] == 0;
+      marked[std::size_t(y) * kW + x] = p[0] > 0 && p[1] == 0 && p[2] == 0;
     }
   return marked;
 }
