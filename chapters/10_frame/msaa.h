@@ -4,6 +4,8 @@
 // computed once per pixel where they do not and once per sample where they do (two
 // stencil-tested passes), and each sample tonemapped before the samples are averaged (the
 // source's chapter 5: the tonemapping curve is not linear, so resolving first is wrong).
+// Chapter 10's whole frame draws it for --msaa N with MsaaOutput::Radiance: the samples
+// resolved into float radiance for chapter 05's HDR chain instead (whole_frame.h).
 //
 //   MsaaFrame msaa(scene_gpu, frame.volumes());           // chapter 03's frame's lights and cuts
 //   msaa.render(camera, {output_fbo, w, h}, {.samples = 4}, &metrics);
@@ -63,7 +65,7 @@ constexpr unsigned kEdgeBit = 0x80, kVolumeBits = 0x7F;
 
 // [settings]
 struct MsaaSettings {
-  int samples = 4;  // 1, 2 or 4 (llvmpipe has 4 at most)
+  int samples = 4;  // 1, 2, 4 or 8, as the renderer makes them (llvmpipe: 4 at most)
   MsaaShading shading = MsaaShading::EdgesPerSample;
   ResolveOrder order = ResolveOrder::TonemapFirst;
   MsaaShow show = MsaaShow::Image;
