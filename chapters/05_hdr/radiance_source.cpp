@@ -88,7 +88,7 @@ void DeferredRadiance::set_cut_exposure(float exposure) {
 
 float DeferredRadiance::cut_threshold() const { return ch03::cut_threshold(cut_exposure_, peak_reflectance_); }
 
-void DeferredRadiance::render(const FrameCamera& camera, const RadianceTarget& target, PassMetrics* metrics) {
+void DeferredRadiance::update_lights() {
   if (lights_changed_) {
     // The sun's scale, applied where the lights are packed: a copy of the lights, not of the scene.
     ch03::LightSet set = ch03::build_light_set(sun_scaled(scene().lights, sun_), cut_threshold(), volumes().shapes());
@@ -98,6 +98,10 @@ void DeferredRadiance::render(const FrameCamera& camera, const RadianceTarget& t
     volumes().set_lights(std::move(set));
     lights_changed_ = false;
   }
+}
+
+void DeferredRadiance::render(const FrameCamera& camera, const RadianceTarget& target, PassMetrics* metrics) {
+  update_lights();
   // [deferred-frame]
   // Chapter 03's frame, into our float target instead of the sRGB output.
   frame_->render(camera, {target.framebuffer(), target.width(), target.height()}, metrics);

@@ -91,6 +91,9 @@ class DeferredRadiance {
   // Draws the scene as `camera` sees it into `target` (any size; the G-buffer and the light
   // buffer follow it). With `metrics`, each pass is timed on its own.
   void render(const FrameCamera& camera, const RadianceTarget& target, PassMetrics* metrics = nullptr);
+  // The lights packed for the scales and cut set above, as render() does first: for a pass
+  // that reads the frame's lights without drawing the frame (chapter 10's MSAA).
+  void update_lights();
 
   const Scene& scene() const { return gpu_.scene(); }  // as loaded: the scales are not in it
   const SceneGpu& scene_gpu() const { return gpu_; }

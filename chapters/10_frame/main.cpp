@@ -6,9 +6,9 @@
 // the finished image with a forward pass lit by the same lights: sorted back to front, or
 // weighted blended order-independent transparency (WBOIT), or the exact per-pixel order
 // composited on the CPU (the ground truth). `--show` draws WBOIT's two targets, or a method's
-// error against the exact order. `--msaa 4` draws the opaque frame with MSAA instead (msaa.h:
-// edges marked in the stencil, lit per sample there only; `--msaa-view` shows the edges or the
-// wrong resolve order).
+// error against the exact order. `--msaa 4` is an option of the whole frame (msaa.h: a
+// multisampled G-buffer, edges marked in the stencil and lit per sample there only, a float
+// resolve before the HDR chain; `--msaa-view` shows the edges or the plain mean).
 #include <chrono>
 #include <map>
 #include <memory>
@@ -38,7 +38,7 @@ const CliSpec kCli{
     .program = "10_frame",
     .summary = "The whole frame: every stage of the book (whole), each switchable. Or (frame) the glass alone, "
                "drawn after the deferred passes by a forward pass lit by the same lights: sorted back to front, "
-               "weighted blended OIT, or the exact per-pixel order; --msaa 2/4: the opaque frame with MSAA.",
+               "weighted blended OIT, or the exact per-pixel order; --msaa 2/4/8: the whole frame with MSAA.",
     .default_scene = "assets/street_shop/street_shop.gltf",
     .modes = {"whole", "frame"},
     .knobs = {choice_knob("transparency", "the glass: sorted back to front, weighted blended OIT (McGuire & Bavoil), "
@@ -59,15 +59,13 @@ const CliSpec kCli{
               {"glow", "whole: multiplies emissive surfaces (chapter 05)", 8, 0, 10000},
               choice_knob("bloom", "whole: chapter 05's bloom: off, after tonemapping, or before (energy-conserving)",
                           {"off", "after", "before"}, 2),
-              choice_knob("msaa", "samples per pixel: 1 is the frame above; 2 or 4 draw the opaque frame with MSAA "
-                                  "(deferred: lit per sample only on the edges; no glass yet)",
-                          {"1", "2", "4"}),
-              choice_knob("msaa-view", "with --msaa 2 or 4: the image, the edges marked for per-sample light (red), "
-                                       "or the samples resolved before the tonemap (wrong on bright edges)",
-                          {"image", "edges", "resolve-first"}),
-              choice_knob("msaa-lights", "with --msaa 2 or 4: the local lights as chapter 03's stencil volumes (the "
-                                         "stencil shared with the edge mark) or one full-screen loop over every light",
-                          {"volumes", "full-screen"})}};
+              choice_knob("msaa", "whole: samples per pixel: 1 is the frame above; 2, 4 or 8 draw it with MSAA "
+                                  "(lit per sample only on the edges, a float resolve before the HDR chain; the "
+                                  "stages without MSAA yet are not run, and the plan says so)",
+                          {"1", "2", "4", "8"}),
+              choice_knob("msaa-view", "with --msaa 2, 4 or 8: the image, the edges marked for per-sample light (red), "
+                                       "or the samples' plain mean (resolve-first: hard bright edges)",
+                          {"image", "edges", "resolve-first"})}};
 
 // The error views draw |method - exact| as a heat map whose first level (one 8-bit step,
 // colour value 64) is most of what they show: half-float and 8-bit rounding of each layer
@@ -131,7 +129,7 @@ std::vector<Exercise> exercises() {
            .define = "EXERCISE_EDGE_TEST",
            .shots = {{"shops", "whole", {{"msaa", 2}, {"msaa-view", 1}}}, {"shop_window", "whole", {{"msaa", 2}, {"msaa-view", 1}}}},
            .look_at = "the edges marked red (--msaa 4 --msaa-view edges): silhouettes, creases and lit windows in their walls"},
-          {.title = "MSAA's resolve, after the tone curve",
+          {.title = "MSAA's resolve into radiance, weighted by the tone curve",
            .file = "resolve.glsl",
            .define = "EXERCISE_RESOLVE",
            .shots = {{"shops", "whole", {{"msaa", 2}}}, {"shops", "whole", {{"msaa", 2}, {"msaa-view", 2}}}},
@@ -145,24 +143,6 @@ const Chapter kChapter{.cli = kCli,
                                             {"assets/atrium/atrium.gltf", whole_shots("aisle", false, kTexturedFloor)}},
                        .exercises = exercises()};
 
-// --msaa 2 or 4: MSAA is its own frame (chapter 03's lights over a multisampled G-buffer);
-// the whole frame's other stages are not drawn with it, and the program says so.
-void draw_msaa(App& app, const Frame& f, MsaaFrame& msaa, int samples) {
-  const std::string& view = f.choice("msaa-view");
-  msaa.render(f.camera, {f.target, f.width, f.height},
-              {.samples = samples, .order = view == "resolve-first" ? ResolveOrder::ResolveFirst : ResolveOrder::TonemapFirst,
-               .show = view == "edges" ? MsaaShow::Edges : MsaaShow::Image,
-               .lights = f.choice("msaa-lights") == "full-screen" ? MsaaLights::FullScreen : MsaaLights::Volumes},
-              &app.metrics());
-  app.metrics().set_allocation("MSAA G-buffer + light + stencil, all samples", msaa.allocated_bytes());
-  const char* not_whole = "the whole frame has no MSAA yet: --msaa draws chapter 03's opaque frame with MSAA";
-  if (f.mode == "whole") app.report() << "note: " << not_whole << '\n';
-  if (std::ostream& out = app.report())
-    out << "MSAA " << samples << " samples (deferred, per sample on the edges; glass not drawn), " << view
-        << ", local lights: " << f.choice("msaa-lights") << '\n';
-  app.panel([&] { if (f.mode == "whole") ImGui::TextWrapped("%s", not_whole); });
-}
-
 // --mode whole: every chapter's stage in one deferred frame (whole_frame.cpp), and its plan.
 void draw_whole(App& app, const Frame& f, WholeFrame& whole) {
   const std::string& which = f.choice("transparency");
@@ -173,11 +153,18 @@ void draw_whole(App& app, const Frame& f, WholeFrame& whole) {
                        // The exact order is --mode frame's ground truth (a CPU composite): the
                        // whole frame sorts instead, and says so below.
                        .transparency = which == "off" ? Method::Off : which == "exact" ? Method::Sorted : method_named(which),
-                       .sun = float(f.knob("sun")), .glow = float(f.knob("glow"))};
+                       .sun = float(f.knob("sun")), .glow = float(f.knob("glow")),
+                       .msaa = std::stoi(f.choice("msaa")),
+                       .msaa_order = f.choice("msaa-view") == "resolve-first" ? ResolveOrder::ResolveFirst : ResolveOrder::TonemapFirst,
+                       .msaa_edges = f.choice("msaa-view") == "edges"};
   s.hdr.bloom = static_cast<ch05::BloomMode>(f.knob_int("bloom"));
   whole.render(f.camera, {f.target, f.width, f.height}, s, f.dt, f.new_shot, &app.metrics());
   app.metrics().set_allocation("the whole frame's targets (G-buffer, light, radiance, maps, lists, HDR chains)",
                                whole.allocated_bytes());
+  if (s.msaa > 1)
+    if (std::ostream& out = app.report())
+      out << "MSAA " << s.msaa << " samples (per sample on the marked edges, a float resolve: " << f.choice("msaa-view")
+          << "); the stages without MSAA yet are not run\n";
   const char* exact_note = "the exact order is --mode frame's ground truth: the whole frame sorts the glass";
   if (which == "exact") app.report() << "note: " << exact_note << '\n';
   const std::vector<PlannedStage> plan = whole.plan(s);
@@ -257,23 +244,22 @@ int main(int argc, char** argv) {
     TransparencyStage glass(frame, app.scene_gpu());
     frame.add_stage(glass);
     std::unique_ptr<WholeFrame> whole;  // --mode whole: made when first asked for
-    MsaaFrame msaa(app.scene_gpu(), frame.volumes());  // --msaa 2 or 4: lit by the frame's lights
 
-    // 3. Each frame, one of three: MSAA, the whole frame, or the glass study.
+    // 3. Each frame, one of two: the whole frame (with MSAA or without), or the glass study.
     while (app.next_frame()) {
       const Frame& f = app.frame();
       if (f.reload_shaders) {
         frame.reload_shaders();
         glass.reload_shaders();
-        msaa.reload_shaders();
         if (whole) whole->reload_shaders();
       }
-      if (const int samples = std::stoi(f.choice("msaa")); samples > 1) {
-        draw_msaa(app, f, msaa, samples);
-      } else if (f.mode == "whole") {
+      if (f.mode == "whole") {
         if (!whole) whole = std::make_unique<WholeFrame>(app.scene_gpu());
         draw_whole(app, f, *whole);
       } else {
+        if (f.choice("msaa") != "1")
+          throw UsageError("--msaa " + f.choice("msaa") + " is an option of the whole frame (--mode whole); the glass "
+                           "study (--mode frame) draws no MSAA");
         draw_glass_study(app, f, frame, glass);
       }
     }

@@ -110,7 +110,8 @@ void MsaaFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outpu
         ShaderProgram({vs, {GL_FRAGMENT_SHADER, "10_frame/shaders/msaa_shade.frag"}}, per_sample),
         ShaderProgram({vs, {GL_FRAGMENT_SHADER, "10_frame/shaders/msaa_resolve.frag"}}, d),
         ShaderProgram({vs, {GL_FRAGMENT_SHADER, "10_frame/shaders/msaa_mark.frag"}}, d),
-        ShaderProgram({vs, {GL_FRAGMENT_SHADER, "10_frame/shaders/msaa_centre_depth.frag"}}, d)});
+        ShaderProgram({vs, {GL_FRAGMENT_SHADER, "10_frame/shaders/msaa_centre_depth.frag"}}, d),
+        ShaderProgram({vs, {GL_FRAGMENT_SHADER, "10_frame/shaders/msaa_resolve_radiance.frag"}}, d)});
     programs_samples_ = s.samples;
   }
   Programs& p = *programs_;
@@ -228,18 +229,8 @@ void MsaaFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outpu
   }
   glDisable(GL_STENCIL_TEST);
 
-  // 5. The resolve into the output: tonemap each sample, then average (or the wrong order).
-  {
-    auto pass = timed(metrics, "msaa: tonemap + resolve");
-    output.bind();
-    glBindTextureUnit(0, radiance_.id());
-    p.resolve.use();
-    p.resolve.set("u_operator", s.tonemap_operator);
-    p.resolve.set("u_exposure", s.exposure);
-    p.resolve.set("u_white", s.white);
-    p.resolve.set("u_resolve_first", int(s.order == ResolveOrder::ResolveFirst));
-    fullscreen(empty_);
-  }
+  // 5. The resolve into the output.
+  resolve(output, s, metrics);
   glEnable(GL_DEPTH_TEST);
 
   // [counts]
@@ -254,6 +245,33 @@ void MsaaFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outpu
   counts_.marked_after_lights = samples_passed[3] / n;
   for (const auto& [per_sample, query] : volume_queries_)  // read once the frame is drawn: no stall per light
     (per_sample ? counts_.volume_per_sample : counts_.volume_pixel_samples) += query_result_u64(query.id());
+}
+
+void MsaaFrame::resolve(const ch03::FrameOutput& output, const MsaaSettings& s, PassMetrics* metrics) {
+  if (!programs_ || !gbuffer_ || gbuffer_->samples() != s.samples)
+    throw Error("MSAA: resolve() of " + std::to_string(s.samples) + " samples before a render() that drew them");
+  Programs& p = *programs_;
+  output.bind();
+  glBindTextureUnit(0, radiance_.id());
+  glDisable(GL_STENCIL_TEST);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  if (s.output == MsaaOutput::Radiance) {  // for chapter 05's HDR chain: radiance, the curve's weights
+    auto pass = timed(metrics, "msaa: float resolve (tonemap-resolve-inverse)");
+    p.resolve_radiance.use();
+    p.resolve_radiance.set("u_exposure", s.exposure);
+    p.resolve_radiance.set("u_resolve_first", int(s.order == ResolveOrder::ResolveFirst));
+    fullscreen(empty_);
+  } else {  // display values: tonemap each sample, then average (or the wrong order)
+    auto pass = timed(metrics, "msaa: tonemap + resolve");
+    p.resolve.use();
+    p.resolve.set("u_operator", s.tonemap_operator);
+    p.resolve.set("u_exposure", s.exposure);
+    p.resolve.set("u_white", s.white);
+    p.resolve.set("u_resolve_first", int(s.order == ResolveOrder::ResolveFirst));
+    fullscreen(empty_);
+  }
+  glEnable(GL_DEPTH_TEST);
 }
 
 void MsaaFrame::draw_volumes(const MsaaSettings& s, bool counting) {

@@ -4,6 +4,8 @@
 // computed once per pixel where they do not and once per sample where they do (two
 // stencil-tested passes), and each sample tonemapped before the samples are averaged (the
 // source's chapter 5: the tonemapping curve is not linear, so resolving first is wrong).
+// Chapter 10's whole frame draws it for --msaa N with MsaaOutput::Radiance: the samples
+// resolved into float radiance for chapter 05's HDR chain instead (whole_frame.h).
 //
 //   MsaaFrame msaa(scene_gpu, frame.volumes());           // chapter 03's frame's lights and cuts
 //   msaa.render(camera, {output_fbo, w, h}, {.samples = 4}, &metrics);
@@ -45,6 +47,11 @@ enum class MsaaShading { EdgesPerSample, PerSampleEverywhere };
 // samples' radiance averaged, then tonemapped (what the source warns against).
 enum class ResolveOrder { TonemapFirst, ResolveFirst };
 enum class MsaaShow { Image, Edges };  // Edges: the marked pixels drawn red over the image
+// What the resolve writes: display values (tonemapped per sample, chapter 03's sRGB frame),
+// or radiance for chapter 05's HDR chain (the whole frame's --msaa): a float mean of the
+// samples, each weighted by how much the tone curve compresses it (ResolveOrder::TonemapFirst,
+// tonemap-resolve-inverse) or not at all (ResolveFirst).
+enum class MsaaOutput { Display, Radiance };
 // How the local lights reach the samples: chapter 03's stencil light volumes, or one
 // full-screen loop over every light (both at the two rates).
 enum class MsaaLights { Volumes, FullScreen };
@@ -58,11 +65,12 @@ constexpr unsigned kEdgeBit = 0x80, kVolumeBits = 0x7F;
 
 // [settings]
 struct MsaaSettings {
-  int samples = 4;  // 1, 2 or 4 (llvmpipe has 4 at most)
+  int samples = 4;  // 1, 2, 4 or 8, as the renderer makes them (llvmpipe: 4 at most)
   MsaaShading shading = MsaaShading::EdgesPerSample;
   ResolveOrder order = ResolveOrder::TonemapFirst;
   MsaaShow show = MsaaShow::Image;
   MsaaLights lights = MsaaLights::Volumes;
+  MsaaOutput output = MsaaOutput::Display;
   // An edge: some sample lies off sample 0's plane (or sample 0 off its plane) by more than
   // depth_threshold times sample 0's distance to the eye (a step of 1 cm at 1 m), or its
   // normal turns by more than normal_degrees, or its emissive colour differs (another
@@ -75,7 +83,7 @@ struct MsaaSettings {
   // Chapter 05's curves (hdr_math.glsl: 0 clamp, 1 Reinhard, 2 extended, 3 ACES) at a fixed
   // exposure. Clamp at exposure 1 is what chapter 03's sRGB8 output does to light above 1.
   int tonemap_operator = 0;
-  float exposure = 1.f;
+  float exposure = 1.f;  // MsaaOutput::Radiance: the exposure its weights assume (the eye's last)
   float white = 4.f;  // the extended Reinhard's white point
 };
 // [/settings]
@@ -111,11 +119,17 @@ class MsaaFrame {
   void reload_shaders();
   void set_ambient(const glm::vec3& ambient) { ambient_ = ambient; }
   void set_background(const glm::vec3& background) { background_ = background; }
+  // Chapter 05's glow: the emissive colours its G-buffer holds, as chapter 03's frame does.
+  void set_emissive_scale(float scale) { geometry_.set_emissive_scale(scale); }
 
   // The frame into `output` (an sRGB8 target: the resolve writes linear display values; or a
   // float target, which keeps them unencoded). Each pass timed in `metrics`.
   void render(const FrameCamera& camera, const ch03::FrameOutput& output, const MsaaSettings& settings,
               PassMetrics* metrics = nullptr);
+
+  // The last render()'s samples resolved again into `output` (step 5 alone), e.g. with another
+  // exposure for the radiance resolve's weights.
+  void resolve(const ch03::FrameOutput& output, const MsaaSettings& settings, PassMetrics* metrics = nullptr);
 
   const MsaaCounts& counts() const { return counts_; }
   // Where the rasteriser put each sample within its pixel (0..1) in the last render().
@@ -141,7 +155,7 @@ class MsaaFrame {
   gl::Buffer local_;  // MsaaLights::FullScreen's records, packed each frame that draws them
   int local_count_ = 0;
   struct Programs {
-    ShaderProgram edges, per_pixel, per_sample, resolve, mark, centre_depth;
+    ShaderProgram edges, per_pixel, per_sample, resolve, mark, centre_depth, resolve_radiance;
   };
   std::unique_ptr<Programs> programs_;
   int programs_samples_ = 0;

@@ -2,6 +2,7 @@
 
 #include "chapters/04_neon/neon_scene.h"
 #include "chapters/05_hdr/hdr_math.h"
+#include "common/error.h"
 
 namespace lp::ch10 {
 
@@ -24,25 +25,27 @@ WholeFrame::WholeFrame(const Scene& scene)
 // [plan]
 std::vector<PlannedStage> WholeFrame::plan(const WholeFrameSettings& s) const {
   const bool ambient = glm::length(scene_.ambient) > 0.f;
-  auto off = [](bool wanted, bool possible, const std::string& lacking) {
-    return !wanted ? std::string("switched off") : !possible ? lacking : std::string();
+  const bool msaa = s.msaa > 1, glass = s.transparency != Method::Off, clustered = s.clustered && !msaa;
+  auto off = [&](bool wanted, bool possible, const std::string& lacking) {  // why not; with MSAA, any stage without it
+    return !wanted ? std::string("switched off") : !possible ? lacking : msaa ? "no MSAA yet: --msaa 1 runs it" : "";
   };
+  const std::string per_sample = msaa ? "; per sample on edges, chapter 10)" : ")";
   std::vector<PlannedStage> p;
-  const bool glass = s.transparency != Method::Off;
-  p.push_back({"G-buffer (chapter 02)", true, "", "scene", "G-buffer"});
-  p.push_back({"shadow map of the sun (chapter 06)", s.shadows && has_sun_, off(s.shadows, has_sun_, "no directional light that casts shadows"),
+  p.push_back({"G-buffer (chapter 02" + (msaa ? ", " + std::to_string(s.msaa) + " samples)" : ")"), true, "", "scene", "G-buffer"});
+  p.push_back({"shadow map of the sun (chapter 06)", s.shadows && has_sun_ && !msaa, off(s.shadows, has_sun_, "no directional light that casts shadows"),
                "scene", "shadow map"});
-  p.push_back({"global light: ambient + directional (chapter 03)", true, "", "G-buffer + shadow map", "light buffer"});
-  p.push_back({s.clustered ? "local lights: clusters (chapter 09)" : "local lights: stencil volumes (chapter 03)", true, "",
-               s.clustered ? "G-buffer + light lists" : "G-buffer + stencil", "light buffer"});
-  p.push_back({"neon tubes (chapter 04)", s.neon && !neon_lights_.empty(), off(s.neon, !neon_lights_.empty(), "no neon tubes"),
+  p.push_back({"global light: ambient + directional (chapter 03" + per_sample, true, "", "G-buffer + shadow map", "light buffer"});
+  p.push_back({clustered ? "local lights: clusters (chapter 09)" : "local lights: stencil volumes (chapter 03" + per_sample, true, "",
+               clustered ? "G-buffer + light lists" : "G-buffer + stencil", "light buffer"});
+  p.push_back({"neon tubes (chapter 04)", s.neon && !neon_lights_.empty() && !msaa, off(s.neon, !neon_lights_.empty(), "no neon tubes"),
                "G-buffer + stencil", "light buffer"});
-  p.push_back({"ambient occlusion (chapters 07, 08)", s.ao && ambient, off(s.ao, ambient, "no ambient light"), "G-buffer",
+  p.push_back({"ambient occlusion (chapters 07, 08)", s.ao && ambient && !msaa, off(s.ao, ambient, "no ambient light"), "G-buffer",
                "light buffer"});
-  p.push_back({"indirect light, one bounce (chapter 08)", s.indirect, off(s.indirect, true, ""), "G-buffer + light buffer",
+  p.push_back({"indirect light, one bounce (chapter 08)", s.indirect && !msaa, off(s.indirect, true, ""), "G-buffer + light buffer",
                "light buffer"});
-  p.push_back({"composite into float radiance (chapter 03)", true, "", "G-buffer + light buffer", "radiance RGBA16F"});
-  p.push_back({"glass (chapter 10)", glass && has_glass_, off(glass, has_glass_, "no alphaMode BLEND material"),
+  p.push_back({msaa ? "composite, then the float resolve of the samples (chapters 03, 10)" : "composite into float radiance (chapter 03)",
+               true, "", "G-buffer + light buffer", "radiance RGBA16F"});
+  p.push_back({"glass (chapter 10)", glass && has_glass_ && !msaa, off(glass, has_glass_, "no alphaMode BLEND material"),
                "light lists + shadow map + depth", "radiance RGBA16F"});
   p.push_back({"log-average, adaptation, bloom, tonemap (chapter 05)", true, "", "radiance RGBA16F", "sRGB8 output"});
   return p;
@@ -62,6 +65,7 @@ std::string WholeFrame::key(const std::vector<PlannedStage>& p) {
 void WholeFrame::build(const std::vector<PlannedStage>& p) {
   const bool shadows = p[kShadowMap].runs, neon = p[kNeon].runs, ao = p[kAo].runs, indirect = p[kIndirect].runs,
              glass = p[kGlass].runs;
+  msaa_.reset();  // it reads the lights of the source made below
   glass_.reset();
   gi_.reset();
   shadows_.reset();
@@ -144,10 +148,12 @@ void WholeFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outp
   }
   // [one-frame]
   // 3. The frame into float radiance: G-buffer, shadow map, lights, tubes, AO + indirect,
-  //    composite, glass (chapter 03's DeferredFrame::render with the stages above).
+  //    composite, glass (chapter 03's DeferredFrame::render with the stages above), or with
+  //    MSAA chapter 10's multisampled frame, lit by the same lights, resolved into radiance.
   if (!radiance_ || radiance_->width() != output.width || radiance_->height() != output.height)
     radiance_ = std::make_unique<ch05::RadianceTarget>(output.width, output.height, GL_RGBA16F, neon_ || glass_);
-  source_->render(camera, *radiance_, metrics);
+  if (s.msaa > 1) render_msaa(camera, output, s, hdr, cut, metrics);
+  else source_->render(camera, *radiance_, metrics);
   // 4. Chapter 05's HDR stage into the sRGB8 output.
   hdr_.process(radiance_->texture(), output.width, output.height, hdr, output.framebuffer, metrics);
   feedback_.end_frame(hdr_.adaptation().state_buffer());
@@ -155,11 +161,38 @@ void WholeFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outp
 }
 // [/render]
 
+// [msaa]
+// With MSAA: chapter 10's multisampled frame lit by chapter 03's frame's lights (its volumes),
+// resolved into the radiance chapter 05's chain reads.
+void WholeFrame::render_msaa(const FrameCamera& camera, const ch03::FrameOutput& output, const WholeFrameSettings& s,
+                             const ch05::HdrSettings& hdr, const ch05::ExposureEstimate& cut, PassMetrics* metrics) {
+  if (!later_.empty()) throw Error("--msaa: a later chapter's stages (chapter 11's) run in chapter 03's frame, which has no MSAA");
+  source_->update_lights();
+  if (!msaa_) msaa_ = std::make_unique<MsaaFrame>(source_->scene_gpu(), source_->volumes());
+  msaa_->set_emissive_scale(s.glow);
+  // The resolve's weights bend where the eye's exposure puts the curve's knee: the last one
+  // read back. A new shot has none yet: its samples are resolved with the knee at 1, chapter
+  // 05 measures that frame's exposure, and (one wait for the GPU, on a new shot only) the
+  // samples are resolved again with it, the eye reset to start from the new image.
+  const ch03::FrameOutput into{radiance_->framebuffer(), output.width, output.height};
+  MsaaSettings m{.samples = s.msaa, .order = s.msaa_order, .show = s.msaa_edges ? MsaaShow::Edges : MsaaShow::Image,
+                 .output = MsaaOutput::Radiance, .exposure = cut.age >= 0 && cut.read > 0.f ? cut.read : 1.f};
+  msaa_->render(camera, into, m, metrics);
+  if (cut.age < 0 && m.order == ResolveOrder::TonemapFirst) {
+    hdr_.process(radiance_->texture(), output.width, output.height, hdr, output.framebuffer);
+    m.exposure = hdr_.adaptation().read().exposure;
+    hdr_.reset_adaptation(1.f);
+    msaa_->resolve(into, m);  // (the first is the one timed: the same pass)
+  }
+}
+// [/msaa]
+
 std::size_t WholeFrame::allocated_bytes() const {
   std::size_t b = source_ ? source_->allocated_bytes() : 0;
   if (radiance_) b += radiance_->bytes();
   if (shadows_) b += shadows_->allocated_bytes();
   if (glass_) b += glass_->allocated_bytes();
+  if (msaa_) b += msaa_->allocated_bytes();
   return b + hdr_.allocated_bytes() + (clustered_ ? clustered_->stats().bytes : 0);
 }
 

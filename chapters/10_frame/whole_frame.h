@@ -11,6 +11,11 @@
 //   6. the composite into float radiance, then the glass (chapter 10)   TransparencyStage
 //   7. log-average, eye adaptation, bloom, tonemapping, sRGB (chapter 05)    HdrPipeline
 //
+// With MSAA (WholeFrameSettings::msaa > 1) steps 1, 3 and 6 are chapter 10's MsaaFrame
+// (msaa.h) lit by the same lights: a multisampled G-buffer, light per sample on the marked
+// edges, and a float resolve into the radiance the HDR chain reads. The other stages do not
+// read a multisampled G-buffer yet: they are not run with it, and plan() says so.
+//
 // What the scene does not need is not run, and plan() says so: no tubes, no neon pass; no
 // sun, no shadow map; no glass, no transparency pass; no ambient light, no AO.
 //
@@ -28,6 +33,7 @@
 #include "chapters/06_shadows/shadow_stage.h"
 #include "chapters/08_ssgi/gi_stage.h"
 #include "chapters/09_clustered/clustered_lights.h"
+#include "chapters/10_frame/msaa.h"
 #include "chapters/10_frame/transparency.h"
 
 namespace lp::ch10 {
@@ -43,6 +49,11 @@ struct WholeFrameSettings {
   Method transparency = Method::Sorted;  // chapter 10's glass, when the scene has any
   float sun = 1.f, glow = 8.f;           // chapter 05's scales of the sun and the emissive surfaces
   ch05::HdrSettings hdr;                 // chapter 05: its defaults (Reinhard, key 0.18, no bloom)
+  // MSAA's samples per pixel (1, 2, 4 or 8; 1: no MSAA, the frame above), the order of its
+  // resolve, and the marked edges drawn red.
+  int msaa = 1;
+  ResolveOrder msaa_order = ResolveOrder::TonemapFirst;
+  bool msaa_edges = false;
 };
 // [/whole-settings]
 
@@ -83,10 +94,14 @@ class WholeFrame {
   const ch06::ShadowStage* shadow_stage() const { return shadows_.get(); }
   const ch08::GiStage* gi_stage() const { return gi_.get(); }
   const ch09::ClusteredLights* clustered_lights() const { return clustered_.get(); }
+  const MsaaFrame* msaa() const { return msaa_.get(); }  // after a render() with msaa > 1
 
  private:
   void build(const std::vector<PlannedStage>& p);  // the radiance source with the stages the plan runs
   static std::string key(const std::vector<PlannedStage>& p);  // which stages run: one character each
+  // Step 3 with MSAA: its frame into radiance_, the resolve weighted at the eye's exposure.
+  void render_msaa(const FrameCamera& camera, const ch03::FrameOutput& output, const WholeFrameSettings& s,
+                   const ch05::HdrSettings& hdr, const ch05::ExposureEstimate& cut, PassMetrics* metrics);
 
   std::unique_ptr<SceneGpu> owned_;  // when made from a Scene
   const SceneGpu& gpu_;
@@ -101,6 +116,7 @@ class WholeFrame {
   std::unique_ptr<ch08::GiStage> gi_;
   std::unique_ptr<ch09::ClusteredLights> clustered_;
   std::unique_ptr<TransparencyStage> glass_;
+  std::unique_ptr<MsaaFrame> msaa_;  // lit by source_'s lights: made again with it
   std::vector<ch03::FrameStage*> later_;
   std::unique_ptr<ch05::RadianceTarget> radiance_;
   ch05::HdrPipeline hdr_;

@@ -1,7 +1,8 @@
 #version 450
 // The resolve: the pixel's samples of light tonemapped one by one and then averaged (the
 // display values are what the eye should see blended at an edge), or, to show what the source
-// warns against, averaged first and tonemapped once. The output encodes sRGB.
+// warns against, averaged first and tonemapped once. The output encodes sRGB. (The whole
+// frame resolves into radiance instead: msaa_resolve_radiance.frag.)
 #include "05_hdr/shaders/hdr_math.glsl"
 
 #if MSAA_SAMPLES > 1
@@ -16,10 +17,6 @@ out vec4 out_color;
 
 vec3 display(vec3 radiance) { return min(tonemap(u_operator, radiance * u_exposure, u_white), vec3(1.0)); }
 
-// Exercise 3 (chapters/10_frame/exercises/resolve.glsl) stands in for it.
-#ifdef EXERCISE_RESOLVE
-#include EXERCISE_RESOLVE
-#else
 void main() {
   // [resolve]
   ivec2 pixel = ivec2(gl_FragCoord.xy);
@@ -36,4 +33,3 @@ void main() {
   out_color = vec4(u_resolve_first ? display(mean) : mean, 1.0);
   // [/resolve]
 }
-#endif
