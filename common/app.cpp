@@ -29,6 +29,9 @@ namespace lp {
 namespace {
 constexpr int kBenchFrames = 60;  // measured after measure()'s warm-up (common/measure.h)
 constexpr float kPanelWidth = 330;  // pixels: a quarter of a 1280-wide window, the image beside it
+constexpr float kPanelMargin = 10;  // pixels around the panel, which stays at the top left
+
+float panel_width(float window_width) { return std::max(160.f, std::min(kPanelWidth, window_width - 2 * kPanelMargin)); }
 }  // namespace
 
 namespace {
@@ -423,10 +426,20 @@ bool App::next_frame() {
   if (!io.WantCaptureKeyboard) handle_keys(input.keys_pressed);
   if (!io.WantCaptureMouse) fly_.update(win, dt);
   ++frame_.index;
-  prepare_frame(w, h, fly_.camera());
+  image_ = image_rect(w, h);
+  prepare_frame(image_.w, image_.h, fly_.camera());
   gpu_timer_->start();  // reads an earlier frame's timestamps when they are done
   if (gpu_timer_->last_ms >= 0) gpu_frame_ms_ = gpu_frame_ms_ >= 0 ? 0.9 * gpu_frame_ms_ + 0.1 * gpu_timer_->last_ms : gpu_timer_->last_ms;
   return true;
+}
+
+App::Rect App::image_rect(int w, int h) const {
+  const int x = static_cast<int>(2 * kPanelMargin + panel_width(float(w)));
+  // A window too narrow for both (a small test window): the image fills it, under the panel.
+  if (!panel_open_ || 2 * (w - x) < w) return {0, 0, w, h};
+  const int iw = w - x;
+  const int ih = std::max(1, static_cast<int>(std::lround(double(iw) * h / w)));
+  return {x, (h - ih) / 2, iw, ih};
 }
 
 void App::handle_keys(const std::vector<int>& keys) {
@@ -507,13 +520,18 @@ bool is_switch(const Knob& k) { return k.integer && k.choices.empty() && k.min =
 void App::panel(const std::function<void()>& chapter_controls) {
   if (!gui_) return;
   panel_drawn_ = true;
-  // Narrow, and as tall as the window at most: the image stays visible beside it, and what
-  // does not fit scrolls. The title bar's triangle folds it away.
+  // Narrow, at the top left, and as tall as the window at most: the image is drawn right of it
+  // (image_rect), and what does not fit scrolls. The title bar's triangle folds it away, and
+  // the image then fills the window.
   const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
-  const float width = std::max(160.f, std::min(kPanelWidth, display.x - 20.f));
-  ImGui::SetNextWindowSizeConstraints(ImVec2(width, 0), ImVec2(width, std::max(60.f, display.y - 20.f)));
-  ImGui::Begin(chapter_.cli.program.c_str(), nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  ImGui::SetNextWindowPos(ImVec2(kPanelMargin, kPanelMargin), ImGuiCond_Always);
+  const float width = panel_width(display.x);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(width, 0), ImVec2(width, std::max(60.f, display.y - 2 * kPanelMargin)));
+  ImGui::Begin(chapter_.cli.program.c_str(), nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove);
+  if (const bool open = !ImGui::IsWindowCollapsed(); open != panel_open_) {
+    panel_open_ = open;
+    std::cout << (open ? "panel: opened, the image beside it" : "panel: folded, the image fills the window") << std::endl;
+  }
   ImGui::PushItemWidth(ImGui::GetFontSize() * 11.f);
   const char* unit = context_->is_software() ? "llvmpipe" : "GPU";
   ImGui::Text("frame %.1f ms CPU (%.1f fps)", cpu_frame_ms_, cpu_frame_ms_ > 0 ? 1e3 / cpu_frame_ms_ : 0.0);
@@ -643,7 +661,17 @@ void App::present() {
   glDisable(GL_FRAMEBUFFER_SRGB);  // copy the stored sRGB bytes as they are: same pixels as headless
   int w = 0, h = 0;
   context_->framebuffer_size(w, h);
-  glBlitNamedFramebuffer(target_->framebuffer(), 0, 0, 0, target_->width(), target_->height(), 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glDisable(GL_SCISSOR_TEST);  // neither the clear nor the blit is cut by a chapter's scissor
+  if (image_.w != w || image_.h != h) {
+    // The bars around an image beside the panel.
+    glClearColor(0.12f, 0.12f, 0.12f, 1.f);
+    glClear(GL_COLOR_BUFFER_BIT);
+  }
+  // Pixel for pixel (the target is the rectangle's size); GL's rows count from the bottom.
+  const int y0 = h - image_.y - image_.h;
+  glBlitNamedFramebuffer(target_->framebuffer(), 0, 0, 0, target_->width(), target_->height(), image_.x, y0,
+                         image_.x + image_.w, y0 + image_.h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
   gpu_timer_->stop();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   ImGui::Render();
@@ -656,7 +684,8 @@ void App::present() {
       glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, shot.pixels.data());
       flip_vertically(shot);
       save_png(options_.out, shot);
-      std::cout << "wrote " << options_.out << " (window screenshot, " << w << "x" << h << ")\n";
+      std::cout << "wrote " << options_.out << " (window screenshot, " << w << "x" << h << "; the image " << image_.w << 'x'
+                << image_.h << " at " << image_.x << ',' << image_.y << ")\n";
     }
     glfwSetWindowShouldClose(context_->window(), GLFW_TRUE);
   }

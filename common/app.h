@@ -188,6 +188,12 @@ class App {
   std::string status_;           // the panel's last message (P, R)
   double status_time_ = 0;
   int slow_frame_ms_ = 0;        // tests: LIGHTPASS_TEST_SLOW_FRAME_MS, sleep per window frame
+  // Where the window shows the image: right of the open panel at the window's aspect when
+  // that leaves it at least half the window's width, else the whole window under the panel.
+  struct Rect { int x = 0, y = 0, w = 0, h = 0; };
+  Rect image_rect(int window_w, int window_h) const;
+  Rect image_ = {};
+  bool panel_open_ = true;       // as the last frame drew it (the first frame: open)
   double cpu_frame_ms_ = 0;      // wall clock between frames, smoothed
   double gpu_frame_ms_ = -1;     // GL timestamps around the chapter's frame, smoothed; <0 unknown
   struct FrameTimer;
