@@ -868,6 +868,10 @@ bool App::switch_scene() {
 
 int run_chapter(int argc, const char* const* argv, const Chapter& chapter, const std::function<void(App&)>& body) {
   Options options;
+  if (const std::string defect = spec_defect(chapter.cli); !defect.empty()) {
+    std::cerr << chapter.cli.program << ": internal error: " << defect << '\n';
+    return 1;
+  }
   try {
     options = parse_cli(argc, argv, chapter.cli);
   } catch (const UsageError& e) {
