@@ -10,6 +10,7 @@
 #include <cfloat>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -395,7 +396,9 @@ bool App::next_frame() {
     if (reload_pending_) report_reload();
     if (slow_frame_ms_ > 0) {
       // Said, so that a test sends its input once the panel is on screen.
-      std::cerr << "test: frame " << frame_.index << " presented" << std::endl;
+      // With what the panel shows of the frame times, so a test can hold them to the sleep.
+      const auto [cpu_text, gpu_text] = frame_times();
+      std::cerr << "test: frame " << frame_.index << " presented (the panel shows " << cpu_text << ", " << gpu_text << ')' << std::endl;
       std::this_thread::sleep_for(std::chrono::milliseconds(slow_frame_ms_));
     }
     context_->swap_and_poll();
@@ -533,11 +536,11 @@ void App::panel(const std::function<void()>& chapter_controls) {
     std::cout << (open ? "panel: opened, the image beside it" : "panel: folded, the image fills the window") << std::endl;
   }
   ImGui::PushItemWidth(ImGui::GetFontSize() * 11.f);
-  const char* unit = context_->is_software() ? "llvmpipe" : "GPU";
-  ImGui::Text("frame %.1f ms CPU (%.1f fps)", cpu_frame_ms_, cpu_frame_ms_ > 0 ? 1e3 / cpu_frame_ms_ : 0.0);
+  const auto [cpu_text, gpu_text] = frame_times();
+  ImGui::TextUnformatted(("frame " + cpu_text).c_str());
   tooltip("CPU: the wall-clock time from one frame to the next, the panel and presenting included.");
-  if (gpu_frame_ms_ >= 0) ImGui::Text("      %.1f ms %s (%.1f fps)", gpu_frame_ms_, unit, gpu_frame_ms_ > 0 ? 1e3 / gpu_frame_ms_ : 0.0);
-  else ImGui::TextDisabled("      GPU time: waiting for the first frame");
+  if (gpu_frame_ms_ >= 0) ImGui::TextUnformatted(("      " + gpu_text).c_str());
+  else ImGui::TextDisabled("      %s", gpu_text.c_str());
   tooltip(std::string("GPU: GL timestamps around the chapter's frame, the panel left out") +
           (context_->is_software() ? " (llvmpipe renders on the CPU: this is its time)." : "."));
   if (ImGui::CollapsingHeader("about", 0)) {
@@ -633,6 +636,16 @@ void App::panel(const std::function<void()>& chapter_controls) {
   ImGui::Text("render targets: %.1f MB", metrics_.allocated_bytes() / 1e6);
   ImGui::PopItemWidth();
   ImGui::End();
+}
+
+std::pair<std::string, std::string> App::frame_times() const {
+  auto line = [](double ms, const char* unit) {
+    char text[96];
+    std::snprintf(text, sizeof text, "%.1f ms %s (%.1f fps)", ms, unit, ms > 0 ? 1e3 / ms : 0.0);
+    return std::string(text);
+  };
+  return {line(cpu_frame_ms_, "CPU"), gpu_frame_ms_ >= 0 ? line(gpu_frame_ms_, context_->is_software() ? "llvmpipe" : "GPU")
+                                                         : "GPU time: waiting for the first frame"};
 }
 
 void App::plan_line(const std::string& stage, bool runs, const std::string& why, const std::string& knob) {

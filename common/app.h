@@ -18,6 +18,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/camera.h"
@@ -158,6 +159,7 @@ class App {
   void handle_keys(const std::vector<int>& keys);  // Esc, R, P, in the order pressed
   void save_snapshot();                             // P
   void report_reload();                             // after a frame that reloaded the shaders
+  std::pair<std::string, std::string> frame_times() const;  // the panel's CPU and GPU lines
   void say(const std::string& message);             // standard output and the panel's status line
   void knob_changed(const Knob& knob);              // the panel changed a knob: say the command line
   std::filesystem::path reference_dir() const;      // tests/reference/<program>/ (exercises/ under it for --exercise)
