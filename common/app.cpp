@@ -614,7 +614,12 @@ void App::panel(const std::function<void()>& chapter_controls) {
     }
     tooltip(k.help);
   }
-  if (chapter_controls) chapter_controls();
+  if (chapter_controls) {
+    // The chapter's lines wrap at the panel's edge instead of being cut off there.
+    ImGui::PushTextWrapPos(0.f);
+    chapter_controls();
+    ImGui::PopTextWrapPos();
+  }
   if (!status_.empty() && glfwGetTime() - status_time_ < 10) {
     ImGui::Separator();
     ImGui::TextWrapped("%s", status_.c_str());
@@ -627,7 +632,7 @@ void App::panel(const std::function<void()>& chapter_controls) {
     ImGui::TableHeadersRow();
     for (const auto& st : metrics_.stats()) {
       ImGui::TableNextRow();
-      ImGui::TableNextColumn(); ImGui::TextUnformatted(st.name.c_str());
+      ImGui::TableNextColumn(); ImGui::TextWrapped("%s", st.name.c_str());  // a long name wraps in its column
       ImGui::TableNextColumn(); ImGui::Text("%.3f", st.mean_ms);
       ImGui::TableNextColumn(); ImGui::Text("%llu", static_cast<unsigned long long>(st.samples));
     }
@@ -660,8 +665,11 @@ void App::plan_line(const std::string& stage, bool runs, const std::string& why,
     }
     tooltip(stage + (runs ? "" : " (not run: " + why + ")") + "\n--" + k->name + ": " + k->help);
   } else {
-    // Not switched here: a bullet, not a box, so it does not look clickable.
-    ImGui::BulletText("%s", stage.c_str());
+    // Not switched here: a bullet, not a box, so it does not look clickable. The name wraps
+    // (the panel's chapter controls set the wrap) instead of running past the panel's edge.
+    ImGui::Bullet();
+    ImGui::SameLine();
+    ImGui::TextUnformatted(stage.c_str());
   }
   if (k == chapter_.cli.knobs.end() || !is_switch(*k)) tooltip(stage + (runs ? "" : " (not run: " + why + ")"));
   if (!runs && !why.empty()) {
