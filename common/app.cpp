@@ -10,6 +10,7 @@
 #include <cfloat>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -29,6 +30,9 @@ namespace lp {
 namespace {
 constexpr int kBenchFrames = 60;  // measured after measure()'s warm-up (common/measure.h)
 constexpr float kPanelWidth = 330;  // pixels: a quarter of a 1280-wide window, the image beside it
+constexpr float kPanelMargin = 10;  // pixels around the panel, which stays at the top left
+
+float panel_width(float window_width) { return std::max(160.f, std::min(kPanelWidth, window_width - 2 * kPanelMargin)); }
 }  // namespace
 
 namespace {
@@ -392,7 +396,9 @@ bool App::next_frame() {
     if (reload_pending_) report_reload();
     if (slow_frame_ms_ > 0) {
       // Said, so that a test sends its input once the panel is on screen.
-      std::cerr << "test: frame " << frame_.index << " presented" << std::endl;
+      // With what the panel shows of the frame times, so a test can hold them to the sleep.
+      const auto [cpu_text, gpu_text] = frame_times();
+      std::cerr << "test: frame " << frame_.index << " presented (the panel shows " << cpu_text << ", " << gpu_text << ')' << std::endl;
       std::this_thread::sleep_for(std::chrono::milliseconds(slow_frame_ms_));
     }
     context_->swap_and_poll();
@@ -423,10 +429,20 @@ bool App::next_frame() {
   if (!io.WantCaptureKeyboard) handle_keys(input.keys_pressed);
   if (!io.WantCaptureMouse) fly_.update(win, dt);
   ++frame_.index;
-  prepare_frame(w, h, fly_.camera());
+  image_ = image_rect(w, h);
+  prepare_frame(image_.w, image_.h, fly_.camera());
   gpu_timer_->start();  // reads an earlier frame's timestamps when they are done
   if (gpu_timer_->last_ms >= 0) gpu_frame_ms_ = gpu_frame_ms_ >= 0 ? 0.9 * gpu_frame_ms_ + 0.1 * gpu_timer_->last_ms : gpu_timer_->last_ms;
   return true;
+}
+
+App::Rect App::image_rect(int w, int h) const {
+  const int x = static_cast<int>(2 * kPanelMargin + panel_width(float(w)));
+  // A window too narrow for both (a small test window): the image fills it, under the panel.
+  if (!panel_open_ || 2 * (w - x) < w) return {0, 0, w, h};
+  const int iw = w - x;
+  const int ih = std::max(1, static_cast<int>(std::lround(double(iw) * h / w)));
+  return {x, (h - ih) / 2, iw, ih};
 }
 
 void App::handle_keys(const std::vector<int>& keys) {
@@ -507,19 +523,24 @@ bool is_switch(const Knob& k) { return k.integer && k.choices.empty() && k.min =
 void App::panel(const std::function<void()>& chapter_controls) {
   if (!gui_) return;
   panel_drawn_ = true;
-  // Narrow, and as tall as the window at most: the image stays visible beside it, and what
-  // does not fit scrolls. The title bar's triangle folds it away.
+  // Narrow, at the top left, and as tall as the window at most: the image is drawn right of it
+  // (image_rect), and what does not fit scrolls. The title bar's triangle folds it away, and
+  // the image then fills the window.
   const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
-  const float width = std::max(160.f, std::min(kPanelWidth, display.x - 20.f));
-  ImGui::SetNextWindowSizeConstraints(ImVec2(width, 0), ImVec2(width, std::max(60.f, display.y - 20.f)));
-  ImGui::Begin(chapter_.cli.program.c_str(), nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  ImGui::SetNextWindowPos(ImVec2(kPanelMargin, kPanelMargin), ImGuiCond_Always);
+  const float width = panel_width(display.x);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(width, 0), ImVec2(width, std::max(60.f, display.y - 2 * kPanelMargin)));
+  ImGui::Begin(chapter_.cli.program.c_str(), nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove);
+  if (const bool open = !ImGui::IsWindowCollapsed(); open != panel_open_) {
+    panel_open_ = open;
+    std::cout << (open ? "panel: opened, the image beside it" : "panel: folded, the image fills the window") << std::endl;
+  }
   ImGui::PushItemWidth(ImGui::GetFontSize() * 11.f);
-  const char* unit = context_->is_software() ? "llvmpipe" : "GPU";
-  ImGui::Text("frame %.1f ms CPU (%.1f fps)", cpu_frame_ms_, cpu_frame_ms_ > 0 ? 1e3 / cpu_frame_ms_ : 0.0);
+  const auto [cpu_text, gpu_text] = frame_times();
+  ImGui::TextUnformatted(("frame " + cpu_text).c_str());
   tooltip("CPU: the wall-clock time from one frame to the next, the panel and presenting included.");
-  if (gpu_frame_ms_ >= 0) ImGui::Text("      %.1f ms %s (%.1f fps)", gpu_frame_ms_, unit, gpu_frame_ms_ > 0 ? 1e3 / gpu_frame_ms_ : 0.0);
-  else ImGui::TextDisabled("      GPU time: waiting for the first frame");
+  if (gpu_frame_ms_ >= 0) ImGui::TextUnformatted(("      " + gpu_text).c_str());
+  else ImGui::TextDisabled("      %s", gpu_text.c_str());
   tooltip(std::string("GPU: GL timestamps around the chapter's frame, the panel left out") +
           (context_->is_software() ? " (llvmpipe renders on the CPU: this is its time)." : "."));
   if (ImGui::CollapsingHeader("about", 0)) {
@@ -593,7 +614,12 @@ void App::panel(const std::function<void()>& chapter_controls) {
     }
     tooltip(k.help);
   }
-  if (chapter_controls) chapter_controls();
+  if (chapter_controls) {
+    // The chapter's lines wrap at the panel's edge instead of being cut off there.
+    ImGui::PushTextWrapPos(0.f);
+    chapter_controls();
+    ImGui::PopTextWrapPos();
+  }
   if (!status_.empty() && glfwGetTime() - status_time_ < 10) {
     ImGui::Separator();
     ImGui::TextWrapped("%s", status_.c_str());
@@ -606,7 +632,7 @@ void App::panel(const std::function<void()>& chapter_controls) {
     ImGui::TableHeadersRow();
     for (const auto& st : metrics_.stats()) {
       ImGui::TableNextRow();
-      ImGui::TableNextColumn(); ImGui::TextUnformatted(st.name.c_str());
+      ImGui::TableNextColumn(); ImGui::TextWrapped("%s", st.name.c_str());  // a long name wraps in its column
       ImGui::TableNextColumn(); ImGui::Text("%.3f", st.mean_ms);
       ImGui::TableNextColumn(); ImGui::Text("%llu", static_cast<unsigned long long>(st.samples));
     }
@@ -615,6 +641,16 @@ void App::panel(const std::function<void()>& chapter_controls) {
   ImGui::Text("render targets: %.1f MB", metrics_.allocated_bytes() / 1e6);
   ImGui::PopItemWidth();
   ImGui::End();
+}
+
+std::pair<std::string, std::string> App::frame_times() const {
+  auto line = [](double ms, const char* unit) {
+    char text[96];
+    std::snprintf(text, sizeof text, "%.1f ms %s (%.1f fps)", ms, unit, ms > 0 ? 1e3 / ms : 0.0);
+    return std::string(text);
+  };
+  return {line(cpu_frame_ms_, "CPU"), gpu_frame_ms_ >= 0 ? line(gpu_frame_ms_, context_->is_software() ? "llvmpipe" : "GPU")
+                                                         : "GPU time: waiting for the first frame"};
 }
 
 void App::plan_line(const std::string& stage, bool runs, const std::string& why, const std::string& knob) {
@@ -629,8 +665,11 @@ void App::plan_line(const std::string& stage, bool runs, const std::string& why,
     }
     tooltip(stage + (runs ? "" : " (not run: " + why + ")") + "\n--" + k->name + ": " + k->help);
   } else {
-    // Not switched here: a bullet, not a box, so it does not look clickable.
-    ImGui::BulletText("%s", stage.c_str());
+    // Not switched here: a bullet, not a box, so it does not look clickable. The name wraps
+    // (the panel's chapter controls set the wrap) instead of running past the panel's edge.
+    ImGui::Bullet();
+    ImGui::SameLine();
+    ImGui::TextUnformatted(stage.c_str());
   }
   if (k == chapter_.cli.knobs.end() || !is_switch(*k)) tooltip(stage + (runs ? "" : " (not run: " + why + ")"));
   if (!runs && !why.empty()) {
@@ -643,7 +682,17 @@ void App::present() {
   glDisable(GL_FRAMEBUFFER_SRGB);  // copy the stored sRGB bytes as they are: same pixels as headless
   int w = 0, h = 0;
   context_->framebuffer_size(w, h);
-  glBlitNamedFramebuffer(target_->framebuffer(), 0, 0, 0, target_->width(), target_->height(), 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glDisable(GL_SCISSOR_TEST);  // neither the clear nor the blit is cut by a chapter's scissor
+  if (image_.w != w || image_.h != h) {
+    // The bars around an image beside the panel.
+    glClearColor(0.12f, 0.12f, 0.12f, 1.f);
+    glClear(GL_COLOR_BUFFER_BIT);
+  }
+  // Pixel for pixel (the target is the rectangle's size); GL's rows count from the bottom.
+  const int y0 = h - image_.y - image_.h;
+  glBlitNamedFramebuffer(target_->framebuffer(), 0, 0, 0, target_->width(), target_->height(), image_.x, y0,
+                         image_.x + image_.w, y0 + image_.h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
   gpu_timer_->stop();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   ImGui::Render();
@@ -656,7 +705,8 @@ void App::present() {
       glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, shot.pixels.data());
       flip_vertically(shot);
       save_png(options_.out, shot);
-      std::cout << "wrote " << options_.out << " (window screenshot, " << w << "x" << h << ")\n";
+      std::cout << "wrote " << options_.out << " (window screenshot, " << w << "x" << h << "; the image " << image_.w << 'x'
+                << image_.h << " at " << image_.x << ',' << image_.y << ")\n";
     }
     glfwSetWindowShouldClose(context_->window(), GLFW_TRUE);
   }
@@ -840,6 +890,10 @@ bool App::switch_scene() {
 
 int run_chapter(int argc, const char* const* argv, const Chapter& chapter, const std::function<void(App&)>& body) {
   Options options;
+  if (const std::string defect = spec_defect(chapter.cli); !defect.empty()) {
+    std::cerr << chapter.cli.program << ": internal error: " << defect << '\n';
+    return 1;
+  }
   try {
     options = parse_cli(argc, argv, chapter.cli);
   } catch (const UsageError& e) {

@@ -18,6 +18,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/camera.h"
@@ -158,6 +159,7 @@ class App {
   void handle_keys(const std::vector<int>& keys);  // Esc, R, P, in the order pressed
   void save_snapshot();                             // P
   void report_reload();                             // after a frame that reloaded the shaders
+  std::pair<std::string, std::string> frame_times() const;  // the panel's CPU and GPU lines
   void say(const std::string& message);             // standard output and the panel's status line
   void knob_changed(const Knob& knob);              // the panel changed a knob: say the command line
   std::filesystem::path reference_dir() const;      // tests/reference/<program>/ (exercises/ under it for --exercise)
@@ -188,6 +190,12 @@ class App {
   std::string status_;           // the panel's last message (P, R)
   double status_time_ = 0;
   int slow_frame_ms_ = 0;        // tests: LIGHTPASS_TEST_SLOW_FRAME_MS, sleep per window frame
+  // Where the window shows the image: right of the open panel at the window's aspect when
+  // that leaves it at least half the window's width, else the whole window under the panel.
+  struct Rect { int x = 0, y = 0, w = 0, h = 0; };
+  Rect image_rect(int window_w, int window_h) const;
+  Rect image_ = {};
+  bool panel_open_ = true;       // as the last frame drew it (the first frame: open)
   double cpu_frame_ms_ = 0;      // wall clock between frames, smoothed
   double gpu_frame_ms_ = -1;     // GL timestamps around the chapter's frame, smoothed; <0 unknown
   struct FrameTimer;

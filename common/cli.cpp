@@ -152,6 +152,14 @@ void apply_opening(Options& o, const CliSpec& spec, const std::set<std::string>&
 
 }  // namespace
 
+std::string spec_defect(const CliSpec& spec) {
+  for (const auto& k : spec.knobs) {
+    if (k.help.find_first_not_of(" ") == std::string::npos) return "--" + k.name + " has no help text (--help and the panel's tooltip)";
+    if (k.help.find('\n') != std::string::npos) return "--" + k.name + "'s help text is more than one line";
+  }
+  return {};
+}
+
 Options parse_cli(int argc, const char* const* argv, const CliSpec& spec) {
   Options o;
   std::set<std::string> given;  // the knobs the command line set

@@ -64,6 +64,9 @@ struct Options {
 std::string knob_text(const CliSpec& spec, const std::string& name, double value);
 
 Options parse_cli(int argc, const char* const* argv, const CliSpec& spec);
+// What is wrong with a chapter's own spec (empty when nothing): a knob without its one line of
+// help, which --help prints and the panel shows as the knob's tooltip, or with a line break in it.
+std::string spec_defect(const CliSpec& spec);
 
 // The value parsers behind it, for other command lines (the sweep programs): each throws a
 // UsageError that names `option` and says what was wrong.

@@ -54,6 +54,12 @@ add_test(NAME 01_forward.shader_error_names_file_and_line
 add_test(NAME 01_forward.window_input_at_a_slow_frame_rate
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_input.sh ${P01} ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR}/window_input)
 set_tests_properties(01_forward.window_input_at_a_slow_frame_rate PROPERTIES TIMEOUT 300)
+# The panel's frame time and rate, CPU and GPU (llvmpipe's on the software renderer): with
+# every frame made 300 ms long, the CPU time it shows is at least that, and the GPU's is known.
+add_test(NAME 01_forward.window_panel_shows_the_frame_times
+  COMMAND ${EXPECT} 0 "^test: frame 6 presented [(]the panel shows (3[0-9][0-9]|[4-9][0-9][0-9]|[0-9][0-9][0-9][0-9]+)[.][0-9] ms CPU [(][0-9.]+ fps[)], [0-9]+[.][0-9] ms (llvmpipe|GPU) [(][0-9.]+ fps[)][)]$"
+  -- env LIGHTPASS_TEST_SLOW_FRAME_MS=300 xvfb-run -a -s "-screen 0 320x180x24" ${P01} --size 320x180 --frames 6)
+set_tests_properties(01_forward.window_panel_shows_the_frame_times PROPERTIES TIMEOUT 300)
 # --exercise K in the window (Xvfb): the reader's file is what is drawn (the solution's and the
 # stub's snapshots differ, the solution's twice are equal), R after an edit reloads it, a mistake
 # in it is named by that file and line, at R and at the start (exit 1).

@@ -66,6 +66,11 @@ lightpass_image_test(02_gbuffer.mesh_without_normals_draws_the_cube "wrote" ${CM
 lightpass_image_test(02_gbuffer.window_screenshot "window screenshot, 320x180" ${CMAKE_BINARY_DIR}/out/02_window.png
   --size 320x180 --background ${BACKGROUND_SRGB8} --lit 0.3 1
   RUN xvfb-run -a -s "-screen 0 320x180x24" ${P02} --size 320x180 --frames 3 --out ${CMAKE_BINARY_DIR}/out/02_window.png)
+# The default mosaic's first tile (the lit image) is at the top left: at 1280x720 the window
+# draws the whole mosaic right of the panel, the headless mosaic at that size, pixel for pixel.
+add_test(NAME 02_gbuffer.window_panel_leaves_the_mosaic_visible
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_image_beside_panel.sh ${P02} $<TARGET_FILE:image_stats> ${CMAKE_BINARY_DIR}/out/02_beside_panel)
+set_tests_properties(02_gbuffer.window_panel_leaves_the_mosaic_visible PROPERTIES TIMEOUT 300)
 
 # Views that sample the distant textured floor get a 2 % allowance only on a renderer other
 # than the one that made the references (texture LOD is implementation-defined); on the

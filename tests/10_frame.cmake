@@ -77,6 +77,12 @@ lightpass_image_test(10_frame.window_keeps_its_scene_when_the_new_one_fails
   ${CMAKE_BINARY_DIR}/out/10_window_kept.png --size 320x180 --lit 0.3 1
   RUN env LIGHTPASS_TEST_SWITCH_SCENE=tests/data/malformed.gltf
       xvfb-run -a -s "-screen 0 320x180x24" ${P10} --size 320x180 --frames 3 --out ${CMAKE_BINARY_DIR}/out/10_window_kept.png)
+# The stage plan is where stages are switched: one click on the plan's box of the sun's shadow
+# map (not the knob's above it; at one frame a second, the cursor gone before the next frame)
+# turns the stage off. AO and indirect light are off to keep llvmpipe's frames short.
+add_test(NAME 10_frame.window_plan_box_switches_its_stage
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_click.sh ${P10} 1280x720 27 537 "^panel: --shadows 0$" --ao 0 --indirect 0)
+set_tests_properties(10_frame.window_plan_box_switches_its_stage PROPERTIES TIMEOUT 600)
 # MSAA with deferred shading (chapters/10_frame/msaa.h): the cross-checks, the edges of a scene
 # known to the pixel, the exact fragment count and the tonemap order at a bright edge.
 lightpass_gtests(10_msaa gl lightpass_10_frame unit/test_10_msaa_gl.cpp)

@@ -64,6 +64,19 @@ TEST(Cli, RejectsBadInputWithAReason) {
   EXPECT_NE(usage_error({"--update-references"}).find("--check"), std::string::npos);
 }
 
+// Every knob's help is the line --help prints and the panel's tooltip: a chapter's spec with a
+// knob that has none, or more than a line, is refused (run_chapter says so and exits with 1).
+TEST(Cli, EveryKnobHasOneLineOfHelp) {
+  EXPECT_EQ(spec_defect(kSpec), "");
+  CliSpec bare = kSpec;
+  bare.knobs.push_back({"taps", "", 0, 0, 64, true});
+  EXPECT_EQ(spec_defect(bare), "--taps has no help text (--help and the panel's tooltip)");
+  bare.knobs.back().help = "  ";
+  EXPECT_NE(spec_defect(bare), "");
+  bare.knobs.back().help = "taps of the disk\nand more";
+  EXPECT_EQ(spec_defect(bare), "--taps's help text is more than one line");
+}
+
 TEST(Cli, UsageListsModesAndKnobs) {
   std::string u = usage(kSpec);
   EXPECT_NE(u.find("--lights N"), std::string::npos);
