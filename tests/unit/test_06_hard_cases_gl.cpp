@@ -192,7 +192,10 @@ Sides compare(const ImageF& v, const ImageF& truth, const std::vector<bool>& ban
 namespace {
 // A case as a picture (for the book, where LIGHTPASS_HARD_CASE_PICTURES names a folder): the
 // truth lit light grey, shadowed dark grey, outside its mask black; acne red, holes green.
-void save_case(const char* name, const ImageF& v, const ImageF& truth, const std::vector<bool>& band) {
+void save_case(const char* name, const ImageF& v, const ImageF& truth, const std::vector<bool>& band,
+               const ShadowSettings& settings) {
+  const int k = settings.method == ShadowMethod::Hard ? 1 : settings.kernel;
+  const float half_tap = 0.5f / float(k * k);  // as compare(): one tap shadowed is acne
   if (!std::getenv("LIGHTPASS_HARD_CASE_PICTURES")) return;
   ImageF d = ImageF::blank(kW, kH, 3);
   const std::vector<bool> outside = outside_method_mask(v);
@@ -203,7 +206,7 @@ void save_case(const char* name, const ImageF& v, const ImageF& truth, const std
       const float tv = truth.at(x, y, 0), mv = v.at(x, y, 0);
       const float base = !in ? 0.05f : tv > 0.5f ? 0.8f : 0.25f;
       glm::vec3 c(base);
-      if (in && !band[i] && tv > 0.5f && mv < 0.5f) c = {1, 0, 0};
+      if (in && !band[i] && tv > 0.5f && mv < 1.f - half_tap) c = {1, 0, 0};
       if (in && !band[i] && tv < 0.5f && mv > 0.5f) c = {0, 1, 0};
       for (int k = 0; k < 3; ++k) d.at(x, y, k) = c[k];
     }
@@ -227,7 +230,7 @@ struct Case {
     std::printf("%s (%s, %.2f cm texels): %zu lit compared, %zu acne; %zu dark, %zu holes; leaks %zu of %zu\n", picture,
                 kMethodNames[int(s.method)].c_str(), 100 * texel, sides.lit, sides.acne, sides.dark, sides.holes,
                 leak.leaking, leak.full_shadow);
-    save_case(picture, v, truth, band);
+    save_case(picture, v, truth, band, s);
     return {sides, leak};
   }
 };
