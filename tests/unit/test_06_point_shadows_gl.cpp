@@ -161,11 +161,13 @@ TEST_F(PointShadowsGl, CubeMapsMatchTheRayTracedShadowsOutsideTheBand) {
       // with their slope bias, and the borders of what it reaches take the rest).
       ASSERT_GT(e.pixels, reached / 4) << l.name;
       EXPECT_EQ(e.wrong, 0.0) << kMethodNames[int(s.method)] << ", " << l.name;
-      // Nor do PCF's taps shadow lit receivers much: each compares with the receiver's plane.
-      // That plane comes from the G-buffer's shading normal, which the floor's normal map tilts
-      // at the tiles' grooves, where a tap or two of nine then shadows the receiver (the issue's
-      // geometric-normal case, not yet fixed): a regression bound, the measurement with a margin.
-      EXPECT_LT(e.mean_abs, s.method == ShadowMethod::Hard ? 1e-6 : 2e-3) << kMethodNames[int(s.method)] << ", " << l.name;
+      // Nor do PCF's taps shadow lit receivers: each compares with the receiver's plane, now the
+      // geometric one (geometric_normal.glsl), which the floor's normal map no longer tilts at
+      // the tiles' grooves (with the shading normal a tap or two of nine shadowed them there).
+      // Outside the band every tap should then be right; what is left is two pixels of the end
+      // wall 30 m away, for the lights nave_rose and nave_violet, each off by two or three taps
+      // of nine, not yet explained: a regression bound, a twentieth of the shading normal's.
+      EXPECT_LT(e.mean_abs, s.method == ShadowMethod::Hard ? 1e-6 : 1e-4) << kMethodNames[int(s.method)] << ", " << l.name;
     }
   }
   EXPECT_GT(compared_dark, std::size_t(2000));  // the columns' shadows are there to get right

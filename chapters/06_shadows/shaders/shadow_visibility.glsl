@@ -38,6 +38,7 @@ float local_visibility(int index, GpuLight light, Surface s) { return 1.0; }
 #else
 
 #include "06_shadows/shaders/shadow_block.h"
+#include "06_shadows/shaders/geometric_normal.glsl"
 layout(std140, binding = SHADOW_BLOCK) uniform ShadowBlock { ShadowParameters sh; };
 // The stage's units: the sun's map read raw (nearest) and through the comparison sampler,
 // VSM's or ESM's filtered map, and the spots' atlas (+3 is the pre-filter's input, +4 the volumes').
@@ -295,6 +296,10 @@ float directional_visibility(int index, GpuLight light, Surface s) {
   if (index != SHADOW_SUN_INDEX) return 1.0;
   vec3 to_light = -light.direction_range.xyz;
   if (dot(s.normal, to_light) <= 0.0) return 1.0;  // faces away: the light adds nothing anyway
+  // [geometric-surface-glsl]
+  // The lookups below bias and tilt by the surface's geometry, not by its normal map's bumps.
+  s.normal = geometric_normal(s);
+  // [/geometric-surface-glsl]
 #if SHADOW_CASCADES > 1
   // [cascade-choice-glsl]
   // shadow_math.h's choose_cascade: the first cascade whose far split lies beyond the pixel's
@@ -360,7 +365,8 @@ float spot_visibility(int i, Surface s) {
   vec3 to_light = normalize(t.position.xyz - s.position);
   float cos_theta = dot(s.normal, to_light);
   if (cos_theta <= 0.0) return 1.0;  // faces away: the light adds nothing anyway
-  cos_theta = clamp(cos_theta, 1e-4, 1.0);
+  s.normal = geometric_normal(s);  // the spot's biases and taps, as the sun's
+  cos_theta = clamp(dot(s.normal, to_light), 1e-4, 1.0);
   float sin_theta = sqrt(1.0 - cos_theta * cos_theta);
   float tan_theta = min(sin_theta / cos_theta, 10.0);
   float d = (t.matrix * vec4(s.position, 1.0)).w;
@@ -408,7 +414,8 @@ float point_visibility(int i, Surface s) {
   float d = length(to_light);
   float cos_theta = dot(s.normal, to_light / max(d, 1e-6));
   if (cos_theta <= 0.0) return 1.0;  // faces away: the light adds nothing anyway
-  cos_theta = clamp(cos_theta, 1e-4, 1.0);
+  s.normal = geometric_normal(s);  // the cube map's biases and taps, as the sun's
+  cos_theta = clamp(dot(s.normal, to_light / max(d, 1e-6)), 1e-4, 1.0);
   float sin_theta = sqrt(1.0 - cos_theta * cos_theta);
   float tan_theta = min(sin_theta / cos_theta, 10.0);
   float texel = 2.0 * d / sh.point_map_size;
