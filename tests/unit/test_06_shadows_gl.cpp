@@ -979,6 +979,41 @@ TEST_F(ShadowsGl, PcssPenumbraIsNarrowNearContactAndWideFarFromIt) {
 }
 // [/pcss-gl]
 
+// PCSS's blocker search reaches d_r tan(theta) around the lookup (shadow_math.h pcss()): any
+// blocker that hides part of the sun from the receiver lies within (d_r - d_b) tan(theta) of its
+// map point, inside that reach. Take the pixels the hard truth lights but the soft truth darkens
+// by at least a quarter (the outer penumbra), more than two texels from the hard edge: their
+// blockers hide a quarter of the sun's disk and lie more than a texel from the lookup. A
+// search that finds them darkens the pixel; one that finds nothing returns 1 exactly. Its
+// Poisson taps are a sample of the search disk, so a thin blocker can slip between them: the
+// bound is that at most half of these pixels find nothing (a stated bound, not derived: far
+// from both a search that reaches, and one a texel wide, which finds nothing at nearly all).
+TEST_F(ShadowsGl, PcssSearchFindsTheBlockersOfTheOuterPenumbra) {
+  // A sun ten times the real one's size: with the real sun the penumbra is about a texel wide
+  // and the outer penumbra lies within a texel of the hard edge, where any search finds it.
+  constexpr float kBigSun = 10 * kSunAngularRadius;
+  std::size_t pixels = 0, unfound = 0;
+  for (const char* view : {"overview", "corner"}) {
+    const FrameCamera cam = world->camera(view);
+    const ImageF truth = world->truth(cam, {.angular_radius = kBigSun});
+    const ShadowSettings s{.method = ShadowMethod::Pcss, .sun_angular_radius = kBigSun};
+    const ImageF v = world->visibility(cam, s);
+    // Two texels from the hard edge: beyond the one-texel reach of a search that has lost its own.
+    const auto band = hard_edge_pixels(
+        truth, edge_band_pixels(*world, cam, {.method = ShadowMethod::Pcss, .constant_bias = 0, .slope_bias = 0, .normal_offset = 0}, 1.5f));
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        if (truth.at(x, y, 2) < 0.5f || truth.at(x, y, 0) < 0.5f || truth.at(x, y, 1) > 0.75f || band[std::size_t(y) * kW + x])
+          continue;
+        ++pixels;
+        unfound += v.at(x, y, 0) == 1.f;
+      }
+  }
+  std::printf("pcss: %zu of %zu outer-penumbra pixels found no blocker\n", unfound, pixels);
+  ASSERT_GT(pixels, std::size_t(100));
+  EXPECT_LT(double(unfound), 0.5 * double(pixels));
+}
+
 // [unmarked-lights-gl]
 // The atrium marks no light (its sun casts by default, its eight point lights do not cast:
 // shadow_stage.h [casts-shadows]), so the point lights keep chapter 03's path. With the sun
