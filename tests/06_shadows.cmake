@@ -3,7 +3,7 @@
 lightpass_gtests(06_shadows unit lightpass_06_shadows unit/test_06_shadow_math.cpp unit/test_06_shadow_metrics.cpp
                  unit/test_06_cube_math.cpp unit/test_06_csm_math.cpp unit/test_06_spot_atlas.cpp)
 lightpass_gtests(06_shadows gl lightpass_06_shadows unit/test_06_shadows_gl.cpp unit/test_06_point_shadows_gl.cpp unit/test_06_csm_gl.cpp
-                 unit/test_06_spot_atlas_gl.cpp unit/test_06_hard_cases_gl.cpp)
+                 unit/test_06_spot_atlas_gl.cpp unit/test_06_hard_cases_gl.cpp unit/test_06_twins_gl.cpp unit/glsl_twin.cpp)
 
 # The program: reference images per method (tests/reference/06_shadows/, made on llvmpipe
 # with --check --update-references), what a headless run reports, and bad input.

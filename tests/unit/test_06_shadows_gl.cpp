@@ -6,6 +6,7 @@
 // none with it, the sky and the surfaces facing away untouched, a caster outside the view).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 
@@ -116,13 +117,13 @@ void exclude_raster_mask(const ImageF& v, std::vector<bool>& exclude) {
 // texels, times the texel's size over the smallest pixel footprint of any surface in view
 // (distance x 2 tan(fov / 2) / height at the nearest hit). Pixels within that many pixels of a
 // lit/shadowed boundary of the truth (or of the mask's border) are the band.
-int edge_band_pixels(const World& w, const FrameCamera& cam, const ShadowSettings& s) {
+int edge_band_pixels(const World& w, const FrameCamera& cam, const ShadowSettings& s, float extra_texels = 0) {
   const auto hits = primary_hits(w.rays, cam, kW, kH);
   float nearest = 1e30f;
   for (const auto& h : hits)
     if (h) nearest = std::min(nearest, h->t);
   const float footprint = nearest * 2.f * std::tan(cam.yfov / 2.f) / float(kH);
-  const float texels = 0.5f + s.constant_bias + s.slope_bias * kMaxSlope + s.normal_offset;
+  const float texels = 0.5f + s.constant_bias + s.slope_bias * kMaxSlope + s.normal_offset + extra_texels;
   // The frustum as the last render fitted it to this camera.
   return int(std::ceil(texels * w.stage.frustum().texel_world(s.map_size) / footprint));
 }
@@ -292,6 +293,130 @@ TEST(ShadowsGlGrazing, AcneWithoutBiasAndNoneWithTheDefaultBias) {
   };
   EXPECT_GT(acne({.method = ShadowMethod::Hard, .constant_bias = 0, .slope_bias = 0, .normal_offset = 0}), 0.05);
   EXPECT_EQ(acne(biased), 0.0);
+}
+
+namespace {
+// The pixels of `truth` lit by the sun, outside `band` pixels of a shadow edge and of the
+// rasterised picture's sky (exclude_raster_mask), whose surface the sun meets at more than 60
+// degrees from its normal (tan theta > 1.7: where the slope of the receiver, not the depth's
+// rounding, makes acne).
+std::vector<bool> grazed_lit_pixels(World& w, const FrameCamera& cam, const ImageF& truth, int band) {
+  auto edges = hard_edge_pixels(truth, band);
+  exclude_raster_mask(w.visibility(cam, {.method = ShadowMethod::Hard}), edges);
+  const auto hits = primary_hits(w.rays, cam, kW, kH);
+  const glm::vec3 to_sun = -glm::normalize(w.sun());
+  std::vector<bool> pick(std::size_t(kW) * kH, false);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const std::size_t i = std::size_t(y) * kW + x;
+      const auto& h = hits[i];
+      if (!h || truth.at(x, y, 2) < 0.5f || truth.at(x, y, 0) < 0.5f || edges[i]) continue;
+      const float c = glm::dot(h->geometric_normal, to_sun);
+      pick[i] = c > 0.f && c < 0.5f;
+    }
+  return pick;
+}
+// The atrium's floor alone, lit everywhere by a sun 10 degrees above it: every floor pixel is a
+// grazed, lit receiver, and nothing casts. Its normal map is left out, so that its shading
+// normal is its geometric one (a bumped normal tilts the receiver's plane away from the map's).
+void floor_only(Scene& s) {
+  std::erase_if(s.instances, [](const Instance& i) { return i.name != "floor"; });
+  for (Material& m : s.materials) m.normal_texture = -1;
+}
+// The floor with the two walls the grazing sun lights (they cast behind themselves, off the
+// floor), so that the map's box is as tall across the light as it is wide: with the floor alone
+// it is a thin strip whose texels are far narrower across the slope than texel_metres says.
+void floor_and_lit_walls(Scene& s) {
+  std::erase_if(s.instances, [](const Instance& i) { return i.name != "floor" && i.name != "wall_left" && i.name != "wall_back"; });
+  for (Material& m : s.materials) m.normal_texture = -1;
+}
+glm::vec3 grazing_sun() { return {-std::cos(glm::radians(10.f)), -std::sin(glm::radians(10.f)), -0.15f}; }
+// How many of `pixels` read visibility below `below`.
+std::size_t count_below(const ImageF& v, const std::vector<bool>& pixels, float below) {
+  std::size_t n = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) n += pixels[std::size_t(y) * kW + x] && v.at(x, y, 0) < below;
+  return n;
+}
+}  // namespace
+
+// Each part of the bias alone, where the sun grazes (shadow_math.h [bias]). The nearest texel's
+// centre lies up to half a texel along each axis from the lookup, w / sqrt(2) away, where a plane
+// at theta from the sun is nearer the light by up to (w / sqrt(2)) tan(theta). The slope-scaled
+// part alone (1 texel per tan) pushes the receiver w tan(theta) towards the light; the normal
+// offset alone (1 texel x sin(theta) along the normal) puts the lookup w sin(theta) / cos(theta)
+// = w tan(theta) in front of the plane along the light: either is 1 / 0.71 of what the texel
+// grid needs, and the rest, at least 0.5 w at tan > 1.7, covers the depth's rounding. So on the
+// grazed, lit floor (floor_only) outside the band no pixel is dark with either part alone; with
+// no bias at all the same pixels show acne.
+TEST(ShadowsGlGrazing, SlopeBiasAloneAndNormalOffsetAloneEachRemoveTheAcne) {
+  World grazing(grazing_sun(), floor_only);
+  const FrameCamera cam = grazing.camera("overview");
+  const ImageF truth = grazing.truth(cam);
+  const ShadowSettings defaults{.method = ShadowMethod::Hard};
+  grazing.visibility(cam, defaults);  // fits the frustum to this camera for the band
+  const auto pixels = grazed_lit_pixels(grazing, cam, truth, edge_band_pixels(grazing, cam, defaults));
+  const std::size_t n = std::size_t(std::count(pixels.begin(), pixels.end(), true));
+  ASSERT_GT(n, std::size_t(10000));
+  const std::size_t none = count_below(
+      grazing.visibility(cam, {.method = ShadowMethod::Hard, .constant_bias = 0, .slope_bias = 0, .normal_offset = 0}), pixels, 0.5f);
+  const std::size_t slope = count_below(
+      grazing.visibility(cam, {.method = ShadowMethod::Hard, .constant_bias = 0, .slope_bias = 1, .normal_offset = 0}), pixels, 0.5f);
+  const std::size_t offset = count_below(
+      grazing.visibility(cam, {.method = ShadowMethod::Hard, .constant_bias = 0, .slope_bias = 0, .normal_offset = 1}), pixels, 0.5f);
+  std::printf("grazed lit pixels dark: %zu of %zu without bias, %zu with the slope part alone, %zu with the normal offset alone\n",
+              none, n, slope, offset);
+  EXPECT_GT(double(none), 0.05 * double(n));
+  EXPECT_EQ(slope, 0u);
+  EXPECT_EQ(offset, 0u);
+}
+
+// PCF's receiver plane where the sun grazes: a 7 x 7 kernel's outer taps lie 3 texels from the
+// lookup, where the grazed floor is 3 w tan(theta) (17 texels at 80 degrees) farther from the
+// light than the lookup, far past the default bias (0.5 + tan(theta) + 1 texels). Each tap that
+// compares with the receiver's plane there, q.z + gradient . o, meets the same texel-grid error
+// as the centre tap, which the bias covers (above); so on the grazed, lit pixels outside the edge
+// band widened by the kernel's 3 texels, whose taps all fall on their own plane, every tap is lit
+// and the visibility is 1. The floor and the lit walls (floor_and_lit_walls) without normal maps:
+// the receiver's plane is its triangle's.
+TEST(ShadowsGlGrazing, ReceiverPlaneKeepsAWideKernelLitWhereTheSunGrazes) {
+  World grazing(grazing_sun(), floor_and_lit_walls);
+  const FrameCamera cam = grazing.camera("overview");
+  const ImageF truth = grazing.truth(cam);
+  const ShadowSettings wide{.method = ShadowMethod::Pcf, .kernel = 7};
+  const ImageF v = grazing.visibility(cam, wide);
+  auto pixels = grazed_lit_pixels(grazing, cam, truth, edge_band_pixels(grazing, cam, wide, 3.f));
+  // Only the receivers whose taps all read their own surface: a tap whose texel holds another
+  // one (a wall's foot within 3 texels: the kernel sees the contact) is not the plane's question.
+  // Traced: from the sun towards each tap's point of the receiver's plane (the tap grid one texel
+  // a step along the map's axes, plus the nearest texel's half), the first surface must be the
+  // receiver's instance. Also left out: taps past the map's border (clamped to it).
+  const LightFrustum& f = grazing.stage.frustum();
+  const glm::vec2 texel = glm::vec2(f.box_max - f.box_min) / float(wide.map_size);
+  const glm::mat3 light_to_world = glm::transpose(glm::mat3(f.view));
+  const glm::vec3 along = glm::normalize(grazing.sun());
+  const auto hits = primary_hits(grazing.rays, cam, kW, kH);
+  for (std::size_t i = 0; i < pixels.size(); ++i) {
+    if (!pixels[i]) continue;
+    const glm::vec3 p = hits[i]->position;
+    const glm::vec3 lp = glm::vec3(f.view * glm::vec4(p, 1.f));
+    for (int y = -4; y <= 4 && pixels[i]; ++y)
+      for (int x = -4; x <= 4 && pixels[i]; ++x) {
+        const glm::vec2 at = glm::vec2(lp) + glm::vec2(x, y) * texel;
+        if (glm::any(glm::lessThan(at, glm::vec2(f.box_min))) || glm::any(glm::greaterThan(at, glm::vec2(f.box_max)))) {
+          pixels[i] = false;
+          break;
+        }
+        const glm::vec3 q = p + light_to_world * glm::vec3(glm::vec2(x, y) * texel, 0.f);
+        const auto h = grazing.rays.intersect(q - 1000.f * along, along, 0.f, 2000.f);
+        if (!h || h->instance != hits[i]->instance) pixels[i] = false;
+      }
+  }
+  const std::size_t n = std::size_t(std::count(pixels.begin(), pixels.end(), true));
+  const std::size_t darker = count_below(v, pixels, 1.f);
+  std::printf("pcf 7x7: %zu of %zu grazed lit pixels below 1\n", darker, n);
+  ASSERT_GT(n, std::size_t(1000));
+  EXPECT_EQ(darker, 0u);
 }
 
 // The sky and the surfaces facing away from the sun: the image is the frame without the stage,
@@ -853,6 +978,41 @@ TEST_F(ShadowsGl, PcssPenumbraIsNarrowNearContactAndWideFarFromIt) {
   EXPECT_LT(median, 2.0);
 }
 // [/pcss-gl]
+
+// PCSS's blocker search reaches d_r tan(theta) around the lookup (shadow_math.h pcss()): any
+// blocker that hides part of the sun from the receiver lies within (d_r - d_b) tan(theta) of its
+// map point, inside that reach. Take the pixels the hard truth lights but the soft truth darkens
+// by at least a quarter (the outer penumbra), more than two texels from the hard edge: their
+// blockers hide a quarter of the sun's disk and lie more than a texel from the lookup. A
+// search that finds them darkens the pixel; one that finds nothing returns 1 exactly. Its
+// Poisson taps are a sample of the search disk, so a thin blocker can slip between them: the
+// bound is that at most half of these pixels find nothing (a stated bound, not derived: far
+// from both a search that reaches, and one a texel wide, which finds nothing at nearly all).
+TEST_F(ShadowsGl, PcssSearchFindsTheBlockersOfTheOuterPenumbra) {
+  // A sun ten times the real one's size: with the real sun the penumbra is about a texel wide
+  // and the outer penumbra lies within a texel of the hard edge, where any search finds it.
+  constexpr float kBigSun = 10 * kSunAngularRadius;
+  std::size_t pixels = 0, unfound = 0;
+  for (const char* view : {"overview", "corner"}) {
+    const FrameCamera cam = world->camera(view);
+    const ImageF truth = world->truth(cam, {.angular_radius = kBigSun});
+    const ShadowSettings s{.method = ShadowMethod::Pcss, .sun_angular_radius = kBigSun};
+    const ImageF v = world->visibility(cam, s);
+    // Two texels from the hard edge: beyond the one-texel reach of a search that has lost its own.
+    const auto band = hard_edge_pixels(
+        truth, edge_band_pixels(*world, cam, {.method = ShadowMethod::Pcss, .constant_bias = 0, .slope_bias = 0, .normal_offset = 0}, 1.5f));
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        if (truth.at(x, y, 2) < 0.5f || truth.at(x, y, 0) < 0.5f || truth.at(x, y, 1) > 0.75f || band[std::size_t(y) * kW + x])
+          continue;
+        ++pixels;
+        unfound += v.at(x, y, 0) == 1.f;
+      }
+  }
+  std::printf("pcss: %zu of %zu outer-penumbra pixels found no blocker\n", unfound, pixels);
+  ASSERT_GT(pixels, std::size_t(100));
+  EXPECT_LT(double(unfound), 0.5 * double(pixels));
+}
 
 // [unmarked-lights-gl]
 // The atrium marks no light (its sun casts by default, its eight point lights do not cast:

@@ -202,6 +202,43 @@ TEST(SsaoHardCases, GrazingViewOfAPlaneHasNoFalseOcclusion) {
 }
 // [/grazing]
 
+// The classic test's bias: a kernel point counts as hidden only when the stored surface lies at
+// least bias x R in front of it, so a larger bias can only drop hidden points, never add one.
+// Two consequences that hold exactly (the same kernel, noise and blur weights, which depend on
+// depth and normals only; float sums and products of non-negative weights are monotone): on the
+// open plane, nothing in front of any point, A stays 1 (the open plane's 0.995) even with a
+// bias of a quarter of R; and in the Cornell box's corner, A with bias 0.25 is at least A with
+// the default bias, which is at least A without bias, pixel by pixel. A bias of the wrong sign
+// hides every point up to bias x R above a surface: the plane darkens and the order reverses.
+TEST(SsaoHardCases, ClassicBiasOnlyEverDropsOccluders) {
+  Box w("tests/data/minimal.gltf");
+  const FrameCamera above = look({0.f, 1.2f, 0.6f}, {0.f, 0.f, 0.f});
+  AoSettings s{.method = AoMethod::Classic, .samples = 32, .radius = 0.5f};
+  s.bias = 0.25f;
+  const ImageF plane = w.frame.ao(above, s);
+  float lowest = 1.f;
+  for (float v : plane.data) lowest = std::min(lowest, v);
+  std::printf("classic, bias 0.25 R: lowest A on the open plane %.4f\n", lowest);
+  EXPECT_GE(lowest, 0.995f);
+
+  Box& b = cornell();
+  const FrameCamera cam = corner_camera();
+  std::vector<ImageF> ao;
+  for (float bias : {0.f, AoSettings{}.bias, 0.25f}) {
+    AoSettings c{.method = AoMethod::Classic, .samples = 16, .radius = kCornerR};
+    c.bias = bias;
+    ao.push_back(b.frame.ao(cam, c));
+  }
+  long lower = 0, raised = 0;
+  for (std::size_t i = 0; i < ao[0].data.size(); ++i) {
+    lower += ao[1].data[i] < ao[0].data[i] || ao[2].data[i] < ao[1].data[i];
+    raised += ao[2].data[i] > ao[0].data[i];
+  }
+  std::printf("corner: %ld pixels brighter with bias 0.25 R than with none, %ld darker with more bias\n", raised, lower);
+  EXPECT_EQ(lower, 0);
+  EXPECT_GT(raised, 100);  // the bias does something in the crease
+}
+
 // [screen-edge]
 // Samples off the screen's edge. Every method counts them as open (classic: the point counts
 // as not hidden; the disk and GTAO skip the sample, so the horizon or the occlusion sum stays as

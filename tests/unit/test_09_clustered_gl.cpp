@@ -446,6 +446,20 @@ TEST_F(ClusteredGl, ALightCoveringTheWholeScreen) {
   for (const Render& r : rs) EXPECT_EQ(r.counts.surface, r.counts.evaluated);
 }
 
+// An off-centre frustum (a shifted lens, or chapter 11's jitter writ large): P[2][0] and P[2][1]
+// move every cell's box sideways by d * offset / focal at view depth d. Shifted by a third and a
+// quarter of the screen, a box built as if the frustum were centred misses lights at the
+// screen's far side by whole tiles, so the lists must use the offsets to equal the volumes.
+TEST_F(ClusteredGl, AnOffCentreFrustumListsWhatTheVolumesLight) {
+  World& w = street();
+  const int width = 64, height = 36;
+  FrameCamera cam = camera(w, "street_level", width, height);
+  cam.projection[2][0] = 0.65f;
+  cam.projection[2][1] = -0.5f;
+  set_lights(w, 1000);
+  expect_all_modes_equal_stencil(w, cam, width, height, &ClusteredGl::render);
+}
+
 // The camera inside many lights (chapter 03's hardest case for front faces): 200 lights
 // around the eye, each reaching past it.
 TEST_F(ClusteredGl, CameraInsideManyLights) {

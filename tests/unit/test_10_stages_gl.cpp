@@ -250,3 +250,82 @@ TEST(WholeFrameStagesGl, AoAndIndirectLightAreChapter08s) {
     expect_same_light(in_whole, light_of(chapter->frame()), "the light with AO and the bounce added");
   }
 }
+
+// The HDR chain (chapter 05): the whole frame's sRGB output is chapter 05's HdrPipeline run on
+// the whole frame's own float radiance (every stage on, the glass drawn), with the same settings
+// (bloom before tonemapping, so that every pass of the chain runs) and the same frame time, as a
+// new shot (the eye adapted at once): byte for byte. And the bloom does something: the same
+// radiance without it is another image.
+TEST(WholeFrameStagesGl, TheHdrChainIsChapter05sOnTheSameRadiance) {
+  const Scene scene = shop_street();
+  const FrameCamera camera = shops(scene);
+  WholeFrame whole(scene);
+  WholeFrameSettings s;
+  s.hdr.bloom = ch05::BloomMode::BeforeTonemap;
+  OutputTarget in_whole(kW, kH);
+  const float dt = 1.f / 60.f;
+  whole.render(camera, {in_whole.framebuffer(), kW, kH}, s, dt, true);
+  ASSERT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+  ASSERT_NE(whole.radiance(), nullptr);
+
+  auto chapter05 = [&](ch05::BloomMode bloom) {
+    ch05::HdrPipeline hdr;
+    hdr.reset_adaptation(1.f);
+    ch05::HdrSettings h = s.hdr;
+    h.bloom = bloom;
+    h.adaptation.dt = dt;
+    OutputTarget out(kW, kH);
+    hdr.process(whole.radiance()->texture(), kW, kH, h, out.framebuffer());
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+    return out.read();
+  };
+  auto differing = [](const ImageRGBA8& a, const ImageRGBA8& b) {
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) n += a.pixels[i] != b.pixels[i];
+    return n;
+  };
+  const ImageRGBA8 whole_image = in_whole.read();
+  EXPECT_EQ(differing(whole_image, chapter05(ch05::BloomMode::BeforeTonemap)), 0u)
+      << "the whole frame's output is not chapter 05's chain on its radiance";
+  EXPECT_GT(differing(whole_image, chapter05(ch05::BloomMode::Off)), std::size_t(kW * kH / 50))
+      << "the bloom changes at least 2 % of the view";
+}
+
+// The glass (chapter 10's transparency): the whole frame's float radiance with its glass drawn is
+// what chapter 10's own TransparencyStage draws after chapter 03's frame (the frame its tests
+// study), for both methods, lit through chapter 03's volumes (the stage's own lists) and through
+// chapter 09's clusters (the frame's lists of every cell, which the whole frame shares with the
+// glass): value for value. And the glass is there: without it the radiance is another.
+TEST(WholeFrameStagesGl, TheGlassIsChapter10sTransparencyStage) {
+  const Scene scene = shop_street();
+  const FrameCamera camera = shops(scene);
+  WholeFrame whole(scene);
+  WholeFrameSettings s = nothing_but_the_lights();
+  draw(whole, camera, s);
+  const ImageF without = whole.radiance()->read();
+  for (Method method : {Method::Sorted, Method::Wboit})
+    for (bool clustered : {false, true}) {
+      SCOPED_TRACE(std::string(method == Method::Sorted ? "sorted" : "wboit") + (clustered ? ", clusters" : ", volumes"));
+      s.transparency = method;
+      s.clustered = clustered;
+      draw(whole, camera, s);
+      const ImageF in_whole = whole.radiance()->read();
+      EXPECT_GT(differ(in_whole, without).values, std::size_t(kW * kH / 50)) << "the glass covers at least 2 % of the view";
+
+      auto chapter = chapters_frame(whole, s);
+      ch09::ClusteredLights lists(chapter->frame().volumes(), ch09::ClusterSettings{.all_cells = true});
+      TransparencyStage glass(chapter->frame(), chapter->scene_gpu());
+      glass.set({.method = method});
+      if (clustered) {
+        chapter->frame().set_local_lights(&lists);
+        glass.use_frame_lists(&lists);
+      }
+      chapter->frame().add_stage(glass);
+      ch05::RadianceTarget target(kW, kH, GL_RGBA16F, true);
+      chapter->render(camera, target);
+      ASSERT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+      const Difference d = differ(in_whole, target.read());
+      EXPECT_EQ(d.values, 0u) << "the whole frame's glass differs from chapter 10's stage in " << d.values
+                              << " values, by up to " << d.largest << "; first at " << d.first;
+    }
+}

@@ -11,6 +11,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "chapters/03_light_volumes/light_radius.h"
 #include "chapters/11_temporal/camera_path.h"
 #include "chapters/11_temporal/measure.h"
 #include "chapters/11_temporal/temporal_frame.h"
@@ -189,6 +190,55 @@ TEST(TemporalGl, AMovingCameraMovesEachPixelToItsLastProjection) {
     EXPECT_LT(worst, 0.01);
     EXPECT_LT(mean, 1e-3);
   }
+}
+
+// A moving object on a still camera: the object pass draws each instance with its last model
+// matrix, so a surface that moved by T carries uv now - uv then = its point's projection less
+// that of the point T back. Every instance moved by T = (0.4, 0.1, -0.3) m since the last frame
+// (MotionStage::set_previous_models), on chapter 03's frame with the motion stage alone: each
+// geometry pixel's motion takes it to where its point less T projects, within the hundredth of
+// a pixel of the moving-camera test (the same float interpolation of clip positions). The sky
+// has no instance and keeps the camera's zero motion; its pixels (at the far plane) are left out.
+TEST(TemporalGl, AMovedObjectCarriesItsOwnMotion) {
+  const Scene& scene = street();
+  ch03::DeferredFrame frame(street_gpu());
+  frame.volumes().set_lights(ch03::build_light_set(scene.lights, ch03::cut_threshold(1.f, ch03::peak_reflectance(scene)),
+                                                   frame.volumes().shapes()));
+  MotionStage motion(street_gpu());
+  frame.add_stage(motion);
+  const FrameCamera cam = shops();
+  OutputTarget target(kW, kH);
+  motion.set_cameras(cam, cam);
+  frame.render(cam, {target.framebuffer(), kW, kH});
+  const glm::vec3 shift(0.4f, 0.1f, -0.3f);
+  std::vector<glm::mat4> previous;
+  for (const Instance& inst : scene.instances) previous.push_back(glm::translate(glm::mat4(1), -shift) * inst.model);
+  motion.set_previous_models(previous);
+  motion.set_cameras(cam, cam);
+  frame.render(cam, {target.framebuffer(), kW, kH});
+  ASSERT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+  const ImageF m = read_texture_rgba(motion.current(), kW, kH);
+  const glm::mat4 inverse_projection = glm::inverse(cam.projection), camera_to_world = glm::inverse(cam.view);
+  double worst = 0, moved_px = 0;
+  long pixels = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      if (m.at(x, y, 3) >= 0.99f * cam.zfar) continue;  // the sky: no instance, the camera's motion
+      const glm::vec2 uv((float(x) + 0.5f) / kW, 1.f - (float(y) + 0.5f) / kH);
+      glm::vec4 view = inverse_projection * glm::vec4(uv * 2.f - 1.f, 1.f, 1.f);
+      view /= view.w;
+      const glm::vec3 point = glm::vec3(camera_to_world * glm::vec4(glm::vec3(view) * (m.at(x, y, 3) / -view.z), 1.f));
+      const glm::vec4 clip = cam.view_projection() * glm::vec4(point - shift, 1.f);
+      const glm::vec2 expected = glm::vec2(clip) / clip.w * 0.5f + 0.5f;
+      const glm::vec2 then = uv - glm::vec2(m.at(x, y, 0), m.at(x, y, 1));
+      worst = std::max(worst, double(glm::length((then - expected) * glm::vec2(kW, kH))));
+      moved_px += glm::length((uv - expected) * glm::vec2(kW, kH));
+      ++pixels;
+    }
+  std::printf("moved objects: %ld pixels, mean motion %.2f px, worst error %.4f px\n", pixels, moved_px / double(pixels), worst);
+  ASSERT_GT(pixels, kW * kH / 2);
+  EXPECT_GT(moved_px / double(pixels), 1.0);  // the shift moves the view by pixels, not hundredths
+  EXPECT_LT(worst, 0.01);
 }
 
 // Along a still camera's jittered frames TAA approaches the supersampled truth: after 24 frames

@@ -10,20 +10,16 @@ uniform ivec2 u_step;   // (1, 0) or (0, 1)
 uniform int u_radius;
 uniform int u_terms;    // 1 .. CSM_MAX_TERMS
 uniform bool u_from_depth;
-#define CSM_MAX_TERMS 8
+#include "06_shadows/shaders/csm_math.glsl"
 layout(location = 0) out vec4 out_layer[CSM_MAX_TERMS / 2];
 
-// [csm-basis-glsl]
-// Layer l holds terms 2 l + 1 and 2 l + 2: (sin, cos) of each.
+// Layer l holds terms 2 l + 1 and 2 l + 2 (csm_math.glsl's csm_basis_layer).
 vec4 basis_at(ivec2 p, int layer) {
   ivec2 size = textureSize(u_depth, 0).xy;
   p = clamp(p, ivec2(0), size - 1);
   if (!u_from_depth) return texelFetch(u_input, ivec3(p, layer), 0);
-  float z = texelFetch(u_depth, p, 0).r;
-  float c1 = float(4 * layer + 1) * 3.14159265358979, c2 = float(4 * layer + 3) * 3.14159265358979;
-  return vec4(sin(c1 * z), cos(c1 * z), sin(c2 * z), cos(c2 * z));
+  return csm_basis_layer(texelFetch(u_depth, p, 0).r, layer);
 }
-// [/csm-basis-glsl]
 
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);

@@ -63,6 +63,7 @@ layout(binding = SHADOW_UNIT + 2) uniform sampler2D sh_moments;
 layout(binding = SHADOW_UNIT + 5) uniform sampler2D sh_spot_atlas;
 layout(binding = SHADOW_UNIT + 6) uniform samplerCubeArray sh_point_maps;
 layout(binding = SHADOW_UNIT + 7) uniform sampler2DArray sh_csm;
+#include "06_shadows/shaders/csm_math.glsl"
 
 // The map a lookup reads: the sun's one map, or the cascade chosen for the pixel (all share the
 // light's view, sh.view, and its depth range, sh.depth_range).
@@ -261,20 +262,11 @@ float sun_map_visibility(Surface s, vec3 to_light) {
   return 1.0 - clamp(sw.z + sw.w * quotient, 0.0, 1.0);
   // [/msm-glsl]
 #elif SHADOW_METHOD == SHADOW_CSM_FOURIER
-  // [csm-glsl]
-  // csm_math.h's csm_visibility: the step's series from the filtered sin(c_k z), cos(c_k z) and
-  // the receiver's depth, sin(c (z - d)) = sin(c z) cos(c d) - cos(c z) sin(c d); doubled and
-  // clamped, so that a receiver on its own occluder (the series' 1/2) reads lit.
+  // csm_math.glsl's csm_visibility on the filtered layers the series' terms use
   int terms = int(sh.csm_terms);
-  float sum = 0.5;
-  for (int k = 1; k <= terms; ++k) {
-    vec4 layer = texture(sh_csm, vec3(q.xy, float((k - 1) / 2)));
-    vec2 b = (k & 1) == 1 ? layer.xy : layer.zw;
-    float c = float(2 * k - 1) * 3.14159265358979;
-    sum += 2.0 * (b.x * cos(c * q.z) - b.y * sin(c * q.z)) / c;
-  }
-  return clamp(2.0 * sum, 0.0, 1.0);
-  // [/csm-glsl]
+  vec4 layers[CSM_MAX_TERMS / 2];
+  for (int l = 0; l < CSM_MAX_TERMS / 2; ++l) layers[l] = 2 * l < terms ? texture(sh_csm, vec3(q.xy, float(l))) : vec4(0.0);
+  return csm_visibility(layers, q.z, terms);
 #else
 #error SHADOW_METHOD names no method
 #endif

@@ -1,0 +1,148 @@
+// Chapter 06's GLSL against its C++ twins (glsl_twin.h): convolution shadow maps' basis and
+// reconstruction (csm_math.glsl against csm_math.h), and the cube map's face table (cube_math.h)
+// against the lookup point_visibility() makes, a samplerCubeArray read with a direction.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "chapters/06_shadows/csm_math.h"
+#include "chapters/06_shadows/cube_math.h"
+#include "common/gl.h"
+#include "tests/unit/glsl_twin.h"
+
+namespace lp::ch06 {
+namespace {
+
+using test::TwinCase;
+const std::vector<std::string> kCsm = {"06_shadows/shaders/csm_math.glsl"};
+// GLSL 4.50 gives sin and cos no precision. We allow 2^-20 absolutely (as chapter 07's twins),
+// here for arguments up to 15 pi (c_8 z, z in [0, 1]): a bound on the implementation (llvmpipe's
+// and NVIDIA's range reduction keep it), not the specification's. The C++ sinf adds at most an
+// ulp of 1 (2^-24).
+constexpr double kTrig = 0x1p-20 + 0x1p-24;
+
+std::string describe4(const std::vector<TwinCase>& cases, std::size_t i) {
+  return test::str(cases[i].a) + " " + test::str(cases[i].b) + " " + test::str(cases[i].c) + " " + test::str(cases[i].d);
+}
+
+// The filtered basis of a texel's footprint holding two depths, z0 with weight w and z1 with
+// 1 - w (what the pre-filter makes at a shadow's edge), reconstructed at the receiver's depth d
+// with 1..8 terms: a = (z0, z1, w, _), b = (d, terms, _, _).
+TEST(GlslTwins, CsmBasisAndReconstructionMatchTheirCppTwins) {
+  test::TwinRandom r(6);
+  std::vector<TwinCase> cases;
+  for (int terms = 1; terms <= kMaxCsmTerms; ++terms)
+    for (glm::vec4 a : {glm::vec4(0, 0, 1, 0), glm::vec4(1, 1, 1, 0), glm::vec4(0.5f, 0.5f, 0.5f, 0), glm::vec4(0, 1, 0.5f, 0)})
+      for (float d : {0.f, 1.f, a.x, a.y, 0.5f * (a.x + a.y)}) cases.push_back({a, glm::vec4(d, float(terms), 0, 0)});
+  while (cases.size() < 12000) {
+    const float z0 = r.uniform(0, 1), z1 = r.uniform(0, 1);
+    // The receiver near the occluders (where the series ramps) half of the time, anywhere otherwise.
+    const float d = r.uniform(0, 1) < 0.5f ? std::clamp(z0 + r.uniform(-0.1f, 0.1f), 0.f, 1.f) : r.uniform(0, 1);
+    cases.push_back({glm::vec4(z0, z1, r.uniform(0, 1), 0), glm::vec4(d, float(1 + int(r.uniform(0, 8)) % 8), 0, 0)});
+  }
+  const std::string helper =
+      "float twin_csm(vec4 a, vec4 b) { vec4 layers[CSM_MAX_TERMS / 2]; for (int l = 0; l < CSM_MAX_TERMS / 2; ++l) "
+      "layers[l] = a.z * csm_basis_layer(a.x, l) + (1.0 - a.z) * csm_basis_layer(a.y, l); "
+      "return csm_visibility(layers, b.x, int(b.y)); }";
+  const auto gpu = test::run_glsl_twin({kCsm, "twin_csm(a, b), 0.0, 0.0, 0.0", {}, helper}, cases);
+  // The basis alone, layer by layer: a.x's layer int(b.y) - 1 mod 4.
+  const auto gpu_basis = test::run_glsl_twin({kCsm, "csm_basis_layer(a.x, (int(b.y) - 1) % 4)"}, cases);
+  std::vector<glm::vec4> cpu, cpu_basis;
+  std::vector<double> tolerance;
+  for (const TwinCase& c : cases) {
+    const int terms = int(c.b.y);
+    const std::vector<float> b0 = csm_basis(c.a.x, kMaxCsmTerms), b1 = csm_basis(c.a.y, kMaxCsmTerms);
+    std::vector<float> mixed(b0.size());
+    for (std::size_t i = 0; i < b0.size(); ++i) mixed[i] = c.a.z * b0[i] + (1.f - c.a.z) * b1[i];
+    cpu.push_back(glm::vec4(csm_visibility(mixed, c.b.x, terms), 0, 0, 0));
+    const std::size_t l = std::size_t((terms - 1) % 4);
+    cpu_basis.push_back(glm::vec4(b0[4 * l], b0[4 * l + 1], b0[4 * l + 2], b0[4 * l + 3]));
+    // Each mixed basis value is off by at most kTrig (w + (1 - w) = 1) plus the mix's two
+    // roundings (2 ulp of 1), and each term b.x cos(c d) - b.y sin(c d) (|b| <= 1) by twice
+    // (kTrig + 2 ulp) per product plus 2 ulp, times 2 / c_k; the sum of up to 9 terms of at most
+    // 1.2 rounds 9 times (an ulp of 2 each); the doubling is exact and the clamp only narrows.
+    double sum = 9 * 2 * 0x1p-23;
+    for (int k = 1; k <= terms; ++k) sum += 2.0 / csm_coefficient(k) * (2 * (2 * kTrig + 4 * 0x1p-23) + 2 * 0x1p-23);
+    tolerance.push_back(2 * sum);
+  }
+  auto describe = [&](std::size_t i) { return describe4(cases, i); };
+  EXPECT_TRUE(test::twins_agree(gpu_basis, cpu_basis, 4, {kTrig, 0}, describe)) << "the basis";
+  EXPECT_TRUE(test::twins_agree(gpu, cpu, 1, [&](std::size_t i) { return test::TwinTolerance{tolerance[i], 0}; }, describe))
+      << "the reconstruction";
+}
+
+// cube_face_coords is OpenGL's cube map table, which the depth pass's face matrices follow
+// (CubeMath.TheDepthPassDrawsEachDirectionWhereTheLookupReadsIt); here it is held to the sampler
+// itself: point_visibility()'s lookup, a samplerCubeArray read with a direction, on a map whose
+// texels hold their own face and centre. The texel read must be the one holding cube_face_coords'
+// (s, t), to half a texel plus the sampler's sub-texel precision (taken as Vulkan's minimum, 4
+// bits: a sixteenth of a texel) and the GPU's division sc / ma (2.5 ulp, far below). Where two
+// components tie for the major axis the specification lets the implementation pick either face.
+TEST(GlslTwins, CubeFaceCoordsNameTheTexelTheSamplerReads) {
+  constexpr int kN = 16, kLayers = 2;
+  gl::Texture cube(GL_TEXTURE_CUBE_MAP_ARRAY);
+  glTextureStorage3D(cube.id(), 1, GL_RGBA32F, kN, kN, 6 * kLayers);
+  for (int layer = 0; layer < kLayers; ++layer)
+    for (int face = 0; face < 6; ++face) {
+      std::vector<glm::vec4> texels;
+      for (int j = 0; j < kN; ++j)  // rows from t = 0 up
+        for (int i = 0; i < kN; ++i) texels.push_back({float(face), (i + 0.5f) / kN, (j + 0.5f) / kN, float(layer)});
+      glTextureSubImage3D(cube.id(), 0, 0, 0, 6 * layer + face, kN, kN, 1, GL_RGBA, GL_FLOAT, texels.data());
+    }
+  glTextureParameteri(cube.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(cube.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glBindTextureUnit(3, cube.id());
+
+  test::TwinRandom r(61);
+  std::vector<TwinCase> cases;
+  for (int axis = 0; axis < 3; ++axis)
+    for (float sign : {1.f, -1.f}) {
+      glm::vec3 d(0);
+      d[axis] = sign;
+      cases.push_back({glm::vec4(d, 0)});
+      d[(axis + 1) % 3] = 0.999f * sign;  // next to an edge
+      cases.push_back({glm::vec4(d, 1)});
+      d[(axis + 2) % 3] = -0.999f;        // next to a corner
+      cases.push_back({glm::vec4(d, 0)});
+    }
+  cases.push_back({glm::vec4(1, 1, 0.3f, 0)});  // ties: either face
+  cases.push_back({glm::vec4(-1, -1, -1, 1)});
+  while (cases.size() < 12000) {
+    const glm::vec3 d = r.unit() * r.log_uniform(1e-3f, 1e3f);
+    cases.push_back({glm::vec4(d, float(int(r.uniform(0, 2)) % 2))});
+  }
+  const auto gpu = test::run_glsl_twin(
+      {{}, "textureLod(twin_cube, vec4(a.xyz, a.w), 0.0)", {}, "layout(binding = 3) uniform samplerCubeArray twin_cube;"}, cases);
+  glBindTextureUnit(3, 0);
+  std::size_t failed = 0, ties = 0;
+  double worst = 0;
+  const double allowed = 0.5 / kN + 1.0 / 16 / kN;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const glm::vec3 d(cases[i].a);
+    const CubeCoords c = cube_face_coords(d);
+    const glm::vec3 m = glm::abs(d);
+    const float major = std::max({m.x, m.y, m.z});
+    const int at_major = (m.x == major) + (m.y == major) + (m.z == major);
+    if (at_major > 1) {  // a tie: the face is the implementation's choice, but a face of the tie
+      ++ties;
+      const int face = int(gpu[i].x);
+      EXPECT_TRUE(m[face / 2] == major) << "a tie read face " << face << " for " << test::str(cases[i].a);
+      continue;
+    }
+    const double e = std::max(std::abs(double(gpu[i].y) - c.st.x), std::abs(double(gpu[i].z) - c.st.y));
+    worst = std::max(worst, e);
+    const bool ok = int(gpu[i].x) == int(c.face) && e <= allowed && gpu[i].w == cases[i].a.w;
+    if (!ok && failed++ < 5)
+      ADD_FAILURE() << "direction " << test::str(cases[i].a) << ": the sampler read face " << gpu[i].x << " texel centre ("
+                    << gpu[i].y << ", " << gpu[i].z << "), cube_face_coords says face " << int(c.face) << " at ("
+                    << c.st.x << ", " << c.st.y << ")";
+  }
+  std::printf("  %zu directions (%zu ties); (s, t) at most %.4f texels from the centre read, allowed %.4f\n", cases.size(),
+              ties, worst * kN, allowed * kN);
+  EXPECT_EQ(failed, 0u);
+}
+
+}  // namespace
+}  // namespace lp::ch06
