@@ -593,6 +593,48 @@ int draw_label(ImageRGBA8& image, int x, int y, const std::string& text) {
   return w;
 }
 
+DirectionKeyPlace draw_direction_key(ImageRGBA8& image, const DirectionKey& key) {
+  require_valid(image, "draw_direction_key");
+  if (!(key.full_scale > 0.0f) || !std::isfinite(key.full_scale))
+    throw Error("draw_direction_key: full_scale must be positive and finite");
+  if (!key.colour) throw Error("draw_direction_key: no colour for a direction");
+  const int scale = label_scale(image.width), pad = 3 * scale, radius = 12 * scale, text_h = 7 * scale;
+  const std::string rim = "rim: " + short_number(key.full_scale) + (key.unit.empty() ? "" : " " + key.unit);
+  const int text_w = std::max(text_width(key.what, scale), text_width(rim, scale));
+  DirectionKeyPlace place;
+  place.width = pad + text_w + 4 * scale + 2 * radius + 3 + pad;  // the rim's ring one pixel outside the disc
+  place.height = 2 * radius + 3 + 2 * pad;
+  place.x = image.width - place.width;
+  place.y = image.height - place.height;
+  place.radius = radius;
+  place.centre_x = image.width - pad - radius - 2;
+  place.centre_y = image.height - pad - radius - 2;
+  const std::uint8_t box[3] = {24, 24, 24}, ring[3] = {160, 160, 160}, white[3] = {255, 255, 255}, grey[3] = {200, 200, 200};
+  fill(image, place.x, place.y, image.width, image.height, box);
+  // The disc: each pixel centre's offset from the centre, scaled so the rim is full_scale.
+  const float r2_disc = (float(radius) + 0.5f) * (float(radius) + 0.5f);
+  const float r2_ring = (float(radius) + 1.5f) * (float(radius) + 1.5f);
+  for (int dy = -radius - 2; dy <= radius + 2; ++dy)
+    for (int dx = -radius - 2; dx <= radius + 2; ++dx) {
+      const int x = place.centre_x + dx, y = place.centre_y + dy;
+      if (x < 0 || y < 0 || x >= image.width || y >= image.height) continue;
+      const float r2 = float(dx * dx + dy * dy);
+      std::uint8_t* p = image.at(x, y);
+      if (r2 <= r2_disc) {
+        const float k = key.full_scale / float(radius);
+        const std::array<std::uint8_t, 3> c = key.colour(float(dx) * k, float(dy) * k);
+        p[0] = c[0], p[1] = c[1], p[2] = c[2], p[3] = 255;
+      } else if (r2 <= r2_ring) {
+        p[0] = ring[0], p[1] = ring[1], p[2] = ring[2], p[3] = 255;
+      }
+    }
+  // Two lines left of the disc, centred on it vertically.
+  const int text_x = place.x + pad, text_y = place.centre_y - text_h - scale;
+  draw_text(image, text_x, text_y, key.what, grey, scale);
+  draw_text(image, text_x, text_y + text_h + 2 * scale, rim, white, scale);
+  return place;
+}
+
 // ---- float comparison -----------------------------------------------------------------
 
 std::vector<float> pixel_errors(const ImageF& actual, const ImageF& expected) {

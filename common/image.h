@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -111,6 +112,22 @@ ImageRGBA8 with_heat_key(const ImageRGBA8& heat, const HeatKey& key);
 // size (the window and its PNG). Returns the rows it covered (heat_key_rows).
 int draw_heat_key(ImageRGBA8& image, const HeatKey& key, int x_begin = 0, int x_end = -1);
 int heat_key_rows(int width);  // the strip's height for a picture `width` pixels wide
+// The key of a picture whose colour says which way a vector points and how long it is (chapter
+// 11's motion): on a dark box in the picture's bottom-right corner, a disc whose every point has
+// the picture's colour of the vector from its centre to that point (the rim at full_scale),
+// beside a line saying what it shows and one giving the rim's length.
+struct DirectionKey {
+  float full_scale = 1;  // the vector's length at the disc's rim, in the picture's units
+  std::string unit;      // e.g. "px/frame"
+  std::string what;      // e.g. "screen motion"
+  // The picture's colour (display RGB) for a vector of (x, y) units: x right, y down.
+  std::function<std::array<std::uint8_t, 3>(float x, float y)> colour;
+};
+struct DirectionKeyPlace {  // where the key went: its box, and its disc's centre and radius
+  int x = 0, y = 0, width = 0, height = 0;
+  int centre_x = 0, centre_y = 0, radius = 0;
+};
+DirectionKeyPlace draw_direction_key(ImageRGBA8& image, const DirectionKey& key);
 // A caption over a picture: white text on a dark box, the box's top-left at (x, y); the text
 // scaled with the picture as the key's is. Returns the box's width.
 int draw_label(ImageRGBA8& image, int x, int y, const std::string& text);

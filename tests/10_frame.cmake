@@ -17,6 +17,12 @@ lightpass_program_test(10_frame.reference.glass 0 "15 of 15 references match" ${
 lightpass_program_test(10_frame.headless_says_what_it_drew 0
   "7 transparent surfaces, wboit: frame took .* ms.*exact order: [1-9][0-9]* fragments"
   ${P10} --headless --mode frame --scene ${GLASS} --size 160x90 --transparency wboit --show error --out ${CMAKE_BINARY_DIR}/out/10_headless.png)
+# --show error carries its key, as chapter 02's difference does: the bar ends red under its
+# right end (the glass's errors there are black), mean 80-100 steps with every pixel lit.
+lightpass_image_test(10_frame.error_map_has_its_key "wboit against the exact order" ${CMAKE_BINARY_DIR}/out/10_error_key.png
+  --region 296 162 20 6 --mean 80 100 --lit 1 1
+  RUN ${P10} --headless --mode frame --scene ${GLASS} --size 320x180 --transparency wboit --show error
+      --out ${CMAKE_BINARY_DIR}/out/10_error_key.png)
 lightpass_program_test(10_frame.bench_prints_the_wboit_passes 0 "\"name\":\"transparency: WBOIT composite\""
   ${P10} --bench --mode frame --scene ${GLASS} --frames 2 --size 160x90 --transparency wboit)
 lightpass_program_test(10_frame.bad_transparency 2 "transparency" ${P10} --transparency painter)

@@ -4,8 +4,10 @@
 // frame's ambient hook multiplies the ambient light by it; the direct lights are untouched.
 // `--show ao` shows A itself. The scenes' ambient is small (0.03): the program opens with
 // `--ambient 10` so that the AO shows in the lit image.
+#include <algorithm>
 #include <chrono>
 #include <iostream>
+#include <memory>
 
 #include <imgui.h>
 
@@ -22,7 +24,7 @@ namespace {
 using namespace lp;
 using namespace lp::ch07;
 
-enum Show { kImage, kAo, kRaw, kTruth, kError };  // --show's order
+enum Show { kImage, kAo, kRaw, kTruth, kError, kSplit };  // --show's order
 
 const CliSpec kCli{
     .program = "07_ssao",
@@ -44,13 +46,13 @@ const CliSpec kCli{
               choice_knob("resolution", "the AO pass at full, half or quarter resolution", {"full", "half", "quarter"}),
               choice_knob("show", "the lit image; the AO term A (white: open, black: occluded); A before the blur; "
                                   "the ray-traced truth (slow: the CPU traces --truth-samples rays per pixel, cached); "
-                                  "|A - truth| as a heat map (red: 0.5)",
-                          {"image", "ao", "raw", "truth", "error"}),
+                                  "|A - truth| as a heat map (red: 0.5); the lit image's middle beside the AO's",
+                          {"image", "ao", "raw", "truth", "error", "split"}),
               {"truth-samples", "--show truth/error: cosine-weighted rays per pixel", 64, 1, 4096, true},
               {"ambient", "the scene's ambient light times this (AO darkens only the ambient)", 1, 0, 1000, false}},
     // AO darkens only the ambient light, and the scenes' own (0.03) is too faint to show it:
-    // the program opens with ten times as much.
-    .opening = {"--ambient", "10"}};
+    // the program opens with ten times as much, the lit image beside the AO that darkens it.
+    .opening = {"--ambient", "10", "--show", "split"}};
 
 // [references]
 // On a renderer other than the references' (a reader's GPU), two kinds of pixel may differ by
@@ -73,7 +75,8 @@ std::vector<Shot> cornell_shots() {
           {"front", "off", {{"ambient", 10}}},
           {"front", "gtao", {{"show", kAo}}},
           {"front", "classic", {{"show", kRaw}}},
-          {"front", "disk", {{"show", kError}}, {}, kDepthEdge}};
+          {"front", "disk", {{"show", kError}}, {}, kDepthEdge},
+          {"front", "classic", {{"ambient", 10}, {"show", kSplit}}}};  // the opening, the README's picture
 }
 std::vector<Shot> atrium_shots() {
   return {{"overview", "classic", {{"show", kAo}}, {}, kOtherRenderer},
@@ -137,6 +140,7 @@ int main(int argc, char** argv) {
     ch03::use_lights(frame, app.scene(), app.scene().lights);
     AoStage ao;
     frame.add_stage(ao);
+    std::unique_ptr<OutputTarget> split;  // --show split: the AO's half
 
     while (app.next_frame()) {
       const Frame& f = app.frame();
@@ -170,6 +174,25 @@ int main(int argc, char** argv) {
       }
       frame.render(f.camera, {f.target, f.width, f.height}, &app.metrics());
       // [/frame]
+      // The split: the AO drawn too, the middle halves of both side by side (the box is in the
+      // middle), captioned.
+      if (show == kSplit) {
+        if (!split || split->width() != f.width || split->height() != f.height)
+          split = std::make_unique<OutputTarget>(f.width, f.height);
+        ao.set(settings_from(f), AoShow::Ao, ambient);
+        frame.render(f.camera, {split->framebuffer(), f.width, f.height});
+        const ImageRGBA8 lit = read_framebuffer(f.target, f.width, f.height);
+        const ImageRGBA8 term = read_framebuffer(split->framebuffer(), f.width, f.height);
+        ImageRGBA8 img = lit;
+        const int half = f.width / 2, from = f.width / 4;
+        for (int y = 0; y < f.height; ++y) {
+          std::copy_n(lit.at(from, y), std::size_t(half) * 4, img.at(0, y));
+          std::copy_n(term.at(from, y), std::size_t(f.width - half) * 4, img.at(half, y));
+        }
+        draw_label(img, 2, 2, "lit image");
+        draw_label(img, half + 2, 2, "AO (white: open)");
+        put_picture(img, f.target);
+      }
       if (show == kError) {  // the heat map's key, in the picture (show_ao.frag's ramp)
         ImageRGBA8 img = read_framebuffer(f.target, f.width, f.height);
         draw_heat_key(img, {.full_scale = 0.5f, .what = "|AO - ray-traced AO|", .mixed_in_linear = true});

@@ -214,7 +214,11 @@ void draw_glass_study(App& app, const Frame& f, ch03::DeferredFrame& frame, Tran
   // 4. The pictures: a method's error against the exact order.
   if (show == kError) {
     const ImageRGBA8 image = which == "exact" ? exact.image : read_framebuffer(f.target, f.width, f.height);
-    put_picture(diff_heatmap(image, exact.image, 1, int(kErrorFullScale)), f.target);
+    ImageRGBA8 heat = diff_heatmap(image, exact.image, 1, int(kErrorFullScale));
+    // The ramp's key, at the map's own scale, so the picture says what red is.
+    draw_heat_key(heat, {.full_scale = kErrorFullScale,
+                         .what = "|" + which + " - exact order|, 8-bit steps", .threshold = 1});
+    put_picture(heat, f.target);
     if (std::ostream& out = app.report()) out << which << " against the exact order: " << compare(image, exact.image).summary() << '\n';
   } else if (which == "exact") {
     put_picture(exact.image, f.target);

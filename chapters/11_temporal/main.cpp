@@ -16,6 +16,7 @@
 #include <imgui.h>
 
 #include "chapters/11_temporal/camera_path.h"
+#include "chapters/11_temporal/motion_picture.h"
 #include "chapters/11_temporal/temporal_frame.h"
 #include "common/app.h"
 #include "common/error.h"
@@ -112,24 +113,12 @@ TemporalSettings settings_of(const Frame& f) {
   return s;
 }
 
-// --show motion: each pixel's motion in pixels a frame, its direction as hue.
-ImageRGBA8 motion_picture(GLuint motion, int w, int h) {
+// --show motion: each pixel's motion in pixels a frame, its direction as hue, with its key.
+ImageRGBA8 read_motion_picture(GLuint motion, int w, int h) {
   std::vector<float> m(std::size_t(w) * h * 4);
   glGetTextureImage(motion, 0, GL_RGBA, GL_FLOAT, GLsizei(m.size() * sizeof(float)), m.data());
-  ImageRGBA8 out = ImageRGBA8::blank(w, h);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const float* v = &m[(std::size_t(h - 1 - y) * w + x) * 4];  // GL rows bottom first
-      const float dx = v[0] * float(w), dy = v[1] * float(h);
-      const float len = std::min(std::sqrt(dx * dx + dy * dy) / kMotionFullScalePixels, 1.f);
-      const float a = std::atan2(dy, dx);
-      std::uint8_t* p = out.at(x, y);
-      for (int c = 0; c < 3; ++c) {
-        const float hue = 0.5f + 0.5f * std::cos(a - float(c) * 2.0944f);
-        p[c] = std::uint8_t(std::lround(255.f * linear_to_srgb(len * hue)));
-      }
-      p[3] = 255;
-    }
+  ImageRGBA8 out = ch11::motion_picture(m, w, h, kMotionFullScalePixels);
+  draw_direction_key(out, motion_key(kMotionFullScalePixels));
   return out;
 }
 
@@ -202,7 +191,7 @@ int main(int argc, char** argv) {
       // 3. The pictures: the motion vectors, or where the history was dropped.
       const int show = f.knob_int("show");
       const bool taa = s.taa.enabled;
-      if (show == kMotion && taa) put_picture(motion_picture(frame.motion().current(), f.width, f.height), f.target);
+      if (show == kMotion && taa) put_picture(read_motion_picture(frame.motion().current(), f.width, f.height), f.target);
       if (show == kRejected && taa) mark_rejected(frame.taa().rejected(), f.target, f.width, f.height);
       if (show != kImage && !taa) app.report() << "note: --show " << f.choice("show") << " needs --taa 1\n";
       app.metrics().set_allocation("the whole frame's targets (chapter 10)", frame.whole().allocated_bytes());

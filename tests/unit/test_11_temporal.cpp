@@ -1,10 +1,11 @@
-// Chapter 11 without OpenGL: the Halton jitter and the camera paths.
+// Chapter 11 without OpenGL: the Halton jitter, the camera paths and the motion picture's key.
 #include <gtest/gtest.h>
 
 #include <set>
 
 #include "chapters/11_temporal/camera_path.h"
 #include "chapters/11_temporal/jitter.h"
+#include "chapters/11_temporal/motion_picture.h"
 #include "common/error.h"
 #include "common/paths.h"
 
@@ -86,4 +87,33 @@ TEST(CameraPaths, FramesPosesAndCuts) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("walk"), std::string::npos) << e.what();
   }
+}
+
+// --show motion's key says what its picture shows: a field moving up the screen (GL's +y) at half
+// the full scale has the colour of the key's disc half way up from its centre, one moving right
+// at full scale that of its rim on the right; the two differ, and a still pixel is black.
+TEST(MotionPicture, TheKeysWheelHasThePicturesColourForEachDirectionAndLength) {
+  const int w = 64, h = 32;
+  const float full = 8.f;
+  auto field = [&](float dx_px, float dy_px) {  // RGBA32F as read back: xy in uv units
+    std::vector<float> m(std::size_t(w) * h * 4, 0.f);
+    for (std::size_t i = 0; i < m.size(); i += 4) m[i] = dx_px / float(w), m[i + 1] = dy_px / float(h);
+    return motion_picture(m, w, h, full);
+  };
+  lp::ImageRGBA8 key_image = lp::ImageRGBA8::blank(320, 180);
+  const lp::DirectionKeyPlace k = lp::draw_direction_key(key_image, motion_key(full));
+  ASSERT_EQ(k.radius % 2, 0) << "half the radius is a whole pixel";
+  auto same = [](const std::uint8_t* a, const std::uint8_t* b) { return a[0] == b[0] && a[1] == b[1] && a[2] == b[2]; };
+  const lp::ImageRGBA8 up = field(0, full / 2);
+  const lp::ImageRGBA8 right = field(full, 0);
+  const std::uint8_t* key_up = key_image.at(k.centre_x, k.centre_y - k.radius / 2);
+  const std::uint8_t* key_right = key_image.at(k.centre_x + k.radius, k.centre_y);
+  EXPECT_TRUE(same(up.at(5, 5), key_up)) << "up: picture " << int(up.at(5, 5)[0]) << "," << int(up.at(5, 5)[1]) << ","
+                                          << int(up.at(5, 5)[2]) << " key " << int(key_up[0]) << "," << int(key_up[1]) << "," << int(key_up[2]);
+  EXPECT_TRUE(same(right.at(5, 5), key_right));
+  EXPECT_FALSE(same(up.at(5, 5), right.at(5, 5)));
+  EXPECT_FALSE(same(up.at(5, 5), field(0, full).at(5, 5))) << "half the scale is not full colour";
+  const lp::ImageRGBA8 still = field(0, 0);
+  EXPECT_EQ(still.at(5, 5)[0] + still.at(5, 5)[1] + still.at(5, 5)[2], 0);
+  EXPECT_THROW(motion_picture(std::vector<float>(10), w, h, full), lp::Error);
 }

@@ -569,3 +569,66 @@ TEST(HeatKey, TextIsDrawnAndClipped) {
   EXPECT_THROW(lp::with_heat_key(image, {.full_scale = 0}), lp::Error);
   EXPECT_THROW(lp::draw_heat_key(image, {.full_scale = 0}), lp::Error);
 }
+
+// The direction key: a disc in the bottom-right corner whose points have the picture's colour of
+// the vector from its centre (x right, y down; the rim at full scale), the rim's length written
+// beside it (another scale, another number), and nothing else of the picture touched.
+TEST(DirectionKey, TheDiscColoursEachOffsetAsThePictureDoesAndSaysItsScale) {
+  lp::ImageRGBA8 image = lp::ImageRGBA8::blank(320, 180);
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = std::uint8_t(i * 7);
+  const lp::ImageRGBA8 original = image;
+  // A colour that tells right from left and down from up, and the length: R right, G down, B length.
+  auto colour = [](float x, float y) {
+    return std::array<std::uint8_t, 3>{std::uint8_t(x > 0 ? 255 : 0), std::uint8_t(y > 0 ? 255 : 0),
+                                       std::uint8_t(std::lround(std::min(std::hypot(x, y), 8.f) * 30))};
+  };
+  const lp::DirectionKeyPlace place = lp::draw_direction_key(image, {.full_scale = 8, .unit = "px/frame", .what = "motion", .colour = colour});
+  ASSERT_GT(place.radius, 5);
+  EXPECT_EQ(place.x + place.width, 320);
+  EXPECT_EQ(place.y + place.height, 180);
+  EXPECT_LT(place.width, 320 / 2) << "the key hides the picture";
+  EXPECT_LT(place.height, 180 / 4) << "the key hides the picture";
+  const int cx = place.centre_x, cy = place.centre_y, r = place.radius;
+  ASSERT_GE(cx - r, place.x);
+  ASSERT_GE(cy - r, place.y);
+  // Right of the centre, half way out: moving right at half the full scale (4 units, B = 120).
+  const std::uint8_t* right = image.at(cx + r / 2, cy);
+  EXPECT_EQ(right[0], 255);
+  EXPECT_EQ(right[1], 0);
+  EXPECT_NEAR(right[2], 30.0 * (r / 2) * 8.0 / r, 1);
+  // Below the centre (y down) on the rim: moving down at the full scale.
+  const std::uint8_t* below = image.at(cx, cy + r);
+  EXPECT_EQ(below[1], 255);
+  EXPECT_EQ(below[0], 0);
+  EXPECT_EQ(below[2], 240);
+  const std::uint8_t* above_left = image.at(cx - r / 2, cy - r / 2);
+  EXPECT_EQ(above_left[0] + above_left[1], 0) << "up and left";
+  // The text: white pixels left of the disc, and another scale writes another number.
+  int white = 0;
+  for (int y = place.y; y < 180; ++y)
+    for (int x = place.x; x < cx - r - 2; ++x) white += image.at(x, y)[0] == 255 && image.at(x, y)[1] == 255 && image.at(x, y)[2] == 255;
+  EXPECT_GT(white, 20) << "no rim length written";
+  lp::ImageRGBA8 other = original;  // a number as wide: the same box, another digit in it
+  const lp::DirectionKeyPlace other_place = lp::draw_direction_key(other, {.full_scale = 4, .unit = "px/frame", .what = "motion", .colour = colour});
+  ASSERT_EQ(other_place.x, place.x);
+  int differ = 0;
+  for (int y = place.y; y < 180; ++y)
+    for (int x = place.x; x < cx - r - 2; ++x) differ += other.at(x, y)[0] != image.at(x, y)[0];
+  EXPECT_GT(differ, 5) << "the rim's length is not written: " << differ << " pixels differ";
+  // Outside the box the picture is as it was.
+  EXPECT_TRUE(std::equal(original.pixels.begin(), original.pixels.begin() + std::ptrdiff_t(place.y) * 320 * 4, image.pixels.begin()));
+  for (int y = place.y; y < 180; ++y)
+    EXPECT_TRUE(std::equal(original.at(0, y), original.at(place.x, y), image.at(0, y))) << "left of the key changed, row " << y;
+}
+
+// A picture smaller than the key gets what fits; a key without a scale or colours is refused.
+TEST(DirectionKey, ClippedToASmallPictureAndRefusedWithoutAScale) {
+  lp::ImageRGBA8 small = lp::ImageRGBA8::blank(16, 8);
+  auto red = [](float, float) { return std::array<std::uint8_t, 3>{255, 0, 0}; };
+  const lp::DirectionKeyPlace place = lp::draw_direction_key(small, {.full_scale = 8, .what = "motion", .colour = red});
+  EXPECT_LT(place.x, 0);
+  EXPECT_EQ(small.at(15, 7)[3], 255) << "the corner was not drawn";
+  EXPECT_THROW(lp::draw_direction_key(small, {.full_scale = 0, .colour = red}), lp::Error);
+  EXPECT_THROW(lp::draw_direction_key(small, {.full_scale = std::numeric_limits<float>::infinity(), .colour = red}), lp::Error);
+  EXPECT_THROW(lp::draw_direction_key(small, {.full_scale = 8}), lp::Error);
+}
