@@ -60,6 +60,24 @@ bool sphere_meets_box(vec3 centre, float radius, Box box) {
 }
 #endif
 
+// A tube's capsule (segment a-b in view space, radius) against a box: cluster_grid.h's
+// capsule_meets_box, the segment clipped against the box grown by the radius.
+bool capsule_meets_box(vec3 a, vec3 b, float radius, Box box) {
+  float grow = radius * (1.0 + 1e-5) + 1e-6;
+  vec3 lo = box.lo - grow, hi = box.hi + grow, d = b - a;
+  float t0 = 0.0, t1 = 1.0;
+  for (int k = 0; k < 3; ++k) {
+    if (d[k] == 0.0) {
+      if (a[k] < lo[k] || a[k] > hi[k]) return false;
+      continue;
+    }
+    float u = (lo[k] - a[k]) / d[k], v = (hi[k] - a[k]) / d[k];
+    t0 = max(t0, min(u, v));
+    t1 = min(t1, max(u, v));
+  }
+  return t0 <= t1;
+}
+
 // Harada's 2.5D depth mask (cluster_grid.h's depth_bin / depth_range_bits / light_depth_bits).
 const int kDepthBins = 32;
 int depth_bin(float lo, float hi, float d) {
