@@ -64,6 +64,7 @@ void set4i(const ShaderProgram& p, const char* name, int a, int b, int c, int d)
 
 // The largest number of lights the 32-bit arithmetic of assign.comp holds (n * 64 < 2^32) and llvmpipe's loop limit allows (n / 64 / 4 < 65 535).
 constexpr std::size_t kMaxLights = std::size_t(1) << 22;
+constexpr GLuint kTubeBinding = 9;  // shade.glsl's Tubes buffer (CLUSTER_TUBES)
 }  // namespace
 
 ClusteredLights::ClusteredLights(const ch03::LightVolumes& volumes, ClusterSettings settings)
@@ -75,17 +76,34 @@ const ShaderProgram& ClusteredLights::program(GLenum stage, const std::string& f
   return programs_.get(stages, defines);
 }
 
+void ClusteredLights::set_tubes(const std::vector<ch04::NeonGpu>& tubes, const ch04::NeonDraw& how) {
+  if (!same(tubes, tubes_)) uploaded_ = false;
+  tubes_ = tubes;
+  tube_how_ = how;
+}
+
 void ClusteredLights::upload_lights() {
   const ch03::LightSet& set = volumes_.lights();
   if (uploaded_ && same(set.points, points_) && same(set.cones, cones_) && same(set.wide_spots, wide_)) return;
-  if (set.local_count() > kMaxLights)
-    throw Error("clustered lights: " + std::to_string(set.local_count()) + " local lights, at most " +
+  if (set.local_count() + tubes_.size() > kMaxLights)
+    throw Error("clustered lights: " + std::to_string(set.local_count() + tubes_.size()) + " local lights and tubes, at most " +
                 std::to_string(kMaxLights));
   std::vector<GpuClusterLight> g;
-  g.reserve(set.local_count());
+  g.reserve(set.local_count() + tubes_.size());
   for (const auto& p : set.points) g.push_back({p.position_radius, p.radiance_range, glm::vec4(0), glm::vec4(0)});
   for (const auto* spots : {&set.cones, &set.wide_spots})
     for (const auto& s : *spots) g.push_back({s.position_radius, s.radiance_range, s.direction_cone, glm::vec4(1, 0, 0, 0)});
+  // [tube-records]
+  // A tube's record: its capsule (the segment and the volume radius neon_light() cuts at), for
+  // the assignment; the shading reads the packed tube itself by its index.
+  for (std::size_t i = 0; i < tubes_.size(); ++i) {
+    const ch04::UnpackedNeon t = ch04::unpack_neon(tubes_[i]);
+    g.push_back({glm::vec4(t.light.start, t.volume_radius), glm::vec4(0), glm::vec4(t.light.end, float(i)),
+                 glm::vec4(2, 0, 0, 0)});
+  }
+  // [/tube-records]
+  glNamedBufferData(tube_buffer_.id(), GLsizeiptr(std::max<std::size_t>(tubes_.size(), 1) * sizeof(ch04::NeonGpu)),
+                    tubes_.empty() ? nullptr : tubes_.data(), GL_STATIC_DRAW);
   lights_bytes_ = std::max<std::size_t>(g.size() * sizeof(GpuClusterLight), 64);
   glNamedBufferData(lights_.id(), GLsizeiptr(lights_bytes_), nullptr, GL_STATIC_DRAW);
   if (!g.empty()) glNamedBufferSubData(lights_.id(), 0, GLsizeiptr(g.size() * sizeof(GpuClusterLight)), g.data());
@@ -179,6 +197,13 @@ std::vector<std::string> ClusteredLights::build_lists(int w, int h, const ch03::
   for (const auto& d : view.hooks.glsl_defines()) defines.push_back(d);
   if (clustered) defines.push_back("CLUSTERED 1");
   if (clustered && settings_.all_cells) defines.push_back("ALL_CELLS 1");
+  if (!tubes_.empty()) {  // the tubes' buffer and how neon_light() lights them (shade.glsl)
+    if (zbin) throw Error("clustered lights: Z-binning bins spheres, not chapter 04's tubes; use tiled or clustered");
+    defines.push_back("CLUSTER_TUBES " + std::to_string(kTubeBinding));
+    defines.push_back("TUBE_METHOD " + std::to_string(static_cast<int>(tube_how_.method)));
+    defines.push_back("TUBE_SAMPLES " + std::to_string(tube_how_.samples));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTubeBinding, tube_buffer_.id());
+  }
   const bool floor = zbin && settings_.floor;
   if (zbin) defines.push_back("ZBIN 1");
   if (floor) defines.push_back("FLOOR 1");

@@ -19,6 +19,7 @@
 
 #include "chapters/03_light_volumes/deferred_frame.h"
 #include "chapters/03_light_volumes/fragment_counters.h"
+#include "chapters/04_neon/neon_forward.h"
 #include "chapters/09_clustered/cluster_grid.h"
 #include "common/gl.h"
 #include "common/shader.h"
@@ -104,6 +105,14 @@ class ClusteredLights : public ch03::LocalLightPass {
   // draw() shades from, and a forward pass's (ClusteredForward). Returns the shaders' defines.
   std::vector<std::string> build_lists(int w, int h, const ch03::SurfaceView& view);
 
+  // [tubes-api]
+  // Chapter 04's tubes binned with the lights, as their capsules (cluster_grid.h's
+  // capsule_meets_box), after them in light order, and shaded in the same pass by chapter 04's
+  // neon_light() with `how`'s method: the light chapter 04's capsule volumes add, without the
+  // volumes. None (the default): the lights alone. Tiled and clustered (Z-binning refuses them).
+  void set_tubes(const std::vector<ch04::NeonGpu>& tubes, const ch04::NeonDraw& how = {});
+  int tube_count() const { return int(tubes_.size()); }
+  // [/tubes-api]
   const ClusterSettings& settings() const { return settings_; }
   void set_settings(const ClusterSettings& s) { settings_ = s; }
   void set_counting(bool on) { counting_ = on; }
@@ -156,6 +165,9 @@ class ClusteredLights : public ch03::LocalLightPass {
   // What was uploaded, to see when chapter 03's light set changes.
   std::vector<ch03::PointInstance> points_;
   std::vector<ch03::SpotInstance> cones_, wide_;
+  std::vector<ch04::NeonGpu> tubes_;  // set_tubes(): uploaded with the lights
+  ch04::NeonDraw tube_how_;
+  gl::Buffer tube_buffer_;
   bool uploaded_ = false;
   int light_count_ = 0;
   gl::Buffer lights_, cells_, bounds_, indices_, state_;

@@ -24,10 +24,33 @@ void count_add(uint counter, uint n) {
 layout(std430, binding = 2) readonly buffer Bounds { uint bounds[]; };
 #endif
 
+// [tube-shade]
+// Chapter 04's tubes (ClusteredLights::set_tubes): each lit by chapter 04's own neon_light(),
+// as its capsule volume's fragment shader does (neon_volume.frag), with the method it was
+// given. A pass built without them (the glass's clustered forward) adds nothing for a tube.
+#ifdef CLUSTER_TUBES
+#include "04_neon/shaders/neon.glsl"
+layout(std430, binding = CLUSTER_TUBES) readonly buffer Tubes { NeonGpu cluster_tubes[]; };
+void add_tube(Surface s, ClusterLight c, inout vec3 diffuse, inout vec3 specular, inout uint lit) {
+  NeonSurface surface = NeonSurface(s.position, s.normal, normalize(gb_eye.xyz - s.position), s.exponent);
+  NeonResult r = neon_light(surface, cluster_tubes[int(c.direction_cone.w)], NeonMethod(TUBE_METHOD, TUBE_SAMPLES));
+  diffuse += r.diffuse;
+  specular += s.specular * r.specular;
+  if (any(greaterThan(r.diffuse + r.specular, vec3(0.0)))) ++lit;
+}
+#else
+void add_tube(Surface s, ClusterLight c, inout vec3 diffuse, inout vec3 specular, inout uint lit) {}
+#endif
+// [/tube-shade]
+
 // The k-th light of a cell's list, added to the pixel's sums. A cell whose list did not fit
 // (assign.comp: kEveryLight) is shaded from every light in light order: slower, never wrong.
 // Light i of the light order (record c), added to the pixel's sums.
 void add_record(Surface s, int i, ClusterLight c, inout vec3 diffuse, inout vec3 specular, inout uint lit) {
+  if (c.kind.x > 1.5) {
+    add_tube(s, c, diffuse, specular, lit);
+    return;
+  }
   GpuLight light = c.kind.x > 0.5 ? unpack_spot(c.position_radius, c.radiance_range, c.direction_cone)
                                   : unpack_point(c.position_radius, c.radiance_range);
   vec3 d, sp;
