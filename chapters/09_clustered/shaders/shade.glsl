@@ -43,14 +43,8 @@ void add_tube(Surface s, ClusterLight c, inout vec3 diffuse, inout vec3 specular
 #endif
 // [/tube-shade]
 
-// The k-th light of a cell's list, added to the pixel's sums. A cell whose list did not fit
-// (assign.comp: kEveryLight) is shaded from every light in light order: slower, never wrong.
-// Light i of the light order (record c), added to the pixel's sums.
-void add_record(Surface s, int i, ClusterLight c, inout vec3 diffuse, inout vec3 specular, inout uint lit) {
-  if (c.kind.x > 1.5) {
-    add_tube(s, c, diffuse, specular, lit);
-    return;
-  }
+// Light i of the light order (record c, a point or a spot), added to the pixel's sums.
+void add_lamp(Surface s, int i, ClusterLight c, inout vec3 diffuse, inout vec3 specular, inout uint lit) {
   GpuLight light = c.kind.x > 0.5 ? unpack_spot(c.position_radius, c.radiance_range, c.direction_cone)
                                   : unpack_point(c.position_radius, c.radiance_range);
   vec3 d, sp;
@@ -59,12 +53,22 @@ void add_record(Surface s, int i, ClusterLight c, inout vec3 diffuse, inout vec3
   specular += s.specular * sp;
   if (any(greaterThan(d + sp, vec3(0.0)))) ++lit;
 }
+// Any record: a light or a tube (the staged pass and Z-binning, whose loops meet both).
+void add_record(Surface s, int i, ClusterLight c, inout vec3 diffuse, inout vec3 specular, inout uint lit) {
+  if (c.kind.x > 1.5)
+    add_tube(s, c, diffuse, specular, lit);
+  else
+    add_lamp(s, i, c, diffuse, specular, lit);
+}
 
 uint light_of(uvec2 list, uint k) { return list.x == kEveryLight ? k : light_indices[list.x + k]; }
 
+// The k-th light of a cell's list, added to the pixel's sums. A cell whose list did not fit
+// (assign.comp: kEveryLight) is shaded from every light in light order: slower, never wrong.
+// Not a tube: shade_surface's loop stops before them (they end a list).
 void add_light(Surface s, uvec2 list, uint k, inout vec3 diffuse, inout vec3 specular, inout uint lit) {
   int i = int(light_of(list, k));
-  add_record(s, i, cluster_lights[i], diffuse, specular, lit);
+  add_lamp(s, i, cluster_lights[i], diffuse, specular, lit);
 }
 
 #ifdef ZBIN
@@ -160,6 +164,12 @@ void shade_surface(Surface s, ivec2 pixel, out vec3 diffuse, out vec3 specular, 
 #else
   uvec2 list = cells[cell_index(tile_of(pixel), 0)];
 #endif
+  // [tube-split]
+  // Chapter 04's tubes end a list (light order): the lights' loop below stops before them, so
+  // that its unrolled body never holds neon_light(); they follow, one at a time.
+  uint listed = list.y;
+  while (list.y > 0u && cluster_lights[light_of(list, list.y - 1u)].kind.x > 1.5) --list.y;
+  // [/tube-split]
   // [shade-loop]
   // Four lights an iteration: llvmpipe ends a shader's loops after 65 535 iterations in all
   // (gallivm's loop limiter), and a tile's list can hold 100 000 lights (262 140 at most here).
@@ -169,7 +179,8 @@ void shade_surface(Surface s, ivec2 pixel, out vec3 diffuse, out vec3 specular, 
     if (k + 2u < list.y) add_light(s, list, k + 2u, diffuse, specular, lit);
     if (k + 3u < list.y) add_light(s, list, k + 3u, diffuse, specular, lit);
   }
-  evaluated = list.y;
+  for (uint k = list.y; k < listed; ++k) add_tube(s, cluster_lights[light_of(list, k)], diffuse, specular, lit);
+  evaluated = listed;
   // [/shade-loop]
   count_pixel(evaluated, lit);
 }
