@@ -2,7 +2,9 @@
 // exponential slices and the sphere-against-cell test the assignment relies on.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -93,6 +95,72 @@ TEST(ClusterGrid, ASphereBesideATileMissesItAndTheTestIsConservativeByLittle) {
   const glm::vec3 outside(b.hi.x + 0.1f, 0.5f * (b.lo.y + b.hi.y), 0.5f * (b.lo.z + b.hi.z));
   EXPECT_FALSE(sphere_meets_box(outside, 0.099f, b));
   EXPECT_TRUE(sphere_meets_box(outside, 0.1f, b));  // touching counts
+}
+
+// A tube binned as its capsule (capsule_meets_box): one running down the centre ray through
+// slices 5 to 15 meets every cell it crosses, even thin, and none past its ends or beside it.
+TEST(ClusterGrid, ATubeCrossingSlicesMeetsEveryCellItCrosses) {
+  const FrameCamera c = test_camera();
+  const glm::vec3 a(0, 0, -slice_start(kDoom, 5) * 1.01f), b(0, 0, -slice_start(kDoom, 16) * 0.99f);
+  for (int k = 0; k < 24; ++k) {
+    const bool crossed = k >= 5 && k <= 15;
+    EXPECT_EQ(capsule_meets_box(a, b, 1e-3f, cluster_box(c, kDoom, 8, 4, k)), crossed) << "slice " << k;
+    EXPECT_EQ(capsule_meets_box(b, a, 1e-3f, cluster_box(c, kDoom, 8, 4, k)), crossed) << "reversed, slice " << k;
+  }
+  EXPECT_FALSE(capsule_meets_box(a, b, 1e-3f, cluster_box(c, kDoom, 2, 4, 10))) << "a tile beside it";
+  // Along the image: a tube across the tiles of one slice, at its middle depth.
+  const float d = std::sqrt(slice_start(kDoom, 12) * slice_start(kDoom, 13)), t = std::tan(c.yfov / 2) * d;
+  const glm::vec3 left(-0.9f * t * c.aspect, 0.01f * t, -d), right(0.9f * t * c.aspect, 0.01f * t, -d);
+  for (int tx = 1; tx < 15; ++tx) EXPECT_TRUE(capsule_meets_box(left, right, 1e-3f, cluster_box(c, kDoom, tx, 4, 12))) << tx;
+  EXPECT_FALSE(capsule_meets_box(left, right, 1e-3f, cluster_box(c, kDoom, 8, 1, 12)));
+}
+
+// Against the exact distance from the segment to the box (a convex function along the segment,
+// minimised by ternary search in double): every capsule that reaches a box meets it, and one
+// that meets it reaches within sqrt(3) x its radius (the grown box's corners), on random
+// capsules and boxes, axis-parallel and zero-length segments among them.
+TEST(ClusterGrid, ACapsuleMeetsEveryBoxItReachesAndNoneFartherThanTheGrownCorners) {
+  std::uint32_t state = 12345u;
+  auto uniform = [&](float lo, float hi) {
+    state = state * 1664525u + 1013904223u;
+    return lo + (hi - lo) * float(state >> 8) / float(1u << 24);
+  };
+  auto box_distance = [](const glm::dvec3& p, const Box& box) {
+    return glm::length(p - glm::clamp(p, glm::dvec3(box.lo), glm::dvec3(box.hi)));
+  };
+  int met = 0, missed = 0;
+  for (int i = 0; i < 20000; ++i) {
+    Box box;
+    const glm::vec3 centre(uniform(-5, 5), uniform(-5, 5), uniform(-20, -1)), half(uniform(0.01f, 2), uniform(0.01f, 2), uniform(0.01f, 2));
+    box.lo = centre - half;
+    box.hi = centre + half;
+    glm::vec3 a(uniform(-10, 10), uniform(-10, 10), uniform(-25, 0)), b(uniform(-10, 10), uniform(-10, 10), uniform(-25, 0));
+    if (i % 5 == 1) b = a;                                   // zero length
+    if (i % 5 == 2) b = glm::vec3(a.x, a.y, uniform(-25, 0));  // parallel to z
+    if (i % 5 == 3) b = glm::vec3(uniform(-10, 10), a.y, a.z);  // parallel to x
+    const float r = uniform(0.001f, 4);
+    double lo = 0, hi = 1;
+    auto at = [&](double t) { return box_distance(glm::dvec3(a) + t * (glm::dvec3(b) - glm::dvec3(a)), box); };
+    for (int k = 0; k < 200; ++k) {
+      const double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
+      if (at(m1) <= at(m2))
+        hi = m2;
+      else
+        lo = m1;
+    }
+    const double distance = std::min({at(0), at(1), at(0.5 * (lo + hi))});
+    const bool meets = capsule_meets_box(a, b, r, box);
+    met += meets;
+    missed += !meets;
+    if (distance <= double(r)) {
+      ASSERT_TRUE(meets) << "case " << i << ": the capsule reaches the box (" << distance << " <= " << r << ") and is not binned";
+    }
+    if (distance > std::sqrt(3.0) * double(r) * (1 + 1e-4) + 1e-5) {
+      ASSERT_FALSE(meets) << "case " << i << ": binned at " << distance << ", more than sqrt 3 x " << r;
+    }
+  }
+  EXPECT_GT(met, 2000);
+  EXPECT_GT(missed, 2000);
 }
 
 // Harada's 2.5D mask: 32 equal bins over the tile's depth range.
