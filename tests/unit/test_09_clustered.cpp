@@ -300,3 +300,52 @@ TEST(ClusterGrid, ZBinsRectangleHoldsEveryPixelItsSphereCovers) {
   const TileRect small = sphere_tiles(cam, g, glm::vec3(0, 0, -20), 0.2f);
   EXPECT_LE((small.hi.x - small.lo.x + 1) * (small.hi.y - small.lo.y + 1), 4);
 }
+
+// The records of chapter 04's tubes (pack_cluster_lights with tubes): after every point and
+// spot in light order, so that light first_tube on is a tube and the spots' cones keep their
+// places; each the capsule the assignment bins (start, volume radius, end) and the tube's
+// index in the tubes' own buffer, where the shading finds the rest.
+#include "chapters/04_neon/capsule.h"
+#include "chapters/09_clustered/clustered_lights.h"
+
+TEST(ClusterRecords, TubesEndTheLightOrderWithTheirCapsuleAndIndex) {
+  Light point{.color = {1, 1, 1}, .intensity = 2, .position = {1, 2, 3}};
+  Light spot = point;
+  spot.type = LightType::Spot;
+  spot.direction = {0, -1, 0};
+  spot.inner_cone = 0.2f;
+  spot.outer_cone = 0.4f;
+  ch03::LightSet set;
+  set.points = {ch03::pack_point(point, 4.f), ch03::pack_point(point, 5.f)};
+  set.cones = {ch03::pack_spot(spot, 6.f)};
+  set.wide_spots = {ch03::pack_spot(spot, 7.f)};
+  std::vector<ch04::NeonLight> tubes(3);
+  std::vector<ch04::NeonGpu> packed;
+  for (int k = 0; k < 3; ++k) {
+    tubes[k].start = glm::vec3(k, 1, -2);
+    tubes[k].end = glm::vec3(k + 0.5f, 3, -2.f - k);
+    tubes[k].door_axis = glm::normalize(glm::cross(tubes[k].end - tubes[k].start, glm::vec3(1, 0, 0)));
+    packed.push_back(ch04::pack_neon(tubes[k], 2.f + float(k)));
+  }
+  const ClusterRecords without = pack_cluster_lights(set);
+  EXPECT_EQ(without.first_tube, 4) << "no tubes: the lights' count";
+  const ClusterRecords r = pack_cluster_lights(set, packed);
+  ASSERT_EQ(r.lights.size(), 7u);
+  EXPECT_EQ(r.first_spot, 2);
+  EXPECT_EQ(r.first_tube, 4);
+  EXPECT_EQ(r.spots.size(), 2u) << "a cone per spot, none per tube";
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_EQ(r.lights[i].position_radius, without.lights[i].position_radius) << "light " << i;
+    EXPECT_EQ(r.lights[i].radiance_inv_range2, without.lights[i].radiance_inv_range2) << "light " << i;
+  }
+  for (int k = 0; k < 3; ++k) {
+    const ClusterRecords::Light& t = r.lights[std::size_t(r.first_tube + k)];
+    // pack_neon keeps the ends in a matrix: rounding, a few ulps of the coordinates.
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(t.position_radius[c], tubes[k].start[c], 1e-5f) << "tube " << k << " start";
+      EXPECT_NEAR(t.radiance_inv_range2[c], tubes[k].end[c], 1e-5f) << "tube " << k << " end";
+    }
+    EXPECT_FLOAT_EQ(t.position_radius.w, 2.f + float(k)) << "tube " << k << ": its volume radius, the cut";
+    EXPECT_EQ(t.radiance_inv_range2.w, float(k)) << "tube " << k << ": its index";
+  }
+}
