@@ -10,7 +10,7 @@ set(P10 $<TARGET_FILE:10_frame>)
 set(GLASS assets/glass/glass.gltf)
 # The default: the whole frame on the street with its shop windows, every stage on and each
 # stage off in turn; the same in the atrium; and the glass room's transparency (--mode frame).
-lightpass_program_test(10_frame.reference.street_shop 0 "8 of 8 references match" ${P10} --check --out ${CHECK_OUT}/10_frame)
+lightpass_program_test(10_frame.reference.street_shop 0 "9 of 9 references match" ${P10} --check --out ${CHECK_OUT}/10_frame)
 lightpass_program_test(10_frame.reference.atrium 0 "5 of 5 references match"
   ${P10} --check --scene assets/atrium/atrium.gltf --out ${CHECK_OUT}/10_frame_atrium)
 lightpass_program_test(10_frame.reference.glass 0 "15 of 15 references match" ${P10} --check --scene ${GLASS} --out ${CHECK_OUT}/10_frame_glass)
@@ -48,11 +48,19 @@ lightpass_image_test(10_frame.whole_with_clusters_is_chapter_05s_street "runs   
   --matches ${CMAKE_SOURCE_DIR}/tests/reference/05_hdr/street_level_reinhard.png
   RUN ${P10} --headless --mode whole --size 320x180 --scene assets/street/street.gltf --view street_level --shadows 0
       --ao 0 --indirect 0 --transparency off --bloom off --out ${CMAKE_BINARY_DIR}/out/10_whole_clusters.png)
-# Every stage the neon street needs runs, each timed as its chapter names it (the frame budget),
-# and the CPU's time per frame is reported beside the GPU's (a number above zero).
+# Every stage the neon street needs runs, each timed as its chapter names it (the frame budget):
+# the tubes' light in the clusters' shading pass (no neon pass of its own, their glass after the
+# composite), or with --tubes volumes chapter 04's capsule volumes; and the CPU's time per frame
+# is reported beside the GPU's (a number above zero).
 lightpass_program_test(10_frame.whole_bench_times_every_stage 0
-  "shadow map: depth from the sun.*local lights: clustered: shade.*neon: .*ssgi: .*hdr: tonemap.*\"cpu_ms\":[0-9.]*[1-9]"
+  "shadow map: depth from the sun.*local lights: clustered: shade.*ssgi: .*glass: the tubes themselves.*hdr: tonemap.*\"cpu_ms\":[0-9.]*[1-9]"
   ${P10} --bench --frames 1 --mode whole --size 160x90 --scene assets/street_neon/street_neon.gltf)
+add_test(NAME 10_frame.whole_tubes_in_the_clusters_have_no_volume_pass COMMAND ${EXPECT} 0 "local lights: clustered: shade"
+  --no-match "neon: capsule volumes" -- ${P10} --bench --frames 1 --mode whole --size 160x90 --scene assets/street_neon/street_neon.gltf)
+set_tests_properties(10_frame.whole_tubes_in_the_clusters_have_no_volume_pass PROPERTIES TIMEOUT 300)
+lightpass_program_test(10_frame.whole_tubes_as_volumes_time_their_pass 0
+  "local lights: clustered: shade.*neon: capsule volumes, stencil.*ssgi: "
+  ${P10} --bench --frames 1 --mode whole --size 160x90 --scene assets/street_neon/street_neon.gltf --tubes volumes)
 # With clusters the glass reads the whole frame's lists (built for every cell when the scene has
 # glass): one set a frame, so the glass's own list pass does not run; over the volumes it does.
 add_test(NAME 10_frame.whole_glass_reads_the_frames_clusters COMMAND ${EXPECT} 0 "\"name\":\"transparency: sorted, back to front\""
@@ -63,7 +71,7 @@ lightpass_program_test(10_frame.whole_glass_over_the_volumes_builds_its_own_list
   ${P10} --bench --frames 1 --mode whole --size 160x90 --clustered 0)
 # What a scene does not need is not run, and the program says why (the atrium: no tubes).
 lightpass_program_test(10_frame.whole_says_what_it_does_not_run 0
-  "not run  neon tubes [(]chapter 04[)] [(]no neon tubes[)]"
+  "not run  neon tubes: in the clusters [(]chapters 04, 09[)] [(]no neon tubes[)]"
   ${P10} --headless --mode whole --size 64x36 --scene assets/atrium/atrium.gltf --out ${CMAKE_BINARY_DIR}/out/10_whole_atrium.png)
 # The window path under a virtual X display: a smoke test (the panel covers the left half, so the
 # lit fraction says that the window drew; the references check the frame).
@@ -104,13 +112,16 @@ lightpass_image_test(10_frame.whole_msaa_4_is_chapter_05s_street_with_resolved_e
   --differs-from ${CMAKE_SOURCE_DIR}/tests/reference/05_hdr/street_level_reinhard.png 0.5
   RUN ${P10} --headless --mode whole --size 320x180 --scene assets/street/street.gltf --view street_level --msaa 4
       --shadows 0 --clustered 0 --ao 0 --indirect 0 --transparency off --bloom off --out ${CMAKE_BINARY_DIR}/out/10_msaa.png)
-lightpass_program_test(10_frame.whole_msaa_says_what_it_does_not_run 0
+# The tubes too: with MSAA there are no clusters to shade them in, nor volumes drawn per sample.
+add_test(NAME 10_frame.whole_msaa_says_what_it_does_not_run COMMAND ${EXPECT} 0
   "not run  shadow map of the sun [(]chapter 06[)] [(]no MSAA yet: --msaa 1 runs it[)]"
-  ${P10} --headless --mode whole --size 64x36 --msaa 4 --out ${CMAKE_BINARY_DIR}/out/10_msaa_plan.png)
+  "not run  neon tubes: capsule volumes [(]chapter 04[)] [(]no MSAA yet: --msaa 1 runs it[)]"
+  -- ${P10} --headless --mode whole --size 64x36 --msaa 4 --out ${CMAKE_BINARY_DIR}/out/10_msaa_plan.png)
+set_tests_properties(10_frame.whole_msaa_says_what_it_does_not_run PROPERTIES TIMEOUT 300)
 lightpass_program_test(10_frame.msaa_in_the_glass_study_is_refused 2 "--msaa 4 is an option of the whole frame"
   ${P10} --headless --mode frame --size 64x36 --msaa 4 --out ${CMAKE_BINARY_DIR}/out/10_msaa_frame.png)
 lightpass_program_test(10_frame.msaa_bad_samples 2 "msaa" ${P10} --msaa 3)
-lightpass_program_test(10_frame.sweep_bad_part 2 "--part must be all, transparency or msaa" $<TARGET_FILE:10_frame_sweep> --part everything)
+lightpass_program_test(10_frame.sweep_bad_part 2 "--part must be all, transparency, msaa or tubes" $<TARGET_FILE:10_frame_sweep> --part everything)
 # --bench's standard output is its JSON alone, even for a scene the loader has notes about (the
 # street's glass: the note goes to standard error).
 lightpass_program_test(10_frame.bench_output_is_json_beside_scene_notes 0 "^valid JSON of assets/street_shop/street_shop.gltf$"

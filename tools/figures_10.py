@@ -9,7 +9,7 @@ and the whole frame's figures.
                                                                  JSON (one per scene and culling) as a CSV
 
 The budget's JSONs come from the GPU machine (`10_frame --bench --mode whole --size 1920x1080
---scene ... --clustered 0|1`); the CSV names the renderer and size of each.
+--scene ... --clustered 0|1 --tubes volumes|clusters`); the CSV names the renderer and size of each.
 """
 import csv
 import json
@@ -178,6 +178,10 @@ def budget_csv(out: Path, jsons):
             scene = Path(b["scene"]).stem
             knobs = b["knobs"]
             culling = "clustered" if float(knobs.get("clustered", 1)) else "stencil"
+            # the tubes' light in the clusters (--tubes clusters: 0) or chapter 04's volumes (1, and
+            # every JSON from before the knob); over the stencil volumes the tubes are volumes too
+            if culling == "clustered" and float(knobs.get("tubes", 1)) == 0:
+                culling = "clustered+tubes"
             # chapter 08's pass as the whole frame runs it: AO and one bounce (SSGI), AO alone (SSAO), or neither
             ao, indirect = float(knobs.get("ao", 1)), float(knobs.get("indirect", 1))
             gi = "ao+indirect" if indirect else "ao" if ao else "none"

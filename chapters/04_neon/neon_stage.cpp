@@ -16,6 +16,7 @@ void NeonStage::set(const NeonDraw& how, NeonPicture picture) {
 
 // [neon-stage]
 void NeonStage::add_light(ch03::DeferredFrame& frame, PassMetrics* metrics) {
+  if (!light_by_volumes_) return;
   auto pass = timed(metrics, "neon: capsule volumes, stencil");
   volumes_.draw(tubes_, frame.light(), frame.view(), how_, picture_ == NeonPicture::Waste);
 }

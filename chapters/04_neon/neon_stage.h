@@ -33,6 +33,10 @@ class NeonStage : public ch03::FrameStage {
   // hold the tubes' light only (FrameSettings::scene_lights = false).
   bool wants_scene_lights() const { return how_.term == Term::All && picture_ != NeonPicture::Waste; }
   NeonVolumes& volumes() { return volumes_; }  // counting, counts
+  const NeonDraw& how() const { return how_; }
+  // Off: another pass adds the tubes' light (chapter 09's clusters, ClusteredLights::set_tubes);
+  // this stage then draws only the glass of the tubes.
+  void set_light_by_volumes(bool on) { light_by_volumes_ = on; }
   const NeonTubes& tubes() const { return tubes_; }
 
   void add_light(ch03::DeferredFrame& frame, PassMetrics* metrics) override;
@@ -45,6 +49,7 @@ class NeonStage : public ch03::FrameStage {
   NeonForward glass_;  // the tubes themselves, drawn forward over the image
   NeonDraw how_;
   NeonPicture picture_ = NeonPicture::None;
+  bool light_by_volumes_ = true;
 };
 
 }  // namespace lp::ch04

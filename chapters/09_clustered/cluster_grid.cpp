@@ -78,6 +78,22 @@ bool sphere_meets_box(const glm::vec3& centre, float radius, const Box& box) {
 }
 // [/sphere-box]
 
+bool capsule_meets_box(const glm::vec3& a, const glm::vec3& b, float radius, const Box& box) {
+  const float r = radius * (1.f + 1e-5f) + 1e-6f;
+  const glm::vec3 lo = box.lo - r, hi = box.hi + r, d = b - a;
+  float t0 = 0.f, t1 = 1.f;  // the part of the segment inside every slab so far
+  for (int k = 0; k < 3; ++k) {
+    if (d[k] == 0.f) {  // parallel to the slab: inside it or never
+      if (a[k] < lo[k] || a[k] > hi[k]) return false;
+      continue;
+    }
+    const float u = (lo[k] - a[k]) / d[k], v = (hi[k] - a[k]) / d[k];
+    t0 = std::max(t0, std::min(u, v));
+    t1 = std::min(t1, std::max(u, v));
+  }
+  return t0 <= t1;
+}
+
 // [sphere-tiles]
 TileRect sphere_tiles(const FrameCamera& camera, const Grid& g, const glm::vec3& c, float radius) {
   const float r = radius * (1.f + 1e-5f) + 1e-6f;

@@ -52,6 +52,14 @@ Box cluster_box(const FrameCamera& camera, const Grid& g, int tx, int ty, int sl
 bool sphere_meets_box(const glm::vec3& centre, float radius, const Box& box);
 // [/grid]
 
+// [capsule-box]
+// Does a tube's capsule (the segment a-b in view space, radius) reach the box? The segment is
+// clipped against the box grown by the radius on every side (a slab test): conservative, since
+// the grown box holds the capsule's reach and more at its corners (by up to (sqrt 3 - 1) x the
+// radius), and padded as sphere_meets_box so that rounding never drops a cell the cut reaches.
+bool capsule_meets_box(const glm::vec3& a, const glm::vec3& b, float radius, const Box& box);
+// [/capsule-box]
+
 // Z-binning's screen rectangle of a light (zbin.comp's step 5): the tiles [lo, hi] (inclusive;
 // empty when lo > hi) that the sphere (centre in view space, radius) can cover, from its
 // view-space box cut at half the near plane, a pixel wider on each side for rounding.

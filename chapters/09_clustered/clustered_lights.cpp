@@ -73,10 +73,11 @@ void set4i(const ShaderProgram& p, const char* name, int a, int b, int c, int d)
 
 // The largest number of lights the 32-bit arithmetic of assign.comp holds (n * 64 < 2^32) and llvmpipe's loop limit allows (n / 64 / 4 < 65 535).
 constexpr std::size_t kMaxLights = std::size_t(1) << 22;
+constexpr GLuint kTubeBinding = 10;  // shade.glsl's Tubes buffer (CLUSTER_TUBES); 9 holds the spots' cones
 }  // namespace
 
 // [pack]
-ClusterRecords pack_cluster_lights(const ch03::LightSet& set) {
+ClusterRecords pack_cluster_lights(const ch03::LightSet& set, const std::vector<ch04::NeonGpu>& tubes) {
   // 1 / range^2 (0 without a range), capped where it would overflow: 0 times it stays 0.
   auto inv_range2 = [](float range) {
     return range > 0.f ? std::min(1.f / (range * range), std::numeric_limits<float>::max()) : 0.f;
@@ -94,6 +95,15 @@ ClusterRecords pack_cluster_lights(const ch03::LightSet& set) {
       const float cos_outer = s.direction_cone.z, scale = s.direction_cone.w;
       r.spots.push_back({glm::vec4(dir * scale, -cos_outer * scale)});
     }
+  r.first_tube = int(r.lights.size());
+  // [tube-records]
+  // A tube's record: its capsule (the segment and the volume radius neon_light() cuts at), for
+  // the assignment; the shading reads the packed tube itself by its index.
+  for (std::size_t i = 0; i < tubes.size(); ++i) {
+    const ch04::UnpackedNeon t = ch04::unpack_neon(tubes[i]);
+    r.lights.push_back({glm::vec4(t.light.start, t.volume_radius), glm::vec4(t.light.end, float(i))});
+  }
+  // [/tube-records]
   return r;
 }
 // [/pack]
@@ -107,22 +117,31 @@ const ShaderProgram& ClusteredLights::program(GLenum stage, const std::string& f
   return programs_.get(stages, defines);
 }
 
+void ClusteredLights::set_tubes(const std::vector<ch04::NeonGpu>& tubes, const ch04::NeonDraw& how) {
+  if (!same(tubes, tubes_)) uploaded_ = false;
+  tubes_ = tubes;
+  tube_how_ = how;
+}
+
 void ClusteredLights::upload_lights() {
   const ch03::LightSet& set = volumes_.lights();
   if (uploaded_ && same(set.points, points_) && same(set.cones, cones_) && same(set.wide_spots, wide_)) return;
-  if (set.local_count() > kMaxLights)
-    throw Error("clustered lights: " + std::to_string(set.local_count()) + " local lights, at most " +
+  if (set.local_count() + tubes_.size() > kMaxLights)
+    throw Error("clustered lights: " + std::to_string(set.local_count() + tubes_.size()) + " local lights and tubes, at most " +
                 std::to_string(kMaxLights));
-  const ClusterRecords g = pack_cluster_lights(set);
+  const ClusterRecords g = pack_cluster_lights(set, tubes_);
   const std::size_t light_bytes = std::max<std::size_t>(g.lights.size() * sizeof(GpuClusterLight), 32);
   const std::size_t spot_bytes = std::max<std::size_t>(g.spots.size() * sizeof(GpuClusterSpot), 16);
+  const std::size_t tube_bytes = std::max<std::size_t>(tubes_.size(), 1) * sizeof(ch04::NeonGpu);
   glNamedBufferData(lights_.id(), GLsizeiptr(light_bytes), nullptr, GL_STATIC_DRAW);
   glNamedBufferData(spots_.id(), GLsizeiptr(spot_bytes), nullptr, GL_STATIC_DRAW);
+  glNamedBufferData(tube_buffer_.id(), GLsizeiptr(tube_bytes), tubes_.empty() ? nullptr : tubes_.data(), GL_STATIC_DRAW);
   if (!g.lights.empty()) glNamedBufferSubData(lights_.id(), 0, GLsizeiptr(g.lights.size() * sizeof(GpuClusterLight)), g.lights.data());
   if (!g.spots.empty()) glNamedBufferSubData(spots_.id(), 0, GLsizeiptr(g.spots.size() * sizeof(GpuClusterSpot)), g.spots.data());
   lights_bytes_ = light_bytes + spot_bytes;
   light_count_ = int(g.lights.size());
   first_spot_ = g.first_spot;
+  first_tube_ = g.first_tube;
   points_ = set.points;
   cones_ = set.cones;
   wide_ = set.wide_spots;
@@ -138,6 +157,7 @@ void ClusteredLights::set_grid_uniforms(const ShaderProgram& p, const FrameCamer
   p.set("u_depth_range", glm::vec2(grid_.znear, grid_.zfar));
   glProgramUniform1i(p.id(), glGetUniformLocation(p.id(), "u_zbins"), settings_.zbins);  // -1 (none): ignored
   glProgramUniform1i(p.id(), glGetUniformLocation(p.id(), "u_first_spot"), first_spot_);
+  glProgramUniform1i(p.id(), glGetUniformLocation(p.id(), "u_first_tube"), first_tube_);
 }
 
 // [draw]
@@ -213,6 +233,13 @@ std::vector<std::string> ClusteredLights::build_lists(int w, int h, const ch03::
   for (const auto& d : view.hooks.glsl_defines()) defines.push_back(d);
   if (clustered) defines.push_back("CLUSTERED 1");
   if (clustered && settings_.all_cells) defines.push_back("ALL_CELLS 1");
+  if (!tubes_.empty()) {  // the tubes' buffer and how neon_light() lights them (shade.glsl)
+    if (zbin) throw Error("clustered lights: Z-binning bins spheres, not chapter 04's tubes; use tiled or clustered");
+    defines.push_back("CLUSTER_TUBES " + std::to_string(kTubeBinding));
+    defines.push_back("TUBE_METHOD " + std::to_string(static_cast<int>(tube_how_.method)));
+    defines.push_back("TUBE_SAMPLES " + std::to_string(tube_how_.samples));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTubeBinding, tube_buffer_.id());
+  }
   const bool floor = zbin && settings_.floor;
   if (zbin) defines.push_back("ZBIN 1");
   if (floor) defines.push_back("FLOOR 1");

@@ -19,6 +19,7 @@
 
 #include "chapters/03_light_volumes/deferred_frame.h"
 #include "chapters/03_light_volumes/fragment_counters.h"
+#include "chapters/04_neon/neon_forward.h"
 #include "chapters/09_clustered/cluster_grid.h"
 #include "common/gl.h"
 #include "common/shader.h"
@@ -92,7 +93,8 @@ struct EvalCounts {
 };
 
 // The records the GPU reads (shaders/cluster_light.h), packed from chapter 03's light set in
-// light order: a record per light, then a cone per spot (light first_spot + k has cone k).
+// light order: a record per light, then a cone per spot (light first_spot + k has cone k); then
+// a record per chapter 04 tube, from first_tube on (its capsule, and its index in `tubes`).
 // As glm types: the header's struct is a GLSL one.
 struct ClusterRecords {
   struct Light {
@@ -103,9 +105,9 @@ struct ClusterRecords {
   };
   std::vector<Light> lights;
   std::vector<Spot> spots;
-  int first_spot = 0;
+  int first_spot = 0, first_tube = 0;
 };
-ClusterRecords pack_cluster_lights(const ch03::LightSet& set);
+ClusterRecords pack_cluster_lights(const ch03::LightSet& set, const std::vector<ch04::NeonGpu>& tubes = {});
 
 class ClusteredLights : public ch03::LocalLightPass {
  public:
@@ -124,6 +126,14 @@ class ClusteredLights : public ch03::LocalLightPass {
   // draw() shades from, and a forward pass's (ClusteredForward). Returns the shaders' defines.
   std::vector<std::string> build_lists(int w, int h, const ch03::SurfaceView& view);
 
+  // [tubes-api]
+  // Chapter 04's tubes binned with the lights, as their capsules (cluster_grid.h's
+  // capsule_meets_box), after them in light order, and shaded in the same pass by chapter 04's
+  // neon_light() with `how`'s method: the light chapter 04's capsule volumes add, without the
+  // volumes. None (the default): the lights alone. Tiled and clustered (Z-binning refuses them).
+  void set_tubes(const std::vector<ch04::NeonGpu>& tubes, const ch04::NeonDraw& how = {});
+  int tube_count() const { return int(tubes_.size()); }
+  // [/tubes-api]
   const ClusterSettings& settings() const { return settings_; }
   void set_settings(const ClusterSettings& s) { settings_ = s; }
   void set_counting(bool on) { counting_ = on; }
@@ -176,8 +186,11 @@ class ClusteredLights : public ch03::LocalLightPass {
   // What was uploaded, to see when chapter 03's light set changes.
   std::vector<ch03::PointInstance> points_;
   std::vector<ch03::SpotInstance> cones_, wide_;
+  std::vector<ch04::NeonGpu> tubes_;  // set_tubes(): uploaded with the lights
+  ch04::NeonDraw tube_how_;
+  gl::Buffer tube_buffer_;
   bool uploaded_ = false;
-  int light_count_ = 0, first_spot_ = 0;
+  int light_count_ = 0, first_spot_ = 0, first_tube_ = 0;
   gl::Buffer lights_, spots_, cells_, bounds_, indices_, state_;
   std::size_t lights_bytes_ = 0, cells_bytes_ = 0, bounds_bytes_ = 0;
   // Z-binning's: the sorted order, each bin's range, each tile's bits, the sort's scratch.

@@ -55,6 +55,9 @@ const CliSpec kCli{
               {"ao", "whole: ambient occlusion (chapters 07, 08)", 1, 0, 1, true},
               {"indirect", "whole: one bounce of indirect light (chapter 08)", 1, 0, 1, true},
               {"neon", "whole: chapter 04's tubes", 1, 0, 1, true},
+              choice_knob("tubes", "whole: the tubes' light shaded in chapter 09's clusters with the local lights, or "
+                                   "chapter 04's capsule volumes through the stencil (with --clustered 0: the volumes)",
+                          {"clusters", "volumes"}),
               {"sun", "whole: multiplies directional lights (chapter 05)", 1, 0, 1000},
               {"glow", "whole: multiplies emissive surfaces (chapter 05)", 8, 0, 10000},
               choice_knob("bloom", "whole: chapter 05's bloom: off, after tonemapping, or before (energy-conserving)",
@@ -89,6 +92,7 @@ std::vector<Shot> whole_shots(const char* view, bool neon_and_glass, std::option
                              {view, "whole", {{"bloom", 0}}, {}, other}};
   if (neon_and_glass) {
     shots.push_back({view, "whole", {{"neon", 0}}});
+    shots.push_back({view, "whole", {{"tubes", 1}}});  // chapter 04's capsule volumes: the same image
     shots.push_back({view, "whole", {{"transparency", 1}}});
   }
   return shots;
@@ -149,6 +153,7 @@ void draw_whole(App& app, const Frame& f, WholeFrame& whole) {
   WholeFrameSettings s{.shadows = f.knob_int("shadows") != 0, .clustered = f.knob_int("clustered") != 0,
                        .ao = f.knob_int("ao") != 0, .indirect = f.knob_int("indirect") != 0,
                        .neon = f.knob_int("neon") != 0,
+                       .tubes = f.choice("tubes") == "volumes" ? TubeLight::Volumes : TubeLight::Clusters,
                        .sun_cascades = f.knob_int("sun-cascades"),
                        // The exact order is --mode frame's ground truth (a CPU composite): the
                        // whole frame sorts instead, and says so below.

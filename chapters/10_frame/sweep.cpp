@@ -14,6 +14,11 @@
 // 8-bit steps, fragments shaded, volume samples lit, edges marked, and the time of the MSAA
 // passes. Writes 10_msaa_llvmpipe.csv (or 10_msaa.csv), and on llvmpipe the book's pictures of
 // the edges and of the resolve order (--msaa-size 160x90 keeps the loop's llvmpipe run short).
+//
+// Then the tubes (--part tubes): the shop street's whole frame, every stage on, with the tubes'
+// light in chapter 09's clusters and as chapter 04's capsule volumes: the passes' times, the
+// tubes' share (the volumes' pass, or nothing apart: the clusters' shading pass holds them) and
+// the images' difference. Writes 10_tubes_llvmpipe.csv (or 10_tubes.csv).
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -27,6 +32,7 @@
 #include "chapters/03_light_volumes/light_radius.h"
 #include "chapters/10_frame/msaa.h"
 #include "chapters/10_frame/transparency.h"
+#include "chapters/10_frame/whole_frame.h"
 #include "common/context.h"
 #include "common/error.h"
 #include "common/measure.h"
@@ -45,8 +51,9 @@ struct Settings {
   int frames = 10;
   int max_layers = 64;
   std::string renderer;
-  std::string part = "all";                     // all, transparency, msaa
+  std::string part = "all";                     // all, transparency, msaa, tubes
   int msaa_width = 0, msaa_height = 0;          // 0: 1920x1080 on a GPU, 320x180 on llvmpipe
+  int tubes_width = 0, tubes_height = 0;        // the same
 };
 
 // [stack]
@@ -258,24 +265,69 @@ void sweep_msaa(const Settings& s, bool software) {
   std::cout << "wrote 10_msaa_edges.png, 10_msaa_order.png (around pixel " << bx << ", " << by << ")\n";
 }
 
+// [tubes-sweep]
+void sweep_tubes(const Settings& s, bool software) {
+  const int w = s.tubes_width ? s.tubes_width : software ? 320 : 1920;
+  const int h = s.tubes_height ? s.tubes_height : software ? 180 : 1080;
+  const std::string path = s.out + (software ? "/10_tubes_llvmpipe.csv" : "/10_tubes.csv");
+  std::ofstream csv(path);
+  csv << "# " << (software ? "llvmpipe CPU time: " : "GPU time: ") << s.renderer << ", " << w << "x" << h
+      << "; the shop street's whole frame, every stage on, local lights in chapter 09's clusters\n"
+      << "# tubes: their light in the clusters' shading pass, or chapter 04's capsule volumes; ms: mean of " << s.frames
+      << " frames; neon_ms: the volumes' pass (0 in the clusters: their shading pass holds the tubes); "
+         "local_ms: the clusters' passes; steps_max / steps_mean: the output against the volumes', 8-bit steps\n"
+      << "view,tubes,neon_ms,local_ms,lights_and_tubes_ms,total_ms,steps_max,steps_mean," << csv_measure_columns() << "\n";
+  const Scene scene = load_scene(from_root("assets/street_shop/street_shop.gltf"));
+  WholeFrame whole(scene);
+  OutputTarget target(w, h);
+  const ch03::FrameOutput output{target.framebuffer(), w, h};
+  for (const char* view : {"shops", "shop_window"}) {
+    const FrameCamera camera = frame_camera(scene.camera(view), float(w) / float(h));
+    ImageRGBA8 volumes_image;
+    for (const TubeLight tubes : {TubeLight::Volumes, TubeLight::Clusters}) {
+      WholeFrameSettings settings;
+      settings.tubes = tubes;
+      whole.render(camera, output, settings, 1.f / 60.f, true);  // the eye adapted: the same exposure in both
+      const ImageRGBA8 image = target.read();
+      if (tubes == TubeLight::Volumes) volumes_image = image;
+      const CompareResult e = compare(image, volumes_image);
+      PassMetrics metrics;
+      const Measurement m = measure(metrics, [&] { whole.render(camera, output, settings, 1.f / 60.f, true, &metrics); },
+                                    {.frames = s.frames});
+      double neon = 0, local = 0;
+      for (const PassMeasurement& p : m.passes) {
+        if (p.name.rfind("neon:", 0) == 0) neon += p.mean_ms;
+        if (p.name.rfind("local lights:", 0) == 0) local += p.mean_ms;
+      }
+      const char* name = tubes == TubeLight::Volumes ? "volumes" : "clusters";
+      csv << view << ',' << name << ',' << neon << ',' << local << ',' << neon + local << ',' << m.total_ms() << ','
+          << e.max_error << ',' << e.mean_error << ',' << csv_measure_values(s.renderer, w, h, m.frames) << '\n';
+      std::cout << "  tubes " << view << " " << name << ": neon " << neon << " ms, local lights " << local << " ms, frame "
+                << m.total_ms() << " ms; against the volumes max " << e.max_error << " steps" << std::endl;
+    }
+  }
+  std::cout << "wrote " << path << '\n';
+}
+// [/tubes-sweep]
+
 }  // namespace
 
 int main(int argc, char** argv) {
   Settings s;
   return run_sweep(argc, argv, "10_frame_sweep", [&](SweepArgs& args) {
     args.text("--out", s.out).size("--size", s.width, s.height).integer("--frames", s.frames).integer("--layers", s.max_layers)
-        .text("--part", s.part).size("--msaa-size", s.msaa_width, s.msaa_height);
+        .text("--part", s.part).size("--msaa-size", s.msaa_width, s.msaa_height).size("--tubes-size", s.tubes_width, s.tubes_height);
   }, [&] {
     if (s.frames < 1) throw UsageError("--frames must be at least 1");
     if (s.max_layers < 1 || s.max_layers > 128) throw UsageError("--layers must be between 1 and 128");
-    if (s.part != "all" && s.part != "transparency" && s.part != "msaa")
-      throw UsageError("--part must be all, transparency or msaa (got '" + s.part + "')");
+    if (s.part != "all" && s.part != "transparency" && s.part != "msaa" && s.part != "tubes")
+      throw UsageError("--part must be all, transparency, msaa or tubes (got '" + s.part + "')");
     std::filesystem::create_directories(s.out);
     auto context = Context::create({.headless = true, .width = s.width, .height = s.height});
     s.renderer = context->renderer();
     const std::string timer = (context->is_software() ? "llvmpipe CPU time: " : "GPU time: ") + context->renderer();
     std::cout << timer << '\n';
-    if (s.part != "msaa") {
+    if (s.part == "all" || s.part == "transparency") {
       const std::string path = s.out + (context->is_software() ? "/10_transparency_llvmpipe.csv" : "/10_transparency.csv");
       std::ofstream csv(path);
       csv << "# " << timer << ", " << s.width << "x" << s.height << "; the glass scene's panes replaced by a stack of N\n"
@@ -287,6 +339,7 @@ int main(int argc, char** argv) {
       sweep(s, csv);
       std::cout << "wrote " << path << '\n';
     }
-    if (s.part != "transparency") sweep_msaa(s, context->is_software());
+    if (s.part == "all" || s.part == "msaa") sweep_msaa(s, context->is_software());
+    if (s.part == "all" || s.part == "tubes") sweep_tubes(s, context->is_software());
   });
 }

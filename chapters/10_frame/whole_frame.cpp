@@ -37,8 +37,10 @@ std::vector<PlannedStage> WholeFrame::plan(const WholeFrameSettings& s) const {
   p.push_back({"global light: ambient + directional (chapter 03" + per_sample, true, "", "G-buffer + shadow map", "light buffer"});
   p.push_back({clustered ? "local lights: clusters (chapter 09)" : "local lights: stencil volumes (chapter 03" + per_sample, true, "",
                clustered ? "G-buffer + light lists" : "G-buffer + stencil", "light buffer"});
-  p.push_back({"neon tubes (chapter 04)", s.neon && !neon_lights_.empty() && !msaa, off(s.neon, !neon_lights_.empty(), "no neon tubes"),
-               "G-buffer + stencil", "light buffer"});
+  const bool tubes_in_clusters = clustered && s.tubes == TubeLight::Clusters;
+  p.push_back({tubes_in_clusters ? "neon tubes: in the clusters (chapters 04, 09)" : "neon tubes: capsule volumes (chapter 04)",
+               s.neon && !neon_lights_.empty() && !msaa, off(s.neon, !neon_lights_.empty(), "no neon tubes"),
+               tubes_in_clusters ? "G-buffer + light lists" : "G-buffer + stencil", "light buffer"});
   p.push_back({"ambient occlusion (chapters 07, 08)", s.ao && ambient && !msaa, off(s.ao, ambient, "no ambient light"), "G-buffer",
                "light buffer"});
   p.push_back({"indirect light, one bounce (chapter 08)", s.indirect && !msaa, off(s.indirect, true, ""), "G-buffer + light buffer",
@@ -134,6 +136,13 @@ void WholeFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outp
   // 2. The stages' settings: each chapter's defaults.
   ch03::DeferredFrame& frame = source_->frame();
   frame.set_local_lights(s.clustered ? clustered_.get() : nullptr);
+  // [tubes]
+  // The tubes' light: binned and shaded with the clustered lights, or chapter 04's volumes.
+  const bool tubes_in_clusters = neon_ && s.clustered && s.tubes == TubeLight::Clusters;
+  if (neon_) neon_->set_light_by_volumes(!tubes_in_clusters);
+  clustered_->set_tubes(tubes_in_clusters ? tubes_->packed() : std::vector<ch04::NeonGpu>{},
+                        neon_ ? neon_->how() : ch04::NeonDraw{});
+  // [/tubes]
   frame.set_strategy(ch03::Strategy::Stencil);
   if (shadows_) shadows_->set(ch06::ShadowSettings{.cascades = s.sun_cascades});
   if (gi_) {

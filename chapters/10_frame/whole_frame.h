@@ -39,12 +39,17 @@
 namespace lp::ch10 {
 
 // [whole-settings]
+// Where chapter 04's tubes add their light: chapter 09's clusters (binned as capsules with the
+// local lights and shaded in its compute pass, when those are clustered), or chapter 04's
+// capsule volumes through the stencil (a fragment pass per tube, kept for teaching).
+enum class TubeLight { Volumes, Clusters };
 struct WholeFrameSettings {
   bool shadows = true;     // chapter 06: the sun's shadow map (PCF 3x3), when the scene has a sun
   bool clustered = true;   // chapter 09's clusters for the local lights; false: chapter 03's stencil volumes
   bool ao = true;          // chapters 07/08: AO on the ambient light (the narrow disk)
   bool indirect = true;    // chapter 08: one bounce of diffuse indirect light (the wide disk)
   bool neon = true;        // chapter 04's tubes, when the scene has any
+  TubeLight tubes = TubeLight::Clusters;  // their light; volumes when the local lights are
   int sun_cascades = 1;    // chapter 06's cascades for the sun (1: one map fitted to the view; up to 4)
   Method transparency = Method::Sorted;  // chapter 10's glass, when the scene has any
   float sun = 1.f, glow = 8.f;           // chapter 05's scales of the sun and the emissive surfaces

@@ -2,7 +2,9 @@
 // exponential slices and the sphere-against-cell test the assignment relies on.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -93,6 +95,72 @@ TEST(ClusterGrid, ASphereBesideATileMissesItAndTheTestIsConservativeByLittle) {
   const glm::vec3 outside(b.hi.x + 0.1f, 0.5f * (b.lo.y + b.hi.y), 0.5f * (b.lo.z + b.hi.z));
   EXPECT_FALSE(sphere_meets_box(outside, 0.099f, b));
   EXPECT_TRUE(sphere_meets_box(outside, 0.1f, b));  // touching counts
+}
+
+// A tube binned as its capsule (capsule_meets_box): one running down the centre ray through
+// slices 5 to 15 meets every cell it crosses, even thin, and none past its ends or beside it.
+TEST(ClusterGrid, ATubeCrossingSlicesMeetsEveryCellItCrosses) {
+  const FrameCamera c = test_camera();
+  const glm::vec3 a(0, 0, -slice_start(kDoom, 5) * 1.01f), b(0, 0, -slice_start(kDoom, 16) * 0.99f);
+  for (int k = 0; k < 24; ++k) {
+    const bool crossed = k >= 5 && k <= 15;
+    EXPECT_EQ(capsule_meets_box(a, b, 1e-3f, cluster_box(c, kDoom, 8, 4, k)), crossed) << "slice " << k;
+    EXPECT_EQ(capsule_meets_box(b, a, 1e-3f, cluster_box(c, kDoom, 8, 4, k)), crossed) << "reversed, slice " << k;
+  }
+  EXPECT_FALSE(capsule_meets_box(a, b, 1e-3f, cluster_box(c, kDoom, 2, 4, 10))) << "a tile beside it";
+  // Along the image: a tube across the tiles of one slice, at its middle depth.
+  const float d = std::sqrt(slice_start(kDoom, 12) * slice_start(kDoom, 13)), t = std::tan(c.yfov / 2) * d;
+  const glm::vec3 left(-0.9f * t * c.aspect, 0.01f * t, -d), right(0.9f * t * c.aspect, 0.01f * t, -d);
+  for (int tx = 1; tx < 15; ++tx) EXPECT_TRUE(capsule_meets_box(left, right, 1e-3f, cluster_box(c, kDoom, tx, 4, 12))) << tx;
+  EXPECT_FALSE(capsule_meets_box(left, right, 1e-3f, cluster_box(c, kDoom, 8, 1, 12)));
+}
+
+// Against the exact distance from the segment to the box (a convex function along the segment,
+// minimised by ternary search in double): every capsule that reaches a box meets it, and one
+// that meets it reaches within sqrt(3) x its radius (the grown box's corners), on random
+// capsules and boxes, axis-parallel and zero-length segments among them.
+TEST(ClusterGrid, ACapsuleMeetsEveryBoxItReachesAndNoneFartherThanTheGrownCorners) {
+  std::uint32_t state = 12345u;
+  auto uniform = [&](float lo, float hi) {
+    state = state * 1664525u + 1013904223u;
+    return lo + (hi - lo) * float(state >> 8) / float(1u << 24);
+  };
+  auto box_distance = [](const glm::dvec3& p, const Box& box) {
+    return glm::length(p - glm::clamp(p, glm::dvec3(box.lo), glm::dvec3(box.hi)));
+  };
+  int met = 0, missed = 0;
+  for (int i = 0; i < 20000; ++i) {
+    Box box;
+    const glm::vec3 centre(uniform(-5, 5), uniform(-5, 5), uniform(-20, -1)), half(uniform(0.01f, 2), uniform(0.01f, 2), uniform(0.01f, 2));
+    box.lo = centre - half;
+    box.hi = centre + half;
+    glm::vec3 a(uniform(-10, 10), uniform(-10, 10), uniform(-25, 0)), b(uniform(-10, 10), uniform(-10, 10), uniform(-25, 0));
+    if (i % 5 == 1) b = a;                                   // zero length
+    if (i % 5 == 2) b = glm::vec3(a.x, a.y, uniform(-25, 0));  // parallel to z
+    if (i % 5 == 3) b = glm::vec3(uniform(-10, 10), a.y, a.z);  // parallel to x
+    const float r = uniform(0.001f, 4);
+    double lo = 0, hi = 1;
+    auto at = [&](double t) { return box_distance(glm::dvec3(a) + t * (glm::dvec3(b) - glm::dvec3(a)), box); };
+    for (int k = 0; k < 200; ++k) {
+      const double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
+      if (at(m1) <= at(m2))
+        hi = m2;
+      else
+        lo = m1;
+    }
+    const double distance = std::min({at(0), at(1), at(0.5 * (lo + hi))});
+    const bool meets = capsule_meets_box(a, b, r, box);
+    met += meets;
+    missed += !meets;
+    if (distance <= double(r)) {
+      ASSERT_TRUE(meets) << "case " << i << ": the capsule reaches the box (" << distance << " <= " << r << ") and is not binned";
+    }
+    if (distance > std::sqrt(3.0) * double(r) * (1 + 1e-4) + 1e-5) {
+      ASSERT_FALSE(meets) << "case " << i << ": binned at " << distance << ", more than sqrt 3 x " << r;
+    }
+  }
+  EXPECT_GT(met, 2000);
+  EXPECT_GT(missed, 2000);
 }
 
 // Harada's 2.5D mask: 32 equal bins over the tile's depth range.
@@ -231,4 +299,53 @@ TEST(ClusterGrid, ZBinsRectangleHoldsEveryPixelItsSphereCovers) {
   EXPECT_TRUE(behind.lo.x > behind.hi.x || behind.lo.y > behind.hi.y);
   const TileRect small = sphere_tiles(cam, g, glm::vec3(0, 0, -20), 0.2f);
   EXPECT_LE((small.hi.x - small.lo.x + 1) * (small.hi.y - small.lo.y + 1), 4);
+}
+
+// The records of chapter 04's tubes (pack_cluster_lights with tubes): after every point and
+// spot in light order, so that light first_tube on is a tube and the spots' cones keep their
+// places; each the capsule the assignment bins (start, volume radius, end) and the tube's
+// index in the tubes' own buffer, where the shading finds the rest.
+#include "chapters/04_neon/capsule.h"
+#include "chapters/09_clustered/clustered_lights.h"
+
+TEST(ClusterRecords, TubesEndTheLightOrderWithTheirCapsuleAndIndex) {
+  Light point{.color = {1, 1, 1}, .intensity = 2, .position = {1, 2, 3}};
+  Light spot = point;
+  spot.type = LightType::Spot;
+  spot.direction = {0, -1, 0};
+  spot.inner_cone = 0.2f;
+  spot.outer_cone = 0.4f;
+  ch03::LightSet set;
+  set.points = {ch03::pack_point(point, 4.f), ch03::pack_point(point, 5.f)};
+  set.cones = {ch03::pack_spot(spot, 6.f)};
+  set.wide_spots = {ch03::pack_spot(spot, 7.f)};
+  std::vector<ch04::NeonLight> tubes(3);
+  std::vector<ch04::NeonGpu> packed;
+  for (int k = 0; k < 3; ++k) {
+    tubes[k].start = glm::vec3(k, 1, -2);
+    tubes[k].end = glm::vec3(k + 0.5f, 3, -2.f - k);
+    tubes[k].door_axis = glm::normalize(glm::cross(tubes[k].end - tubes[k].start, glm::vec3(1, 0, 0)));
+    packed.push_back(ch04::pack_neon(tubes[k], 2.f + float(k)));
+  }
+  const ClusterRecords without = pack_cluster_lights(set);
+  EXPECT_EQ(without.first_tube, 4) << "no tubes: the lights' count";
+  const ClusterRecords r = pack_cluster_lights(set, packed);
+  ASSERT_EQ(r.lights.size(), 7u);
+  EXPECT_EQ(r.first_spot, 2);
+  EXPECT_EQ(r.first_tube, 4);
+  EXPECT_EQ(r.spots.size(), 2u) << "a cone per spot, none per tube";
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_EQ(r.lights[i].position_radius, without.lights[i].position_radius) << "light " << i;
+    EXPECT_EQ(r.lights[i].radiance_inv_range2, without.lights[i].radiance_inv_range2) << "light " << i;
+  }
+  for (int k = 0; k < 3; ++k) {
+    const ClusterRecords::Light& t = r.lights[std::size_t(r.first_tube + k)];
+    // pack_neon keeps the ends in a matrix: rounding, a few ulps of the coordinates.
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(t.position_radius[c], tubes[k].start[c], 1e-5f) << "tube " << k << " start";
+      EXPECT_NEAR(t.radiance_inv_range2[c], tubes[k].end[c], 1e-5f) << "tube " << k << " end";
+    }
+    EXPECT_FLOAT_EQ(t.position_radius.w, 2.f + float(k)) << "tube " << k << ": its volume radius, the cut";
+    EXPECT_EQ(t.radiance_inv_range2.w, float(k)) << "tube " << k << ": its index";
+  }
 }

@@ -12,8 +12,12 @@
 #include "chapters/03_light_volumes/light_counts.h"
 #include "chapters/03_light_volumes/light_radius.h"
 #include "chapters/02_gbuffer/layout.h"
+#include "chapters/04_neon/capsule.h"
+#include "chapters/04_neon/neon_scene.h"
+#include "chapters/04_neon/neon_stage.h"
 #include "chapters/09_clustered/clustered_forward.h"
 #include "chapters/09_clustered/clustered_lights.h"
+#include "common/error.h"
 #include "common/image.h"
 #include "common/metrics.h"
 #include "common/paths.h"
@@ -719,3 +723,191 @@ TEST_F(ClusteredGl, ClusteredForwardInTheFrameEqualsTheStencilVolumes) {
   EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
   w.frame_.set_local_lights(nullptr);
 }
+
+// [tubes]
+namespace {
+// Chapter 04's tubes in chapter 03's frame: the shop street (its lamps, its tubes, its glass),
+// the tubes drawn by chapter 04's NeonStage, whose capsule volumes add their light unless the
+// clusters do (set_light_by_volumes(false): then only the glass of the tubes is drawn).
+struct TubeWorld {
+  World world{"assets/street_shop/street_shop.gltf"};
+  ch04::NeonTubes tubes;
+  ch04::NeonStage neon;
+  std::vector<ch04::NeonLight> lights;
+  TubeWorld() : neon(world.gpu_, tubes) { world.frame_.add_stage(neon); }
+  void upload(std::vector<ch04::NeonLight> l, float threshold) {
+    lights = std::move(l);
+    tubes.upload(lights, threshold);
+  }
+};
+
+// The street's tubes cut where chapter 04 cuts them (40 m and more: the whole view), or much
+// nearer (a few metres, so that the cut's edge is in the view), with one long tube added that
+// runs from beside the camera far down the view: it crosses tiles and slices.
+std::vector<ch04::NeonLight> street_tubes_and_a_long_one(const Scene& scene, const FrameCamera& cam) {
+  std::vector<ch04::NeonLight> t = ch04::neon_lights(scene);
+  const glm::mat4 eye = glm::inverse(cam.view);
+  const glm::vec3 right(eye[0]), up(eye[1]), forward(-glm::vec3(eye[2]));
+  ch04::NeonLight long_tube;
+  long_tube.name = "across the view";
+  long_tube.start = cam.position + 3.f * forward + 1.5f * right - 0.8f * up;
+  long_tube.end = cam.position + 30.f * forward - 2.5f * right + 1.f * up;
+  long_tube.door_axis = glm::normalize(glm::cross(long_tube.end - long_tube.start, right));
+  long_tube.color = glm::vec3(0.2f, 0.6f, 1.f);
+  long_tube.intensity = t.empty() ? 5.f : t[0].intensity * 4.f;
+  t.push_back(long_tube);
+  return t;
+}
+}  // namespace
+
+// The tubes shaded in chapter 09's pass (ClusteredLights::set_tubes) against chapter 04's
+// capsule volumes, in the same frame after the same clustered lamps. Both evaluate chapter 04's
+// neon_light() on the same G-buffer pixels, and both cut at the same volume radius: the mask is
+// inside neon_light(), and the capsule mesh and the cells (capsule_meets_box) only have to hold
+// it. So the lit (pixel, tube) pairs are equal exactly, and the light differs by rounding alone:
+// the volumes add each tube by blending into RGBA16F (a rounding of the running sum, by
+// at most a unit in the last place, 2^-10 relative: GL does not make a conversion to half round
+// to nearest, and llvmpipe's blending rounds toward zero, the volumes' light never above the
+// clusters') per tube that adds anything, after the lamps' pass stored its sum (one more); the
+// clusters sum lamps and tubes in float and store once. With k_t tubes lighting a pixel the two
+// differ by at most (k_t + 2) 2^-10 of the larger (every partial sum is at most the final one):
+// chapter 09's Tolerance with k = k_t + 1 at 2^-10 a rounding, no cut slack (the same lists
+// light the lamps in both). The image, through the composite and sRGB: image_failures' bound.
+const Tolerance kAUlpPerRounding{.cut_slack = 0, .per_light = std::ldexp(1.0, -10)};
+TEST_F(ClusteredGl, TubesInTheClustersEqualTheirCapsuleVolumes) {
+  TubeWorld t;
+  const int width = 96, height = 54;
+  const FrameCamera cam = camera(t.world, "shops", width, height);
+  set_lights(t.world, 0);
+  const std::vector<ch04::NeonLight> tubes = street_tubes_and_a_long_one(t.world.scene_, cam);
+  ASSERT_GE(tubes.size(), 3u);
+  // A threshold that cuts the first tube 2 m away: the others a few metres around that.
+  const float near_cut = ch04::max_irradiance_at(tubes[0], 2.f);
+  for (const float threshold : {ch04::kNeonCut, near_cut}) {
+    t.upload(tubes, threshold);
+    for (const ch04::NeonGpu& g : t.tubes.packed()) {
+      const float r = ch04::unpack_neon(g).volume_radius;
+      if (threshold == ch04::kNeonCut) {
+        ASSERT_GT(r, 20.f) << "chapter 04's cut reaches over the view";
+      } else {
+        ASSERT_LT(r, 12.f) << "the near cut ends in the view";
+      }
+    }
+    for (const std::string& mode : {std::string("clustered"), std::string("tiled")}) {
+      SCOPED_TRACE(mode + (threshold == ch04::kNeonCut ? ", chapter 04's cut" : ", a near cut"));
+      // The volumes: the lamps from the clusters, then each tube's capsule.
+      ClusteredLights lamps(t.world.frame_.volumes(), settings_for_mode(mode));
+      t.neon.set_light_by_volumes(true);
+      t.neon.volumes().set_counting(true);
+      const Render volumes = render(t.world, cam, width, height, &lamps, false);
+      const std::uint64_t tube_pairs = t.neon.volumes().counts().lit;
+      t.neon.volumes().set_counting(false);
+      // The clusters: the lamps and the tubes in one pass; the capsules draw no light.
+      t.neon.set_light_by_volumes(false);
+      ClusteredLights both(t.world.frame_.volumes(), settings_for_mode(mode));
+      both.set_tubes(t.tubes.packed(), t.neon.how());
+      const Render clusters = render(t.world, cam, width, height, &both, true);
+      const Render lamps_alone = render(t.world, cam, width, height, &lamps, true);
+      t.neon.set_light_by_volumes(true);
+      ASSERT_GT(tube_pairs, std::uint64_t(width * height / 10)) << "the tubes light a tenth of the view";
+      EXPECT_EQ(clusters.counts.lit, volumes.counts.lit + tube_pairs) << "lit (pixel, tube) pairs, exactly";
+      EXPECT_EQ(clusters.stats.cells_over, 0u);
+      std::vector<float> k(clusters.heat.size());
+      for (std::size_t i = 0; i < k.size(); ++i) k[i] = clusters.heat[i] - lamps_alone.heat[i] + 1.f;  // k_t + 1
+      // Below half's smallest normal (2^-14) a rounding errs by its subnormal step, 2^-24,
+      // however small the value: a step per rounding, at the most roundings any pixel has.
+      Tolerance tol = kAUlpPerRounding;
+      tol.cut_slack = (double(*std::max_element(k.begin(), k.end())) + 1.0) * std::ldexp(1.0, -24);
+      const Diff d = diff(clusters, volumes, k, tol);
+      EXPECT_EQ(d.failing, 0u) << d.first << "; largest difference " << d.max_abs;
+      std::string first;
+      EXPECT_EQ(image_failures(clusters.image, volumes.image, k, first), 0u) << first;
+      // Not the same image by accident: without the tubes it differs.
+      EXPECT_GT(diff(lamps_alone, volumes, k, tol).failing, std::size_t(width * height / 10));
+    }
+  }
+  t.world.frame_.set_local_lights(nullptr);
+}
+
+// The lists on the GPU against the CPU's twin: every cell of the clustered grid (all_cells: a
+// list for each) holds each tube whose capsule, 1 % thinner, meets the cell's box on the CPU
+// (cluster_box, capsule_meets_box), and none whose capsule 1 % thicker misses it (the 1 % for
+// the two sides' rounding). Tubes cut a few metres out, one of them long: each crosses many
+// cells, and a tube dropped from any one of them fails here, wherever its light would fall.
+TEST_F(ClusteredGl, ATubeWhoseCapsuleCrossesCellsIsNeverDropped) {
+  TubeWorld t;
+  const int width = 128, height = 72;
+  const FrameCamera cam = camera(t.world, "shops", width, height);
+  set_lights(t.world, 0);
+  const std::vector<ch04::NeonLight> tubes = street_tubes_and_a_long_one(t.world.scene_, cam);
+  t.upload(tubes, ch04::max_irradiance_at(tubes[0], 2.f));
+  t.neon.set_light_by_volumes(false);
+  ClusterSettings settings = settings_for_mode("clustered");
+  settings.all_cells = true;
+  ClusteredLights pass(t.world.frame_.volumes(), settings);
+  pass.set_tubes(t.tubes.packed(), t.neon.how());
+  render(t.world, cam, width, height, &pass, false);
+  t.neon.set_light_by_volumes(true);
+  const std::vector<glm::uvec2> cells = pass.cell_lists();
+  const std::vector<std::uint32_t> index = pass.index_list();
+  const Grid& g = pass.grid();
+  const std::uint32_t first_tube = std::uint32_t(t.world.frame_.volumes().lights().local_count());
+  ASSERT_EQ(cells.size(), std::size_t(g.cells()));
+  std::size_t dropped = 0, extra = 0, pairs = 0;
+  std::vector<std::size_t> cells_of(tubes.size(), 0);
+  std::string first;
+  for (int slice = 0; slice < g.slices; ++slice)
+    for (int ty = 0; ty < g.tiles_y; ++ty)
+      for (int tx = 0; tx < g.tiles_x; ++tx) {
+        const std::size_t cell = (std::size_t(slice) * g.tiles_y + ty) * g.tiles_x + tx;
+        const Box box = cluster_box(cam, g, tx, ty, slice);
+        std::vector<bool> listed(tubes.size(), false);
+        for (std::uint32_t k = 0; k < cells[cell].y; ++k) {
+          const std::uint32_t i = index[cells[cell].x + k];
+          if (i >= first_tube) listed[i - first_tube] = true;
+        }
+        for (std::size_t i = 0; i < tubes.size(); ++i) {
+          const ch04::UnpackedNeon u = ch04::unpack_neon(t.tubes.packed()[i]);
+          const glm::vec3 a(cam.view * glm::vec4(u.light.start, 1.f)), b(cam.view * glm::vec4(u.light.end, 1.f));
+          const bool must = capsule_meets_box(a, b, u.volume_radius * 0.99f, box);
+          const bool may = capsule_meets_box(a, b, u.volume_radius * 1.01f, box);
+          pairs += must;
+          cells_of[i] += listed[i];
+          if ((must && !listed[i]) || (listed[i] && !may)) {
+            (must ? dropped : extra) += 1;
+            if (first.empty())
+              first = "tube " + std::to_string(i) + " in cell " + std::to_string(tx) + "," + std::to_string(ty) + "," +
+                      std::to_string(slice) + (must ? ": dropped" : ": listed where its capsule misses");
+          }
+        }
+      }
+  EXPECT_EQ(dropped, 0u) << first;
+  EXPECT_EQ(extra, 0u) << first;
+  EXPECT_GT(pairs, 100u);
+  for (std::size_t i = 0; i < tubes.size(); ++i) EXPECT_GT(cells_of[i], 1u) << "tube " << i << " crosses cells";
+  EXPECT_GT(cells_of.back(), std::size_t(g.slices)) << "the long tube crosses many slices' cells";
+  t.world.frame_.set_local_lights(nullptr);
+}
+
+// Z-binning sorts and bins spheres: a frame with tubes in it is refused by name, not drawn wrong.
+TEST_F(ClusteredGl, ZBinningRefusesTubesByName) {
+  TubeWorld t;
+  const int width = 32, height = 18;
+  const FrameCamera cam = camera(t.world, "shops", width, height);
+  set_lights(t.world, 0);
+  t.upload(ch04::neon_lights(t.world.scene_), ch04::kNeonCut);
+  ClusteredLights pass(t.world.frame_.volumes(), settings_for_mode("zbin"));
+  pass.set_tubes(t.tubes.packed());
+  t.world.frame_.set_local_lights(&pass);
+  OutputTarget target(width, height);
+  try {
+    t.world.frame_.render(cam, {target.framebuffer(), width, height});
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("Z-binning bins spheres, not chapter 04's tubes"), std::string::npos) << e.what();
+  }
+  t.world.frame_.set_local_lights(nullptr);
+  while (glGetError() != GL_NO_ERROR) {
+  }
+}
+// [/tubes]

@@ -191,7 +191,8 @@ TEST(WholeFrameStagesGl, TheClustersLightIsChapter09s) {
 
 // AO and the indirect light (chapters 07 and 08): with every stage on, chapter 08's pass in the
 // whole frame writes what chapter 08's GiStage writes given the same direct light (chapter 03's
-// sun with chapter 06's map, chapter 09's clusters and chapter 04's tubes, all before it, as
+// sun with chapter 06's map, chapter 09's clusters and chapter 04's tubes (their light in the
+// clusters, the whole frame's default), all before it, as
 // GiStage requires), for AO and indirect light, AO alone and indirect light alone; and the light
 // buffer it leaves (A x ambient + the bounce added) is the same. The whole frame first draws
 // another view, so a pass that read the last frame's light would differ.
@@ -222,7 +223,14 @@ TEST(WholeFrameStagesGl, AoAndIndirectLightAreChapter08s) {
     tubes.upload(ch04::neon_lights(scene));
     ch04::NeonStage neon(chapter->scene_gpu(), tubes);
     ch08::GiStage gi(chapter->scene_gpu());
-    ch09::ClusteredLights clustered(chapter->frame().volumes());
+    // Every cell's list, as the whole frame builds them for its glass. (With the tubes in the
+    // lists, occupied cells' lists alone give a light a half-float step off at some pixels on
+    // llvmpipe: not yet explained, so the test holds the whole frame's own configuration.)
+    ch09::ClusteredLights clustered(chapter->frame().volumes(), ch09::ClusterSettings{.all_cells = true});
+    // The tubes' light where the whole frame puts it by default: in the clusters, or the volumes.
+    const bool tubes_in_clusters = s.tubes == TubeLight::Clusters;
+    neon.set_light_by_volumes(!tubes_in_clusters);
+    if (tubes_in_clusters) clustered.set_tubes(tubes.packed(), neon.how());
     chapter->frame().add_stage(shadows);
     chapter->frame().add_stage(neon);
     chapter->frame().add_stage(gi);

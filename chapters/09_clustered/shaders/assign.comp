@@ -32,6 +32,12 @@ uint g_tile_bits;
 
 bool meets(uint i, Box box) {
   ClusterLight l = cluster_lights[i];
+  // [tube-meets]
+  // A tube: its capsule against the cell (no depth mask: the bins test a sphere's extent).
+  if (int(i) >= u_first_tube)
+    return capsule_meets_box((u_view * vec4(l.position_radius.xyz, 1.0)).xyz, (u_view * vec4(l.radiance_inv_range2.xyz, 1.0)).xyz,
+                             l.position_radius.w, box);
+  // [/tube-meets]
   vec3 centre = (u_view * vec4(l.position_radius.xyz, 1.0)).xyz;
   if (!sphere_meets_box(centre, l.position_radius.w, box)) return false;
 #ifdef DEPTH_MASK

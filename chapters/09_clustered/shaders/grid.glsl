@@ -60,6 +60,24 @@ bool sphere_meets_box(vec3 centre, float radius, Box box) {
 }
 #endif
 
+// A tube's capsule (segment a-b in view space, radius) against a box: cluster_grid.h's
+// capsule_meets_box, the segment clipped against the box grown by the radius.
+bool capsule_meets_box(vec3 a, vec3 b, float radius, Box box) {
+  float grow = radius * (1.0 + 1e-5) + 1e-6;
+  vec3 lo = box.lo - grow, hi = box.hi + grow, d = b - a;
+  float t0 = 0.0, t1 = 1.0;
+  for (int k = 0; k < 3; ++k) {
+    if (d[k] == 0.0) {
+      if (a[k] < lo[k] || a[k] > hi[k]) return false;
+      continue;
+    }
+    float u = (lo[k] - a[k]) / d[k], v = (hi[k] - a[k]) / d[k];
+    t0 = max(t0, min(u, v));
+    t1 = min(t1, max(u, v));
+  }
+  return t0 <= t1;
+}
+
 // Harada's 2.5D depth mask (cluster_grid.h's depth_bin / depth_range_bits / light_depth_bits).
 const int kDepthBins = 32;
 int depth_bin(float lo, float hi, float d) {
@@ -88,11 +106,12 @@ int cell_index(ivec2 tile, int slice) { return (slice * u_tiles.y + tile.y) * u_
 
 // The lights, in chapter 03's light order (points, cones, wide spots), from chapter 03's
 // packing (light_instances.h) with what shading a pair needs precomputed; the spots' cones
-// apart, from light u_first_spot on.
+// apart, from light u_first_spot on; then chapter 04's tubes, from u_first_tube on.
 #include "09_clustered/shaders/cluster_light.h"
 layout(std430, binding = 0) readonly buffer Lights { ClusterLight cluster_lights[]; };
 layout(std430, binding = 9) readonly buffer Spots { ClusterSpot cluster_spots[]; };
 uniform int u_first_spot;  // the first spot of the light order (the lights before it are points)
+uniform int u_first_tube;  // the first tube (the lights' count when there are none)
 // Each cell's list: where it starts in the index list and how many lights it holds.
 layout(std430, binding = 1) buffer Cells { uvec2 cells[]; };
 layout(std430, binding = 4) buffer Indices { uint light_indices[]; };

@@ -24,21 +24,52 @@ void count_add(uint counter, uint n) {
 layout(std430, binding = 2) readonly buffer Bounds { uint bounds[]; };
 #endif
 
-// The k-th light of a cell's list, added to the pixel's sums. A cell whose list did not fit
-// (assign.comp: kEveryLight) is shaded from every light in light order: slower, never wrong.
-// Light i of the light order (record c, and its cone when it is a spot: cluster_light.h),
-// added to the pixel's sums.
-vec4 cone_of(int i) { return i >= u_first_spot ? cluster_spots[i - u_first_spot].axis_offset : vec4(0.0); }
+// [tube-shade]
+// Chapter 04's tubes (ClusteredLights::set_tubes): each lit by chapter 04's own neon_light(),
+// as its capsule volume's fragment shader does (neon_volume.frag), with the method it was
+// given. A pass built without them (the glass's clustered forward) adds nothing for a tube.
+#ifdef CLUSTER_TUBES
+#include "04_neon/shaders/neon.glsl"
+layout(std430, binding = CLUSTER_TUBES) readonly buffer Tubes { NeonGpu cluster_tubes[]; };
+void add_tube(Surface s, vec3 to_eye, ClusterLight c, inout vec3 diffuse, inout vec3 specular, inout uint lit) {
+  NeonSurface surface = NeonSurface(s.position, s.normal, to_eye, s.exponent);
+  NeonResult r = neon_light(surface, cluster_tubes[int(c.radiance_inv_range2.w)], NeonMethod(TUBE_METHOD, TUBE_SAMPLES));
+  diffuse += r.diffuse;
+  specular += s.specular * r.specular;
+  if (any(greaterThan(r.diffuse + r.specular, vec3(0.0)))) ++lit;
+}
+#else
+void add_tube(Surface s, vec3 to_eye, ClusterLight c, inout vec3 diffuse, inout vec3 specular, inout uint lit) {}
+#endif
+// [/tube-shade]
+
+// Light i of the light order, a point or a spot (record c, and its cone when it is a spot:
+// cluster_light.h), added to the pixel's sums. A tube has no cone.
+vec4 cone_of(int i) {
+  return i >= u_first_spot && i < u_first_tube ? cluster_spots[i - u_first_spot].axis_offset : vec4(0.0);
+}
+void add_lamp(Surface s, vec3 to_eye, int i, ClusterLight c, vec4 cone, inout vec3 diffuse, inout vec3 specular,
+              inout uint lit) {
+  light_pair(c, i >= u_first_spot, cone, i, s, to_eye, diffuse, specular, lit);
+}
+// Any record: a light or a tube (the staged pass, whose loop meets both; Z-binning and the floor
+// refuse tubes and add lamps alone).
 void add_record(Surface s, vec3 to_eye, int i, ClusterLight c, vec4 cone, inout vec3 diffuse, inout vec3 specular,
                 inout uint lit) {
-  light_pair(c, i >= u_first_spot, cone, i, s, to_eye, diffuse, specular, lit);
+  if (i >= u_first_tube)
+    add_tube(s, to_eye, c, diffuse, specular, lit);
+  else
+    add_lamp(s, to_eye, i, c, cone, diffuse, specular, lit);
 }
 
 uint light_of(uvec2 list, uint k) { return list.x == kEveryLight ? k : light_indices[list.x + k]; }
 
+// The k-th light of a cell's list, added to the pixel's sums. A cell whose list did not fit
+// (assign.comp: kEveryLight) is shaded from every light in light order: slower, never wrong.
+// Not a tube: shade_surface's loop stops before them (they end a list).
 void add_light(Surface s, vec3 to_eye, uvec2 list, uint k, inout vec3 diffuse, inout vec3 specular, inout uint lit) {
   int i = int(light_of(list, k));
-  add_record(s, to_eye, i, cluster_lights[i], cone_of(i), diffuse, specular, lit);
+  add_lamp(s, to_eye, i, cluster_lights[i], cone_of(i), diffuse, specular, lit);
 }
 
 #ifdef ZBIN
@@ -55,7 +86,7 @@ void zbin_take(Surface s, vec3 to_eye, uint w, int op, inout uint m, inout uint 
   int i = int(light_indices[w * 32u + uint(findLSB(m))]);
   m &= m - 1u;
   if (op == kZShade) {
-    add_record(s, to_eye, i, cluster_lights[i], cone_of(i), diffuse, specular, lit);
+    add_lamp(s, to_eye, i, cluster_lights[i], cone_of(i), diffuse, specular, lit);
     return;
   }
   // The floor's lists: the lights local_light() would not end at their cut, exactly.
@@ -117,7 +148,7 @@ void shade_surface(Surface s, ivec2 pixel, out vec3 diffuse, out vec3 specular, 
   if (exact.x != kEveryLight) {
     for (uint k = 0u; k < exact.y; ++k) {
       int i = int(floor_lights[exact.x + k]);
-      add_record(s, to_eye, i, cluster_lights[i], cone_of(i), diffuse, specular, lit);
+      add_lamp(s, to_eye, i, cluster_lights[i], cone_of(i), diffuse, specular, lit);
     }
     evaluated = exact.y;
     count_pixel(evaluated, lit);
@@ -135,6 +166,12 @@ void shade_surface(Surface s, ivec2 pixel, out vec3 diffuse, out vec3 specular, 
 #else
   uvec2 list = cells[cell_index(tile_of(pixel), 0)];
 #endif
+  // [tube-split]
+  // Chapter 04's tubes end a list (light order): the lights' loop below stops before them, so
+  // that its unrolled body never holds neon_light(); they follow, one at a time.
+  uint listed = list.y;
+  while (list.y > 0u && int(light_of(list, list.y - 1u)) >= u_first_tube) --list.y;
+  // [/tube-split]
   // [shade-loop]
   // Four lights an iteration: llvmpipe ends a shader's loops after 65 535 iterations in all
   // (gallivm's loop limiter), and a tile's list can hold 100 000 lights (262 140 at most here).
@@ -144,7 +181,8 @@ void shade_surface(Surface s, ivec2 pixel, out vec3 diffuse, out vec3 specular, 
     if (k + 2u < list.y) add_light(s, to_eye, list, k + 2u, diffuse, specular, lit);
     if (k + 3u < list.y) add_light(s, to_eye, list, k + 3u, diffuse, specular, lit);
   }
-  evaluated = list.y;
+  for (uint k = list.y; k < listed; ++k) add_tube(s, to_eye, cluster_lights[light_of(list, k)], diffuse, specular, lit);
+  evaluated = listed;
   // [/shade-loop]
   count_pixel(evaluated, lit);
 }
