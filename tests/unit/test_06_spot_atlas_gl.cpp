@@ -19,6 +19,7 @@
 #include "common/paths.h"
 #include "common/target.h"
 #include "tests/unit/gl_environment.h"
+#include "tests/unit/light_edge_band.h"
 
 using namespace lp;
 using namespace lp::ch06;
@@ -95,43 +96,8 @@ FrameCamera looking_down(glm::vec3 eye) {
 std::vector<bool> spot_band(const std::vector<std::optional<Hit>>& hits, const ImageF& truth, const Light& l,
                             const SpotFrustum& f, int tile, const FrameCamera& cam, const ShadowSettings& s, int r,
                             int* widest) {
-  std::vector<bool> edge = hard_edge_pixels(truth, 1);
-  for (int y = 0; y < kH; ++y)
-    for (int x = 0; x < kW; ++x) {
-      const auto& h = hits[std::size_t(y) * kW + std::size_t(x)];
-      for (int dy = -1; dy <= 1 && h; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int u = x + dx, v = y + dy;
-          if (u < 0 || v < 0 || u >= kW || v >= kH) continue;
-          const auto& o = hits[std::size_t(v) * kW + std::size_t(u)];
-          if (o && glm::dot(o->geometric_normal, h->geometric_normal) < 0.99f) edge[std::size_t(y) * kW + std::size_t(x)] = true;
-        }
-    }
-  std::vector<bool> band(edge.size(), false);
-  *widest = 0;
-  for (int y = 0; y < kH; ++y)
-    for (int x = 0; x < kW; ++x) {
-      const std::size_t i = std::size_t(y) * kW + std::size_t(x);
-      if (truth.at(x, y, 2) < 0.5f) continue;
-      const Hit& h = *hits[i];
-      const float d = glm::distance(h.position, l.position);
-      const float c = std::clamp(std::abs(glm::dot(glm::normalize(l.position - h.position), h.shading_normal)), 1e-4f, 1.f);
-      const float tan_theta = std::min(std::sqrt(1.f - c * c) / c, kMaxSlope);
-      const float texels = 0.5f + s.constant_bias + s.slope_bias * tan_theta + s.normal_offset + float(r);
-      const float footprint = h.t * 2.f * std::tan(cam.yfov / 2.f) / float(kH);
-      const int reach = int(std::ceil(texels * f.texel_world(d, tile) / footprint));
-      *widest = std::max(*widest, reach);
-      if (x < reach || y < reach || x >= kW - reach || y >= kH - reach) band[i] = true;
-      for (int dy = -reach; dy <= reach && !band[i]; ++dy)
-        for (int dx = -reach; dx <= reach; ++dx) {
-          const int u = x + dx, v = y + dy;
-          if (u >= 0 && v >= 0 && u < kW && v < kH && edge[std::size_t(v) * kW + std::size_t(u)]) {
-            band[i] = true;
-            break;
-          }
-        }
-    }
-  return band;
+  return light_edge_band(hits, truth, l, cam, s, r, kW, kH, [&](float d) { return f.texel_world(d, tile); },
+                          widest);
 }
 // [/spot-band]
 
