@@ -19,6 +19,7 @@
 #include "common/raytrace.h"
 #include "tests/unit/book_data.h"
 #include "tests/unit/gl_environment.h"
+#include "tests/unit/roof_hole_scene.h"
 
 using namespace lp;
 using namespace lp::ch08;
@@ -480,6 +481,65 @@ TEST(SsgiHardCases, ThinObjectIsMostlyMissed) {
 }
 
 // [/hard-cases]
+
+// [roof-hole]
+// The narrow disk's sample areas and its reach, where they matter: a roof 0.4 above the floor
+// seen through a hole from 1 m above the floor (tests/unit/roof_hole_scene.h; chapter 07's
+// SsaoHardCases.RoofSeenThroughAHoleOccludesAsMuchAsItsTruth has the same case and says why).
+// The floor's receivers see the roof at ze / zr = 0.6: a sample's share of the disk covers
+// 0.36 of its area at the receiver's depth there (sample_area), and taken at the receiver's
+// depth it makes the occlusion 2.8 times as large. The narrow disk is chapter 07's form factor
+// with the same share, so it has chapter 07's bounds there: its mean occlusion over the floor's
+// pixels within 0.8 .. 1.15 of the truth's (the losses that only lower it: saturation <= 2.3 %
+// and the part of R's sphere its screen disk misses; the rest an allowance for the quadrature).
+// The wide disk is off and its radius R_ao, so that the screen clamp (the image height) does
+// not shorten the narrow one.
+TEST(SsgiHardCases, RoofSeenThroughAHoleOccludesAsMuchAsItsTruth) {
+  const test::RoofHole r;
+  World w(test::roof_hole_scene(r));
+  const FrameCamera cam = test::roof_hole_camera(r, float(kW) / kH);
+  const GiSettings s{.indirect = false, .samples = 32, .ao_radius = 0.5f, .gi_radius = 0.5f, .blur = false};
+  ASSERT_LT(s.ao_radius * cam.projection[1][1] * 0.5 * kH / r.eye, s.max_screen_radius * kH);  // no clamp
+  const ImageF gi = w.frame.indirect(cam, GiMode::Ssgi, s);
+  const ImageF t = ch07::cached_ray_traced_ao(w.scene, cam, kW, kH, {.radius = s.ao_radius, .samples = 512});
+  const auto names = w.names(cam);
+  double method = 0, want = 0;
+  long pixels = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      if (names[std::size_t(y) * kW + x] != "floor") continue;
+      method += 1.0 - gi.at(x, y, 3), want += 1.0 - t.at(x, y, 0), ++pixels;
+    }
+  method /= double(std::max(pixels, 1L)), want /= double(std::max(pixels, 1L));
+  std::cout << "floor through the hole: mean occlusion " << method << ", truth " << want << " (" << method / want
+            << " of it) over " << pixels << " pixels\n";
+  ASSERT_GT(pixels, 500);  // the truth's mean good to 0.001
+  ASSERT_GT(want, 0.1);
+  EXPECT_GT(method, 0.8 * want);
+  EXPECT_LT(method, 1.15 * want);
+}
+
+// The same scene with both radii 0.3, below the roof's height: no surface lies within R of
+// another that is not in its plane (floor and roof are 0.4 apart, the roof's parts coplanar), so
+// the AO is 1 everywhere, up to the depth's rounding in the plane (chapter 07's open plane,
+// 0.995), and the indirect light 0 (every emitter within R in the receiver's plane: cos = 0, to
+// 1e-3 of the brightest emitter, as SkySendsAndReceivesNothing). The floor's disks reach the
+// roof's pixels on the screen, 0.4 .. 0.5 away in 3D: counted, they darken the floor.
+TEST(SsgiHardCases, RoofBeyondTheRadiiSendsAndHidesNothing) {
+  const test::RoofHole r;
+  World w(test::roof_hole_scene(r));
+  const FrameCamera cam = test::roof_hole_camera(r, float(kW) / kH);
+  const GiSettings s{.samples = 32, .ao_radius = 0.3f, .gi_radius = 0.3f, .blur = false};
+  ASSERT_LT(s.gi_radius, r.roof);
+  const ImageF gi = w.frame.indirect(cam, GiMode::Ssgi, s);
+  ASSERT_TRUE(all_finite(gi));
+  float lowest_ao = 1.f;
+  for (std::size_t i = 3; i < gi.data.size(); i += 4) lowest_ao = std::min(lowest_ao, gi.data[i]);
+  std::cout << "radii below the roof: lowest A " << lowest_ao << ", largest L1_ind " << largest_rgb(gi) << "\n";
+  EXPECT_GE(lowest_ao, 0.995f);
+  EXPECT_LE(largest_rgb(gi), 1e-3f * std::max(brightest_emitter(w, cam), 1e-3f));
+}
+// [/roof-hole]
 
 // [back-faces-test]
 // The source's back-face layer, on a case built for it: the Cornell box's back wall alone, and
