@@ -16,7 +16,7 @@
 #include "common/paths.h"
 #include "common/raytrace.h"
 #include "tests/unit/gl_environment.h"
-#include "tests/unit/roof_hole_scene.h"
+#include "tests/unit/squares_scene.h"
 
 using namespace lp;
 using namespace lp::ch07;
@@ -488,7 +488,7 @@ TEST(SsaoHardCases, TwoRadiiDarkenContactAndNothingElse) {
 // Each disk sample stands for an equal share of the disk, pi R^2 / N, at the receiver's depth
 // zr; the surface it lands on lies at the emitter's depth ze, where the same share of the screen
 // covers (ze / zr)^2 as much area. The Cornell views cannot see that factor: what lies within R
-// of a receiver there is at nearly its depth. Here (tests/unit/roof_hole_scene.h) every occluder
+// of a receiver there is at nearly its depth. Here (tests/unit/squares_scene.h) every occluder
 // is a roof 0.4 above the floor, seen through a hole from 1 m above the floor: ze / zr = 0.6,
 // and the factor is 0.36. With it the disk's sum is a quadrature of the truth's integral (the
 // form factor of the roof within R), less two losses that only lower it: the term's

@@ -19,7 +19,7 @@
 #include "common/raytrace.h"
 #include "tests/unit/book_data.h"
 #include "tests/unit/gl_environment.h"
-#include "tests/unit/roof_hole_scene.h"
+#include "tests/unit/squares_scene.h"
 
 using namespace lp;
 using namespace lp::ch08;
@@ -107,7 +107,7 @@ bool all_finite(const ImageF& img) {
 // scales them back when its disks overlap), so L1_ind <= max over the screen of albedo x L1.
 // The light buffer's L1 with no stage light (mode off, ambient 0) times the G-buffer's largest
 // albedo in the scene (0.78, the light patch) bounds it.
-float brightest_emitter(World& w, const FrameCamera& cam) {
+float brightest_emitter(World& w, const FrameCamera& cam, float albedo = 0.78f) {
   w.frame.frame().set_ambient(glm::vec3(0));
   w.frame.image(cam, GiMode::Off, {}, GiShow::Image, 0.f);
   ImageF l = ImageF::blank(kW, kH, 4);
@@ -117,7 +117,7 @@ float brightest_emitter(World& w, const FrameCamera& cam) {
   float most = 0.f;
   for (std::size_t i = 0; i < l.data.size(); ++i)
     if (i % 4 != 3) most = std::max(most, l.data[i]);
-  return most * 0.78f;
+  return most * albedo;
 }
 
 float largest_rgb(const ImageF& img) {
@@ -484,7 +484,7 @@ TEST(SsgiHardCases, ThinObjectIsMostlyMissed) {
 
 // [roof-hole]
 // The narrow disk's sample areas and its reach, where they matter: a roof 0.4 above the floor
-// seen through a hole from 1 m above the floor (tests/unit/roof_hole_scene.h; chapter 07's
+// seen through a hole from 1 m above the floor (tests/unit/squares_scene.h; chapter 07's
 // SsaoHardCases.RoofSeenThroughAHoleOccludesAsMuchAsItsTruth has the same case and says why).
 // The floor's receivers see the roof at ze / zr = 0.6: a sample's share of the disk covers
 // 0.36 of its area at the receiver's depth there (sample_area), and taken at the receiver's
@@ -540,6 +540,60 @@ TEST(SsgiHardCases, RoofBeyondTheRadiiSendsAndHidesNothing) {
   EXPECT_LE(largest_rgb(gi), 1e-3f * std::max(brightest_emitter(w, cam), 1e-3f));
 }
 // [/roof-hole]
+
+// [slot]
+// The transfers' normalisation (ssgi.comp [ssgi-clamp]): the form factors from a point to
+// surfaces that do not overlap sum to at most 1, but the pass's sample disks can overlap, most
+// where a surface seen at a slant (its areas grown up to 5x) lies close to the receiver: the
+// Cornell box's left wall beside the tall box sums to 1.5. Scaled back, a pixel's indirect
+// light is a weighted mean of its emitters' albedo x L1, so where every emitter sends the same
+// W it is at most W (to three half-float roundings, 2^-11 each: the result's and the two L1s'
+// ratio). The case: a U
+// between two walls 0.6 apart (tests/unit/squares_scene.h's squares), each wall lit by its own
+// sun at 45 degrees (N.L = 0.707, the other sun behind it), the floor by both at half the
+// walls' albedo, seen down the U from nine places: every emitter on the screen sends the same
+// W. Not scaled back, the few pixels whose transfers sum past 1 (by up to 9 %, in about one
+// view in three on llvmpipe: the randomised pattern's closest samples on a wall seen at a
+// slant) get more than W.
+Scene slot_scene(float gap, float height, float length) {
+  Scene s = test::squares_scene("slot between two walls (test)");
+  const glm::mat4 size = glm::scale(glm::mat4(1), glm::vec3(height, 1, length));
+  const glm::vec3 lo(-0.5f * gap, 0, -length + 1), hi(0.5f * gap, height, 1);
+  test::add_square(s, "left", glm::translate(glm::mat4(1), glm::vec3(lo.x, height, lo.z)) *
+                                  glm::rotate(glm::mat4(1), -glm::half_pi<float>(), glm::vec3(0, 0, 1)) * size, lo, hi);
+  test::add_square(s, "right", glm::translate(glm::mat4(1), glm::vec3(hi.x, 0, lo.z)) *
+                                   glm::rotate(glm::mat4(1), glm::half_pi<float>(), glm::vec3(0, 0, 1)) * size, lo, hi);
+  // the floor, lit by both suns (N.L = 0.707 each), at half the walls' albedo: the same W
+  s.materials.push_back(Material{.name = "floor", .base_color = glm::vec4(0.25f, 0.25f, 0.25f, 1)});
+  s.meshes.push_back(Mesh{"floor square", {Primitive{0, 6, 1}}});
+  s.instances.push_back(Instance{"floor", 1, glm::translate(glm::mat4(1), glm::vec3(lo.x, 0, lo.z)) *
+                                                 glm::scale(glm::mat4(1), glm::vec3(gap, 1, length)), {}});
+  s.lights.push_back(test::directional("sun on the left wall", glm::vec3(-1, -1, 0), 2.f));
+  s.lights.push_back(test::directional("sun on the right wall", glm::vec3(1, -1, 0), 2.f));
+  return s;
+}
+
+TEST(SsgiHardCases, OverlappingSampleDisksSendNoMoreThanTheirEmitters) {
+  World w(slot_scene(0.6f, 2.f, 4.f));
+  // the albedos as the G-buffer stores them (sRGB8), the walls' L1 half the floor's
+  const auto stored = [](float a) { return srgb_to_linear(std::round(linear_to_srgb(a) * 255.f) / 255.f); };
+  const float albedo = std::max(stored(0.25f), 0.5f * stored(0.5f));
+  double worst = 0;
+  for (float x : {0.05f, 0.1f, 0.15f})
+    for (float y : {0.8f, 1.1f, 1.5f}) {
+      const FrameCamera cam = look(cornell(), glm::vec3(x, y, 1.5f), glm::vec3(-0.02f, 0.f, -1.5f));
+      const float most = brightest_emitter(w, cam, albedo);  // W, the same for every emitter
+      for (int n : {32, 64}) {
+        const ImageF gi = w.frame.indirect(cam, GiMode::Ssgi, {.ao = false, .samples = n, .blur = false});
+        ASSERT_TRUE(all_finite(gi));
+        EXPECT_GT(largest_rgb(gi), 0.5f * most);  // the walls and the floor light each other
+        EXPECT_LE(largest_rgb(gi), most * (1.f + 0x1p-9f)) << "view from " << x << ", " << y << ", " << n << " samples";
+        worst = std::max(worst, double(largest_rgb(gi) / most));
+      }
+    }
+  std::cout << "slot: the largest L1_ind is " << worst << " of the emitters' W\n";
+}
+// [/slot]
 
 // [back-faces-test]
 // The source's back-face layer, on a case built for it: the Cornell box's back wall alone, and
