@@ -64,6 +64,7 @@ layout(binding = SHADOW_UNIT + 5) uniform sampler2D sh_spot_atlas;
 layout(binding = SHADOW_UNIT + 6) uniform samplerCubeArray sh_point_maps;
 layout(binding = SHADOW_UNIT + 7) uniform sampler2DArray sh_csm;
 #include "06_shadows/shaders/csm_math.glsl"
+#include "06_shadows/shaders/msm_math.glsl"
 
 // The map a lookup reads: the sun's one map, or the cascade chosen for the pixel (all share the
 // light's view, sh.view, and its depth range, sh.depth_range).
@@ -228,39 +229,11 @@ float sun_map_visibility(Surface s, vec3 to_light) {
   return lit / float(taps);
   // [/pcss-glsl]
 #elif SHADOW_METHOD == SHADOW_MSM
-  // [msm-glsl]
-  // shadow_math.h's msm_hamburger: the moments (back from the optimised 16-bit map), pulled
-  // towards 0.5, the Hankel matrix's Cholesky factors, the two other support points, and the
-  // weight in front of the receiver.
+  // the moments (back from the optimised 16-bit map) and the Hamburger reconstruction:
+  // msm_math.glsl, the twin of shadow_math.h's
   vec4 b = texture(sh_moments, q.xy);
-  if (sh.msm_optimized > 0.5) {
-    b.x -= 0.035955884801;
-    b = mat4(0.2227744146, 0.1549679261, 0.1451988946, 0.163127443,
-             0.0771972861, 0.1394629426, 0.2120202157, 0.2591432266,
-             0.7926986636, 0.7963415838, 0.7258694464, 0.6539092497,
-             0.0319417555, -0.1722823173, -0.2758014811, -0.3376131734) * b;
-  }
-  b = mix(b, vec4(0.5), sh.msm_moment_bias);
-  float l32_d22 = -b.x * b.y + b.z;
-  float d22 = -b.x * b.x + b.y;
-  float squared_variance = -b.y * b.y + b.w;
-  float d33_d22 = squared_variance * d22 - l32_d22 * l32_d22;
-  float inv_d22 = 1.0 / d22;
-  float l32 = l32_d22 * inv_d22;
-  vec3 c = vec3(1.0, q.z, q.z * q.z);
-  c.y -= b.x;
-  c.z -= b.y + l32 * c.y;
-  c.y *= inv_d22;
-  c.z *= d22 / d33_d22;
-  c.y -= l32 * c.z;
-  c.x -= c.y * b.x + c.z * b.y;
-  float p = c.y / c.z, qq = c.x / c.z;
-  float r = sqrt(max(p * p * 0.25 - qq, 0.0));
-  float z1 = -p * 0.5 - r, z2 = -p * 0.5 + r;
-  vec4 sw = z2 < q.z ? vec4(z1, q.z, 1.0, 1.0) : z1 < q.z ? vec4(q.z, z1, 0.0, 1.0) : vec4(0.0);
-  float quotient = (sw.x * z2 - b.x * (sw.x + z2) + b.y) / ((z2 - sw.y) * (q.z - z1));
-  return 1.0 - clamp(sw.z + sw.w * quotient, 0.0, 1.0);
-  // [/msm-glsl]
+  if (sh.msm_optimized > 0.5) b = msm_unoptimize(b);
+  return msm_hamburger(b, q.z, sh.msm_moment_bias);
 #elif SHADOW_METHOD == SHADOW_CSM_FOURIER
   // csm_math.glsl's csm_visibility on the filtered layers the series' terms use
   int terms = int(sh.csm_terms);
