@@ -484,7 +484,6 @@ TEST(SsaoHardCases, TwoRadiiDarkenContactAndNothingElse) {
 }
 // [/two-radii]
 
-// [roof-hole]
 // Each disk sample stands for an equal share of the disk, pi R^2 / N, at the receiver's depth
 // zr; the surface it lands on lies at the emitter's depth ze, where the same share of the screen
 // covers (ze / zr)^2 as much area. The Cornell views cannot see that factor: what lies within R
@@ -530,4 +529,3 @@ TEST(SsaoHardCases, RoofSeenThroughAHoleOccludesAsMuchAsItsTruth) {
   EXPECT_GT(method, 0.8 * want);
   EXPECT_LT(method, 1.15 * want);
 }
-// [/roof-hole]

@@ -482,7 +482,6 @@ TEST(SsgiHardCases, ThinObjectIsMostlyMissed) {
 
 // [/hard-cases]
 
-// [roof-hole]
 // The narrow disk's sample areas and its reach, where they matter: a roof 0.4 above the floor
 // seen through a hole from 1 m above the floor (tests/unit/squares_scene.h; chapter 07's
 // SsaoHardCases.RoofSeenThroughAHoleOccludesAsMuchAsItsTruth has the same case and says why).
@@ -539,9 +538,7 @@ TEST(SsgiHardCases, RoofBeyondTheRadiiSendsAndHidesNothing) {
   EXPECT_GE(lowest_ao, 0.995f);
   EXPECT_LE(largest_rgb(gi), 1e-3f * std::max(brightest_emitter(w, cam), 1e-3f));
 }
-// [/roof-hole]
 
-// [slot]
 // The transfers' normalisation (ssgi.comp [ssgi-clamp]): the form factors from a point to
 // surfaces that do not overlap sum to at most 1, but the pass's sample disks can overlap, most
 // where a surface seen at a slant (its areas grown up to 5x) lies close to the receiver: the
@@ -593,7 +590,6 @@ TEST(SsgiHardCases, OverlappingSampleDisksSendNoMoreThanTheirEmitters) {
     }
   std::cout << "slot: the largest L1_ind is " << worst << " of the emitters' W\n";
 }
-// [/slot]
 
 // [back-faces-test]
 // The source's back-face layer, on a case built for it: the Cornell box's back wall alone, and
