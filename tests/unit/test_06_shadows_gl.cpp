@@ -986,8 +986,10 @@ TEST_F(ShadowsGl, PcssPenumbraIsNarrowNearContactAndWideFarFromIt) {
 // blockers hide a quarter of the sun's disk and lie more than a texel from the lookup. A
 // search that finds them darkens the pixel; one that finds nothing returns 1 exactly. Its
 // Poisson taps are a sample of the search disk, so a thin blocker can slip between them: the
-// bound is that at most half of these pixels find nothing (a stated bound, not derived: far
-// from both a search that reaches, and one a texel wide, which finds nothing at nearly all).
+// bound is that at most half of these pixels find nothing. A regression bound, not derived: how
+// much of the search disk a pixel's blockers cover depends on (d_r - d_b) / d_r, which has no
+// lower bound here, so no miss rate of the taps follows from the formula; the bound only lies far
+// from both a search that reaches and one a texel wide, which finds nothing at nearly all.
 TEST_F(ShadowsGl, PcssSearchFindsTheBlockersOfTheOuterPenumbra) {
   // A sun ten times the real one's size: with the real sun the penumbra is about a texel wide
   // and the outer penumbra lies within a texel of the hard edge, where any search finds it.
