@@ -493,9 +493,9 @@ TEST(SsaoHardCases, TwoRadiiDarkenContactAndNothingElse) {
 // form factor of the roof within R), less two losses that only lower it: the term's
 // saturation, area / (pi d^2 + area) against area / (pi d^2), at most share x 0.36 / (0.77 x pi
 // x 0.4^2) = 2.3 % (d >= 0.4, the slant's cosine >= 0.77), and the part of R's sphere the
-// screen disk misses (it is R ze / zr = 0.3 m across at the roof, about its receiver's view
-// ray, and the sphere's section is 0.3 m across about the receiver: they coincide at the
-// hole's centre only). So the mean occlusion over the floor's pixels is at most the truth's
+// screen disk misses (at the roof it has a radius of R ze / zr = 0.3 m about the receiver's
+// view ray, and the sphere's section one of sqrt(R^2 - 0.4^2) = 0.3 m about the receiver: they
+// coincide at the hole's centre only). So the mean occlusion over the floor's pixels is at most the truth's
 // plus the quadrature's error, and at least the truth's less those losses and that error; the
 // truth's own standard error over the ~2 700 pixels is 0.0004. The bounds, 0.8 and 1.15 of the
 // truth, give the quadrature of 32 turned samples at rounded pixels 15 %, an allowance, not a
