@@ -19,6 +19,35 @@
 
 namespace lp::test {
 
+// The grid tests' camera: at the origin, looking down -z, 16:9, near 0.1, far 100.
+inline FrameCamera grid_test_camera() {
+  FrameCamera c;
+  c.yfov = 0.8f;
+  c.aspect = 16.f / 9.f;
+  c.znear = 0.1f;
+  c.zfar = 100.f;
+  c.projection = glm::perspective(c.yfov, c.aspect, c.znear, c.zfar);
+  return c;
+}
+
+// The exact distance from the segment a-b to the box, in double: convex along the segment, so
+// minimised by ternary search.
+inline double segment_box_distance(const glm::dvec3& a, const glm::dvec3& b, const ch09::Box& box) {
+  auto at = [&](double t) {
+    const glm::dvec3 p = a + t * (b - a);
+    return glm::length(p - glm::clamp(p, glm::dvec3(box.lo), glm::dvec3(box.hi)));
+  };
+  double lo = 0, hi = 1;
+  for (int j = 0; j < 200; ++j) {
+    const double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
+    if (at(m1) <= at(m2))
+      hi = m2;
+    else
+      lo = m1;
+  }
+  return std::min({at(0), at(1), at(0.5 * (lo + hi))});
+}
+
 struct CapsuleCase {
   glm::vec3 a, b;          // the tube's ends in view space, as the GPU's float transform gives them
   float radius = 0;        // its cut
@@ -58,20 +87,7 @@ inline std::vector<CapsuleCase> touching_capsules(FrameCamera c, const ch09::Gri
     const double half = uniform(0.05, 1.0);
     const glm::vec3 wa(world_d * glm::dvec4(mid - half * along, 1.0)), wb(world_d * glm::dvec4(mid + half * along, 1.0));
     const glm::dvec3 ea(view_d * glm::dvec4(glm::dvec3(wa), 1.0)), eb(view_d * glm::dvec4(glm::dvec3(wb), 1.0));
-    // The exact distance from that segment to the box (convex along it: ternary search).
-    auto at = [&](double t) {
-      const glm::dvec3 p = ea + t * (eb - ea);
-      return glm::length(p - glm::clamp(p, glm::dvec3(box.lo), glm::dvec3(box.hi)));
-    };
-    double lo = 0, hi = 1;
-    for (int j = 0; j < 200; ++j) {
-      const double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
-      if (at(m1) <= at(m2))
-        hi = m2;
-      else
-        lo = m1;
-    }
-    k.exact = std::min({at(0), at(1), at(0.5 * (lo + hi))});
+    k.exact = segment_box_distance(ea, eb, box);
     const glm::vec3 x(world_d * glm::dvec4(q, 1.0)), ab = wb - wa;
     const float t = glm::clamp(glm::dot(x - wa, ab) / glm::dot(ab, ab), 0.f, 1.f);
     k.shaded = glm::length(x - glm::mix(wa, wb, t));

@@ -123,12 +123,7 @@ TEST(GlslTwins, LightPairMatchesItsCppTwin) {
 // (ACapsuleTouchingABoxByLessThanItsRoundingIsBinned): GLSL's division may round by 2.5 ulp, which
 // the margin's derivation (cluster_grid.h) allows for.
 TEST(GlslTwins, CapsuleMeetsBoxMatchesItsCppTwin) {
-  FrameCamera c;
-  c.yfov = 0.8f;
-  c.aspect = 16.f / 9.f;
-  c.znear = 0.1f;
-  c.zfar = 100.f;
-  c.projection = glm::perspective(c.yfov, c.aspect, c.znear, c.zfar);
+  const FrameCamera c = test::grid_test_camera();
   const Grid grid = grid_of_counts(1920, 1080, 16, 9, 24, c.znear, c.zfar);
   const std::vector<test::CapsuleCase> touching = test::touching_capsules(c, grid, 10000);
   std::vector<test::TwinCase> cases;
