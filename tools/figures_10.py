@@ -171,8 +171,10 @@ def budget_csv(out: Path, jsons):
         f.write(f"# the whole frame's passes (10_frame --bench --mode whole), GPU time: {first['renderer']}, "
                 f"{first['width']}x{first['height']}\n")
         # cpu_ms: the CPU's time per frame (submission, and any read-back that waits), beside the GPU's
-        w.writerow(["scene", "culling", "gi", "order", "pass", "ms", "total_ms", "cpu_ms", "renderer", "width", "height",
-                    "frames"])
+        # tubes: where the tubes' light is shaded, in the clusters' pass (--tubes clusters, the default)
+        # or as chapter 04's capsule volumes (--tubes volumes, and every run over the stencil volumes)
+        w.writerow(["scene", "culling", "gi", "order", "pass", "ms", "total_ms", "cpu_ms", "tubes", "renderer", "width",
+                    "height", "frames"])
         for path in jsons:
             b = json.load(open(path))
             scene = Path(b["scene"]).stem
@@ -180,14 +182,13 @@ def budget_csv(out: Path, jsons):
             culling = "clustered" if float(knobs.get("clustered", 1)) else "stencil"
             # the tubes' light in the clusters (--tubes clusters: 0) or chapter 04's volumes (1, and
             # every JSON from before the knob); over the stencil volumes the tubes are volumes too
-            if culling == "clustered" and float(knobs.get("tubes", 1)) == 0:
-                culling = "clustered+tubes"
+            tubes = "clusters" if culling == "clustered" and float(knobs.get("tubes", 1)) == 0 else "volumes"
             # chapter 08's pass as the whole frame runs it: AO and one bounce (SSGI), AO alone (SSAO), or neither
             ao, indirect = float(knobs.get("ao", 1)), float(knobs.get("indirect", 1))
             gi = "ao+indirect" if indirect else "ao" if ao else "none"
             for i, p in enumerate(b["passes"]):
                 cpu = f"{b['cpu_ms']:.6g}" if "cpu_ms" in b else ""  # JSONs from before it was measured
-                w.writerow([scene, culling, gi, i, p["name"], f"{p['mean_ms']:.6g}", f"{b['total_ms']:.6g}", cpu,
+                w.writerow([scene, culling, gi, i, p["name"], f"{p['mean_ms']:.6g}", f"{b['total_ms']:.6g}", cpu, tubes,
                             b["renderer"], b["width"], b["height"], b["frames"]])
 
 

@@ -78,8 +78,21 @@ bool sphere_meets_box(const glm::vec3& centre, float radius, const Box& box) {
 }
 // [/sphere-box]
 
-bool capsule_meets_box(const glm::vec3& a, const glm::vec3& b, float radius, const Box& box) {
-  const float r = radius * (1.f + 1e-5f) + 1e-6f;
+float capsule_rounding_margin(const glm::vec3& a, const glm::vec3& b, float radius, const Box& box, float eye_distance) {
+  auto size = [](const glm::vec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); };
+  const float s = std::max({size(a), size(b), size(box.lo), size(box.hi)}) + radius + eye_distance;
+  return kCapsuleRoundingUlps * std::ldexp(1.f, -24) * s;
+}
+
+// Why 18 units of roundoff cover the slab test: were the segment's point at t* within the box
+// grown by the radius, it is inside every slab of the box grown by m more, by m / |d_k| in t on
+// each side. A computed end (lo_k - a_k) / d_k near t* (|t| <= 2) errs by at most u |lo_k| + u
+// |lo_k - a_k| in its numerator, u |d_k| in d_k and 2.5 u in the division: under
+// (2 u S + 8 u |d_k|) / |d_k| with |d_k| <= 2 S, so under 18 u S / |d_k|, less than m / |d_k|:
+// every slab's computed interval still holds t*, and t0 <= t1. A parallel slab (d_k exactly
+// 0) compares a_k with bounds that err by u S. So the margin holds this test's rounding.
+bool capsule_meets_box(const glm::vec3& a, const glm::vec3& b, float radius, const Box& box, float eye_distance) {
+  const float r = radius * (1.f + 1e-5f) + 1e-6f + capsule_rounding_margin(a, b, radius, box, eye_distance);
   const glm::vec3 lo = box.lo - r, hi = box.hi + r, d = b - a;
   float t0 = 0.f, t1 = 1.f;  // the part of the segment inside every slab so far
   for (int k = 0; k < 3; ++k) {

@@ -56,8 +56,21 @@ bool sphere_meets_box(const glm::vec3& centre, float radius, const Box& box);
 // Does a tube's capsule (the segment a-b in view space, radius) reach the box? The segment is
 // clipped against the box grown by the radius on every side (a slab test): conservative, since
 // the grown box holds the capsule's reach and more at its corners (by up to (sqrt 3 - 1) x the
-// radius), and padded as sphere_meets_box so that rounding never drops a cell the cut reaches.
-bool capsule_meets_box(const glm::vec3& a, const glm::vec3& b, float radius, const Box& box);
+// radius). Grown further by capsule_rounding_margin, so that float rounding never drops a cell
+// the cut reaches. eye_distance: how far the camera is from the world's origin (the view
+// transform that made a and b rounded coordinates that large).
+bool capsule_meets_box(const glm::vec3& a, const glm::vec3& b, float radius, const Box& box, float eye_distance = 0.f);
+// The margin, derived from float rounding. Three computations round what decides whether a
+// pixel is within the capsule's cut: the view transform of the tube's ends (a 4-term dot product
+// per coordinate, the matrix itself rounded: at most 8 units of roundoff u = 2^-24 of the world
+// coordinates' size, the eye's distance plus the view-space size), this slab test (the grown
+// bound, the difference and GLSL's 2.5-ulp division: at most 18 u of the size, shown in
+// cluster_grid.cpp) and neon_light()'s distance in world space (the closest point's parameter,
+// the mix and the length: at most 12 u of the size, sqrt 3 for the length over three axes).
+// Their sum, under 8 + 18 + 12 sqrt 3 < 64 units of roundoff of the largest size S any of them
+// handles, is the margin: 64 u S. At the street's scale (S of 100 m) it is 0.4 mm.
+inline constexpr float kCapsuleRoundingUlps = 64.f;
+float capsule_rounding_margin(const glm::vec3& a, const glm::vec3& b, float radius, const Box& box, float eye_distance);
 // [/capsule-box]
 
 // Z-binning's screen rectangle of a light (zbin.comp's step 5): the tiles [lo, hi] (inclusive;

@@ -74,6 +74,7 @@ void set4i(const ShaderProgram& p, const char* name, int a, int b, int c, int d)
 // The largest number of lights the 32-bit arithmetic of assign.comp holds (n * 64 < 2^32) and llvmpipe's loop limit allows (n / 64 / 4 < 65 535).
 constexpr std::size_t kMaxLights = std::size_t(1) << 22;
 constexpr GLuint kTubeBinding = 10;  // shade.glsl's Tubes buffer (CLUSTER_TUBES); 9 holds the spots' cones
+constexpr GLuint kTileWordsBinding = 11;  // zbin.glsl's TileWords
 }  // namespace
 
 // [pack]
@@ -346,43 +347,63 @@ void ClusteredLights::assign_zbin(const std::vector<std::string>& defines, const
   auto size = [](gl::Buffer& b, std::size_t& have, std::size_t want) {
     if (want != have) glNamedBufferData(b.id(), GLsizeiptr(have = want), nullptr, GL_DYNAMIC_DRAW);
   };
+  // A word of tile_words per 32 words of a tile's mask (zbin.glsl): which words have bits.
+  const std::uint64_t tiles = std::uint64_t(grid_.tiles_x) * std::uint64_t(grid_.tiles_y);
+  const std::uint64_t word_words = (words + 31) / 32;
   size(order_, order_bytes_, std::max<std::size_t>(std::size_t(light_count_) * 4, 4));
   size(zbins_, zbins_bytes_, std::size_t(settings_.zbins) * 8);
   size(masks_, masks_bytes_, std::size_t(mask_bytes));
+  size(touched_, touched_bytes_, std::size_t(std::max<std::uint64_t>(tiles * word_words * 4, 4)));
   size(sort_, sort_bytes_, (kSortKeys + std::size_t(light_count_)) * 4);
   // Each step timed apart, so that a sweep can say where the assignment's time goes: the
-  // clears (the tile masks are tiles x lights bits), the sort, the bins' ranges, the tiles' bits.
+  // clears, the sort, the bins' ranges, the tiles' bits.
   const std::string part = pass_names(name())[1] + ": ";
   const bool floor = settings_.floor;
   grow_if_an_earlier_draw_overflowed();  // the floor's lists are the index list; others: the late stats read
-  {
-    auto pass = timed(metrics_, part + "clear");
-    const std::uint32_t zero = 0, empty_range[2] = {0xFFFFFFFFu, 0u};
-    glClearNamedBufferSubData(sort_.id(), GL_R32UI, 0, GLsizeiptr(kSortKeys * 4), GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    glClearNamedBufferData(zbins_.id(), GL_RG32UI, GL_RG_INTEGER, GL_UNSIGNED_INT, empty_range);
-    glClearNamedBufferData(masks_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    const ListState start{0, floor ? capacity_ : 0, 0, 0, 0, 0, 0, 0};
-    glNamedBufferSubData(state_.id(), 0, sizeof(start), &start);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-  }
+  const GLuint groups = GLuint((light_count_ + 255) / 256);
+  auto dispatch = [&](int step, GLuint n) {
+    std::vector<std::string> d = defines;
+    d.push_back("STEP " + std::to_string(step));
+    const ShaderProgram& p = program(GL_COMPUTE_SHADER, "09_clustered/shaders/zbin.comp", d);
+    set_grid_uniforms(p, camera);
+    p.use();
+    glDispatchCompute(n, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  };
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTileWordsBinding, touched_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, order_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, zbins_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, masks_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, sort_.id());
+  // [zbin-clear-words]
+  {
+    // The masks are tiles x lights bits, a gigabyte at a million lights over 16-pixel tiles,
+    // but a frame sets bits in few of their words. So they are cleared whole only when their
+    // layout changes (tiles or lights); otherwise only the words the last frame set, which
+    // tile_words names (zbin.comp's step 0).
+    auto pass = timed(metrics_, part + "clear");
+    const std::uint32_t zero = 0, empty_range[2] = {0xFFFFFFFFu, 0u};
+    glClearNamedBufferSubData(sort_.id(), GL_R32UI, 0, GLsizeiptr(kSortKeys * 4), GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glClearNamedBufferData(zbins_.id(), GL_RG32UI, GL_RG_INTEGER, GL_UNSIGNED_INT, empty_range);
+    const glm::uvec2 layout{std::uint32_t(tiles), std::uint32_t(words)};
+    if (layout != mask_layout_) {
+      glClearNamedBufferData(masks_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      glClearNamedBufferData(touched_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      mask_layout_ = layout;
+    } else {
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the last frame's shading has read them
+      dispatch(0, GLuint(std::clamp<std::uint64_t>((tiles * word_words + 255) / 256, 1, 65535)));
+    }
+    const ListState start{0, floor ? capacity_ : 0, 0, 0, 0, 0, 0, 0};
+    glNamedBufferSubData(state_.id(), 0, sizeof(start), &start);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  }
+  // [/zbin-clear-words]
   // Keys, scan, scatter (the sort), bins, tiles: one invocation per light except the scan's one group.
-  const GLuint groups = GLuint((light_count_ + 255) / 256);
   auto steps = [&](const std::string& what, int first, int last) {
     if (light_count_ == 0) return;
     auto pass = timed(metrics_, part + what);
-    for (int step = first; step <= last; ++step) {
-      std::vector<std::string> d = defines;
-      d.push_back("STEP " + std::to_string(step));
-      const ShaderProgram& p = program(GL_COMPUTE_SHADER, "09_clustered/shaders/zbin.comp", d);
-      set_grid_uniforms(p, camera);
-      p.use();
-      glDispatchCompute(step == 2 ? 1 : groups, 1, 1);
-      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    }
+    for (int step = first; step <= last; ++step) dispatch(step, step == 2 ? 1 : groups);
   };
   steps("sort", 1, 3);
   steps("bins", 4, 4);
@@ -398,7 +419,7 @@ void ClusteredLights::assign_zbin(const std::vector<std::string>& defines, const
   }
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   fence_state();
-  stats_.bytes = order_bytes_ + zbins_bytes_ + masks_bytes_ + sort_bytes_ + bounds_bytes_ + lights_bytes_ +
+  stats_.bytes = order_bytes_ + zbins_bytes_ + masks_bytes_ + touched_bytes_ + sort_bytes_ + bounds_bytes_ + lights_bytes_ +
                  (floor ? std::size_t(capacity_) * 4 + cells_bytes_ : 0);
 }
 // [/assign-zbin]
@@ -485,6 +506,7 @@ ClusteredLights::ZBinLists ClusteredLights::zbin_lists() const {
   read(order_, std::size_t(light_count_) * 4, z.order);
   read(zbins_, zbins_bytes_, z.ranges);
   read(masks_, masks_bytes_, z.masks);
+  read(touched_, touched_bytes_, z.touched);
   z.words = (std::size_t(light_count_) + 31) / 32;
   return z;
 }

@@ -147,11 +147,13 @@ class ClusteredLights : public ch03::LocalLightPass {
   std::vector<glm::uvec2> cell_lists() const;
   std::vector<std::uint32_t> index_list();  // waits for the last draw
   // Z-binning's lists as stored, for the tests: the sorted order (order[p] is a light), each
-  // bin's range of sorted positions (x > y: none), each tile's words of bits (words per tile).
+  // bin's range of sorted positions (x > y: none), each tile's words of bits (words per tile),
+  // and which of those words have bits ((words + 31) / 32 words per tile: bit w % 32 of the
+  // tile's word w / 32 for its word w).
   struct ZBinLists {
     std::vector<std::uint32_t> order;
     std::vector<glm::uvec2> ranges;
-    std::vector<std::uint32_t> masks;
+    std::vector<std::uint32_t> masks, touched;
     std::size_t words = 0;
   };
   ZBinLists zbin_lists() const;
@@ -193,9 +195,11 @@ class ClusteredLights : public ch03::LocalLightPass {
   int light_count_ = 0, first_spot_ = 0, first_tube_ = 0;
   gl::Buffer lights_, spots_, cells_, bounds_, indices_, state_;
   std::size_t lights_bytes_ = 0, cells_bytes_ = 0, bounds_bytes_ = 0;
-  // Z-binning's: the sorted order, each bin's range, each tile's bits, the sort's scratch.
-  gl::Buffer order_, zbins_, masks_, sort_;
-  std::size_t order_bytes_ = 0, zbins_bytes_ = 0, masks_bytes_ = 0, sort_bytes_ = 0;
+  // Z-binning's: the sorted order, each bin's range, each tile's bits and which of its words
+  // have bits (the last frame's, cleared word by word), the sort's scratch.
+  gl::Buffer order_, zbins_, masks_, touched_, sort_;
+  std::size_t order_bytes_ = 0, zbins_bytes_ = 0, masks_bytes_ = 0, touched_bytes_ = 0, sort_bytes_ = 0;
+  glm::uvec2 mask_layout_{0, 0};  // (tiles, words a tile) the masks hold now; (0, 0): not cleared yet
   std::uint32_t capacity_ = 0;
   // Each draw's list state, copied when its assignment ends and read once the GPU has passed
   // the fence: a few draws may be in flight, the oldest slot is reused.

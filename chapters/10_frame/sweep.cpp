@@ -276,7 +276,9 @@ void sweep_tubes(const Settings& s, bool software) {
       << "# tubes: their light in the clusters' shading pass, or chapter 04's capsule volumes; ms: mean of " << s.frames
       << " frames; neon_ms: the volumes' pass (0 in the clusters: their shading pass holds the tubes); "
          "local_ms: the clusters' passes; steps_max / steps_mean: the output against the volumes', 8-bit steps\n"
-      << "view,tubes,neon_ms,local_ms,lights_and_tubes_ms,total_ms,steps_max,steps_mean," << csv_measure_columns() << "\n";
+      << "# pixels_over_8: pixels more than 8 steps apart; worst_x, worst_y: the pixel steps_max is of (from the top left)\n"
+      << "view,tubes,neon_ms,local_ms,lights_and_tubes_ms,total_ms,steps_max,steps_mean,pixels_over_8,worst_x,worst_y,"
+      << csv_measure_columns() << "\n";
   const Scene scene = load_scene(from_root("assets/street_shop/street_shop.gltf"));
   WholeFrame whole(scene);
   OutputTarget target(w, h);
@@ -291,6 +293,21 @@ void sweep_tubes(const Settings& s, bool software) {
       const ImageRGBA8 image = target.read();
       if (tubes == TubeLight::Volumes) volumes_image = image;
       const CompareResult e = compare(image, volumes_image);
+      // Where the two differ most, for finding out why (the pixels and their values; the heat map
+      // beside the CSV when some differ by more than 8 steps).
+      int worst = 0, worst_x = -1, worst_y = -1, over = 0;
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+          int d = 0;
+          for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(int(image.at(x, y)[c]) - int(volumes_image.at(x, y)[c])));
+          over += d > 8;
+          if (d > worst) worst = d, worst_x = x, worst_y = y;
+          if (d > 8 && over <= 8)
+            std::cout << "  tubes " << view << ": pixel " << x << "," << y << " clusters " << int(image.at(x, y)[0]) << ' '
+                      << int(image.at(x, y)[1]) << ' ' << int(image.at(x, y)[2]) << ", volumes " << int(volumes_image.at(x, y)[0])
+                      << ' ' << int(volumes_image.at(x, y)[1]) << ' ' << int(volumes_image.at(x, y)[2]) << '\n';
+        }
+      if (over > 0) save_png(s.out + "/10_tubes_diff_" + view + ".png", diff_heatmap(image, volumes_image, 8));
       PassMetrics metrics;
       const Measurement m = measure(metrics, [&] { whole.render(camera, output, settings, 1.f / 60.f, true, &metrics); },
                                     {.frames = s.frames});
@@ -301,7 +318,8 @@ void sweep_tubes(const Settings& s, bool software) {
       }
       const char* name = tubes == TubeLight::Volumes ? "volumes" : "clusters";
       csv << view << ',' << name << ',' << neon << ',' << local << ',' << neon + local << ',' << m.total_ms() << ','
-          << e.max_error << ',' << e.mean_error << ',' << csv_measure_values(s.renderer, w, h, m.frames) << '\n';
+          << e.max_error << ',' << e.mean_error << ',' << over << ',' << worst_x << ',' << worst_y << ','
+          << csv_measure_values(s.renderer, w, h, m.frames) << '\n';
       std::cout << "  tubes " << view << " " << name << ": neon " << neon << " ms, local lights " << local << " ms, frame "
                 << m.total_ms() << " ms; against the volumes max " << e.max_error << " steps" << std::endl;
     }

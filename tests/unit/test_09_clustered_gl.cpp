@@ -17,6 +17,7 @@
 #include "chapters/04_neon/neon_stage.h"
 #include "chapters/09_clustered/clustered_forward.h"
 #include "chapters/09_clustered/clustered_lights.h"
+#include "chapters/09_clustered/density.h"
 #include "common/error.h"
 #include "common/image.h"
 #include "common/metrics.h"
@@ -657,6 +658,82 @@ TEST_F(ClusteredGl, ZBinRangesAndTileBitsHoldExactlyTheLightsThatReach) {
     EXPECT_GT(entries, 1000u);
     // What Z-binning is for: fewer evaluated than tiled for the same lit pairs.
     EXPECT_LT(z.counts.evaluated, t.counts.evaluated);
+  }
+}
+
+// Z-binning clears only the mask words the last frame set (tile_words names them; the whole
+// masks only when their layout changes). The hard case is a pass kept from frame to frame: its
+// lists must be a fresh pass's, tile by tile (as sets of lights: the order inside a sort bucket
+// is the atomics'), after a frame with more bits (the lights at full range, then at a quarter,
+// from another view: the same layout, the sparse clear) and after a change of layout (fewer
+// lights). A bit left from the last frame shows as a light a fresh pass does not list, and
+// tile_words must name exactly the words that have bits (the shading skips the others).
+TEST_F(ClusteredGl, ZBinningKeptAcrossFramesListsWhatAFreshPassLists) {
+  World& w = street();
+  const int width = 160, height = 90;
+  const std::vector<Camera> views = ch09::views_along(w.scene_.camera("street_level"), 2, 12.f);
+  const FrameCamera near_view = frame_camera(views[0], float(width) / float(height));
+  const FrameCamera far_view = frame_camera(views[1], float(width) / float(height));
+  auto lights_at = [&](int count, float scale) {
+    std::vector<Light> lights = ch03::lights_for_count(w.scene_, count);
+    for (Light& l : lights)
+      if (l.type != LightType::Directional) l.range *= scale;
+    set_light_list(w, lights);
+  };
+  // Each tile's lights (ids, sorted) from the masks and the order; and the tile_words check.
+  auto tile_sets = [](const ClusteredLights::ZBinLists& z, std::size_t tiles, std::size_t* misnamed) {
+    std::vector<std::vector<std::uint32_t>> sets(tiles);
+    const std::size_t word_words = (z.words + 31) / 32;
+    EXPECT_EQ(z.masks.size(), tiles * z.words);
+    EXPECT_EQ(z.touched.size(), std::max<std::size_t>(tiles * word_words, 1));
+    for (std::size_t t = 0; t < tiles; ++t)
+      for (std::size_t k = 0; k < z.words; ++k) {
+        const std::uint32_t m = z.masks[t * z.words + k];
+        const bool named = (z.touched[t * word_words + k / 32] >> (k % 32) & 1u) != 0;
+        if (named != (m != 0)) ++*misnamed;
+        for (int bit = 0; bit < 32; ++bit)
+          if (m >> bit & 1u) sets[t].push_back(z.order[k * 32 + std::size_t(bit)]);
+      }
+    for (auto& v : sets) std::sort(v.begin(), v.end());
+    return sets;
+  };
+  ClusteredLights kept(w.frame_.volumes(), settings_for_mode("zbin"));
+  struct Step {
+    int lights;
+    float scale;
+    const FrameCamera* cam;
+    const char* what;
+  };
+  const Step steps[] = {{2000, 1.f, &near_view, "full range"},
+                        {2000, 0.25f, &far_view, "a quarter of the range, another view: the sparse clear"},
+                        {2000, 0.25f, &near_view, "back to the first view"},
+                        {700, 0.5f, &near_view, "fewer lights: a new layout, cleared whole"}};
+  std::size_t first_bits = 0;
+  for (const Step& step : steps) {
+    SCOPED_TRACE(step.what);
+    lights_at(step.lights, step.scale);
+    const Render k = render(w, *step.cam, width, height, &kept, false);
+    ClusteredLights fresh(w.frame_.volumes(), settings_for_mode("zbin"));
+    const Render f = render(w, *step.cam, width, height, &fresh, false);
+    const std::size_t tiles = std::size_t(kept.grid().tiles_x) * std::size_t(kept.grid().tiles_y);
+    std::size_t misnamed_kept = 0, misnamed_fresh = 0;
+    const auto a = tile_sets(kept.zbin_lists(), tiles, &misnamed_kept);
+    const auto b = tile_sets(fresh.zbin_lists(), tiles, &misnamed_fresh);
+    std::size_t differ = 0, bits = 0;
+    for (std::size_t t = 0; t < tiles; ++t) {
+      differ += a[t] != b[t];
+      bits += a[t].size();
+    }
+    EXPECT_EQ(differ, 0u) << "tiles whose kept lists are not a fresh pass's";
+    EXPECT_EQ(misnamed_kept, 0u) << "mask words tile_words names wrongly (kept pass)";
+    EXPECT_EQ(misnamed_fresh, 0u) << "mask words tile_words names wrongly (fresh pass)";
+    EXPECT_EQ(k.counts.evaluated, f.counts.evaluated);
+    EXPECT_EQ(k.counts.lit, f.counts.lit);
+    EXPECT_GT(bits, 100u);
+    if (first_bits == 0) first_bits = bits;
+    else if (step.scale < 1.f && step.lights == 2000) {
+      EXPECT_LT(bits * 2, first_bits) << "the case needs the earlier frame to have set more bits";
+    }
   }
 }
 

@@ -1,5 +1,6 @@
 // Chapter 09's GLSL against its C++ twin (glsl_twin.h): light_pair.glsl, the shading of one
-// (surface, light) pair from the records pack_cluster_lights() precomputes.
+// (surface, light) pair from the records pack_cluster_lights() precomputes, and grid.glsl's
+// capsule_meets_box, the tubes' binning.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include "chapters/02_gbuffer/layout.h"
 #include "chapters/03_light_volumes/light_instances.h"
 #include "chapters/09_clustered/clustered_lights.h"
+#include "tests/unit/capsule_cases.h"
 #include "tests/unit/glsl_twin.h"
 
 namespace lp::ch09 {
@@ -111,6 +113,47 @@ TEST(GlslTwins, LightPairMatchesItsCppTwin) {
         return "light " + test::str(cases[i].a) + " radiance, 1/range^2 " + test::str(cases[i].b) + " cone " +
                test::str(cases[i].c) + " normal, spot " + test::str(cases[i].d);
       }));
+}
+
+// grid.glsl's capsule_meets_box on the tubes' hard case (capsule_cases.h: capsules touching a
+// cluster's box by less than float rounding, 150 m from the origin), and the same capsules
+// moved 3 radii plus 1 cm away from the box's face, which neither twin may bin (the grown box's
+// corners reach sqrt 3 radii, the margin a fraction of a millimetre). A yes-or-no answer: the
+// twins agree exactly, and the GPU bins every touching capsule, as the C++ twin does
+// (ACapsuleTouchingABoxByLessThanItsRoundingIsBinned): GLSL's division may round by 2.5 ulp, which
+// the margin's derivation (cluster_grid.h) allows for.
+TEST(GlslTwins, CapsuleMeetsBoxMatchesItsCppTwin) {
+  const FrameCamera c = test::grid_test_camera();
+  const Grid grid = grid_of_counts(1920, 1080, 16, 9, 24, c.znear, c.zfar);
+  const std::vector<test::CapsuleCase> touching = test::touching_capsules(c, grid, 10000);
+  std::vector<test::TwinCase> cases;
+  std::vector<glm::vec4> cpu;
+  for (const bool away : {false, true})
+    for (const test::CapsuleCase& k : touching) {
+      glm::vec3 a = k.a, b = k.b;
+      if (away) {  // along the face's normal, out of the box (the face's axis: the ends' nearest side)
+        const glm::vec3 mid = 0.5f * (a + b), centre = 0.5f * (k.box.lo + k.box.hi), half = 0.5f * (k.box.hi - k.box.lo);
+        const glm::vec3 out = (mid - centre) / half;
+        int axis = 0;
+        for (int j = 1; j < 3; ++j)
+          if (std::abs(out[j]) > std::abs(out[axis])) axis = j;
+        glm::vec3 shift(0.f);
+        shift[axis] = (out[axis] > 0 ? 1.f : -1.f) * (3.f * k.radius + 0.01f);
+        a += shift;
+        b += shift;
+      }
+      cases.push_back({glm::vec4(a, k.radius), glm::vec4(b, k.eye_distance), glm::vec4(k.box.lo, 0.f), glm::vec4(k.box.hi, 0.f)});
+      cpu.push_back(glm::vec4(capsule_meets_box(a, b, k.radius, k.box, k.eye_distance) ? 1.f : 0.f));
+      if (!away) EXPECT_EQ(cpu.back().x, 1.f) << "the C++ twin drops a touching capsule";
+      if (away) EXPECT_EQ(cpu.back().x, 0.f) << "the C++ twin bins a capsule 3 radii away";
+    }
+  const auto gpu = test::run_glsl_twin({{"09_clustered/shaders/grid.glsl"},
+                                        "vec4(capsule_meets_box(a.xyz, b.xyz, a.w, Box(c.xyz, d.xyz), b.w) ? 1.0 : 0.0)"},
+                                       cases);
+  EXPECT_TRUE(test::twins_agree(gpu, cpu, 1, test::TwinTolerance{0, 0}, [&](std::size_t i) {
+    return "ends " + test::str(cases[i].a) + " " + test::str(cases[i].b) + " box " + test::str(cases[i].c) + " " +
+           test::str(cases[i].d);
+  }));
 }
 
 }  // namespace

@@ -36,7 +36,7 @@ bool meets(uint i, Box box) {
   // A tube: its capsule against the cell (no depth mask: the bins test a sphere's extent).
   if (int(i) >= u_first_tube)
     return capsule_meets_box((u_view * vec4(l.position_radius.xyz, 1.0)).xyz, (u_view * vec4(l.radiance_inv_range2.xyz, 1.0)).xyz,
-                             l.position_radius.w, box);
+                             l.position_radius.w, box, length(u_view[3].xyz));  // the eye's distance from the origin
   // [/tube-meets]
   vec3 centre = (u_view * vec4(l.position_radius.xyz, 1.0)).xyz;
   if (!sphere_meets_box(centre, l.position_radius.w, box)) return false;

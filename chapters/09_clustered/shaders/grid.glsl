@@ -61,9 +61,15 @@ bool sphere_meets_box(vec3 centre, float radius, Box box) {
 #endif
 
 // A tube's capsule (segment a-b in view space, radius) against a box: cluster_grid.h's
-// capsule_meets_box, the segment clipped against the box grown by the radius.
-bool capsule_meets_box(vec3 a, vec3 b, float radius, Box box) {
-  float grow = radius * (1.0 + 1e-5) + 1e-6;
+// capsule_meets_box, the segment clipped against the box grown by the radius and by the margin
+// that float rounding needs (capsule_rounding_margin: 64 units of roundoff of the largest size).
+const float kCapsuleRoundingUlps = 64.0;
+float capsule_rounding_margin(vec3 a, vec3 b, float radius, Box box, float eye_distance) {
+  vec3 m = max(max(abs(a), abs(b)), max(abs(box.lo), abs(box.hi)));
+  return kCapsuleRoundingUlps * exp2(-24.0) * (max(m.x, max(m.y, m.z)) + radius + eye_distance);
+}
+bool capsule_meets_box(vec3 a, vec3 b, float radius, Box box, float eye_distance) {
+  float grow = radius * (1.0 + 1e-5) + 1e-6 + capsule_rounding_margin(a, b, radius, box, eye_distance);
   vec3 lo = box.lo - grow, hi = box.hi + grow, d = b - a;
   float t0 = 0.0, t1 = 1.0;
   for (int k = 0; k < 3; ++k) {

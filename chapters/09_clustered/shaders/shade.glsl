@@ -100,22 +100,32 @@ void zbin_take(Surface s, vec3 to_eye, uint w, int op, inout uint m, inout uint 
 
 // [zbin-loop]
 // Z-binning: the lights of the pixel's depth bin's range whose bit its tile has set, in
-// sorted (depth) order. Four bits an iteration, for llvmpipe's loop limit (see the lists' loop).
+// sorted (depth) order. tile_words says which of the tile's words have bits: the range's
+// empty words are passed over 32 at a time. Four bits an iteration, for llvmpipe's loop limit
+// (see the lists' loop).
 void zbin_visit(Surface s, vec3 to_eye, ivec2 pixel, int op, inout uint at, inout vec3 diffuse, inout vec3 specular,
                 inout uint evaluated, inout uint lit) {
   uvec2 range = zbin_range(zbin_of(view_depth(s.position)));
-  uint base = uint(cell_index(tile_of(pixel), 0)) * zbin_words();
+  uint tile = uint(cell_index(tile_of(pixel), 0)), base = tile * zbin_words();
+  uint w0 = range.x >> 5u, w1 = range.y >> 5u;
   if (range.x <= range.y)
-    for (uint w = range.x >> 5u; w <= range.y >> 5u; ++w) {
-      uint m = tile_masks[base + w];
-      if (w == range.x >> 5u) m &= 0xFFFFFFFFu << (range.x & 31u);
-      if (w == range.y >> 5u) m &= 0xFFFFFFFFu >> (31u - (range.y & 31u));
-      evaluated += uint(bitCount(m));
-      while (m != 0u) {
-        zbin_take(s, to_eye, w, op, m, at, diffuse, specular, lit);
-        zbin_take(s, to_eye, w, op, m, at, diffuse, specular, lit);
-        zbin_take(s, to_eye, w, op, m, at, diffuse, specular, lit);
-        zbin_take(s, to_eye, w, op, m, at, diffuse, specular, lit);
+    for (uint k = w0 >> 5u; k <= w1 >> 5u; ++k) {
+      uint words = tile_words[tile * zbin_word_words() + k];
+      if (k == w0 >> 5u) words &= 0xFFFFFFFFu << (w0 & 31u);
+      if (k == w1 >> 5u) words &= 0xFFFFFFFFu >> (31u - (w1 & 31u));
+      while (words != 0u) {
+        uint w = k * 32u + uint(findLSB(words));
+        words &= words - 1u;
+        uint m = tile_masks[base + w];
+        if (w == w0) m &= 0xFFFFFFFFu << (range.x & 31u);
+        if (w == w1) m &= 0xFFFFFFFFu >> (31u - (range.y & 31u));
+        evaluated += uint(bitCount(m));
+        while (m != 0u) {
+          zbin_take(s, to_eye, w, op, m, at, diffuse, specular, lit);
+          zbin_take(s, to_eye, w, op, m, at, diffuse, specular, lit);
+          zbin_take(s, to_eye, w, op, m, at, diffuse, specular, lit);
+          zbin_take(s, to_eye, w, op, m, at, diffuse, specular, lit);
+        }
       }
     }
 }

@@ -1,5 +1,6 @@
 #version 450
-// Z-binning's assignment (zbin.glsl), five dispatches of this file, one STEP each:
+// Z-binning's assignment (zbin.glsl), six dispatches of this file, one STEP each:
+//   0 CLEAR:   the last frame's set words of the tiles' masks zeroed, found from tile_words;
 //   1 KEYS:    each light's key, its centre's view depth in 16 384 exponential buckets, counted;
 //   2 SCAN:    one work group turns the counts into each bucket's first sorted position;
 //   3 SCATTER: each light takes a place in its bucket: light_indices is the sorted order;
@@ -31,7 +32,23 @@ shared uint s_sum[256];
 
 void main() {
   uint g = gl_GlobalInvocationID.x;
-#if STEP == 1
+#if STEP == 0
+  // [zbin-clear]
+  // One invocation a word of tile_words (as many invocations as the dispatch has, striding):
+  // each bit set names a mask word the last frame wrote; only those are zeroed.
+  uint per_tile = zbin_word_words(), total = uint(u_tiles.x * u_tiles.y) * per_tile;
+  for (uint i = g; i < total; i += gl_NumWorkGroups.x * gl_WorkGroupSize.x) {
+    uint set = tile_words[i];
+    if (set == 0u) continue;
+    uint first = (i / per_tile) * zbin_words() + (i % per_tile) * 32u;
+    while (set != 0u) {
+      tile_masks[first + uint(findLSB(set))] = 0u;
+      set &= set - 1u;
+    }
+    tile_words[i] = 0u;
+  }
+  // [/zbin-clear]
+#elif STEP == 1
   // [zbin-keys]
   if (g >= lights()) return;
   float d = view_depth(cluster_lights[g].position_radius.xyz);
@@ -103,7 +120,8 @@ void main() {
       ivec2 p0 = ivec2(tx, ty) * u_grid.zw, p1 = min(p0 + u_grid.zw, u_grid.xy);
       Box box = cell_box(p0, p1, uintBitsToFloat(bounds[2 * ti]), uintBitsToFloat(bounds[2 * ti + 1]));
       if (!sphere_meets_box(c, l.w, box)) continue;
-      atomicOr(tile_masks[uint(ti) * zbin_words() + word], bit);
+      if (atomicOr(tile_masks[uint(ti) * zbin_words() + word], bit) == 0u)  // the word's first bit
+        atomicOr(tile_words[uint(ti) * zbin_word_words() + word / 32u], 1u << (word % 32u));
       ++entries;
     }
   // [/zbin-tiles]

@@ -14,8 +14,14 @@ layout(std430, binding = 6) buffer ZBins { uint zbins[]; };
 uvec2 zbin_range(int b) { return uvec2(zbins[2 * b], zbins[2 * b + 1]); }
 // Tile t's bit for sorted position p: bit p % 32 of word t * zbin_words() + p / 32.
 layout(std430, binding = 7) buffer TileMasks { uint tile_masks[]; };
+// Which of a tile's words have any bit set: bit w % 32 of word t * zbin_word_words() + w / 32
+// for tile t's word w. The tiles' step sets it with the word's first bit; the next frame's
+// clear zeroes only those words (a frame touches a few of a tile's words, not all of them),
+// and the shading skips a tile's empty words 32 at a time.
+layout(std430, binding = 11) buffer TileWords { uint tile_words[]; };  // (3 is the fragment counters')
 
 uint zbin_words() { return (uint(u_tiles.w) + 31u) / 32u; }
+uint zbin_word_words() { return (zbin_words() + 31u) / 32u; }
 
 int zbin_of(float d) {
   float t = log(max(d, u_depth_range.x) / u_depth_range.x) / log(u_depth_range.y / u_depth_range.x);
