@@ -8,7 +8,10 @@ leaking into full shadow), from the main sweep's CSVs (the H200's at 1080p, and 
 PCSS against the fixed PCF kernels: the error against the soft truth (the sun as a disk of
 0.02 rad, PCSS's light) against the time of the global pass that does the lookups, one plot per
 renderer whose 06_shadows_pcss CSV is there (llvmpipe's, and the H200's once the GPU run made it);
-convolution shadow maps by their terms beside the hard map, PCF and VSM (the main sweep's rows).
+convolution shadow maps by their terms beside the hard map, PCF and VSM (the main sweep's rows);
+the point lights' cube maps and the spots' atlas, cost against error by map size and filter, from
+the --only points / --only atlas rows at 1920x1080 on the H200 (06_shadows_points_1080p_h200.csv,
+06_shadows_atlas_1080p_h200.csv), once the GPU run made them.
 """
 import sys
 from pathlib import Path
@@ -94,6 +97,35 @@ def csm_terms(d: Path, csv_name: str, where: str, out: str):
              "ms per frame: depth pass + pre-filter + lookups (log scale)", label, xlog=True)
 
 
+def local_pareto(d: Path, csv_name: str, where: str, out: str):
+    """Point lights' cube maps or the spots' atlas (the sweep's --only points / atlas rows): the
+    local shadows' cost (the depth pass that draws the maps + chapter 03's local pass, which looks
+    them up) against the error against each light's ray-traced hard shadows, one line per filter
+    and number of lights casting (the fewest and the most the CSV has), each point labelled by its
+    map size (a cube map's face, or the atlas with its tile)."""
+    if not (d / csv_name).exists():
+        return
+    notes, rows = read_csv(d / csv_name)
+    rows = [r for r in rows if r["view"] == "overview"]
+    if not rows:
+        return
+    atlas = rows[0]["kind"] == "atlas"
+    counts = sorted({int(r["lights"]) for r in rows})
+    cost = lambda r: float(r["maps_ms"]) + float(r["local_ms"])  # noqa: E731
+    label = ((lambda r: f"{r['size']} (tile {r['tile']})") if atlas else (lambda r: f"{r['size']}\u00b2"))  # noqa: E731
+    series = []
+    for count in dict.fromkeys((counts[0], counts[-1])):
+        for method, name in (("hard", "hard"), ("pcf", "PCF 3x3")):
+            points = sorted(((cost(r), float(r["hard_mean"]), label(r)) for r in rows
+                             if r["method"] == method and int(r["lights"]) == count), key=lambda p: int(p[2].split()[0].rstrip("\u00b2")))
+            lights = f"{count} spot{'s' if count > 1 else ''}" if atlas else f"{count} light{'s' if count > 1 else ''}"
+            series.append(Series(f"{name}, {lights}", points, dashed=count != counts[-1], in_order=True))
+    what = "spot lights in one atlas" if atlas else "point lights' cube maps"
+    plot(d / out, f"Shadows of {what}: error against time ({where})", notes[0] if notes else "",
+         [s for s in series if s.points], "ms per frame: the maps' depth pass + the local lights' pass (log scale)",
+         "mean |visibility - ray-traced hard shadows|", xlog=True, ylog=True)
+
+
 def main(d: Path):
     method_pareto(d, "06_shadows_1080p_h200.csv", "NVIDIA H200, 1920x1080", "_1080p_h200")
     # llvmpipe's: only the plots the book shows (the H200's mean-error plots stand for both).
@@ -101,6 +133,9 @@ def main(d: Path):
     pcss_pareto(d, "06_shadows_pcss_llvmpipe.csv", "llvmpipe", "06_pcss_pareto_llvmpipe.svg")
     pcss_pareto(d, "06_shadows_pcss_h200.csv", "NVIDIA H200", "06_pcss_pareto_h200.svg")
     csm_terms(d, "06_shadows_1080p_h200.csv", "H200, 1920x1080", "06_csm_terms_1080p_h200.svg")
+    # The sweep's --only points and --only atlas at --size 1920x1080 on the H200, renamed so.
+    local_pareto(d, "06_shadows_points_1080p_h200.csv", "NVIDIA H200, 1920x1080", "06_pareto_cube_1080p_h200.svg")
+    local_pareto(d, "06_shadows_atlas_1080p_h200.csv", "NVIDIA H200, 1920x1080", "06_pareto_atlas_1080p_h200.svg")
 
 
 if __name__ == "__main__":

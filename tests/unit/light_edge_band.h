@@ -15,6 +15,15 @@
 
 namespace lp::ch06 {
 
+// How far, in the map's texels, the map may move a shadow edge for the receiver `h`: half a
+// texel (the nearest texel), the biases with its tan(theta) capped as the hook caps it, the
+// normal offset and the filter's radius r.
+inline float reach_texels(const Hit& h, const Light& l, const ShadowSettings& s, int r) {
+  const float c = std::clamp(std::abs(glm::dot(glm::normalize(l.position - h.position), h.shading_normal)), 1e-4f, 1.f);
+  const float tan_theta = std::min(std::sqrt(1.f - c * c) / c, kMaxSlope);
+  return 0.5f + s.constant_bias + s.slope_bias * tan_theta + s.normal_offset + float(r);
+}
+
 // texel_at(d): the width in metres of one of the map's texels at distance d from the light.
 // Returns the band (true: excused) over a width x height image and its widest reach in *widest.
 inline std::vector<bool> light_edge_band(const std::vector<std::optional<Hit>>& hits, const ImageF& truth,
@@ -42,9 +51,7 @@ inline std::vector<bool> light_edge_band(const std::vector<std::optional<Hit>>& 
       if (truth.at(x, y, 2) < 0.5f) continue;
       const Hit& h = *hits[i];
       const float d = glm::distance(h.position, l.position);
-      const float c = std::clamp(std::abs(glm::dot(glm::normalize(l.position - h.position), h.shading_normal)), 1e-4f, 1.f);
-      const float tan_theta = std::min(std::sqrt(1.f - c * c) / c, kMaxSlope);
-      const float texels = 0.5f + s.constant_bias + s.slope_bias * tan_theta + s.normal_offset + float(r);
+      const float texels = reach_texels(h, l, s, r);
       const float footprint = h.t * 2.f * std::tan(cam.yfov / 2.f) / float(height);
       const int reach = int(std::ceil(texels * texel_at(d) / footprint));
       *widest = std::max(*widest, reach);
@@ -60,5 +67,32 @@ inline std::vector<bool> light_edge_band(const std::vector<std::optional<Hit>>& 
     }
   return band;
 }
+
+// [receiver-probe]
+// What the image's pixel centres cannot show: a lit gap between two casters' shadows (or a
+// shadow as thin) narrower than a pixel's footprint lies between the truth's samples, so the
+// truth's image has no edge there, yet the map's texels and PCF's taps, a texel apart on the
+// receiver, reach it. So a pixel is also in the band when a lit/shadowed boundary lies within
+// its reach on the receiver itself: the hit's tangent plane probed on a square grid of half a
+// texel (`texel` metres at the receiver) out to `reach` metres, one occlusion ray from each
+// point toward the light, as the truth's own. A gap narrower than half a texel could still fall
+// between the probes; a probe that leaves the receiver's face (past a corner, into another
+// surface) may find a boundary that is not there, which only widens the band near geometry.
+inline bool boundary_on_receiver(const RayScene& rays, const Hit& h, const Light& l, float reach, float texel,
+                                 bool lit) {
+  const glm::vec3 n = h.geometric_normal;
+  const glm::vec3 a = glm::normalize(glm::abs(n.x) < 0.9f ? glm::cross(n, glm::vec3(1, 0, 0)) : glm::cross(n, glm::vec3(0, 1, 0)));
+  const glm::vec3 b = glm::cross(n, a);
+  const float step = 0.5f * texel;
+  const int k = int(std::ceil(reach / step));
+  for (int j = -k; j <= k; ++j)
+    for (int i = -k; i <= k; ++i) {
+      const glm::vec3 q = h.position + (float(i) * a + float(j) * b) * step;
+      const SurfacePoint p{q, glm::dot(n, l.position - q) > 0.f ? n : -n, h.error};
+      if (rays.occluded(p.ray_towards(l.position)) == lit) return true;
+    }
+  return false;
+}
+// [/receiver-probe]
 
 }  // namespace lp::ch06
