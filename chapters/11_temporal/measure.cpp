@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "chapters/07_ssao/ao_truth.h"
+#include "chapters/08_ssgi/gi_truth.h"
 #include "common/error.h"
 #include "common/target.h"
 
@@ -195,6 +196,18 @@ std::vector<PathFrame> measure_path(const SceneGpu& scene, const CameraPath& pat
 }
 // [/measure-path]
 
+namespace {
+// Frames since each pixel was last disoccluded (the C++ twin's test on this frame's motion and
+// the last's), counted on from the last frame's; a cut sets every pixel far back.
+void count_since(std::vector<int>& since, const ImageF& motion, ImageF& last_motion, bool cut, float tolerance, float slope) {
+  std::vector<std::uint8_t> hidden;
+  if (!cut && last_motion.width == motion.width) hidden = disocclusion_mask(motion, last_motion, tolerance, slope);
+  for (std::size_t k = 0; k < since.size(); ++k)
+    since[k] = cut ? (1 << 20) : hidden.empty() ? since[k] + 1 : hidden[k] ? 0 : since[k] + 1;
+  last_motion = motion;
+}
+}  // namespace
+
 // [measure-ao-path]
 std::vector<AoPathFrame> measure_ao_path(const SceneGpu& scene, const CameraPath& path, const ch07::AoSettings& settings,
                                          const TemporalAoSettings& temporal, const AoPathOptions& o) {
@@ -225,12 +238,7 @@ std::vector<AoPathFrame> measure_ao_path(const SceneGpu& scene, const CameraPath
     if (cut) accumulated.reset();
     frame.render(camera, {target.framebuffer(), w, h});
     last = camera;
-    const ImageF m = read_texture_rgba(motion.current(), w, h);
-    std::vector<std::uint8_t> hidden;
-    if (!cut && last_motion.width == w) hidden = disocclusion_mask(m, last_motion, temporal.depth_tolerance, temporal.depth_slope);
-    for (std::size_t k = 0; k < since.size(); ++k)
-      since[k] = cut ? (1 << 20) : hidden.empty() ? since[k] + 1 : hidden[k] ? 0 : since[k] + 1;
-    last_motion = m;
+    count_since(since, read_texture_rgba(motion.current(), w, h), last_motion, cut, temporal.depth_tolerance, temporal.depth_slope);
     if (i < o.first) continue;
     const ImageF a = ao.ssao().read_full(w, h);
     const ImageF truth = ch07::cached_ray_traced_ao(scene.scene(), camera, w, h, {.radius = settings.radius, .samples = o.truth_samples});
@@ -251,5 +259,73 @@ std::vector<AoPathFrame> measure_ao_path(const SceneGpu& scene, const CameraPath
   return out;
 }
 // [/measure-ao-path]
+
+// [measure-gi-path]
+std::vector<GiPathFrame> measure_gi_path(const SceneGpu& scene, const CameraPath& path, const ch08::GiSettings& settings,
+                                         const TemporalGiSettings& temporal, const GiPathOptions& o) {
+  const int w = o.width, h = o.height;
+  if (w < 1 || h < 1 || w > 4096 || h > 4096) throw Error("measure_gi_path: a size of " + std::to_string(w) + "x" + std::to_string(h));
+  if (o.bins < 1 || o.bins > 1024) throw Error("measure_gi_path: bins must be 1 to 1024");
+  const int end = o.count < 0 ? path.frames() : std::min(path.frames(), o.first + o.count);
+  ch03::DeferredFrame frame(scene);
+  ch03::use_lights(frame, scene.scene(), scene.scene().lights, false);
+  ch08::GiStage gi(scene);
+  MotionStage motion(scene);
+  TemporalGiStage accumulated(motion);
+  gi.set_filter(&accumulated);
+  frame.add_stage(gi);
+  frame.add_stage(motion);
+  accumulated.set(temporal);
+  OutputTarget target(w, h);
+  std::vector<GiPathFrame> out;
+  std::vector<int> since(std::size_t(w) * h, 1 << 20);
+  ImageF last_motion;
+  FrameCamera last;
+  int start = 0;  // the last cut's frame
+  for (int i = 0; i < end; ++i) {
+    const FrameCamera camera = frame_camera(path.camera(scene.scene(), i), float(w) / float(h));
+    const bool cut = i == 0 || path.cut_at(i);
+    if (cut) start = i;
+    gi.set(ch08::GiMode::Ssgi, frame_gi(settings, temporal, unsigned(i - start)), ch08::GiShow::Image, scene.scene().ambient);
+    motion.set_cameras(camera, cut ? camera : last);
+    if (cut) accumulated.reset();
+    frame.render(camera, {target.framebuffer(), w, h});
+    last = camera;
+    count_since(since, read_texture_rgba(motion.current(), w, h), last_motion, cut, temporal.depth_tolerance, temporal.depth_slope);
+    if (i < o.first) continue;
+    GiPathFrame f{.frame = i, .gi = gi.ssgi().read()};
+    if (o.truth_samples <= 0) {  // the pass's results alone
+      out.push_back(f);
+      continue;
+    }
+    const ImageF truth = ch08::cached_ray_traced_indirect(scene.scene(), frame.volumes().lights(), camera, w, h,
+                                                          {.samples = o.truth_samples, .screen_limited = o.screen_limited});
+    f.error = ch08::gi_errors(f.gi, truth).mean_abs;
+    if (o.ao_truth) {
+      ImageF a = ImageF::blank(w, h, 1);
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) a.at(x, y, 0) = f.gi.at(x, y, 3);
+      f.ao_error = ch07::ao_errors(a, ch07::cached_ray_traced_ao(scene.scene(), camera, w, h,
+                                                                 {.radius = settings.ao_radius, .samples = o.truth_samples}))
+                       .mean_abs;
+    }
+    f.since_error.assign(std::size_t(o.bins), 0.0);
+    f.since_pixels.assign(std::size_t(o.bins), 0);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const std::size_t q = std::size_t(y) * w + x;
+        if (since[q] >= o.bins || truth.at(x, y, 0) < 0.f) continue;
+        double e = 0;
+        for (int c = 0; c < 3; ++c) e += std::abs(double(f.gi.at(x, y, c)) - truth.at(x, y, c));
+        f.since_error[std::size_t(since[q])] += e / 3.0;
+        ++f.since_pixels[std::size_t(since[q])];
+      }
+    for (int k = 0; k < o.bins; ++k)
+      if (f.since_pixels[std::size_t(k)]) f.since_error[std::size_t(k)] /= double(f.since_pixels[std::size_t(k)]);
+    out.push_back(f);
+  }
+  return out;
+}
+// [/measure-gi-path]
 
 }  // namespace lp::ch11
