@@ -91,7 +91,6 @@ void WholeFrame::build(const std::vector<PlannedStage>& p) {
   }
   if (ao || indirect) {
     gi_ = std::make_unique<ch08::GiStage>(source_->scene_gpu());
-    gi_->set_filter(gi_filter_);
     frame.add_stage(*gi_);
   }
   if (glass) {
@@ -100,6 +99,7 @@ void WholeFrame::build(const std::vector<PlannedStage>& p) {
   }
   // [/add-stages]
   for (ch03::FrameStage* stage : later_) frame.add_stage(*stage);  // added by a later chapter (11)
+  if (gi_) gi_->set_filter(gi_filter_);                             // and its change to chapter 08's result
   radiance_.reset();
   built_ = key(p);
 }
