@@ -251,14 +251,15 @@ void sweep_gi(const Settings& s, const SceneGpu& gpu, const std::string& rendere
       conv << csv_quoted(m.name) << ',' << k << ',' << (n ? e / double(n) : 0.0) << ',' << n << '\n';
     }
     if (!s.dump.empty() && !frames.empty()) {
-      // The last frame's AO (grey) beside its indirect light (times 4, clamped), for the book.
+      // The last frame's AO (its occlusion 1 - A times 4, as grey from white) beside its indirect
+      // light (times 16, clamped), for the book.
       const ImageF& g = frames.back().gi;
       ImageF picture = ImageF::blank(2 * w, h, 3);
       for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
           for (int c = 0; c < 3; ++c) {
-            picture.at(x, y, c) = g.at(x, y, 3);
-            picture.at(w + x, y, c) = std::min(1.f, 4.f * g.at(x, y, c));
+            picture.at(x, y, c) = std::max(0.f, 1.f - 4.f * (1.f - g.at(x, y, 3)));
+            picture.at(w + x, y, c) = std::min(1.f, 16.f * g.at(x, y, c));
           }
       std::string name = m.name;
       std::replace(name.begin(), name.end(), ' ', '_');

@@ -44,14 +44,8 @@ void TemporalGiStage::filter(ch03::DeferredFrame& frame, const ch08::Ssgi& ssgi,
   }
   const bool reset = reset_ || motion_.previous() == 0;
   const int next = 1 - cur_;
-  accumulate_.use();
-  accumulate_.set("u_reset", int(reset));
-  accumulate_.set("u_max_frames", float(settings_.max_frames));
-  accumulate_.set("u_depth_tolerance", settings_.depth_tolerance);
-  accumulate_.set("u_depth_slope", settings_.depth_slope);
-  glBindTextureUnit(1, history_[cur_].id());
-  glBindTextureUnit(2, motion_.current());
-  glBindTextureUnit(3, reset ? motion_.current() : motion_.previous());
+  use_accumulation(accumulate_, motion_, reset, settings_.max_frames, settings_.depth_tolerance, settings_.depth_slope,
+                   history_[cur_].id());
   glBindTextureUnit(4, frames_[cur_].id());
   // Chapter 08's result, which the light buffer adds next: this frame's in, the accumulated out.
   glBindImageTexture(0, ssgi.texture(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
