@@ -11,7 +11,11 @@
 11_clip_box.svg     the neighbourhood clip: this frame's 3x3 colours in YCoCg (Y and Co drawn), their
                     box, and a stale history point moved into it by a clamp per axis and by the clip
                     towards the box's centre (taa_resolve.frag's clip_to_box)
+11_pattern_parts.svg the accumulated AO and indirect light: chapter 08's 32-point spiral cut into
+                    8 parts of 4 (gi_math.glsl's pattern_point, ssgi.comp's i x parts + part), one
+                    part a frame; frame 0's part alone, and all eight numbered by their frame
 """
+import math
 import sys
 from pathlib import Path
 
@@ -166,11 +170,45 @@ def clip_box_figure(out: Path):
     s.save(out, "11_clip_box.svg")
 
 
+def pattern_point(i, samples, jitter=(0.0, 0.5)):
+    """gi_math.glsl's spiral (the randomised pattern at one pixel's jitter)."""
+    a = 2.39996323 * i + 2.0 * math.pi * jitter[0]
+    r = math.sqrt((i + jitter[1]) / samples)
+    return (r * math.cos(a), r * math.sin(a))
+
+
+def pattern_parts_figure(out: Path):
+    samples, parts = 4, 8
+    s = Svg(760, 380)
+    radius = 130.0
+    colours = [RAY, GOOD, BAD, "#8e44ad", "#d35400", "#16a085", "#2c3e50", "#c0392b"]
+    for k, (x0, title) in enumerate(((40.0, "Frame 0: its 4 samples, part 0 of the 32"),
+                                     (420.0, "8 frames: the 8 parts, the whole pattern"))):
+        s.text((x0, 30), title, INK, 12, bold=True)
+        c = (x0 + 150.0, 200.0)
+        s.arc(c, radius, 0.0, math.pi, GREY)  # the disk's edge, in two halves
+        s.arc(c, radius, math.pi, 2.0 * math.pi, GREY)
+        for i in range(samples * parts):
+            part = i % parts
+            x, y = pattern_point(i, samples * parts)
+            p = (c[0] + x * radius, c[1] - y * radius)
+            if k == 0:
+                s.dot(p, RAY if part == 0 else LIGHT, 6 if part == 0 else 3)
+            else:
+                s.dot(p, colours[part], 4)
+                s.text((p[0] + 5, p[1] - 4), str(part), colours[part], 10)
+        s.dot(c, INK, 2)
+    s.text((40, 352), "A frame reads 4 points of a 32-point spiral (every 8th), each standing for 1/32 of the disk, its sums times 8;", INK, 11)
+    s.text((40, 368), "the running mean of 8 frames is the whole pattern's. The randomised pattern also turns each frame.", INK, 11)
+    s.save(out, "11_pattern_parts.svg")
+
+
 def main(out: Path):
     out.mkdir(parents=True, exist_ok=True)
     halton_figure(out)
     reprojection_figure(out)
     clip_box_figure(out)
+    pattern_parts_figure(out)
 
 
 if __name__ == "__main__":

@@ -12,6 +12,8 @@ size; a GPU's file without the suffix once measured there):
                                           on edges (solid) and over the whole image (dashed)
 11_path_<scene>_<path>_variants_<tag>.svg the edge error of TAA with each of its parts switched off
 11_convergence_<scene>_<path>_<tag>.svg   the error on pixels disoccluded k frames ago, against k
+11_gi_<scene>_<path>_<tag>.svg            chapter 08's indirect light along the path against its
+                                          screen-limited truth: 4 samples a frame, 4 accumulated, 32
 """
 import subprocess
 import sys
@@ -58,6 +60,16 @@ def convergence_plot(d: Path, csv: Path, stem: str, tag: str, where: str):
          "frames since the pixel's surface was hidden", "mean |image − truth| (sRGB, 0..1)")
 
 
+def gi_plot(d: Path, csv: Path, stem: str, tag: str, where: str):
+    notes, rows = read_csv(csv)
+    methods = [m for m in dict.fromkeys(r["method"] for r in rows)]
+    lines = [Series(m, [(float(r["frame"]), float(r["error_screen"])) for r in rows if r["method"] == m],
+                    dashed=("accumulated" not in m)) for m in methods]
+    plot(d / f"{stem}_{tag}.svg", f"Indirect light against its ray-traced truth along the path ({where})",
+         notes[0] if notes else "", lines, "frame of the path (30 a second)",
+         "mean |L1_ind − truth| (screen-limited truth)")
+
+
 def pictures(build: Path, d: Path):
     exe = build / "chapters" / "11_temporal" / "11_temporal"
     for name, args in PICTURES:
@@ -81,6 +93,13 @@ def main(argv):
         for suffix, where in (("_llvmpipe", "llvmpipe"), ("_h200", "NVIDIA H200")):
             if name.endswith(suffix):
                 convergence_plot(d, csv, name[: -len(suffix)], suffix[1:], where)
+    for csv in sorted(d.glob("11_gi_*.csv")):
+        name = csv.stem
+        if name.startswith(("11_gi_convergence_", "11_gi_cost_")):
+            continue
+        for suffix, where in (("_llvmpipe", "llvmpipe"), ("_h200", "NVIDIA H200")):
+            if name.endswith(suffix):
+                gi_plot(d, csv, name[: -len(suffix)], suffix[1:], where)
     if png:
         pictures(png, d)
 

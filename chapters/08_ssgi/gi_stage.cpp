@@ -46,6 +46,7 @@ void GiStage::add_light(ch03::DeferredFrame& frame, PassMetrics* metrics) {
     if (guard_ > 0 && h > 2 * guard_) s.max_screen_radius *= float(h - 2 * guard_) / float(h);
     ssgi_.compute(frame.gbuffer(), frame.light().diffuse(), frame.camera(), s, back_faces ? &layer : nullptr);
   }
+  if (ran_ && filter_) filter_->filter(frame, ssgi_, metrics);
   // A x ambient + L1_ind into the light buffer (bound by the frame), added to the direct light
   auto pass = timed(metrics, "ssgi: add to the light buffer");
   if (!add_program_)

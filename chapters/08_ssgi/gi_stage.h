@@ -29,6 +29,15 @@ inline const std::vector<std::string> kModeNames = {"ssgi", "ssao", "off"};
 // the back-face layer: the light its surfaces send, albedo x L1 (black where there is none).
 enum class GiShow { Image, Indirect, Ao, Picture, Heat, BackFaces };
 
+// What may change the pass's result before it is added to the light buffer (chapter 11
+// accumulates it over frames): called in add_light after each compute, on the texture that
+// Ssgi::texture() names, which it may overwrite.
+class GiFilter {
+ public:
+  virtual ~GiFilter() = default;
+  virtual void filter(ch03::DeferredFrame& frame, const Ssgi& ssgi, PassMetrics* metrics) = 0;
+};
+
 class GiStage : public ch03::FrameStage {
  public:
   explicit GiStage(const SceneGpu& scene) : scene_(scene) {}
@@ -44,6 +53,7 @@ class GiStage : public ch03::FrameStage {
   int guard_band() const { return guard_; }
   const BackFaceLayer& back_faces() const { return back_; }
   bool drew_back_faces() const { return drew_back_; }
+  void set_filter(GiFilter* filter) { filter_ = filter; }  // nullptr: none
   bool ran() const { return ran_; }
   const Ssgi& ssgi() const { return ssgi_; }
   const GiSettings& settings() const { return settings_; }
@@ -69,6 +79,7 @@ class GiStage : public ch03::FrameStage {
   glm::vec3 ambient_{0};
   float exposure_ = 1.f, heat_ = 0.f;
   bool ran_ = false;
+  GiFilter* filter_ = nullptr;
   PictureTexture picture_{4};  // set_picture()'s, rgb
   std::unique_ptr<ShaderProgram> add_program_, show_program_;
   gl::VertexArray vao_;

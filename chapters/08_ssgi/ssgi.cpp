@@ -34,6 +34,9 @@ void Ssgi::pass(const ch02::GBuffer& gbuffer, GLuint light, GLuint extra, const 
   p.set("u_gather", int(s.gather));
   p.set("u_thickness", s.thickness);
   p.set("u_back_faces", back ? 1 : 0);
+  p.set("u_parts", s.kernel_parts);
+  p.set("u_part", s.kernel_part);
+  p.set("u_turn", s.turn);
   p.use();
   glBindTextureUnit(9, light);
   glBindTextureUnit(10, extra ? extra : light);
@@ -74,6 +77,11 @@ void Ssgi::compute(const ch02::GBuffer& gbuffer, GLuint light, const FrameCamera
                 std::to_string(s.gi_radius) + ")");
   if (!(s.thickness > 0.f)) throw Error("ssgi: the bitmask's thickness must be positive (got " + std::to_string(s.thickness) + ")");
   if (s.bounces != 1 && s.bounces != 2) throw Error("ssgi: bounces must be 1 or 2 (got " + std::to_string(s.bounces) + ")");
+  if (s.kernel_parts < 1 || s.kernel_part < 0 || s.kernel_part >= s.kernel_parts)
+    throw Error("ssgi: kernel_part must be in [0, kernel_parts) (got part " + std::to_string(s.kernel_part) + " of " +
+                std::to_string(s.kernel_parts) + ")");
+  if (s.kernel_parts > 1 && (s.pattern == Pattern::Regular || s.gather != Gather::Disk))
+    throw Error("ssgi: a part of the pattern (kernel_parts > 1) needs the spiral or randomised pattern and the disk gather");
   const int w = gbuffer.width(), h = gbuffer.height();
   if (w != width_ || h != height_) {
     raw_ = gl::make_texture_2d(GL_RGBA16F, w, h);

@@ -43,6 +43,13 @@ struct GiSettings {
   Gather gather = Gather::Disk;  // the wide disk's gather: the source's (no visibility) or slices + bitmask
   float thickness = 0.5f;        // Gather::Bitmask: the depth each sample is taken to have, world units
   bool back_faces = false;       // Gather::Disk: also read emitters from the back-face layer (back_faces.h)
+  // One part of a larger pattern (chapter 11 accumulates the parts over frames): of the
+  // spiral's samples x kernel_parts points, the ones numbered kernel_part mod kernel_parts,
+  // each with its share of the whole pattern's disk and the sums times kernel_parts (so the
+  // parts' mean is the whole pattern's); and the randomised pattern's turn, radians, added to
+  // every pixel's. The defaults: the whole pattern, unturned.
+  int kernel_parts = 1, kernel_part = 0;
+  float turn = 0.f;
 };
 inline constexpr int kMaxSamples = 128;
 // [/settings]

@@ -99,6 +99,7 @@ void WholeFrame::build(const std::vector<PlannedStage>& p) {
   }
   // [/add-stages]
   for (ch03::FrameStage* stage : later_) frame.add_stage(*stage);  // added by a later chapter (11)
+  if (gi_) gi_->set_filter(gi_filter_);                             // and its change to chapter 08's result
   radiance_.reset();
   built_ = key(p);
 }
@@ -146,7 +147,7 @@ void WholeFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outp
   frame.set_strategy(ch03::Strategy::Stencil);
   if (shadows_) shadows_->set(ch06::ShadowSettings{.cascades = s.sun_cascades});
   if (gi_) {
-    ch08::GiSettings g;
+    ch08::GiSettings g = s.gi;
     g.ao = p[kAo].runs;
     g.indirect = p[kIndirect].runs;
     gi_->set(g.indirect ? ch08::GiMode::Ssgi : ch08::GiMode::Ssao, g, ch08::GiShow::Image, source_->scene().ambient);

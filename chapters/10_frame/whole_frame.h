@@ -59,6 +59,9 @@ struct WholeFrameSettings {
   int msaa = 1;
   ResolveOrder msaa_order = ResolveOrder::TonemapFirst;
   bool msaa_edges = false;
+  // Chapter 08's pass as its chapter sets it (32 randomised samples, blurred); its ao and
+  // indirect are the two switches above.
+  ch08::GiSettings gi;
 };
 // [/whole-settings]
 
@@ -83,6 +86,9 @@ class WholeFrame {
   // A later chapter's stage (chapter 11's motion vectors and TAA): added to chapter 03's frame
   // after this chapter's own, on every rebuild, so its after_composite sees the glass drawn.
   void add_stage(ch03::FrameStage& stage) { later_.push_back(&stage); built_.clear(); }
+  // A later chapter's change to chapter 08's result before the light buffer adds it (chapter
+  // 11's accumulation over frames), on every rebuild; nullptr: none.
+  void set_gi_filter(ch08::GiFilter* filter) { gi_filter_ = filter; if (gi_) gi_->set_filter(filter); }
   std::vector<PlannedStage> plan(const WholeFrameSettings& s) const;
   // The frame into `output` (sRGB8, any size); each pass timed in `metrics`. `dt`: seconds
   // since the last frame (eye adaptation); `new_shot`: the eye starts adapted.
@@ -123,6 +129,7 @@ class WholeFrame {
   std::unique_ptr<TransparencyStage> glass_;
   std::unique_ptr<MsaaFrame> msaa_;  // lit by source_'s lights: made again with it
   std::vector<ch03::FrameStage*> later_;
+  ch08::GiFilter* gi_filter_ = nullptr;
   std::unique_ptr<ch05::RadianceTarget> radiance_;
   ch05::HdrPipeline hdr_;
   ch05::ExposureFeedback feedback_;

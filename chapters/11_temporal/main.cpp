@@ -6,7 +6,8 @@
 // (camera_path.h) frame by frame, in the window and headless (`--frames N` plays N frames,
 // `--at F` starts at the path's frame F after drawing the frames before it, `--strip K` writes
 // every K-th frame into a strip PNG). `--show motion` draws the motion vectors, `--show
-// rejected` where the history was dropped.
+// rejected` where the history was dropped. `--accumulate 1` (the default) accumulates chapter
+// 08's AO and indirect light over frames too (temporal_gi.h).
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -55,6 +56,8 @@ const CliSpec kCli{
               {"shadows", "the sun's shadow map (chapter 06)", 1, 0, 1, true},
               {"ao", "ambient occlusion (chapters 07, 08)", 1, 0, 1, true},
               {"indirect", "one bounce of indirect light (chapter 08)", 1, 0, 1, true},
+              {"accumulate", "chapter 08's AO and indirect light accumulated over frames: 4 samples a frame, a part of "
+                             "a 32-point pattern, turned (off: its 32 samples every frame)", 1, 0, 1, true},
               {"neon", "chapter 04's tubes", 1, 0, 1, true},
               {"glow", "multiplies emissive surfaces (chapter 05)", 8, 0, 10000},
               choice_knob("bloom", "chapter 05's bloom: off, after tonemapping, or before", {"off", "after", "before"}, 2)}};
@@ -105,6 +108,7 @@ TemporalSettings settings_of(const Frame& f) {
   s.whole = {.shadows = f.knob_int("shadows") != 0, .ao = f.knob_int("ao") != 0, .indirect = f.knob_int("indirect") != 0,
              .neon = f.knob_int("neon") != 0, .glow = float(f.knob("glow"))};
   s.whole.hdr.bloom = static_cast<ch05::BloomMode>(f.knob_int("bloom"));
+  s.gi.enabled = f.knob_int("accumulate") != 0;
   s.taa = {.enabled = f.knob_int("taa") != 0,
            .alpha = float(f.knob("alpha")),
            .filter = static_cast<HistoryFilter>(f.knob_int("filter")),
@@ -195,7 +199,8 @@ int main(int argc, char** argv) {
       if (show == kRejected && taa) mark_rejected(frame.taa().rejected(), f.target, f.width, f.height);
       if (show != kImage && !taa) app.report() << "note: --show " << f.choice("show") << " needs --taa 1\n";
       app.metrics().set_allocation("the whole frame's targets (chapter 10)", frame.whole().allocated_bytes());
-      app.metrics().set_allocation("motion RGBA32F x 2 + history RGBA16F x 2 + rejected R8", frame.allocated_bytes() - frame.whole().allocated_bytes());
+      app.metrics().set_allocation("motion RGBA32F x 2 + history RGBA16F x 2 + rejected R8 + AO/indirect RGBA32F + R32F x 2",
+                                   frame.allocated_bytes() - frame.whole().allocated_bytes());
       if (std::ostream& out = app.report())
         out << "jitter (" << frame.last_jitter().x << ", " << frame.last_jitter().y << ") px, TAA " << (taa ? "on" : "off") << '\n';
       app.panel([&] {

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "chapters/07_ssao/ao_truth.h"
+#include "chapters/08_ssgi/gi_truth.h"
 #include "common/error.h"
 #include "common/target.h"
 
@@ -195,6 +196,59 @@ std::vector<PathFrame> measure_path(const SceneGpu& scene, const CameraPath& pat
 }
 // [/measure-path]
 
+namespace {
+// Plays `path` frame by frame up to `end` on `frame`, whose stages include `motion`: `before(i,
+// camera, cut, k)` sets this frame's stages (k: frames since the last cut), the frame is drawn,
+// the frames since each pixel was last disoccluded are counted (the C++ twin's test on this
+// frame's motion and the last's; a cut sets every pixel far back), and from `first` on
+// `after(i, camera, since)` measures it.
+template <class Before, class After>
+void play_path(const SceneGpu& scene, const CameraPath& path, ch03::DeferredFrame& frame, MotionStage& motion, int w,
+               int h, int first, int end, float tolerance, float slope, Before before, After after) {
+  OutputTarget target(w, h);
+  std::vector<int> since(std::size_t(w) * h, 1 << 20);
+  ImageF last_motion;
+  FrameCamera last;
+  int start = 0;  // the last cut's frame
+  for (int i = 0; i < end; ++i) {
+    const FrameCamera camera = frame_camera(path.camera(scene.scene(), i), float(w) / float(h));
+    const bool cut = i == 0 || path.cut_at(i);
+    if (cut) start = i;
+    before(i, camera, cut, unsigned(i - start));
+    motion.set_cameras(camera, cut ? camera : last);
+    frame.render(camera, {target.framebuffer(), w, h});
+    last = camera;
+    const ImageF m = read_texture_rgba(motion.current(), w, h);
+    std::vector<std::uint8_t> hidden;
+    if (!cut && last_motion.width == w) hidden = disocclusion_mask(m, last_motion, tolerance, slope);
+    for (std::size_t k = 0; k < since.size(); ++k)
+      since[k] = cut ? (1 << 20) : hidden.empty() ? since[k] + 1 : hidden[k] ? 0 : since[k] + 1;
+    last_motion = m;
+    if (i >= first) after(i, camera, since);
+  }
+}
+
+// The mean of `error(x, y)` (negative: not counted) over the pixels disoccluded exactly k frames
+// ago, k = 0 .. bins - 1, and how many.
+template <class PixelError>
+void bin_by_since(const std::vector<int>& since, int w, int h, int bins, PixelError error, std::vector<double>& mean,
+                  std::vector<std::size_t>& pixels) {
+  mean.assign(std::size_t(bins), 0.0);
+  pixels.assign(std::size_t(bins), 0);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const int k = since[std::size_t(y) * w + x];
+      if (k >= bins) continue;
+      const double e = error(x, y);
+      if (e < 0.0) continue;
+      mean[std::size_t(k)] += e;
+      ++pixels[std::size_t(k)];
+    }
+  for (int k = 0; k < bins; ++k)
+    if (pixels[std::size_t(k)]) mean[std::size_t(k)] /= double(pixels[std::size_t(k)]);
+}
+}  // namespace
+
 // [measure-ao-path]
 std::vector<AoPathFrame> measure_ao_path(const SceneGpu& scene, const CameraPath& path, const ch07::AoSettings& settings,
                                          const TemporalAoSettings& temporal, const AoPathOptions& o) {
@@ -210,46 +264,74 @@ std::vector<AoPathFrame> measure_ao_path(const SceneGpu& scene, const CameraPath
   frame.add_stage(motion);
   frame.add_stage(accumulated);
   accumulated.set(temporal);
-  OutputTarget target(w, h);
   std::vector<AoPathFrame> out;
-  std::vector<int> since(std::size_t(w) * h, 1 << 20);
-  ImageF last_motion;
-  FrameCamera last;
-  int start = 0;  // the last cut's frame
-  for (int i = 0; i < end; ++i) {
-    const FrameCamera camera = frame_camera(path.camera(scene.scene(), i), float(w) / float(h));
-    const bool cut = i == 0 || path.cut_at(i);
-    if (cut) start = i;
-    ao.set(frame_ao(settings, temporal, unsigned(i - start)), ch07::AoShow::Ao, glm::vec3(1.f));  // shown: the pass runs whatever the scene's ambient
-    motion.set_cameras(camera, cut ? camera : last);
+  auto before = [&](int, const FrameCamera&, bool cut, unsigned k) {
+    ao.set(frame_ao(settings, temporal, k), ch07::AoShow::Ao, glm::vec3(1.f));  // shown: the pass runs whatever the scene's ambient
     if (cut) accumulated.reset();
-    frame.render(camera, {target.framebuffer(), w, h});
-    last = camera;
-    const ImageF m = read_texture_rgba(motion.current(), w, h);
-    std::vector<std::uint8_t> hidden;
-    if (!cut && last_motion.width == w) hidden = disocclusion_mask(m, last_motion, temporal.depth_tolerance, temporal.depth_slope);
-    for (std::size_t k = 0; k < since.size(); ++k)
-      since[k] = cut ? (1 << 20) : hidden.empty() ? since[k] + 1 : hidden[k] ? 0 : since[k] + 1;
-    last_motion = m;
-    if (i < o.first) continue;
+  };
+  auto after = [&](int i, const FrameCamera& camera, const std::vector<int>& since) {
     const ImageF a = ao.ssao().read_full(w, h);
     const ImageF truth = ch07::cached_ray_traced_ao(scene.scene(), camera, w, h, {.radius = settings.radius, .samples = o.truth_samples});
     AoPathFrame f{.frame = i, .error = ch07::ao_errors(a, truth).mean_abs, .ao = a};
-    f.since_error.assign(std::size_t(o.bins), 0.0);
-    f.since_pixels.assign(std::size_t(o.bins), 0);
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) {
-        const std::size_t q = std::size_t(y) * w + x;
-        if (since[q] >= o.bins || truth.at(x, y, 0) < 0.f) continue;
-        f.since_error[std::size_t(since[q])] += std::abs(double(a.at(x, y, 0)) - truth.at(x, y, 0));
-        ++f.since_pixels[std::size_t(since[q])];
-      }
-    for (int k = 0; k < o.bins; ++k)
-      if (f.since_pixels[std::size_t(k)]) f.since_error[std::size_t(k)] /= double(f.since_pixels[std::size_t(k)]);
+    bin_by_since(since, w, h, o.bins, [&](int x, int y) {
+      return truth.at(x, y, 0) < 0.f ? -1.0 : std::abs(double(a.at(x, y, 0)) - truth.at(x, y, 0));
+    }, f.since_error, f.since_pixels);
     out.push_back(f);
-  }
+  };
+  play_path(scene, path, frame, motion, w, h, o.first, end, temporal.depth_tolerance, temporal.depth_slope, before, after);
   return out;
 }
 // [/measure-ao-path]
+
+// [measure-gi-path]
+std::vector<GiPathFrame> measure_gi_path(const SceneGpu& scene, const CameraPath& path, const ch08::GiSettings& settings,
+                                         const TemporalGiSettings& temporal, const GiPathOptions& o) {
+  const int w = o.width, h = o.height;
+  if (w < 1 || h < 1 || w > 4096 || h > 4096) throw Error("measure_gi_path: a size of " + std::to_string(w) + "x" + std::to_string(h));
+  if (o.bins < 1 || o.bins > 1024) throw Error("measure_gi_path: bins must be 1 to 1024");
+  const int end = o.count < 0 ? path.frames() : std::min(path.frames(), o.first + o.count);
+  ch03::DeferredFrame frame(scene);
+  ch03::use_lights(frame, scene.scene(), scene.scene().lights, false);
+  ch08::GiStage gi(scene);
+  MotionStage motion(scene);
+  TemporalGiStage accumulated(motion);
+  gi.set_filter(&accumulated);
+  frame.add_stage(gi);
+  frame.add_stage(motion);
+  accumulated.set(temporal);
+  std::vector<GiPathFrame> out;
+  auto before = [&](int, const FrameCamera&, bool cut, unsigned k) {
+    gi.set(ch08::GiMode::Ssgi, frame_gi(settings, temporal, k), ch08::GiShow::Image, scene.scene().ambient);
+    if (cut) accumulated.reset();
+  };
+  auto after = [&](int i, const FrameCamera& camera, const std::vector<int>& since) {
+    GiPathFrame f{.frame = i, .gi = gi.ssgi().read()};
+    if (o.truth_samples <= 0) {  // the pass's results alone
+      out.push_back(f);
+      return;
+    }
+    const ImageF truth = ch08::cached_ray_traced_indirect(scene.scene(), frame.volumes().lights(), camera, w, h,
+                                                          {.samples = o.truth_samples, .screen_limited = o.screen_limited});
+    f.error = ch08::gi_errors(f.gi, truth).mean_abs;
+    if (o.ao_truth) {
+      ImageF a = ImageF::blank(w, h, 1);
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) a.at(x, y, 0) = f.gi.at(x, y, 3);
+      f.ao_error = ch07::ao_errors(a, ch07::cached_ray_traced_ao(scene.scene(), camera, w, h,
+                                                                 {.radius = settings.ao_radius, .samples = o.truth_samples}))
+                       .mean_abs;
+    }
+    bin_by_since(since, w, h, o.bins, [&](int x, int y) {
+      if (truth.at(x, y, 0) < 0.f) return -1.0;
+      double e = 0;
+      for (int c = 0; c < 3; ++c) e += std::abs(double(f.gi.at(x, y, c)) - truth.at(x, y, c));
+      return e / 3.0;
+    }, f.since_error, f.since_pixels);
+    out.push_back(f);
+  };
+  play_path(scene, path, frame, motion, w, h, o.first, end, temporal.depth_tolerance, temporal.depth_slope, before, after);
+  return out;
+}
+// [/measure-gi-path]
 
 }  // namespace lp::ch11

@@ -11,6 +11,7 @@
 #include "chapters/07_ssao/ssao.h"
 #include "chapters/11_temporal/camera_path.h"
 #include "chapters/11_temporal/temporal_ao.h"
+#include "chapters/11_temporal/temporal_gi.h"
 #include "chapters/11_temporal/temporal_frame.h"
 #include "common/image.h"
 
@@ -100,5 +101,31 @@ struct AoPathOptions {
 std::vector<AoPathFrame> measure_ao_path(const SceneGpu& scene, const CameraPath& path, const ch07::AoSettings& ao,
                                          const TemporalAoSettings& temporal, const AoPathOptions& options);
 // [/ao-path]
+
+// [gi-path]
+// Chapter 08's pass along a path, frame by frame, on chapter 03's frame with the scene's lights:
+// `gi` each frame (with temporal.enabled, frame_gi's part of the pattern, accumulated; without,
+// the frame's own), its indirect light against the ray-traced truth (chapter 08's, cached; the
+// screen-limited one with `screen_limited`: what a screen-space pass can know) and its AO
+// against chapter 07's.
+struct GiPathFrame {
+  int frame = 0;
+  double error = 0;     // mean |L1_ind - truth| over rgb and the pixels that see a surface
+  double ao_error = 0;  // mean |A - truth| (0 without options.ao_truth)
+  ImageF gi;            // the pass's result, rgb L1_ind, a A, rows top first
+  std::vector<double> since_error;  // the indirect light's, on the pixels disoccluded exactly k frames ago
+  std::vector<std::size_t> since_pixels;
+};
+struct GiPathOptions {
+  int width = 160, height = 90;
+  int first = 0, count = -1;  // the path's frames measured, as PathRunOptions'
+  int truth_samples = 256;     // 0: no truth (the results alone, no errors)
+  bool screen_limited = true;
+  bool ao_truth = false;
+  int bins = 8;
+};
+std::vector<GiPathFrame> measure_gi_path(const SceneGpu& scene, const CameraPath& path, const ch08::GiSettings& gi,
+                                         const TemporalGiSettings& temporal, const GiPathOptions& options);
+// [/gi-path]
 
 }  // namespace lp::ch11

@@ -5,7 +5,9 @@
 // the last frame where the truth changed less than an 8-bit step). Then the cost: each pass's
 // time (the one measurement, common/measure.h) of the frame with and without TAA at the path's
 // first view. Writes <out>/11_path_<scene>_<path>[_llvmpipe].csv and
-// <out>/11_cost[_llvmpipe].csv; llvmpipe's times are CPU times and the file says so. The
+// <out>/11_cost[_llvmpipe].csv; llvmpipe's times are CPU times and the file says so. `--ao`
+// and `--gi` add chapter 07's AO and chapter 08's AO and indirect light along the path, per
+// frame and accumulated (sweep_ao, sweep_gi); `--no-path` leaves out the TAA variants. The
 // error over the path's frames as a plot:
 //   tools/plot.py --csv out/11_temporal/11_path_street_shop_walk_llvmpipe.csv --x frame
 //                 --y edge_error --group method --title "Edge error along the walk" --out walk.svg
@@ -39,9 +41,12 @@ struct Settings {
   std::string methods;        // a ';'-separated list of variant names; empty: all
   std::string dump;           // non-empty: each measured frame and its truth as PNGs under this prefix
   bool no_cost = false;       // the path only
+  bool no_path = false;       // not the TAA path (with --ao or --gi: those alone)
   std::string truth_dir;      // non-empty: the truths kept there as PFM between runs
   bool ao = false;            // also chapter 07's AO along the path, per frame and accumulated
   int ao_width = 0, ao_height = 0;  // its size (0: --size)
+  bool gi = false;            // also chapter 08's AO and indirect light along the path, per frame and accumulated
+  int gi_width = 0, gi_height = 0;  // its size (0: --size)
 };
 
 bool chosen(const Settings& s, const std::string& name) {
@@ -191,6 +196,102 @@ void sweep_ao(const Settings& s, const SceneGpu& gpu, const std::string& rendere
 }
 // [/ao-sweep]
 
+// [gi-sweep]
+// Chapter 08's pass along the path against the ray-traced truths: 4 samples a frame alone, the
+// same 4 accumulated (temporal_gi.h: a part of a 32-point pattern a frame, turned), and 32 a
+// frame alone. Writes 11_gi_<scene>_<path>[_llvmpipe].csv (per frame: the indirect light
+// against the screen-limited truth and the full one, the AO against chapter 07's),
+// 11_gi_convergence_... (the indirect light's error against frames since a disocclusion) and
+// 11_gi_cost_... (each pass's time in the whole frame at --size, along the path).
+void sweep_gi(const Settings& s, const SceneGpu& gpu, const std::string& renderer, bool software) {
+  const CameraPath& path = path_named(s.scene, s.path);
+  const int w = s.gi_width > 0 ? s.gi_width : s.width, h = s.gi_height > 0 ? s.gi_height : s.height;
+  const std::string stem = std::filesystem::path(s.scene).stem().string(), tail = stem + "_" + s.path + (software ? "_llvmpipe" : "") + ".csv";
+  std::ofstream csv(s.out + "/11_gi_" + tail), conv(s.out + "/11_gi_convergence_" + tail), cost(s.out + "/11_gi_cost_" + tail);
+  csv << "# " << renderer << ", " << w << "x" << h << ", path " << s.path << " of " << stem
+      << "; chapter 08's pass (randomised, blurred) against the ray-traced truths (256 rays a pixel): mean |L1_ind - truth| "
+         "(screen-limited and full), mean |A - truth| (chapter 07's)\n"
+      << "method,frame,error_screen,error_full,ao_error," << csv_measure_columns() << '\n';
+  conv << "# " << renderer << ", " << w << "x" << h << ", path " << s.path << " of " << stem
+       << "; indirect light's error (screen-limited truth) on the pixels disoccluded exactly k frames ago, pooled over the path's frames\n"
+       << "method,frames_since,error,pixels\n";
+  cost << "# " << (software ? "llvmpipe CPU time (glFinish around each pass): " : "GPU time: ") << renderer << ", " << s.width
+       << "x" << s.height << ", the whole frame along path " << s.path << "; each pass's mean and fastest ms\n"
+       << "method,pass,ms,min_ms," << csv_measure_columns() << '\n';
+  ch08::GiSettings four;
+  four.samples = 4;
+  ch08::GiSettings many;
+  TemporalGiSettings on, off;
+  on.enabled = true;
+  const struct {
+    const char* name;
+    ch08::GiSettings gi;
+    TemporalGiSettings temporal;
+  } methods[] = {{"4 samples a frame", four, off}, {"4 samples accumulated", four, on}, {"32 samples a frame", many, off}};
+  for (const auto& m : methods) {
+    const GiPathOptions o{.width = w, .height = h, .first = s.first, .count = s.count};
+    GiPathOptions full = o;
+    full.screen_limited = false;
+    full.ao_truth = true;
+    const std::vector<GiPathFrame> screen = measure_gi_path(gpu, path, m.gi, m.temporal, o);
+    const std::vector<GiPathFrame> frames = measure_gi_path(gpu, path, m.gi, m.temporal, full);
+    double sum = 0;
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+      csv << csv_quoted(m.name) << ',' << frames[k].frame << ',' << screen[k].error << ',' << frames[k].error << ','
+          << frames[k].ao_error << ',' << csv_measure_values(renderer, w, h, 1) << '\n';
+      sum += screen[k].error;
+    }
+    for (std::size_t k = 0; !screen.empty() && k < screen[0].since_error.size(); ++k) {
+      double e = 0;
+      std::size_t n = 0;
+      for (const GiPathFrame& f : screen) {
+        e += f.since_error[k] * double(f.since_pixels[k]);
+        n += f.since_pixels[k];
+      }
+      conv << csv_quoted(m.name) << ',' << k << ',' << (n ? e / double(n) : 0.0) << ',' << n << '\n';
+    }
+    if (!s.dump.empty() && !frames.empty()) {
+      // The last frame's AO (its occlusion 1 - A times 4, as grey from white) beside its indirect
+      // light (times 16, clamped), for the book.
+      const ImageF& g = frames.back().gi;
+      ImageF picture = ImageF::blank(2 * w, h, 3);
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+          for (int c = 0; c < 3; ++c) {
+            picture.at(x, y, c) = std::max(0.f, 1.f - 4.f * (1.f - g.at(x, y, 3)));
+            picture.at(w + x, y, c) = std::min(1.f, 16.f * g.at(x, y, c));
+          }
+      std::string name = m.name;
+      std::replace(name.begin(), name.end(), ' ', '_');
+      save_png(s.dump + "gi_" + name + ".png", to_srgb8(picture));
+      std::cout << "wrote " << s.dump << "gi_" << name << ".png\n";
+    }
+    std::cout << m.name << ": mean indirect error (screen-limited truth) " << (screen.empty() ? 0.0 : sum / double(screen.size()))
+              << " over " << screen.size() << " frames\n";
+    // The cost: the whole frame (no TAA) with this pass, along the path.
+    TemporalSettings t;
+    t.taa.enabled = false;
+    t.whole.gi = m.gi;
+    t.gi = m.temporal;
+    t.gi.samples = m.gi.samples;
+    TemporalFrame frame(gpu);
+    OutputTarget target(s.width, s.height);
+    PassMetrics metrics;
+    int i = 0;
+    const Measurement measured = measure(metrics, [&] {
+      const int k = i++ % path.frames();
+      frame.render(frame_camera(path.camera(gpu.scene(), k), float(s.width) / float(s.height)),
+                   {target.framebuffer(), s.width, s.height}, t, 1.f / path.fps, path.cut_at(k), &metrics);
+    }, {.frames = s.frames});
+    for (const PassMeasurement& p : measured.passes)
+      cost << csv_quoted(m.name) << ',' << csv_quoted(p.name) << ',' << p.mean_ms << ',' << p.min_ms << ','
+           << csv_measure_values(renderer, s.width, s.height, measured.frames) << '\n';
+  }
+  std::cout << "wrote " << s.out << "/11_gi_" << tail << ", " << s.out << "/11_gi_convergence_" << tail << " and " << s.out
+            << "/11_gi_cost_" << tail << '\n';
+}
+// [/gi-sweep]
+
 void sweep_cost(const Settings& s, const SceneGpu& gpu, const std::string& renderer, bool software) {
   const CameraPath& path = path_named(s.scene, s.path);
   const std::string file = s.out + "/11_cost" + std::string(software ? "_llvmpipe" : "") + ".csv";
@@ -224,7 +325,8 @@ int main(int argc, char** argv) {
     args.text("--out", s.out).text("--scene", s.scene).text("--path", s.path).size("--size", s.width, s.height)
         .integer("--first", s.first).integer("--count", s.count).integer("--frames", s.frames)
         .text("--methods", s.methods).text("--dump", s.dump).flag("--no-cost", s.no_cost)
-        .text("--truth-dir", s.truth_dir).flag("--ao", s.ao).size("--ao-size", s.ao_width, s.ao_height);
+        .text("--truth-dir", s.truth_dir).flag("--ao", s.ao).size("--ao-size", s.ao_width, s.ao_height)
+        .flag("--gi", s.gi).size("--gi-size", s.gi_width, s.gi_height).flag("--no-path", s.no_path);
   }, [&] {
     if (s.frames < 1) throw UsageError("--frames must be at least 1");
     if (s.first < 0 || s.first > 100000) throw UsageError("--first must be between 0 and 100000");
@@ -248,7 +350,8 @@ int main(int argc, char** argv) {
     const Scene scene = load_scene(from_root(s.scene));
     path_named(s.scene, s.path);  // an unknown path says so before anything is drawn
     const SceneGpu gpu(scene);
-    sweep_path(s, gpu, context->renderer(), context->is_software());
+    if (!s.no_path) sweep_path(s, gpu, context->renderer(), context->is_software());
+    if (s.gi) sweep_gi(s, gpu, context->renderer(), context->is_software());
     if (s.ao) sweep_ao(s, gpu, context->renderer(), context->is_software());
     if (!s.no_cost) sweep_cost(s, gpu, context->renderer(), context->is_software());
   });

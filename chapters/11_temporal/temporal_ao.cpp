@@ -21,6 +21,18 @@ ch07::AoSettings frame_ao(const ch07::AoSettings& ao, const TemporalAoSettings& 
   return s;
 }
 
+void use_accumulation(ShaderProgram& p, const MotionStage& motion, bool reset, int max_frames, float depth_tolerance,
+                      float depth_slope, GLuint history) {
+  p.use();
+  p.set("u_reset", int(reset));
+  p.set("u_max_frames", float(max_frames));
+  p.set("u_depth_tolerance", depth_tolerance);
+  p.set("u_depth_slope", depth_slope);
+  glBindTextureUnit(1, history);
+  glBindTextureUnit(2, motion.current());
+  glBindTextureUnit(3, reset ? motion.current() : motion.previous());
+}
+
 TemporalAoStage::TemporalAoStage(const ch07::AoStage& ao, const MotionStage& motion)
     : ao_(ao), motion_(motion), accumulate_({{GL_COMPUTE_SHADER, "11_temporal/shaders/ao_accumulate.comp"}}) {}
 
@@ -45,14 +57,8 @@ void TemporalAoStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* met
   }
   const bool reset = reset_ || motion_.previous() == 0;
   const int next = 1 - cur_;
-  accumulate_.use();
-  accumulate_.set("u_reset", int(reset));
-  accumulate_.set("u_max_frames", float(settings_.max_frames));
-  accumulate_.set("u_depth_tolerance", settings_.depth_tolerance);
-  accumulate_.set("u_depth_slope", settings_.depth_slope);
-  glBindTextureUnit(1, history_[cur_].id());
-  glBindTextureUnit(2, motion_.current());
-  glBindTextureUnit(3, reset ? motion_.current() : motion_.previous());
+  use_accumulation(accumulate_, motion_, reset, settings_.max_frames, settings_.depth_tolerance, settings_.depth_slope,
+                   history_[cur_].id());
   // The AO texture the hook reads: this frame's estimate in, the accumulated result out.
   glBindImageTexture(0, ssao.texture(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
   glBindImageTexture(1, history_[next].id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);

@@ -34,6 +34,12 @@ float ao_turn(unsigned frame);
 // mod kernel_parts, turned by ao_turn(i); `ao` unchanged when `temporal` is off.
 ch07::AoSettings frame_ao(const ch07::AoSettings& ao, const TemporalAoSettings& temporal, unsigned frame);
 
+// What an accumulation pass (ao_accumulate.comp, gi_accumulate.comp) reads besides its own
+// images: its settings, `history` on unit 1, this frame's motion on unit 2 and the last frame's
+// on unit 3 (this frame's again on a reset, when the history is not read). Leaves `p` in use.
+void use_accumulation(ShaderProgram& p, const MotionStage& motion, bool reset, int max_frames, float depth_tolerance,
+                      float depth_slope, GLuint history);
+
 class TemporalAoStage : public ch03::FrameStage {
  public:
   TemporalAoStage(const ch07::AoStage& ao, const MotionStage& motion);

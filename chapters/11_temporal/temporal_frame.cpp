@@ -5,16 +5,19 @@
 
 namespace lp::ch11 {
 
-TemporalFrame::TemporalFrame(const SceneGpu& scene) : whole_(scene), motion_(scene), taa_(motion_) {
-  // After chapter 10's own stages: the motion before the lights, TAA after the glass.
+TemporalFrame::TemporalFrame(const SceneGpu& scene) : whole_(scene), motion_(scene), taa_(motion_), gi_(motion_) {
+  // After chapter 10's own stages: the motion before the lights, TAA after the glass; the
+  // accumulation inside chapter 08's stage, before its result is added to the light.
   whole_.add_stage(motion_);
   whole_.add_stage(taa_);
+  whole_.set_gi_filter(&gi_);
 }
 
 void TemporalFrame::reload_shaders() {
   whole_.reload_shaders();
   motion_.reload_shaders();
   taa_.reload_shaders();
+  gi_.reload_shaders();
 }
 
 // [temporal-render]
@@ -23,13 +26,21 @@ void TemporalFrame::render(const FrameCamera& camera, const ch03::FrameOutput& o
   const bool new_shot = cut || !sequence_;
   const bool taa = s.taa.enabled;
   jitter_ = taa || s.jitter_alone ? jitter_offset(index_, s.jitter_period) : glm::vec2(0);
-  motion_.set_enabled(taa || s.motion_alone);
+  motion_.set_enabled(taa || s.motion_alone || s.gi.enabled);
   motion_.set_cameras(camera, new_shot ? camera : previous_);
-  if (new_shot) taa_.reset();
+  if (new_shot) {
+    taa_.reset();
+    gi_.reset();
+    gi_index_ = 0;
+  }
+  // Chapter 08's pass: this frame's part of the pattern, accumulated (temporal_gi.h).
+  ch10::WholeFrameSettings whole = s.whole;
+  whole.gi = frame_gi(s.whole.gi, s.gi, gi_index_++);
+  gi_.set(s.gi);
   // The blend's weights use the exposure chapter 05's eye last tonemapped with.
   taa_.set(s.taa, whole_.radiance() ? whole_.hdr().adaptation().state_buffer() : 0);
   taa_.set_jitter(jitter_);
-  whole_.render(jittered(camera, jitter_, output.width, output.height), output, s.whole, dt, new_shot, metrics);
+  whole_.render(jittered(camera, jitter_, output.width, output.height), output, whole, dt, new_shot, metrics);
   previous_ = camera;
   sequence_ = true;
   ++index_;
@@ -42,6 +53,7 @@ void TemporalFrame::render_still(const FrameCamera& camera, glm::vec2 offset, co
   still.taa.enabled = false;
   motion_.set_enabled(false);
   taa_.set(still.taa, 0);
+  gi_.set({});  // chapter 08's pass with its own samples, nothing accumulated
   jitter_ = offset;
   whole_.render(jittered(camera, offset, output.width, output.height), output, still.whole, 1.f / 30.f, true);
   sequence_ = false;

@@ -9,6 +9,7 @@
 #include "chapters/11_temporal/jitter.h"
 #include "chapters/11_temporal/motion.h"
 #include "chapters/11_temporal/taa.h"
+#include "chapters/11_temporal/temporal_gi.h"
 #include "common/image.h"
 
 namespace lp::ch11 {
@@ -20,6 +21,7 @@ struct TemporalSettings {
   unsigned jitter_period = 8;      // Halton(2, 3) points before the pattern repeats
   bool jitter_alone = false;       // jitter without TAA too (tests: the frames TAA would blend)
   bool motion_alone = false;       // the motion pass without TAA too (measure.h: disocclusion for every variant)
+  TemporalGiSettings gi;           // chapter 08's AO and indirect light accumulated (temporal_gi.h)
 };
 // [/temporal-settings]
 
@@ -39,15 +41,19 @@ class TemporalFrame {
   ch10::WholeFrame& whole() { return whole_; }
   const MotionStage& motion() const { return motion_; }
   const TaaStage& taa() const { return taa_; }
-  std::size_t allocated_bytes() const { return whole_.allocated_bytes() + motion_.allocated_bytes() + taa_.allocated_bytes(); }
+  const TemporalGiStage& gi() const { return gi_; }
+  std::size_t allocated_bytes() const {
+    return whole_.allocated_bytes() + motion_.allocated_bytes() + taa_.allocated_bytes() + gi_.allocated_bytes();
+  }
 
  private:
   ch10::WholeFrame whole_;
   MotionStage motion_;
   TaaStage taa_;
+  TemporalGiStage gi_;
   FrameCamera previous_;
   bool sequence_ = false;
-  unsigned index_ = 0;
+  unsigned index_ = 0, gi_index_ = 0;  // gi_index_: frames since the last new shot
   glm::vec2 jitter_{0};
 };
 

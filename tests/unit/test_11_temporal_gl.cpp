@@ -496,3 +496,195 @@ TEST(TemporalGl, TemporalAoRefusesSettingsItCannotUse) {
   EXPECT_NE(message(half, {}).find("accumulate full-resolution AO"), std::string::npos) << message(half, {});
   EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }
+
+// Chapter 08's AO and indirect light accumulated (temporal_gi.h), in the whole frame and alone.
+namespace {
+ImageF whole_gi(TemporalFrame& frame) { return frame.whole().gi_stage()->ssgi().read(); }
+
+float largest_difference(const ImageF& a, const ImageF& b) {
+  float worst = 0;
+  for (std::size_t k = 0; k < a.data.size(); ++k) worst = std::max(worst, std::abs(a.data[k] - b.data[k]));
+  return worst;
+}
+
+// The frames in each pixel's accumulated history: their fewest and most.
+std::pair<float, float> history_frames(const TemporalFrame& frame) {
+  const ImageF n = read_texture_rgba(frame.gi().frames(), kW, kH);
+  float lo = 1e30f, hi = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      lo = std::min(lo, n.at(x, y, 0));
+      hi = std::max(hi, n.at(x, y, 0));
+    }
+  return {lo, hi};
+}
+}  // namespace
+
+// The whole frame's lighting reads the accumulated AO: along the cut path (its cut included),
+// every frame's result of chapter 08's pass inside chapter 10's frame, accumulated there, is
+// the temporal stage's own on chapter 03's frame (measure_gi_path), bit for bit: the same
+// shaders on the same G-buffer, parts and history. The AO alone (the indirect light reads the
+// light buffer, which the whole frame's other stages change).
+TEST(TemporalGl, TheWholeFramesAccumulatedAoIsTheTemporalStagesOwn) {
+  const CameraPath& path = path_named("assets/street_shop/street_shop.gltf", "cut");
+  int cut = 1;
+  while (cut < path.frames() && !path.cut_at(cut)) ++cut;
+  ASSERT_LT(cut + 2, path.frames());
+  TemporalSettings s = defaults();
+  s.taa.enabled = false;
+  s.whole.indirect = false;
+  s.gi.enabled = true;
+  ch08::GiSettings ao = s.whole.gi;
+  ao.indirect = false;
+  const auto alone = measure_gi_path(street_gpu(), path, ao, s.gi,
+                                     {.width = kW, .height = kH, .first = 0, .count = cut + 3, .truth_samples = 0});
+  ASSERT_EQ(alone.size(), std::size_t(cut + 3));
+  TemporalFrame frame(street_gpu());
+  OutputTarget target(kW, kH);
+  float worst = 0;
+  for (int i = 0; i <= cut + 2; ++i) {
+    frame.render(frame_camera(path.camera(street(), i), float(kW) / float(kH)), {target.framebuffer(), kW, kH}, s,
+                 1.f / 30.f, i == 0 || path.cut_at(i));
+    ASSERT_TRUE(frame.gi().ran());
+    worst = std::max(worst, largest_difference(whole_gi(frame), alone[std::size_t(i)].gi));
+  }
+  const auto [fewest, most] = history_frames(frame);
+  std::printf("cut path, frames 0-%d: largest difference %g; frames in the history %g to %g\n", cut + 2, worst, fewest, most);
+  EXPECT_EQ(worst, 0.f);
+  EXPECT_GT(most, 1.f);  // the history was used: the equality is of accumulated results
+}
+
+// A cut starts the accumulation again: with a disocclusion test that never drops anything, the
+// new view's first frame holds one frame everywhere, and its AO and indirect light are that
+// frame's part of the pattern alone (a fresh frame drawing the same view with the same part,
+// nothing accumulated; chapter 05's eye and light cut start again at a cut in both), bit for bit.
+TEST(TemporalGl, ACutStartsTheAccumulatedAoAndIndirectLightAgain) {
+  const CameraPath& path = path_named("assets/street_shop/street_shop.gltf", "cut");
+  int cut = 1;
+  while (cut < path.frames() && !path.cut_at(cut)) ++cut;
+  ASSERT_LT(cut, path.frames());
+  ASSERT_GE(cut, 4);
+  TemporalSettings s = defaults();
+  s.taa.enabled = false;
+  s.gi.enabled = true;
+  s.gi.depth_tolerance = 1e6f;  // only the reset can drop the old view
+  TemporalFrame frame(street_gpu());
+  OutputTarget target(kW, kH);
+  auto camera = [&](int i) { return frame_camera(path.camera(street(), i), float(kW) / float(kH)); };
+  for (int i = cut - 4; i < cut; ++i) frame.render(camera(i), {target.framebuffer(), kW, kH}, s, 1.f / 30.f, i == cut - 4);
+  const auto before = history_frames(frame);
+  frame.render(camera(cut), {target.framebuffer(), kW, kH}, s, 1.f / 30.f, true);
+  const auto after = history_frames(frame);
+  const ImageF accumulated = whole_gi(frame);
+  TemporalSettings alone = s;
+  alone.gi.enabled = false;
+  alone.whole.gi = frame_gi(s.whole.gi, s.gi, 0);
+  TemporalFrame fresh(street_gpu());
+  fresh.render(camera(cut), {target.framebuffer(), kW, kH}, alone, 1.f / 30.f, true);
+  const float worst = largest_difference(accumulated, whole_gi(fresh));
+  std::printf("before the cut %g to %g frames, after %g to %g; largest difference from the part alone %g\n", before.first,
+              before.second, after.first, after.second, worst);
+  EXPECT_GT(before.second, 3.5f);  // the history was kept up to the cut (4 frames, averaged over the footprint)
+  EXPECT_EQ(after.first, 1.f);
+  EXPECT_EQ(after.second, 1.f);
+  EXPECT_EQ(worst, 0.f);
+}
+
+// On a still camera the accumulation is the whole pattern: with the history's reach the
+// pattern's 8 parts (a running mean over them) and no turn, 8 frames of 4 samples are chapter
+// 08's pass with all 32 (each part's sums stand for the whole pattern, times 8; the mean of the
+// parts is the whole's sum), where its clamps do not act. Without the blur (linear in the
+// results, its weights the surfaces': it changes nothing here, and without it the clamps show).
+// Allowed per value: the RGBA16F roundings, half a unit in the last place (2^-11 relative)
+// each: a part's result and the whole's, each once; the accumulated result once more when
+// stored; the running mean in float (8 blends, 1e-6 relative). So 3 x 2^-11 x the larger of
+// the two values, + 1e-7 for half's subnormals.
+// - The AO: on every pixel where neither a part's occlusion nor the whole's reaches 1 (A = 0,
+//   clamped).
+// - The indirect light: a part whose transfer passes 1 (a wall beside the pixel, its disks
+//   summed over 1) is scaled back to 1, which only lowers it, and which the output does not
+//   show: the accumulated light is nowhere above the whole's by more than the roundings, and
+//   where no part's clamp acts equal to it. That the clamps leave most of it is a regression
+//   bound: at least 80 % of the whole's light over the image (measured: 88 %).
+TEST(TemporalGl, StillAccumulatedAoAndIndirectOfEightPartsAreTheWholePattern) {
+  const CameraPath still{"still", "street_shop", 30.f, {{0.f, "shops", {0, 0, 0}, 0.f, 0.f}, {1.f, "shops", {0, 0, 0}, 0.f, 0.f}}};
+  ch08::GiSettings four;
+  four.samples = 4;
+  four.blur = false;
+  ch08::GiSettings whole = four;
+  whole.samples = 32;
+  TemporalGiSettings t;
+  t.enabled = true;
+  t.max_frames = t.kernel_parts = 8;
+  t.turn = false;
+  const GiPathOptions o{.width = kW, .height = kH, .first = 0, .count = 8, .truth_samples = 0};
+  const auto accumulated = measure_gi_path(street_gpu(), still, four, t, o);
+  const auto at_once = measure_gi_path(street_gpu(), still, whole, {}, o);
+  // Each part alone: where its occlusion is clamped (A = 0).
+  std::vector<ImageF> parts;
+  for (unsigned k = 0; k < 8; ++k)
+    parts.push_back(measure_gi_path(street_gpu(), still, frame_gi(four, t, k), {},
+                                    {.width = kW, .height = kH, .first = 0, .count = 1, .truth_samples = 0})[0].gi);
+  ASSERT_EQ(accumulated.size(), 8u);
+  const ImageF& a = accumulated.back().gi;
+  const ImageF& b = at_once.back().gi;
+  const float half_ulp = std::ldexp(1.f, -11);
+  std::size_t ao_outside = 0, ao_counted = 0, light_above = 0;
+  double light_a = 0, light_b = 0;
+  float worst_ao = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      bool clamp = b.at(x, y, 3) == 0.f;
+      for (const ImageF& p : parts) clamp = clamp || p.at(x, y, 3) == 0.f;
+      for (int c = 0; c < 4; ++c) {
+        const float d = a.at(x, y, c) - b.at(x, y, c);
+        const float bound = 3.f * half_ulp * std::max(std::abs(a.at(x, y, c)), std::abs(b.at(x, y, c))) + 1e-7f;
+        if (c < 3) {
+          light_a += a.at(x, y, c);
+          light_b += b.at(x, y, c);
+          if (d > bound) ++light_above;
+        } else if (!clamp) {
+          ++ao_counted;
+          worst_ao = std::max(worst_ao, std::abs(d) / bound);
+          if (std::abs(d) > bound) ++ao_outside;
+        }
+      }
+    }
+  std::printf("still, 8 parts of 4 accumulated against 32 at once: AO on %zu pixels, %zu outside the bound (the worst at %.3g "
+              "of it); indirect light above on %zu values, %.3f of the whole's over the image\n",
+              ao_counted, ao_outside, worst_ao, light_above, light_a / light_b);
+  EXPECT_GT(ao_counted, std::size_t(kW * kH / 2));
+  EXPECT_EQ(ao_outside, 0u);
+  EXPECT_EQ(light_above, 0u);
+  EXPECT_GT(light_a, 0.8 * light_b);
+  EXPECT_LE(light_a, light_b);
+}
+
+// Along the walk, at equal samples a frame: 4 accumulated are nearer the ray-traced indirect
+// light (the screen-limited truth: what a screen-space pass can know) than 4 alone.
+TEST(TemporalGl, AccumulatedIndirectLightIsNearerTheTruthThanTheFrameAloneAtEqualSamples) {
+  const CameraPath& path = path_named("assets/street_shop/street_shop.gltf", "walk");
+  const GiPathOptions o{.width = kW, .height = kH, .first = 12, .count = 4};
+  ch08::GiSettings four;
+  four.samples = 4;
+  const ch08::GiSettings many;  // chapter 08's 32
+  TemporalGiSettings on, off;
+  on.enabled = true;
+  const auto temporal = measure_gi_path(street_gpu(), path, four, on, o);
+  const auto alone = measure_gi_path(street_gpu(), path, four, off, o);
+  const auto alone32 = measure_gi_path(street_gpu(), path, many, off, o);
+  ASSERT_EQ(temporal.size(), 4u);
+  auto mean = [](const std::vector<GiPathFrame>& frames) {
+    double sum = 0;
+    for (const GiPathFrame& f : frames) sum += f.error;
+    return sum / double(frames.size());
+  };
+  const double t = mean(temporal), a = mean(alone), a32 = mean(alone32);
+  std::printf("indirect error along the walk, frames 12-15: 4 samples accumulated %.5f, 4 alone %.5f, 32 alone %.5f\n", t, a, a32);
+  for (const GiPathFrame& f : {temporal.back(), alone.back()}) {
+    std::printf("  since disocclusion:");
+    for (std::size_t k = 0; k < f.since_error.size(); ++k) std::printf(" %zu:%.5f(%zu)", k, f.since_error[k], f.since_pixels[k]);
+    std::printf("\n");
+  }
+  EXPECT_LT(t, a);
+}

@@ -25,6 +25,8 @@ uniform int u_indirect_on, u_ao_on;
 uniform int u_gather;                       // 0 the source's disk (no visibility), 1 slices with a visibility bitmask
 uniform float u_thickness;                  // bitmask: the depth each sample is taken to have, world units
 uniform int u_back_faces;                   // 1: the disk gather also reads the back-face layer (back_faces.h)
+uniform int u_parts, u_part;                // this frame's part of a pattern of u_samples x u_parts points
+uniform float u_turn;                       // radians added to the randomised pattern's turn
 layout(binding = 11) uniform sampler2D u_back_depth;   // the nearest back face: window depth (sky: none)
 layout(binding = 12) uniform sampler2D u_back_normal;  // its own normal (facing away from the camera), encoded
 layout(binding = 13) uniform sampler2D u_back_albedo;
@@ -41,7 +43,7 @@ float view_depth(vec3 world) { return -(u_view * vec4(world, 1.0)).z; }
 #ifdef EXERCISE_PATTERN_POINT
 #include EXERCISE_PATTERN_POINT
 #else
-vec2 pattern_point(int i, vec2 jitter) { return pattern_point(u_pattern, i, u_samples, u_rings, u_spokes, jitter); }
+vec2 pattern_point(int i, vec2 jitter) { return pattern_point(u_pattern, i, u_samples * u_parts, u_rings, u_spokes, jitter); }
 #endif
 
 // The area a sample stands for: its share of the disk at the receiver's depth zr, grown to the
@@ -162,17 +164,19 @@ void main() {
   float gi_px = min(u_gi_radius * scale_px, u_max_screen_radius * gb_size.y);
   float ao_px = gi_px * (u_ao_radius / u_gi_radius);
   float gi_world = gi_px / scale_px, ao_world = ao_px / scale_px;
-  float gi_share = PI * gi_world * gi_world / float(u_samples);
-  float ao_share = PI * ao_world * ao_world / float(u_samples);
+  // each sample's share of the disk: of the whole pattern's points (u_parts x u_samples)
+  float gi_share = PI * gi_world * gi_world / float(u_samples * u_parts);
+  float ao_share = PI * ao_world * ao_world / float(u_samples * u_parts);
   // [/ssgi-radii]
   vec2 jitter = vec2(0.5);
   if (u_pattern == 2) {
     jitter = pixel_jitter(pixel);
+    jitter.x = fract(jitter.x + u_turn / (2.0 * PI));  // chapter 11: this frame's turn
   }
   vec3 indirect = vec3(0.0);
   float occlusion = 0.0, transfer = 0.0;
   for (int i = 0; i < u_samples; ++i) {
-    vec2 u = pattern_point(i, jitter);
+    vec2 u = pattern_point(i * u_parts + u_part, jitter);  // this frame's part (all of it: u_parts 1)
     for (int wide = 0; wide < 2; ++wide) {
       if ((wide == 0 && u_ao_on == 0) || (wide == 1 && (u_indirect_on == 0 || u_gather != 0))) continue;
       float radius = wide == 1 ? u_gi_radius : u_ao_radius;
@@ -204,6 +208,11 @@ void main() {
     }
   }
   if (u_gather == 1 && u_indirect_on != 0) indirect = bitmask_indirect(pixel, s, gi_px, gi_share, jitter, transfer);
+  // A part of the pattern stands for all of it: its sums times the parts, so the mean of the
+  // parts' results is the whole pattern's (where the clamps below do not act).
+  occlusion *= float(u_parts);
+  indirect *= float(u_parts);
+  transfer *= float(u_parts);
   // [ssgi-clamp]
   // The form factors from a point to surfaces that do not overlap sum to at most 1 (the whole
   // hemisphere). Large sample disks close to the pixel (a wall beside the floor) overlap and
