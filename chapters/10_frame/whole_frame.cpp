@@ -32,8 +32,6 @@ std::vector<PlannedStage> WholeFrame::plan(const WholeFrameSettings& s) const {
   const std::string per_sample = msaa ? "; per sample on edges, chapter 10)" : ")";
   std::vector<PlannedStage> p;
   p.push_back({"G-buffer (chapter 02" + (msaa ? ", " + std::to_string(s.msaa) + " samples)" : ")"), true, "", "scene", "G-buffer"});
-  // The sun's map is drawn from the sun, not from the G-buffer: with MSAA its hook is read per
-  // sample on the marked edges, per pixel elsewhere, as every light of the MSAA frame.
   p.push_back({"shadow map of the sun (chapter 06)", s.shadows && has_sun_,
                !s.shadows ? "switched off" : has_sun_ ? "" : "no directional light that casts shadows", "scene", "shadow map"});
   p.push_back({"global light: ambient + directional (chapter 03" + per_sample, true, "", "G-buffer + shadow map", "light buffer"});
