@@ -1,6 +1,7 @@
 #include "chapters/10_frame/msaa.h"
 
 #include <cmath>
+#include <cstddef>
 #include <vector>
 
 #include "chapters/01_forward/ground_truth.h"
@@ -8,15 +9,18 @@
 
 namespace lp::ch10 {
 
+namespace glsl {
+using glm::vec4;
+using ch01::GpuLight;
+#include "chapters/10_frame/shaders/msaa_local_light.h"  // struct LocalLight, shared with GLSL
+}  // namespace glsl
+
 namespace {
 
 constexpr GLuint kDirectionalBinding = 0, kLocalBinding = 1;
 
-struct LocalLight {  // mirrors msaa_light.glsl
-  ch01::GpuLight light;
-  glm::vec4 cut;
-};
-static_assert(sizeof(LocalLight) == 80);
+using LocalLight = glsl::LocalLight;
+static_assert(sizeof(LocalLight) == 80 && offsetof(LocalLight, cut) == 64, "std430: a GpuLight and a vec4");
 
 // Where each sample lies within its pixel (0..1), as the rasteriser places them.
 std::vector<glm::vec2> query_sample_positions(GLuint framebuffer, int samples) {
