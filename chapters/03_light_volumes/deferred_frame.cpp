@@ -42,6 +42,12 @@ void DeferredFrame::bind_hooks() const {
   for (const FrameStage* stage : stages_) stage->bind_hook_resources();
 }
 
+void DeferredFrame::prepare_stages(const FrameCamera& camera, const FrameOutput& output, PassMetrics* metrics) {
+  output_ = output;
+  camera_ = camera;
+  for (FrameStage* stage : stages_) stage->before_lights(*this, metrics);
+}
+
 // Chapter 03's hook files, each replaced by the one stage that names its own.
 ShaderHooks DeferredFrame::hooks() const {
   ShaderHooks hooks, chosen = {"", ""};

@@ -167,6 +167,14 @@ class DeferredFrame {
   // Binds every stage's hook resources: for a pass outside render() that includes the hooks
   // (chapter 10's glass, chapter 08's back faces). render() calls it before its light passes.
   void bind_hooks() const;
+  // The GLSL hooks of the stages added (chapter 03's where none names its own), with their
+  // defines: what a pass outside render() that includes the hooks compiles with.
+  ShaderHooks stage_hooks() const { return hooks(); }
+  // For a frame drawn elsewhere over these lights and stages (chapter 10's MSAA, whose targets
+  // are multisampled): render()'s camera and output set and the stages' before_lights run,
+  // with no G-buffer of this frame's drawn. Only stages whose before_lights read no G-buffer
+  // may be added then (the sun's shadow map); the caller binds bind_hooks() for its passes.
+  void prepare_stages(const FrameCamera& camera, const FrameOutput& output, PassMetrics* metrics = nullptr);
   void set_ambient(const glm::vec3& ambient) { ambient_ = ambient; }
   void set_background(const glm::vec3& background) { background_ = background; }
   const glm::vec3& background() const { return background_; }

@@ -44,8 +44,8 @@ ShadowMethod method_from_name(const std::string& name) {
 }
 
 const Light& find_sun(const Scene& scene) {
-  for (const Light& l : scene.lights)
-    if (l.type == LightType::Directional) return l;
+  for (const Light& l : scene.lights)  // shadowed_sun()'s rule: the first one the light set keeps
+    if (l.type == LightType::Directional && !light_defect(l)) return l;
   throw Error("the scene has no directional light (the sun) to cast shadows");
 }
 

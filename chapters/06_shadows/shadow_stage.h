@@ -201,7 +201,8 @@ class ShadowStage : public ch03::FrameStage {
   VolumeStats volume_stats_;
 };
 
-// The first directional light of the scene (the sun), or an Error naming the scene's lights.
+// The sun: the first directional light the light set keeps (light_defect(), as shadowed_sun()),
+// or an Error naming the scene's lights.
 const Light& find_sun(const Scene& scene);
 
 // The factor the scene asks this chapter to apply to its directional lights, so that their

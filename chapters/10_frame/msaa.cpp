@@ -1,6 +1,7 @@
 #include "chapters/10_frame/msaa.h"
 
 #include <cmath>
+#include <cstddef>
 #include <vector>
 
 #include "chapters/01_forward/ground_truth.h"
@@ -8,15 +9,18 @@
 
 namespace lp::ch10 {
 
+namespace glsl {
+using glm::vec4;
+using ch01::GpuLight;
+#include "chapters/10_frame/shaders/msaa_local_light.h"  // struct LocalLight, shared with GLSL
+}  // namespace glsl
+
 namespace {
 
 constexpr GLuint kDirectionalBinding = 0, kLocalBinding = 1;
 
-struct LocalLight {  // mirrors msaa_light.glsl
-  ch01::GpuLight light;
-  glm::vec4 cut;
-};
-static_assert(sizeof(LocalLight) == 80);
+using LocalLight = glsl::LocalLight;
+static_assert(sizeof(LocalLight) == 80 && offsetof(LocalLight, cut) == 64, "std430: a GpuLight and a vec4");
 
 // Where each sample lies within its pixel (0..1), as the rasteriser places them.
 std::vector<glm::vec2> query_sample_positions(GLuint framebuffer, int samples) {
@@ -97,9 +101,11 @@ std::size_t MsaaFrame::allocated_bytes() const {
 void MsaaFrame::render(const FrameCamera& camera, const ch03::FrameOutput& output, const MsaaSettings& s,
                        PassMetrics* metrics) {
   resize(output.width, output.height, s.samples);
+  const std::vector<std::string> hooks = (stages_ ? stages_->stage_hooks() : ch03::ShaderHooks{}).glsl_defines();
+  if (hooks != programs_hooks_) programs_.reset();
   if (!programs_) {
     std::vector<std::string> d = gbuffer_->shader_defines(0);
-    for (const std::string& x : ch03::ShaderHooks{}.glsl_defines()) d.push_back(x);
+    for (const std::string& x : hooks) d.push_back(x);
     d.push_back("MSAA_SAMPLES " + std::to_string(s.samples));
     const ShaderStage vs{GL_VERTEX_SHADER, "02_gbuffer/shaders/fullscreen.vert"};
     auto per_sample = d;
@@ -113,6 +119,7 @@ void MsaaFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outpu
         ShaderProgram({vs, {GL_FRAGMENT_SHADER, "10_frame/shaders/msaa_centre_depth.frag"}}, d),
         ShaderProgram({vs, {GL_FRAGMENT_SHADER, "10_frame/shaders/msaa_resolve_radiance.frag"}}, d)});
     programs_samples_ = s.samples;
+    programs_hooks_ = hooks;
   }
   Programs& p = *programs_;
   positions_ = query_sample_positions(radiance_fbo_.id(), s.samples);
@@ -188,6 +195,7 @@ void MsaaFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outpu
   //    only the directional lights and the ambient (one light each, every pixel).
   glStencilMask(0xFF);
   glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  if (stages_) stages_->bind_hooks();  // what the stages' hooks read (the sun's map), on their units
   if (!volumes) pack_local_lights();
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDirectionalBinding, volumes_.directional_buffer());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLocalBinding, local_.id());  // with volumes: one record, never read
@@ -277,6 +285,7 @@ void MsaaFrame::resolve(const ch03::FrameOutput& output, const MsaaSettings& s, 
 void MsaaFrame::draw_volumes(const MsaaSettings& s, bool counting) {
   ch03::SurfaceView view = ch03::surface_view(*gbuffer_);
   view.defines.push_back("MSAA_SAMPLES " + std::to_string(s.samples));
+  if (stages_) view.hooks = stages_->stage_hooks();
   const ShaderProgram& mark = volumes_.volume_program("03_light_volumes/shaders/stencil.frag", view);
   const ShaderProgram& per_pixel = volumes_.volume_program("10_frame/shaders/msaa_volume.frag", view);
   const ShaderProgram& per_sample = volumes_.volume_program("10_frame/shaders/msaa_volume.frag", view, {"PER_SAMPLE 1"});

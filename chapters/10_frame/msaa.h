@@ -121,6 +121,11 @@ class MsaaFrame {
   void set_background(const glm::vec3& background) { background_ = background; }
   // Chapter 05's glow: the emissive colours its G-buffer holds, as chapter 03's frame does.
   void set_emissive_scale(float scale) { geometry_.set_emissive_scale(scale); }
+  // The stages of chapter 03's frame whose hooks the light passes include (chapter 06's sun:
+  // its visibility per sample on the marked edges, per pixel elsewhere): their hook files and
+  // defines, and frame.bind_hooks() before the light passes. nullptr: chapter 03's hooks.
+  // The frame's prepare_stages() runs their before_lights; this frame draws no map itself.
+  void use_stages(const ch03::DeferredFrame* frame) { stages_ = frame; }
 
   // The frame into `output` (an sRGB8 target: the resolve writes linear display values; or a
   // float target, which keeps them unencoded). Each pass timed in `metrics`.
@@ -159,6 +164,8 @@ class MsaaFrame {
   };
   std::unique_ptr<Programs> programs_;
   int programs_samples_ = 0;
+  std::vector<std::string> programs_hooks_;  // the hooks' defines the programs were built with
+  const ch03::DeferredFrame* stages_ = nullptr;
   ch03::LightVolumes& volumes_;  // the frame's: its lights, meshes and records, its volume shader
   std::vector<std::pair<bool, gl::Query>> volume_queries_;  // counting: {per sample?, GL_SAMPLES_PASSED} per draw
   MsaaCounts counts_;

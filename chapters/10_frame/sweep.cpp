@@ -19,6 +19,11 @@
 // light in chapter 09's clusters and as chapter 04's capsule volumes: the passes' times, the
 // tubes' share (the volumes' pass, or nothing apart: the clusters' shading pass holds them) and
 // the images' difference. Writes 10_tubes_llvmpipe.csv (or 10_tubes.csv).
+//
+// Then the whole frame with MSAA (--part whole-msaa): the shop street, every stage at its
+// default, --msaa 1, 4 and 8 (--msaa-size): the frame's time, MSAA's passes, the sun's map, the
+// pixels marked, the bytes and the stages run. Writes 10_whole_msaa_llvmpipe.csv (or
+// 10_whole_msaa.csv).
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -51,8 +56,8 @@ struct Settings {
   int frames = 10;
   int max_layers = 64;
   std::string renderer;
-  std::string part = "all";                     // all, transparency, msaa, tubes
-  int msaa_width = 0, msaa_height = 0;          // 0: 1920x1080 on a GPU, 320x180 on llvmpipe
+  std::string part = "all";                     // all, transparency, msaa, tubes, whole-msaa
+  int msaa_width = 0, msaa_height = 0;          // 0: 1920x1080 on a GPU, 320x180 on llvmpipe (whole-msaa too)
   int tubes_width = 0, tubes_height = 0;        // the same
 };
 
@@ -328,6 +333,64 @@ void sweep_tubes(const Settings& s, bool software) {
 }
 // [/tubes-sweep]
 
+// [whole-msaa-sweep]
+// --part whole-msaa: the shop street's whole frame with every stage at its default, at 1, 4 and
+// 8 samples (those the renderer makes): the frame's time, MSAA's passes, the sun's map, the
+// pixels marked, the bytes held, and which stages ran (plan(): with MSAA some are not run yet).
+void sweep_whole_msaa(const Settings& s, bool software) {
+  const int w = s.msaa_width ? s.msaa_width : software ? 320 : 1920;
+  const int h = s.msaa_height ? s.msaa_height : software ? 180 : 1080;
+  const std::string path = s.out + (software ? "/10_whole_msaa_llvmpipe.csv" : "/10_whole_msaa.csv");
+  std::ofstream csv(path);
+  csv << "# " << (software ? "llvmpipe CPU time: " : "GPU time: ") << s.renderer << ", " << w << "x" << h
+      << "; the shop street's whole frame (view shops), every stage at its default, --msaa 1, 4, 8\n"
+      << "# ms: mean of " << s.frames << " frames; msaa_ms: the passes named msaa: (G-buffer, edges, light, resolve); "
+         "shadow_ms: the sun's map; marked: pixels lit per sample; stages_run: of the plan's lines; not_run: '+'-separated\n"
+      << "msaa,total_ms,msaa_ms,shadow_ms,marked,marked_fraction,allocated_mb,stages_run,not_run," << csv_measure_columns()
+      << "\n";
+  const Scene scene = load_scene(from_root("assets/street_shop/street_shop.gltf"));
+  WholeFrame whole(scene);
+  OutputTarget target(w, h);
+  const ch03::FrameOutput output{target.framebuffer(), w, h};
+  const FrameCamera camera = frame_camera(scene.camera("shops"), float(w) / float(h));
+  GLint max_samples = 1;
+  glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+  for (const int samples : {1, 4, 8}) {
+    if (samples > max_samples) {
+      std::cout << "  whole frame --msaa " << samples << ": this renderer makes at most " << max_samples << ", left out\n";
+      continue;
+    }
+    WholeFrameSettings settings;
+    settings.msaa = samples;
+    whole.render(camera, output, settings, 1.f / 60.f, true);  // counts (no metrics); the eye adapted
+    const std::uint64_t marked = whole.msaa() ? whole.msaa()->counts().marked : 0;
+    int runs = 0;
+    std::string not_run;
+    for (const PlannedStage& st : whole.plan(settings)) {
+      runs += st.runs;
+      if (!st.runs) not_run += (not_run.empty() ? "" : "+") + st.stage.substr(0, st.stage.find(" ("));
+    }
+    std::replace(not_run.begin(), not_run.end(), ',', ';');
+    PassMetrics metrics;
+    const Measurement m = measure(metrics, [&] { whole.render(camera, output, settings, 1.f / 60.f, false, &metrics); },
+                                  {.frames = s.frames});
+    double msaa_ms = 0, shadow_ms = 0;
+    for (const PassMeasurement& p : m.passes) {
+      if (p.name.rfind("msaa:", 0) == 0) msaa_ms += p.mean_ms;
+      if (p.name.rfind("shadow map:", 0) == 0) shadow_ms += p.mean_ms;
+    }
+    const double fraction = double(marked) / (double(w) * double(h));
+    csv << samples << ',' << m.total_ms() << ',' << msaa_ms << ',' << shadow_ms << ',' << marked << ',' << fraction << ','
+        << double(whole.allocated_bytes()) / (1024.0 * 1024.0) << ',' << runs << ',' << not_run << ','
+        << csv_measure_values(s.renderer, w, h, m.frames) << '\n';
+    std::cout << "  whole frame --msaa " << samples << ": " << m.total_ms() << " ms (msaa passes " << msaa_ms
+              << " ms, sun's map " << shadow_ms << " ms), " << marked << " pixels marked, " << runs << " stages run"
+              << std::endl;
+  }
+  std::cout << "wrote " << path << '\n';
+}
+// [/whole-msaa-sweep]
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -338,8 +401,8 @@ int main(int argc, char** argv) {
   }, [&] {
     if (s.frames < 1) throw UsageError("--frames must be at least 1");
     if (s.max_layers < 1 || s.max_layers > 128) throw UsageError("--layers must be between 1 and 128");
-    if (s.part != "all" && s.part != "transparency" && s.part != "msaa" && s.part != "tubes")
-      throw UsageError("--part must be all, transparency, msaa or tubes (got '" + s.part + "')");
+    if (s.part != "all" && s.part != "transparency" && s.part != "msaa" && s.part != "tubes" && s.part != "whole-msaa")
+      throw UsageError("--part must be all, transparency, msaa, tubes or whole-msaa (got '" + s.part + "')");
     std::filesystem::create_directories(s.out);
     auto context = Context::create({.headless = true, .width = s.width, .height = s.height});
     s.renderer = context->renderer();
@@ -359,5 +422,6 @@ int main(int argc, char** argv) {
     }
     if (s.part == "all" || s.part == "msaa") sweep_msaa(s, context->is_software());
     if (s.part == "all" || s.part == "tubes") sweep_tubes(s, context->is_software());
+    if (s.part == "all" || s.part == "whole-msaa") sweep_whole_msaa(s, context->is_software());
   });
 }

@@ -32,8 +32,8 @@ std::vector<PlannedStage> WholeFrame::plan(const WholeFrameSettings& s) const {
   const std::string per_sample = msaa ? "; per sample on edges, chapter 10)" : ")";
   std::vector<PlannedStage> p;
   p.push_back({"G-buffer (chapter 02" + (msaa ? ", " + std::to_string(s.msaa) + " samples)" : ")"), true, "", "scene", "G-buffer"});
-  p.push_back({"shadow map of the sun (chapter 06)", s.shadows && has_sun_ && !msaa, off(s.shadows, has_sun_, "no directional light that casts shadows"),
-               "scene", "shadow map"});
+  p.push_back({"shadow map of the sun (chapter 06)", s.shadows && has_sun_,
+               !s.shadows ? "switched off" : has_sun_ ? "" : "no directional light that casts shadows", "scene", "shadow map"});
   p.push_back({"global light: ambient + directional (chapter 03" + per_sample, true, "", "G-buffer + shadow map", "light buffer"});
   p.push_back({clustered ? "local lights: clusters (chapter 09)" : "local lights: stencil volumes (chapter 03" + per_sample, true, "",
                clustered ? "G-buffer + light lists" : "G-buffer + stencil", "light buffer"});
@@ -180,11 +180,15 @@ void WholeFrame::render_msaa(const FrameCamera& camera, const ch03::FrameOutput&
   source_->update_lights();
   if (!msaa_) msaa_ = std::make_unique<MsaaFrame>(source_->scene_gpu(), source_->volumes());
   msaa_->set_emissive_scale(s.glow);
+  // The stages the plan runs with MSAA (the sun's map) before its lights, their hooks in its
+  // light passes: chapter 03's frame draws no G-buffer of its own here.
+  const ch03::FrameOutput into{radiance_->framebuffer(), output.width, output.height};
+  source_->frame().prepare_stages(camera, into, metrics);
+  msaa_->use_stages(&source_->frame());
   // The resolve's weights bend where the eye's exposure puts the curve's knee: the last one
   // read back. A new shot has none yet: its samples are resolved with the knee at 1, chapter
   // 05 measures that frame's exposure, and (one wait for the GPU, on a new shot only) the
   // samples are resolved again with it, the eye reset to start from the new image.
-  const ch03::FrameOutput into{radiance_->framebuffer(), output.width, output.height};
   MsaaSettings m{.samples = s.msaa, .order = s.msaa_order, .show = s.msaa_edges ? MsaaShow::Edges : MsaaShow::Image,
                  .output = MsaaOutput::Radiance, .exposure = cut.age >= 0 && cut.read > 0.f ? cut.read : 1.f};
   msaa_->render(camera, into, m, metrics);

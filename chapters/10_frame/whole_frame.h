@@ -13,8 +13,10 @@
 //
 // With MSAA (WholeFrameSettings::msaa > 1) steps 1, 3 and 6 are chapter 10's MsaaFrame
 // (msaa.h) lit by the same lights: a multisampled G-buffer, light per sample on the marked
-// edges, and a float resolve into the radiance the HDR chain reads. The other stages do not
-// read a multisampled G-buffer yet: they are not run with it, and plan() says so.
+// edges, and a float resolve into the radiance the HDR chain reads. The sun's shadow map is
+// drawn as without MSAA and its hook read by MSAA's light passes, per sample on the edges. The
+// other stages do not read a multisampled G-buffer yet: they are not run with it, and plan()
+// says so.
 //
 // What the scene does not need is not run, and plan() says so: no tubes, no neon pass; no
 // sun, no shadow map; no glass, no transparency pass; no ambient light, no AO.

@@ -8,6 +8,12 @@
 vec3 gbuffer_point(ivec2 p) {
 #ifdef GBUFFER_STORED_POSITION
   return GB_FETCH(gb_position, p, 0).xyz;
+#elif defined(GBUFFER_SAMPLES)
+  // Chapter 10's MSAA: the pixel's centre, where its per-pixel light pass puts the surface
+  // (msaa_surface.glsl: the mean of the samples' depths), so the plane is the one it lights.
+  float depth = 0.0;
+  for (int i = 0; i < GBUFFER_SAMPLES; ++i) depth += GB_FETCH(gb_depth, p, i).r;
+  return reconstruct_position(vec2(p) + 0.5, depth / float(GBUFFER_SAMPLES));
 #else
   return reconstruct_position(vec2(p) + 0.5, GB_FETCH(gb_depth, p, 0).r);
 #endif

@@ -7,10 +7,8 @@
 #include "10_frame/shaders/msaa_surface.glsl"
 #include FRAME_AMBIENT     // chapter 03's hooks/constant_ambient.glsl
 
-struct LocalLight {
-  GpuLight light;
-  vec4 cut;  // x: where chapter 03 cuts the light (its volume's radius)
-};
+// struct LocalLight, shared with msaa.cpp
+#include "10_frame/shaders/msaa_local_light.h"
 layout(std430, binding = 0) readonly buffer Directional { GpuLight directional[]; };
 layout(std430, binding = 1) readonly buffer Locals { LocalLight locals[]; };
 uniform int u_directional_count, u_local_count;
