@@ -2,6 +2,7 @@
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>
+#include <imgui_internal.h>  // the panel's layout, said for tests (ImGuiWindow)
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 #include <nlohmann/json.hpp>
@@ -505,13 +506,21 @@ void App::knob_changed(const Knob& k) {
 
 namespace {
 
-// A tooltip for the item just drawn, wrapped to a readable width.
+std::string tooltip_drawn;  // where this frame's tooltip lies, for the test line (App::panel)
+
+// A tooltip for the item just drawn, wrapped to a readable width, or narrower in a narrow window
+// so that the whole tooltip fits in it.
 void tooltip(const std::string& text) {
   if (text.empty() || !ImGui::IsItemHovered()) return;
   ImGui::BeginTooltip();
-  ImGui::PushTextWrapPos(ImGui::GetFontSize() * 30.f);
+  const float padding = ImGui::GetStyle().WindowPadding.x;  // the wrap is from the tooltip's left edge, text after the padding
+  const float fits = ImGui::GetIO().DisplaySize.x - 2 * kPanelMargin - padding;
+  ImGui::PushTextWrapPos(std::max(ImGui::GetFontSize() * 8.f, std::min(ImGui::GetFontSize() * 30.f, fits)));
   ImGui::TextUnformatted(text.c_str());
   ImGui::PopTextWrapPos();
+  const ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+  tooltip_drawn = "; a tooltip at " + std::to_string(int(at.x)) + "," + std::to_string(int(at.y)) + " size " +
+                  std::to_string(int(size.x)) + "x" + std::to_string(int(size.y));
   ImGui::EndTooltip();
 }
 
@@ -536,6 +545,9 @@ void App::panel(const std::function<void()>& chapter_controls) {
     std::cout << (open ? "panel: opened, the image beside it" : "panel: folded, the image fills the window") << std::endl;
   }
   ImGui::PushItemWidth(ImGui::GetFontSize() * 11.f);
+  ImGui::PushTextWrapPos(0.f);  // every line wraps at the panel's edge instead of being cut off there
+  tooltip_drawn.clear();
+  ImVec4 last_knob;  // the last knob's rectangle, for the test line
   const auto [cpu_text, gpu_text] = frame_times();
   ImGui::TextUnformatted(("frame " + cpu_text).c_str());
   tooltip("CPU: the wall-clock time from one frame to the next, the panel and presenting included.");
@@ -612,14 +624,10 @@ void App::panel(const std::function<void()>& chapter_controls) {
       // Said once the slider is let go, not at every step of the drag.
       if (ImGui::IsItemDeactivatedAfterEdit()) knob_changed(k);
     }
+    last_knob = {ImGui::GetItemRectMin().x, ImGui::GetItemRectMin().y, ImGui::GetItemRectMax().x, ImGui::GetItemRectMax().y};
     tooltip(k.help);
   }
-  if (chapter_controls) {
-    // The chapter's lines wrap at the panel's edge instead of being cut off there.
-    ImGui::PushTextWrapPos(0.f);
-    chapter_controls();
-    ImGui::PopTextWrapPos();
-  }
+  if (chapter_controls) chapter_controls();
   if (!status_.empty() && glfwGetTime() - status_time_ < 10) {
     ImGui::Separator();
     ImGui::TextWrapped("%s", status_.c_str());
@@ -639,7 +647,19 @@ void App::panel(const std::function<void()>& chapter_controls) {
     ImGui::EndTable();
   }
   ImGui::Text("render targets: %.1f MB", metrics_.allocated_bytes() / 1e6);
+  ImGui::PopTextWrapPos();
   ImGui::PopItemWidth();
+  if (slow_frame_ms_ > 0 && !chapter_.cli.knobs.empty()) {
+    // Said for tests of the panel (tests/window_panel.sh): where it is, how far it scrolls, how
+    // far right its widest line reaches against where its text is cut (clipped), where its last
+    // knob is (window pixels) and the tooltip, if one is drawn.
+    const ImGuiWindow* w = ImGui::GetCurrentWindow();
+    std::cerr << "test: panel at " << int(w->Pos.x) << ',' << int(w->Pos.y) << " size " << int(w->Size.x) << 'x'
+              << int(w->Size.y) << ", scrolled " << int(w->Scroll.y) << " of " << int(w->ScrollMax.y) << ", lines reach x "
+              << int(std::ceil(w->DC.CursorMaxPos.x)) << " of " << int(std::ceil(w->InnerClipRect.Max.x)) << "; its last knob --"
+              << chapter_.cli.knobs.back().name << " at " << int(last_knob.x) << ',' << int(last_knob.y) << " to "
+              << int(last_knob.z) << ',' << int(last_knob.w) << tooltip_drawn << std::endl;
+  }
   ImGui::End();
 }
 
@@ -666,7 +686,7 @@ void App::plan_line(const std::string& stage, bool runs, const std::string& why,
     tooltip(stage + (runs ? "" : " (not run: " + why + ")") + "\n--" + k->name + ": " + k->help);
   } else {
     // Not switched here: a bullet, not a box, so it does not look clickable. The name wraps
-    // (the panel's chapter controls set the wrap) instead of running past the panel's edge.
+    // (the panel sets the wrap) instead of running past the panel's edge.
     ImGui::Bullet();
     ImGui::SameLine();
     ImGui::TextUnformatted(stage.c_str());

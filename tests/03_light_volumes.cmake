@@ -80,6 +80,17 @@ set_tests_properties(03_light_volumes.window_panel_folds_at_a_slow_frame_rate PR
 add_test(NAME 03_light_volumes.window_checkbox_at_a_slow_frame_rate
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_click.sh ${P03} 1280x720 27 291 "^panel: --count 0$")
 set_tests_properties(03_light_volumes.window_checkbox_at_a_slow_frame_rate PROPERTIES TIMEOUT 300)
+# The panel scrolls as a whole: in a 640x240 window its last knob (--count) starts below the
+# window; the mouse wheel over the panel brings it inside, and a click there switches it
+# (tests/window_panel.sh, the panel's layout as the program says it at a slow frame rate).
+add_test(NAME 03_light_volumes.window_panel_scrolls_to_its_last_knob
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_panel.sh ${P03} 640x240 scroll)
+set_tests_properties(03_light_volumes.window_panel_scrolls_to_its_last_knob PROPERTIES TIMEOUT 300)
+# In a 320-wide window (a 300-pixel panel) every line of the panel wraps inside it (the
+# chapter's counts, the frame times) and a knob's help, hovered, is a tooltip inside the window.
+add_test(NAME 03_light_volumes.window_narrow_panel_wraps_its_text
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_panel.sh ${P03} 320x480 wrap)
+set_tests_properties(03_light_volumes.window_narrow_panel_wraps_its_text PROPERTIES TIMEOUT 300)
 
 # The chapter's exercises (main.cpp's list; the book's "Exercises"): solutions pass, stubs fail.
 lightpass_exercise_tests(03_light_volumes 3)

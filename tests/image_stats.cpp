@@ -3,6 +3,7 @@
 //   image_stats IMAGE.png [--size WxH] [--background R,G,B] [--mean LO HI] [--lit LO HI]
 //               [--matches REFERENCE.png] [--differs-from OTHER.png MIN_MEAN_STEPS] [--near OTHER.png MAX_MEAN_STEPS]
 //               [--matches-right-of X REFERENCE.png] [--region X Y W H] [--other-at X Y]
+//               [--nearer-than X Y TRUTH.png RATIO]
 //
 // Prints the image's statistics, then checks each one asked for:
 //   --mean LO HI       the mean over every pixel's R, G and B, in 8-bit steps, lies in [LO, HI]
@@ -24,6 +25,11 @@
 //   --other-at X Y     the checks after it take the other image's rectangle from (X, Y) instead:
 //                      a part of a picture moved (a split of two images' middles, a tile of a
 //                      mosaic against the picture at the tile's size)
+//   --nearer-than X Y TRUTH RATIO   on TRUTH's edge pixels (its rectangle's pixels whose 3x3
+//                      neighbourhood spans more than 0.1 of the range in a channel: chapter 11's
+//                      edge_mask), the region's mean difference from TRUTH is at most RATIO times
+//                      that of this image's own rectangle at (X, Y): one half of a split nearer a
+//                      truth than the other half
 // Exit code 0 when every check holds, 1 when one fails or an image cannot be read, 2 for a bad
 // command line.
 #include <cstdio>
@@ -155,6 +161,44 @@ int run(int argc, char** argv) {
       if (r.size_mismatch) fail("not the size of " + value(1));
       else if (differ ? r.mean_error < bound : r.mean_error > bound) fail(std::string(differ ? "too close to " : "too far from ") + value(1));
       i += 2;
+    } else if (a == "--nearer-than") {
+      const int x = static_cast<int>(number(value(1), a.c_str())), y = static_cast<int>(number(value(2), a.c_str()));
+      const double ratio = number(value(4), a.c_str());
+      if (region.w < 0) throw UsageError("--nearer-than needs a --region before it");
+      if (x < 0 || y < 0 || x + region.w > img.width || y + region.h > img.height)
+        throw UsageError("--nearer-than " + value(1) + " " + value(2) + ": the rectangle is not inside the image");
+      const ImageRGBA8 truth = cut_other(load_png(value(3))), near = cut(img), far = cut_at(img, x, y);
+      if (truth.width != near.width || truth.height != near.height) {
+        fail("not the size of " + value(3));
+      } else {
+        double near_sum = 0, far_sum = 0;
+        std::size_t edges = 0;
+        for (int py = 0; py < truth.height; ++py)
+          for (int px = 0; px < truth.width; ++px) {
+            int range = 0;
+            for (int c = 0; c < 3; ++c) {
+              int lo = 255, hi = 0;
+              for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                  const int v = truth.at(std::clamp(px + dx, 0, truth.width - 1), std::clamp(py + dy, 0, truth.height - 1))[c];
+                  lo = std::min(lo, v), hi = std::max(hi, v);
+                }
+              range = std::max(range, hi - lo);
+            }
+            if (range <= 255 / 10) continue;
+            ++edges;
+            for (int c = 0; c < 3; ++c) {
+              near_sum += std::abs(int(near.at(px, py)[c]) - int(truth.at(px, py)[c]));
+              far_sum += std::abs(int(far.at(px, py)[c]) - int(truth.at(px, py)[c]));
+            }
+          }
+        const double near_mean = edges ? near_sum / (3.0 * edges) : 0, far_mean = edges ? far_sum / (3.0 * edges) : 0;
+        std::printf("on %zu edge pixels of %s: %.3f steps from it, the rectangle at %d,%d %.3f (ratio %.3f, at most %s wanted)\n",
+                    edges, value(3).c_str(), near_mean, x, y, far_mean, far_mean > 0 ? near_mean / far_mean : 0.0, value(4).c_str());
+        if (edges == 0) fail(value(3) + " has no edge pixels in the region");
+        else if (near_mean > ratio * far_mean) fail("not nearer " + value(3) + " than the rectangle at " + value(1) + "," + value(2));
+      }
+      i += 4;
     } else if (a == "--region") {
       int v[4];
       for (int k = 0; k < 4; ++k) v[k] = static_cast<int>(number(value(k + 1), "--region"));
@@ -186,7 +230,8 @@ int main(int argc, char** argv) {
   } catch (const UsageError& e) {
     std::fprintf(stderr, "image_stats: %s\nusage: image_stats IMAGE.png [--size WxH] [--background R,G,B] [--mean LO HI] "
                          "[--lit LO HI] [--matches REF.png] [--differs-from OTHER.png MIN_MEAN_STEPS] [--near OTHER.png MAX_MEAN_STEPS] "
-                         "[--matches-right-of X REF.png] [--region X Y W H] [--other-at X Y]\n", e.what());
+                         "[--matches-right-of X REF.png] [--region X Y W H] [--other-at X Y] [--nearer-than X Y TRUTH.png RATIO]\n",
+                 e.what());
     return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "image_stats: %s\n", e.what());

@@ -25,10 +25,11 @@ from plot import Series, plot, read_csv  # noqa: E402
 ROOT = Path(__file__).resolve().parent.parent
 
 # The pictures: (file, program arguments), at 320x180 (llvmpipe draws the walk's 13 frames in seconds).
-# --strip writes <out>_strip.png next to --out.
+# --strip writes <out>_strip.png next to --out. --show image: the program opens on --show split
+# (CliSpec::opening), and the strip is of the image.
 PICTURES = [
     ("11_walk_motion.png", ["--path", "walk", "--at", "12", "--show", "motion"]),
-    ("11_walk.png", ["--path", "walk", "--frames", "13", "--strip", "6"]),
+    ("11_walk.png", ["--path", "walk", "--frames", "13", "--strip", "6", "--show", "image"]),
 ]
 
 

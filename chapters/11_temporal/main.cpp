@@ -6,8 +6,10 @@
 // (camera_path.h) frame by frame, in the window and headless (`--frames N` plays N frames,
 // `--at F` starts at the path's frame F after drawing the frames before it, `--strip K` writes
 // every K-th frame into a strip PNG). `--show motion` draws the motion vectors, `--show
-// rejected` where the history was dropped. `--accumulate 1` (the default) accumulates chapter
-// 08's AO and indirect light over frames too (temporal_gi.h).
+// rejected` where the history was dropped, `--show truth` the supersampled truth TAA tends to.
+// `--accumulate 1` (the default) accumulates chapter 08's AO and indirect light over frames too
+// (temporal_gi.h). The program opens on `--view shop_window --show split`: the middle magnified
+// (--zoom), without AA beside TAA, settled (headless, the frames before the still are drawn first).
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -17,6 +19,7 @@
 #include <imgui.h>
 
 #include "chapters/11_temporal/camera_path.h"
+#include "chapters/11_temporal/measure.h"
 #include "chapters/11_temporal/motion_picture.h"
 #include "chapters/11_temporal/temporal_frame.h"
 #include "common/app.h"
@@ -28,9 +31,12 @@ namespace {
 using namespace lp;
 using namespace lp::ch11;
 
-enum Show { kImage, kMotion, kRejected };
+enum Show { kImage, kMotion, kRejected, kSplit, kTruth };  // --show's order
 constexpr int kMaxStripFrames = 16;
 constexpr float kMotionFullScalePixels = 8.f;  // --show motion: this many pixels a frame is full colour
+// --show split/truth headless on a still view: the TAA frames drawn before the one written (two
+// periods of the jitter; at --alpha 0.1 the first frame keeps 0.9^16 = 19 % of its weight).
+constexpr int kSettleFrames = 16;
 
 const CliSpec kCli{
     .program = "11_temporal",
@@ -51,8 +57,10 @@ const CliSpec kCli{
               {"reject", "drop the history where the surface was hidden last frame (depth test)", 1, 0, 1, true},
               {"alpha", "this frame's weight in the blend", 0.1, 0.01, 1},
               choice_knob("show", "the image; the motion vectors (hue: direction, full colour: 8 pixels a frame); "
-                                  "where the history was dropped (red)",
-                          {"image", "motion", "rejected"}),
+                                  "where the history was dropped (red); the image without AA beside TAA's; the "
+                                  "supersampled truth (16 frames a frame: slow)",
+                          {"image", "motion", "rejected", "split", "truth"}),
+              {"zoom", "--show split and truth: the image's middle magnified ZOOM times, pixels as squares (the edges' steps)", 4, 1, 8, true},
               {"shadows", "the sun's shadow map (chapter 06)", 1, 0, 1, true},
               {"ao", "ambient occlusion (chapters 07, 08)", 1, 0, 1, true},
               {"indirect", "one bounce of indirect light (chapter 08)", 1, 0, 1, true},
@@ -60,7 +68,10 @@ const CliSpec kCli{
                              "a 32-point pattern, turned (off: its 32 samples every frame)", 1, 0, 1, true},
               {"neon", "chapter 04's tubes", 1, 0, 1, true},
               {"glow", "multiplies emissive surfaces (chapter 05)", 8, 0, 10000},
-              choice_knob("bloom", "chapter 05's bloom: off, after tonemapping, or before", {"off", "after", "before"}, 2)}};
+              choice_knob("bloom", "chapter 05's bloom: off, after tonemapping, or before", {"off", "after", "before"}, 2)},
+    // The chapter's subject is an edge without its steps: it opens on the shop's shelf of
+    // bottles, magnified, without AA beside TAA.
+    .opening = {"--view", "shop_window", "--show", "split"}};
 
 int path_index(const char* name) {
   const std::vector<std::string> names = path_names();
@@ -68,13 +79,14 @@ int path_index(const char* name) {
 }
 
 // The references: the first frame (one jittered frame), and the walk after a dozen frames with
-// TAA, without, and where its history was dropped.
+// TAA, without, and where its history was dropped; the opening (the README's picture).
 std::vector<Shot> shots(const char* view) {
   const double walk = path_index("walk");
   return {{view, "whole", {}},
           {view, "whole", {{"path", walk}, {"at", 12}}},
           {view, "whole", {{"path", walk}, {"at", 12}, {"taa", 0}}},
-          {view, "whole", {{"path", walk}, {"at", 12}, {"show", kRejected}}}};
+          {view, "whole", {{"path", walk}, {"at", 12}, {"show", kRejected}}},
+          {"shop_window", "whole", {{"show", kSplit}}}};
 }
 
 // The exercises (the book's "Exercises"): the motion vector and two steps of the resolve, each
@@ -140,6 +152,34 @@ void mark_rejected(GLuint rejected, GLuint target, int w, int h) {
   put_picture(image, target);
 }
 
+// --zoom: the picture's middle magnified `zoom` times, each pixel a square.
+ImageRGBA8 magnified(const ImageRGBA8& image, int zoom) {
+  if (zoom <= 1) return image;
+  ImageRGBA8 out = image;
+  const int w = image.width, h = image.height;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const int sx = std::clamp(w / 2 + int(std::floor(double(x - w / 2) / zoom)), 0, w - 1);
+      const int sy = std::clamp(h / 2 + int(std::floor(double(y - h / 2) / zoom)), 0, h - 1);
+      std::copy_n(image.at(sx, sy), 4, out.at(x, y));
+    }
+  return out;
+}
+
+// --show split: the middle halves of the image without AA and with TAA side by side, captioned.
+ImageRGBA8 split_picture(const ImageRGBA8& plain, const ImageRGBA8& taa, int zoom) {
+  ImageRGBA8 out = plain;
+  const int w = plain.width, half = w / 2, from = w / 4;
+  for (int y = 0; y < plain.height; ++y) {
+    std::copy_n(plain.at(from, y), std::size_t(half) * 4, out.at(0, y));
+    std::copy_n(taa.at(from, y), std::size_t(w - half) * 4, out.at(half, y));
+  }
+  const std::string times = zoom > 1 ? ", x" + std::to_string(zoom) : "";
+  draw_label(out, 2, 2, "no AA" + times);
+  draw_label(out, half + 2, 2, "TAA" + times);
+  return out;
+}
+
 std::string strip_path(const Options& o, const std::string& program) {
   std::filesystem::path out = o.out.empty() ? std::filesystem::path(default_output(program + ".png")) : std::filesystem::path(o.out);
   return (out.parent_path() / (out.stem().string() + "_strip.png")).string();
@@ -151,6 +191,8 @@ int main(int argc, char** argv) {
   return run_chapter(argc, argv, kChapter, [](App& app) {
     // 1. Chapter 10's whole frame with this chapter's two stages: motion and TAA.
     TemporalFrame frame(app.scene_gpu());
+    std::unique_ptr<TemporalFrame> plain;   // --show split: the frame without AA; --show truth: the still frames
+    std::unique_ptr<OutputTarget> plain_target;
     int path_frame = 0;            // the next frame of the path to draw
     std::vector<ImageRGBA8> strip; // --strip: the frames kept, left to right
     bool strip_full = false;
@@ -162,9 +204,17 @@ int main(int argc, char** argv) {
       const ch03::FrameOutput output{f.target, f.width, f.height};
       const std::string& path_name = f.choice("path");
       const int strip_every = f.knob_int("strip");
+      const int show = f.knob_int("show");
+      const bool taa = s.taa.enabled;
+      if ((show == kSplit || show == kTruth) && !plain) plain = std::make_unique<TemporalFrame>(app.scene_gpu());
+      FrameCamera shown = f.camera;  // the camera of the frame shown
+      bool shown_cut = f.new_shot;
       // 2. The camera: the path's frame (and whether it cuts), or the view / fly camera.
       if (path_name == "off") {
-        frame.render(f.camera, output, s, f.dt, f.new_shot, &app.metrics());
+        // Headless, the split is of TAA settled: the frames before the still drawn first.
+        const bool settle = show == kSplit && taa && f.new_shot && !app.context().is_window();
+        for (int k = 0; settle && k < kSettleFrames; ++k) frame.render(f.camera, output, s, f.dt, k == 0);
+        frame.render(f.camera, output, s, f.dt, f.new_shot && !settle, &app.metrics());
       } else {
         const CameraPath& path = path_named(app.options().scene, path_name);
         auto camera_at = [&](int i) {
@@ -185,19 +235,41 @@ int main(int argc, char** argv) {
           path_frame = at;
         }
         const int i = path_frame % path.frames();  // the window plays it again and again
-        frame.render(camera_at(i), output, s, 1.f / path.fps, path.cut_at(i) || (i == 0 && !f.new_shot), &app.metrics());
+        shown = camera_at(i);
+        shown_cut = path.cut_at(i) || (i == 0 && !f.new_shot);
+        frame.render(shown, output, s, 1.f / path.fps, shown_cut, &app.metrics());
         keep(i);
         if (std::ostream& out = app.report())
           out << "path " << path.name << ": frame " << i << " of " << path.frames() << " (" << path.fps << " fps)"
               << (path.cut_at(i) ? ", a cut" : "") << '\n';
         ++path_frame;
       }
-      // 3. The pictures: the motion vectors, or where the history was dropped.
-      const int show = f.knob_int("show");
-      const bool taa = s.taa.enabled;
+      // 3. The pictures: the motion vectors, where the history was dropped, the image without AA
+      // beside TAA's, or the truth; these two magnified by --zoom.
       if (show == kMotion && taa) put_picture(read_motion_picture(frame.motion().current(), f.width, f.height), f.target);
       if (show == kRejected && taa) mark_rejected(frame.taa().rejected(), f.target, f.width, f.height);
-      if (show != kImage && !taa) app.report() << "note: --show " << f.choice("show") << " needs --taa 1\n";
+      if ((show == kMotion || show == kRejected || show == kSplit) && !taa)
+        app.report() << "note: --show " << f.choice("show") << " needs --taa 1\n";
+      const int zoom = f.knob_int("zoom");
+      if (show == kSplit && taa) {
+        if (!plain_target || plain_target->width() != f.width || plain_target->height() != f.height)
+          plain_target = std::make_unique<OutputTarget>(f.width, f.height);
+        TemporalSettings none = s;
+        none.taa.enabled = false;
+        plain->render(shown, {plain_target->framebuffer(), f.width, f.height}, none, f.dt, shown_cut);
+        put_picture(split_picture(magnified(read_framebuffer(plain_target->framebuffer(), f.width, f.height), zoom),
+                                  magnified(read_framebuffer(f.target, f.width, f.height), zoom), zoom),
+                    f.target);
+      } else if (show == kTruth) {
+        const ImageF truth = encode_srgb(supersampled(*plain, shown, f.width, f.height, s));
+        ImageRGBA8 img = ImageRGBA8::blank(f.width, f.height);
+        for (int y = 0; y < f.height; ++y)
+          for (int x = 0; x < f.width; ++x) {
+            for (int c = 0; c < 3; ++c) img.at(x, y)[c] = std::uint8_t(std::lround(255.f * truth.at(x, y, c)));
+            img.at(x, y)[3] = 255;
+          }
+        put_picture(magnified(img, zoom), f.target);
+      }
       app.metrics().set_allocation("the whole frame's targets (chapter 10)", frame.whole().allocated_bytes());
       app.metrics().set_allocation("motion RGBA32F x 2 + history RGBA16F x 2 + rejected R8 + AO/indirect RGBA32F + R32F x 2",
                                    frame.allocated_bytes() - frame.whole().allocated_bytes());
