@@ -7,7 +7,7 @@
               sides meet at an apex p behind the eye, mapped onto the square map by a projective warp.
               Its rows are the pre-images of v = i / N, dense near the eye and sparse far away; its
               columns fan out from the apex. The apex is placed by TSM's 80 % rule: the first quarter of
-              the depth (the focus region) takes 80 % of the rows.
+              the depth (the focus region, its end dashed in both panels) takes 80 % of the rows.
 """
 import math
 from pathlib import Path
@@ -77,6 +77,11 @@ def warp_figure(out: Path):
                 u = -1 + 2 * j / CELLS
                 s.line(P(NEAR, u * slope * (NEAR + p)), P(FAR, u * w), RAY, 1)
             s.poly([P(NEAR, slope * (NEAR + p)), P(FAR, w), P(FAR, -w), P(NEAR, -slope * (NEAR + p))], BAD, 1.5)
+        # The focus region's end: a quarter of the depth, and the share of the rows before it.
+        focus = NEAR + FOCUS * (FAR - NEAR)
+        s.line(P(focus, w), P(focus, -w), BAD, 1.5, dash="5 3")
+        share = FOCUS if i == 0 else warp_v(focus, p)
+        s.text((P(focus, 0)[0], 84), f"{share * 100:.0f} % of the rows before this line", BAD, 10, "start")
         s.text((P(NEAR, 0)[0], oy + w * k + 22), "near", INK, 11, "middle")
         s.text((P(FAR, 0)[0], oy + w * k + 22), "far", INK, 11, "middle")
     # What each spends where: texels per metre along the view, near edge over far edge.
