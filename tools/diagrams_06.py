@@ -20,6 +20,8 @@
                       sees, along the light the whole scene's depth (a caster above the view)
 06_cube.svg           a point light's cube map in section (diagrams_06_cube.py)
 06_csm.svg            the shadow test's step and its Fourier series by terms (diagrams_06_csm.py)
+06_warp.svg           the eye's frustum seen from the light: a uniform map's texels against a trapezoidal
+                      map's warped ones (diagrams_06_warp.py)
 """
 import math
 import sys
@@ -29,6 +31,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from svgdraw import BAD, GOOD, GREY, INK, LIGHT, PALE, RAY, Svg, add  # noqa: E402
 from diagrams_06_csm import csm_figure  # noqa: E402
 from diagrams_06_cube import cube_figure  # noqa: E402
+from diagrams_06_warp import warp_figure  # noqa: E402
 
 DARK = "#444"
 
@@ -430,6 +433,7 @@ def main(out: Path):
     moments_figure(out)
     cube_figure(out)
     csm_figure(out)
+    warp_figure(out)
 
 
 if __name__ == "__main__":
