@@ -195,7 +195,7 @@ int main(int argc, char** argv) {
       if (show == kRejected && taa) mark_rejected(frame.taa().rejected(), f.target, f.width, f.height);
       if (show != kImage && !taa) app.report() << "note: --show " << f.choice("show") << " needs --taa 1\n";
       app.metrics().set_allocation("the whole frame's targets (chapter 10)", frame.whole().allocated_bytes());
-      app.metrics().set_allocation("motion RGBA32F x 2 + history RGBA16F x 2 + rejected R8", frame.allocated_bytes() - frame.whole().allocated_bytes());
+      app.metrics().set_allocation("motion RGBA32F x 2 + history RGBA16F x 2 + rejected R8 + box RGBA16F x 4", frame.allocated_bytes() - frame.whole().allocated_bytes());
       if (std::ostream& out = app.report())
         out << "jitter (" << frame.last_jitter().x << ", " << frame.last_jitter().y << ") px, TAA " << (taa ? "on" : "off") << '\n';
       app.panel([&] {
