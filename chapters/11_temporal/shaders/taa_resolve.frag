@@ -153,12 +153,13 @@ void main() {
   // 3x3 holds none of it, and a clip to that box alone erases it from the history. Where the
   // surface is still, the box also holds what the last frames' boxes held around this point,
   // each frame keeping u_box_keep of that widening (what a light that changed left behind
-  // fades within a few frames); a surface moving a pixel a frame or more uses this frame's
-  // box alone, as its history is resampled anyway.
+  // fades within a few frames). The memory spans about 1 / (1 - u_box_keep) frames: it is this
+  // pixel's only while the surface moves less than a pixel in that time, and fades out as it
+  // moves more.
   vec3 own_lo = lo, own_hi = hi;
   if (!rejected && u_box_keep > 0.0) {
     ivec2 t = clamp(ivec2(uv_then * vec2(size)), ivec2(0), size - 1);  // the texel the point was in
-    float still = 1.0 - clamp(moved, 0.0, 1.0);
+    float still = 1.0 - clamp(moved / (1.0 - u_box_keep), 0.0, 1.0);
     lo = min(lo, mix(lo, texelFetch(u_box_lo, t, 0).xyz, still));
     hi = max(hi, mix(hi, texelFetch(u_box_hi, t, 0).xyz, still));
   }
