@@ -19,6 +19,7 @@
 #include "common/paths.h"
 #include "common/target.h"
 #include "tests/unit/gl_environment.h"
+#include "tests/unit/pixel_scene.h"
 
 using namespace lp;
 using namespace lp::ch11;
@@ -502,25 +503,11 @@ TEST(TemporalGl, TemporalAoRefusesSettingsItCannotUse) {
 // by nothing but their own emission (chapter 10's stages off), so a pixel's displayed value is
 // its emission's share alone.
 namespace {
-void add_rect(Scene& s, int material, glm::vec2 lo, glm::vec2 hi, float z) {
-  const auto first_vertex = static_cast<std::uint32_t>(s.vertices.size());
-  for (glm::vec2 c : {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)})
-    s.vertices.push_back(Vertex{glm::vec3(c.x, c.y, 0), glm::vec3(0, 0, 1), c, glm::vec4(1, 0, 0, 1)});
-  const auto first_index = static_cast<std::uint32_t>(s.indices.size());
-  for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) s.indices.push_back(first_vertex + i);
-  s.meshes.push_back(Mesh{"rect", {Primitive{first_index, 6, material}}});
-  glm::mat4 m = glm::translate(glm::mat4(1), glm::vec3(lo, z));
-  m = glm::scale(m, glm::vec3(hi - lo, 1));
-  s.instances.push_back(Instance{"rect " + std::to_string(s.instances.size()), int(s.meshes.size()) - 1, m, {}});
-}
+using lp::test::pixel_camera;
 
-FrameCamera pixel_camera(int w, int h) {
-  FrameCamera c;
-  c.position = glm::vec3(0, 0, 1000);
-  c.view = glm::lookAt(c.position, glm::vec3(0, 0, 0), glm::vec3(0, 1, 0));
-  c.projection = glm::ortho(0.f, float(w), 0.f, float(h), 900.f, 1100.f);
-  c.znear = 900, c.zfar = 1100, c.aspect = float(w) / float(h);
-  return c;
+// A rectangle facing the camera, lo..hi in world units, at depth z.
+void add_rect(Scene& s, int material, glm::vec2 lo, glm::vec2 hi, float z) {
+  lp::test::add_unit_quad(s, material, glm::scale(glm::translate(glm::mat4(1), glm::vec3(lo, z)), glm::vec3(hi - lo, 1)));
 }
 
 Material emitter(const char* name, float emission) {
