@@ -10,7 +10,8 @@ size; a GPU's file without the suffix once measured there):
 
 11_path_<scene>_<path>_<tag>.svg          the error of each frame along the path, no AA against TAA,
                                           on edges (solid) and over the whole image (dashed)
-11_path_<scene>_<path>_variants_<tag>.svg the edge error of TAA with each of its parts switched off
+11_path_<scene>_<path>_variants_<tag>.svg the edge error of TAA with each of its parts switched off (the
+                                          variants that hold the exposure measure flicker, not this)
 11_convergence_<scene>_<path>_<tag>.svg   the error on pixels disoccluded k frames ago, against k
 11_gi_<scene>_<path>_<tag>.svg            chapter 08's indirect light along the path against its
                                           screen-limited truth: 4 samples a frame, 4 accumulated, 32
@@ -46,7 +47,7 @@ def path_plots(d: Path, csv: Path, stem: str, tag: str, where: str):
     plot(d / f"{stem}_{tag}.svg", f"Error against the supersampled truth along the path ({where})", note, main,
          "frame of the path (30 a second)", "mean |image − truth| (sRGB, 0..1)")
     plot(d / f"{stem}_variants_{tag}.svg", f"Edge error of TAA with one part switched off ({where})", note,
-         [series(rows, m, "edge_error", m, dashed=(m not in ("no AA", "TAA"))) for m in methods],
+         [series(rows, m, "edge_error", m, dashed=(m not in ("no AA", "TAA"))) for m in methods if "exposure held" not in m],
          "frame of the path (30 a second)", "mean |image − truth| on edges (sRGB, 0..1)")
 
 

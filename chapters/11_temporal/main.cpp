@@ -271,7 +271,7 @@ int main(int argc, char** argv) {
         put_picture(magnified(img, zoom), f.target);
       }
       app.metrics().set_allocation("the whole frame's targets (chapter 10)", frame.whole().allocated_bytes());
-      app.metrics().set_allocation("motion RGBA32F x 2 + history RGBA16F x 2 + rejected R8 + AO/indirect RGBA32F + R32F x 2",
+      app.metrics().set_allocation("motion RGBA32F x 2 + history RGBA16F x 2 + rejected R8 + box RGBA16F x 4 + AO/indirect RGBA32F + R32F x 2",
                                    frame.allocated_bytes() - frame.whole().allocated_bytes());
       if (std::ostream& out = app.report())
         out << "jitter (" << frame.last_jitter().x << ", " << frame.last_jitter().y << ") px, TAA " << (taa ? "on" : "off") << '\n';

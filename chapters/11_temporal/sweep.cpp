@@ -88,10 +88,18 @@ std::vector<Variant> variants() {
   v.back().settings.taa.unjitter = false;
   v.push_back({"TAA, extremes' box", base});
   v.back().settings.taa.gamma = 0.f;
+  v.push_back({"TAA, this frame's box alone", base});  // no remembered box (thin geometry, hard cases)
+  v.back().settings.taa.box_memory = 0;
   v.push_back({"TAA, one weight", base});
   v.back().settings.taa.alpha_moving = base.taa.alpha;
   v.push_back({"this frame rebuilt, no history", base});  // what the history adds, over the rebuilt pixel
   v.back().settings.taa.alpha = v.back().settings.taa.alpha_moving = 1.f;
+  // The eye adapted on the path's first frame and held there: flicker without chapter 05's
+  // exposure following each frame (the truths, each a new shot, adapt as before).
+  v.push_back({"no AA, exposure held", v[0].settings});
+  v.back().settings.whole.hdr.adaptation.tau = 1e9f;
+  v.push_back({"TAA, exposure held", base});
+  v.back().settings.whole.hdr.adaptation.tau = 1e9f;
   return v;
 }
 // [/variants]

@@ -19,11 +19,15 @@ void TaaStage::resize(int width, int height) {
   rejected_ = gl::make_texture_2d(GL_R8, width, height);
   for (int i = 0; i < 2; ++i) {
     history_[i] = gl::make_texture_2d(GL_RGBA16F, width, height);
+    box_lo_[i] = gl::make_texture_2d(GL_RGBA16F, width, height);
+    box_hi_[i] = gl::make_texture_2d(GL_RGBA16F, width, height);
     fbo_[i] = gl::Framebuffer();
     glNamedFramebufferTexture(fbo_[i].id(), GL_COLOR_ATTACHMENT0, history_[i].id(), 0);
     glNamedFramebufferTexture(fbo_[i].id(), GL_COLOR_ATTACHMENT1, rejected_.id(), 0);
-    const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glNamedFramebufferDrawBuffers(fbo_[i].id(), 2, both);
+    glNamedFramebufferTexture(fbo_[i].id(), GL_COLOR_ATTACHMENT2, box_lo_[i].id(), 0);
+    glNamedFramebufferTexture(fbo_[i].id(), GL_COLOR_ATTACHMENT3, box_hi_[i].id(), 0);
+    const GLenum all[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
+    glNamedFramebufferDrawBuffers(fbo_[i].id(), 4, all);
   }
   reset_ = true;
 }
@@ -57,6 +61,8 @@ void TaaStage::after_composite(ch03::DeferredFrame& frame, PassMetrics* metrics)
   glBindSampler(1, bilinear_.id());
   glBindTextureUnit(2, motion_.current());
   glBindTextureUnit(3, reset ? motion_.current() : motion_.previous());
+  glBindTextureUnit(4, box_lo_[cur_].id());
+  glBindTextureUnit(5, box_hi_[cur_].id());
   resolve_.use();
   resolve_.set("u_alpha", settings_.alpha);
   resolve_.set("u_filter", int(settings_.filter));
@@ -72,6 +78,7 @@ void TaaStage::after_composite(ch03::DeferredFrame& frame, PassMetrics* metrics)
   resolve_.set("u_unjitter", int(settings_.unjitter));
   resolve_.set("u_gamma", settings_.gamma);
   resolve_.set("u_alpha_moving", settings_.alpha_moving);
+  resolve_.set("u_box_keep", settings_.box_memory > 0 ? 1.f - 1.f / float(settings_.box_memory) : 0.f);
   glBindVertexArray(empty_.id());
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glBindSampler(1, 0);

@@ -30,6 +30,7 @@ struct TaaSettings {
   bool unjitter = true;                              // this frame's pixel rebuilt at its centre from the 3x3's jittered samples
   float gamma = 1.f;                                 // > 0: variance clip, the box mean +- gamma sigma; 0: the extremes
   float alpha_moving = 0.5f;                         // this frame's weight where the surface moves a pixel a frame or more
+  int box_memory = 8;                                // frames: a still surface's box keeps the last frames' (1 - 1/N a frame); 0: this frame's alone
 };
 // [/taa-settings]
 
@@ -48,10 +49,13 @@ class TaaStage : public ch03::FrameStage {
 
   void after_composite(ch03::DeferredFrame& frame, PassMetrics* metrics) override;
 
-  // After render(): the resolved radiance (RGBA16F) and where its history was dropped (R8: 1).
+  // After render(): the resolved radiance (RGBA16F), where its history was dropped (R8: 1) and
+  // the remembered box's corners (RGBA16F, the clip's space).
   GLuint history() const { return history_[cur_].id(); }
   GLuint rejected() const { return rejected_.id(); }
-  std::size_t allocated_bytes() const { return std::size_t(width_) * height_ * (8 * 2 + 1); }
+  GLuint box_lo() const { return box_lo_[cur_].id(); }
+  GLuint box_hi() const { return box_hi_[cur_].id(); }
+  std::size_t allocated_bytes() const { return std::size_t(width_) * height_ * (8 * 2 + 8 * 4 + 1); }
 
  private:
   void resize(int width, int height);
@@ -62,6 +66,8 @@ class TaaStage : public ch03::FrameStage {
   glm::vec2 jitter_{0};
   bool reset_ = true;
   gl::Texture history_[2] = {gl::Texture(GL_TEXTURE_2D), gl::Texture(GL_TEXTURE_2D)}, rejected_{GL_TEXTURE_2D};  // sized by resize()
+  gl::Texture box_lo_[2] = {gl::Texture(GL_TEXTURE_2D), gl::Texture(GL_TEXTURE_2D)};
+  gl::Texture box_hi_[2] = {gl::Texture(GL_TEXTURE_2D), gl::Texture(GL_TEXTURE_2D)};
   gl::Framebuffer fbo_[2];
   gl::Sampler bilinear_;
   gl::VertexArray empty_;

@@ -20,10 +20,12 @@
 #include "common/target.h"
 #include "tests/unit/book_data.h"
 #include "tests/unit/gl_environment.h"
+#include "tests/unit/pixel_scene.h"
 
 using namespace lp;
 using namespace lp::ch10;
 using lp::test::book_row;
+using lp::test::pixel_camera;
 
 namespace {
 
@@ -64,30 +66,15 @@ constexpr LightMode kLightModes[] = {{MsaaLights::Volumes, "volumes", kW, kH},
 
 // [known-scene]
 // Quads facing the camera under an orthographic camera whose world units are pixels
-// (x 0..w, y 0..h), seen from 1000 units away: an edge placed at x = k + 0.5 runs through
-// the centres of column k, one at an integer x between two columns.
+// (x 0..w, y 0..h), seen from 1000 units away (tests/unit/pixel_scene.h): an edge placed
+// at x = k + 0.5 runs through the centres of column k, one at an integer x between two columns.
 void add_quad(Scene& s, int material, float x0, float x1, float tilt_degrees = 0) {
-  const auto first_vertex = static_cast<std::uint32_t>(s.vertices.size());
-  for (glm::vec2 c : {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)})
-    s.vertices.push_back(Vertex{glm::vec3(c.x, c.y, 0), glm::vec3(0, 0, 1), c, glm::vec4(1, 0, 0, 1)});
-  const auto first_index = static_cast<std::uint32_t>(s.indices.size());
-  for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) s.indices.push_back(first_vertex + i);
-  s.meshes.push_back(Mesh{"quad", {Primitive{first_index, 6, material}}});
   // Hinged at x0 and turned about the vertical axis, its far end still at x1 on screen.
   const float t = glm::radians(tilt_degrees), width = (x1 - x0) / std::cos(t);
   glm::mat4 m = glm::translate(glm::mat4(1), glm::vec3(x0, -50, 0));
   m = glm::rotate(m, t, glm::vec3(0, 1, 0));
   m = glm::scale(m, glm::vec3(width, 300, 1));
-  s.instances.push_back(Instance{"quad " + std::to_string(s.instances.size()), int(s.meshes.size()) - 1, m, {}});
-}
-
-FrameCamera pixel_camera(int w, int h) {
-  FrameCamera c;
-  c.position = glm::vec3(0, 0, 1000);
-  c.view = glm::lookAt(c.position, glm::vec3(0, 0, 0), glm::vec3(0, 1, 0));
-  c.projection = glm::ortho(0.f, float(w), 0.f, float(h), 900.f, 1100.f);
-  c.znear = 900, c.zfar = 1100, c.aspect = float(w) / float(h);
-  return c;
+  lp::test::add_unit_quad(s, material, m);
 }
 // [/known-scene]
 

@@ -19,6 +19,7 @@
 #include "common/paths.h"
 #include "common/target.h"
 #include "tests/unit/gl_environment.h"
+#include "tests/unit/pixel_scene.h"
 
 using namespace lp;
 using namespace lp::ch11;
@@ -687,4 +688,228 @@ TEST(TemporalGl, AccumulatedIndirectLightIsNearerTheTruthThanTheFrameAloneAtEqua
     std::printf("\n");
   }
   EXPECT_LT(t, a);
+
+// Hard cases on scenes whose geometry is known to the pixel: quads facing an orthographic
+// camera whose world units are pixels (x 0..w, y 0..h, y up), seen from 1000 units away, lit
+// by nothing but their own emission (chapter 10's stages off), so a pixel's displayed value is
+// its emission's share alone.
+namespace {
+using lp::test::pixel_camera;
+
+// A rectangle facing the camera, lo..hi in world units, at depth z.
+void add_rect(Scene& s, int material, glm::vec2 lo, glm::vec2 hi, float z) {
+  lp::test::add_unit_quad(s, material, glm::scale(glm::translate(glm::mat4(1), glm::vec3(lo, z)), glm::vec3(hi - lo, 1)));
+}
+
+Material emitter(const char* name, float emission) {
+  return Material{.name = name, .base_color = glm::vec4(0, 0, 0, 1), .emissive = glm::vec3(emission)};
+}
+
+// Only the emission: no shadows, AO, indirect light or tubes (the scene has none to draw).
+TemporalSettings emission_alone() {
+  TemporalSettings s = defaults();
+  s.whole.shadows = s.whole.ao = s.whole.indirect = s.whole.neon = false;
+  return s;
+}
+
+// The sRGB-encoded value's half step (1/510) as a linear value at v: how far the 8-bit output
+// can move a displayed value read back at v.
+double half_step_linear(double v) {
+  const double e = linear_to_srgb(float(std::clamp(v, 0.0, 1.0)));
+  return std::max(std::abs(srgb_to_linear(float(std::min(1.0, e + 0.5 / 255.0))) - v),
+                  std::abs(v - srgb_to_linear(float(std::max(0.0, e - 0.5 / 255.0)))));
+}
+}  // namespace
+
+// A hard case: thin geometry. A dark pole half a pixel wide (x = 80.25 .. 80.75, the middle
+// half of column 80) in front of a bright wall, on a still camera. The jitter's sample lands in
+// the pole in 4 of every 8 frames (the offsets with |x| < 1/4); in the other 4 this frame's 3x3
+// is all wall, and a clip to that box alone pulled the history back to the wall: the pole
+// faded away (its coverage measured 0 against the truth's half). The pole's coverage in a row
+// is the sum over columns 79..81 of (wall - pixel) / (wall - pole), displayed values in linear
+// light (grey emitters under chapter 05's Reinhard, which is the resolve's own compression for
+// grey: a blend of its values is a blend of displayed values). The rebuilt pixel's Gaussian
+// weights sum to 1 over each 3x3, so over the three columns this frame's share is exactly 1
+// where the sample hit the pole and 0 where it missed; the blend is then an exponential average
+// of 1s and 0s whose mean over one period of the jitter is the period's share of hits, 1/2, as
+// the truth's 2 of 4 columns of its grid, once the first frame has faded (0.9^32 of its weight
+// left at frame 32). Allowed: that 0.9^32; the 8-bit output's half step at each value read, for
+// both; and 0.01 for the eye, whose exposure moves with the pole's coverage (20 pixels of
+// log 16 over 14 400: 0.4 % a frame).
+TEST(TemporalGl, AHalfPixelPoleKeepsItsCoverageOnAStillCamera) {
+  constexpr int w = 160, h = 90, column = 80, first = 32, period = 8;
+  int hits = 0;
+  for (int i = 0; i < period; ++i) {
+    const float x = jitter_offset(unsigned(i), period).x;
+    ASSERT_NE(std::abs(x), 0.25f);  // no sample on the pole's edge
+    hits += std::abs(x) < 0.25f;
+  }
+  ASSERT_EQ(hits, period / 2);  // the pole's share of the jitter's samples is its width
+  Scene s;
+  s.path = "a thin pole (test)";
+  s.materials = {emitter("wall", 1.f), emitter("pole", 1.f / 16.f)};
+  add_rect(s, 0, {0, 0}, {w, h}, 0);
+  add_rect(s, 1, {column + 0.25f, 35}, {column + 0.75f, 55}, 10);  // rows 35..54
+  add_rect(s, 1, {8, 8}, {16, 16}, 10);                            // a patch of the pole's material
+  const SceneGpu gpu(s);
+  const FrameCamera camera = pixel_camera(w, h);
+  const TemporalSettings settings = emission_alone();
+  // The pole's mean coverage over rows 37..52 (a row off each end: the rebuild reaches a row),
+  // and how far the 8-bit output may move it.
+  auto coverage = [&](const ImageF& d, double* bound) {
+    const double wall = d.at(120, 45, 1), pole = d.at(12, h - 12, 1), contrast = wall - pole;
+    double sum = 0, q = 0;
+    for (int y = 37; y <= 52; ++y)
+      for (int x = column - 1; x <= column + 1; ++x) {
+        sum += (wall - d.at(x, y, 1)) / contrast;
+        q += (half_step_linear(d.at(x, y, 1)) + half_step_linear(wall)) / contrast;
+      }
+    const double k = sum / 16.0;
+    *bound = q / 16.0 + k * (half_step_linear(wall) + half_step_linear(pole)) / contrast;
+    return k;
+  };
+  TemporalFrame frame(gpu), truth_frame(gpu);
+  OutputTarget target(w, h);
+  double taa = 0, taa_bound = 0;
+  for (int i = 0; i < first + period; ++i) {
+    frame.render(camera, {target.framebuffer(), w, h}, settings, 1.f / 30.f, i == 0);
+    if (i < first) continue;
+    double b = 0;
+    taa += coverage(read_linear(target.framebuffer(), w, h), &b) / period;
+    taa_bound = std::max(taa_bound, b);
+  }
+  TemporalSettings plain = settings;
+  plain.taa.enabled = false;
+  double truth_bound = 0;
+  const double truth = coverage(supersampled(truth_frame, camera, w, h, plain), &truth_bound);
+  const double allowed = std::pow(0.9, first) + taa_bound + truth_bound + 0.01;
+  std::printf("half-pixel pole: coverage with TAA %.4f, truth %.4f (allowed %.4f)\n", taa, truth, allowed);
+  EXPECT_NEAR(truth, 0.5, truth_bound + 0.01);  // the truth sees the pole's width (its 16 frames each adapt the eye)
+  EXPECT_NEAR(taa, truth, allowed);
+  EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+}
+
+// A hard case: a bright light moving into view. A square emitting 1000 times the wall's light
+// (8000 after chapter 05's glow) enters from the right edge as the camera slides right by 0.3
+// pixels a frame (the history read between texels every frame, this frame weighing 0.22), and
+// is in view for the last 52 of 60 frames, having crossed 18 pixels of wall. Two things are asked of the HDR history:
+// * On the light's edges (pixels the truth shows part lit: 2 % to 98 % of the way from the
+//   wall to the light) TAA is nearer the truth than no AA. A blend in linear radiance fails
+//   here: one jittered sample of the light outweighs every frame of wall in the history, the
+//   edge stays white while the truth is part wall (a firefly smeared over frames); the blend
+//   on compressed values averages what is displayed, as the truth does.
+// * No trail: on the wall two or more pixels from anything the light lights in the truth, along
+//   the strip it crossed, TAA is the truth within 2 steps of the 8-bit output. There this
+//   frame's 3x3 is all wall, the history is clipped into its box (its slack 1/1024 of the
+//   box), and the result is wall: a step for the slack and the clip, a step for the output's
+//   rounding of each.
+TEST(TemporalGl, ABrightLightMovingIntoViewLeavesNoTrail) {
+  constexpr int w = 160, h = 90, frames = 60;
+  constexpr float speed = 0.3f;
+  Scene s;
+  s.path = "a bright light moving into view (test)";
+  s.materials = {emitter("wall", 1.f), emitter("light", 1000.f)};
+  add_rect(s, 0, {-100, -100}, {400, 200}, 0);
+  const glm::vec2 light_lo(162.3f, 40.3f), light_hi(166.9f, 44.9f);
+  add_rect(s, 1, light_lo, light_hi, 10);
+  const SceneGpu gpu(s);
+  auto camera_at = [&](int i) {
+    FrameCamera c = pixel_camera(w, h);
+    c.position.x = speed * float(i);
+    c.view = glm::lookAt(c.position, c.position - glm::vec3(0, 0, 1000), glm::vec3(0, 1, 0));
+    return c;
+  };
+  const TemporalSettings settings = emission_alone();
+  TemporalFrame frame(gpu), plain(gpu), truth_frame(gpu);
+  OutputTarget target(w, h);
+  for (int i = 0; i < frames; ++i) frame.render(camera_at(i), {target.framebuffer(), w, h}, settings, 1.f / 30.f, i == 0);
+  const ImageF taa = read_linear(target.framebuffer(), w, h);
+  TemporalSettings off = settings;
+  off.taa.enabled = false;
+  plain.render(camera_at(frames - 1), {target.framebuffer(), w, h}, off, 1.f / 30.f, true);
+  const ImageF no_aa = read_linear(target.framebuffer(), w, h);
+  const ImageF truth = supersampled(truth_frame, camera_at(frames - 1), w, h, off);
+  // Where the light is in the truth: the share of the way from the wall to the light.
+  const double wall = truth.at(20, 45, 1);
+  double light = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) light = std::max(light, double(truth.at(x, y, 1)));
+  auto share = [&](int x, int y) { return (truth.at(std::clamp(x, 0, w - 1), std::clamp(y, 0, h - 1), 1) - wall) / (light - wall); };
+  double taa_edge = 0, plain_edge = 0, worst_trail = 0;
+  int edge = 0, trail = 0;
+  const int x_light = int(std::floor(light_lo.x - speed * float(frames - 1)));  // its left end on screen now
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const double t = share(x, y);
+      if (t > 0.02 && t < 0.98) {
+        ++edge;
+        for (int c = 0; c < 3; ++c) {
+          taa_edge += std::abs(taa.at(x, y, c) - truth.at(x, y, c)) / 3.0;
+          plain_edge += std::abs(no_aa.at(x, y, c) - truth.at(x, y, c)) / 3.0;
+        }
+      }
+      bool near = false;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) near = near || share(x + dx, y + dy) > 0.002;
+      const bool crossed = x > x_light && y >= int(h - light_hi.y) - 1 && y <= int(h - light_lo.y) + 1;
+      if (!near && crossed) {
+        ++trail;
+        for (int c = 0; c < 3; ++c)
+          worst_trail = std::max(worst_trail, std::abs(double(linear_to_srgb(taa.at(x, y, c))) - linear_to_srgb(truth.at(x, y, c))) * 255.0);
+      }
+    }
+  std::printf("bright light: %d edge pixels, mean error TAA %.4f, no AA %.4f; %d pixels it crossed, worst %.2f steps\n", edge,
+              taa_edge / edge, plain_edge / edge, trail, worst_trail);
+  ASSERT_GT(edge, 12);   // the square's outline: about 4 x 5 pixels
+  ASSERT_GT(trail, 50);  // the strip it crossed
+  EXPECT_LT(taa_edge, plain_edge);
+  EXPECT_LE(worst_trail, 2.0);
+  EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+}
+
+// A hard case: the near plane. The camera backs away from a wall past a post that was behind
+// it: the post crosses the near plane into view (0.03 m a frame, the near plane at 0.1 m). In
+// the first frames it shows, its pixels' surface was nearer than the last frame's near plane
+// (their depth then, the motion target's z, below 0.1): the last image never saw it, and what
+// lies where its motion points is the wall behind. Every such pixel must drop its history, or
+// the wall's would be smeared over the post. (Its motion is exact, and where it points the
+// last depth is the wall's, 10 m away: no tolerance is involved.)
+TEST(TemporalGl, GeometryCrossingTheNearPlaneDropsItsHistory) {
+  constexpr int w = 160, h = 90;
+  Scene s;
+  s.path = "a post crossing the near plane (test)";
+  s.materials = {emitter("wall", 1.f), emitter("post", 0.1f)};
+  add_rect(s, 0, {-20, -20}, {20, 20}, -10);
+  add_rect(s, 1, {-0.02f, -5}, {0.02f, 5}, 0.5f);
+  const SceneGpu gpu(s);
+  FrameCamera camera;
+  camera.yfov = 0.8f, camera.znear = 0.1f, camera.zfar = 100.f, camera.aspect = float(w) / float(h);
+  camera.projection = glm::perspective(camera.yfov, camera.aspect, camera.znear, camera.zfar);
+  TemporalFrame frame(gpu);
+  OutputTarget target(w, h);
+  int crossed = 0, kept = 0, frames_with_post = 0;
+  for (int i = 0; i < 12; ++i) {
+    camera.position = glm::vec3(0, 0, 0.45f + 0.03f * float(i));
+    camera.view = glm::lookAt(camera.position, camera.position - glm::vec3(0, 0, 1), glm::vec3(0, 1, 0));
+    frame.render(camera, {target.framebuffer(), w, h}, emission_alone(), 1.f / 30.f, i == 0);
+    if (i == 0) continue;
+    const ImageF m = read_texture_rgba(frame.motion().current(), w, h);
+    const ImageF rejected = read_texture_rgba(frame.taa().rejected(), w, h);
+    bool post = false;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        if (m.at(x, y, 3) > 1.f) continue;  // the wall
+        post = true;
+        if (m.at(x, y, 2) >= camera.znear) continue;  // in front of the last near plane
+        ++crossed;
+        kept += rejected.at(x, y, 0) < 0.5f;
+      }
+    frames_with_post += post;
+  }
+  std::printf("near plane: %d pixels of the post crossed it since the last frame, %d kept their history; %d frames show it\n",
+              crossed, kept, frames_with_post);
+  ASSERT_GT(frames_with_post, 3);
+  ASSERT_GT(crossed, 200);  // the post's first frames: it fills a quarter of the image's width
+  EXPECT_EQ(kept, 0);
+  EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }

@@ -18,9 +18,16 @@ uniform vec2 u_jitter;         // this frame's offset in pixels (x right, y up)
 uniform int u_unjitter;        // this frame's pixel rebuilt at its centre from the 3x3's samples
 uniform float u_gamma;         // > 0: the box is the neighbourhood's mean +- gamma sigma (within its extremes)
 uniform float u_alpha_moving;  // this frame's weight where the surface moved a pixel or more
+// The remembered box (the clip's space): this frame's, widened by the last frames' boxes; each
+// frame keeps u_box_keep of the widening (0: this frame's box alone).
+layout(binding = 4) uniform sampler2D u_box_lo;
+layout(binding = 5) uniform sampler2D u_box_hi;
+uniform float u_box_keep;
 
 layout(location = 0) out vec4 out_color;
 layout(location = 1) out float out_rejected;
+layout(location = 2) out vec4 out_box_lo;
+layout(location = 3) out vec4 out_box_hi;
 
 // [resolve-space]
 // The blend runs on exposed colour compressed by c / (1 + luminance): a bright sample then
@@ -133,18 +140,39 @@ void main() {
     hi = max(min(hi, mu + u_gamma * sigma), own_y);
   }
   // [/variance-clip]
-  // The history is stored in half floats (a relative step of 2^-11): a box narrower than twice
-  // that (a flat colour) would clip the history's own rounding, and the clip's shrink towards
-  // the centre would move its brightness with it.
-  float slack = max(max(hi.x, hi.y), max(hi.z, 1e-6)) / 1024.0;
-  lo -= slack;
-  hi += slack;
   if (u_unjitter != 0) centre = filtered / weights;
   // [reproject]
   vec4 own = texelFetch(u_motion, p, 0);
   vec2 uv_then = uv - texelFetch(u_motion, nearest_p, 0).xy;
   bool rejected = u_reset != 0 || any(lessThan(uv_then, vec2(0.0))) || any(greaterThan(uv_then, vec2(1.0)));
   if (!rejected && u_reject_disocclusion != 0) rejected = disoccluded(uv - own.xy, own.z, depth_slack(p, size, own.z));
+  float moved = length(texelFetch(u_motion, nearest_p, 0).xy * vec2(size));
+  // [/reproject]
+  // [box-memory]
+  // A feature thinner than a pixel is missed by the jitter in some frames: then this frame's
+  // 3x3 holds none of it, and a clip to that box alone erases it from the history. Where the
+  // surface is still, the box also holds what the last frames' boxes held around this point,
+  // each frame keeping u_box_keep of that widening (what a light that changed left behind
+  // fades within a few frames). The memory spans about 1 / (1 - u_box_keep) frames: it is this
+  // pixel's only while the surface moves less than a pixel in that time, and fades out as it
+  // moves more.
+  vec3 own_lo = lo, own_hi = hi;
+  if (!rejected && u_box_keep > 0.0) {
+    ivec2 t = clamp(ivec2(uv_then * vec2(size)), ivec2(0), size - 1);  // the texel the point was in
+    float still = 1.0 - clamp(moved / (1.0 - u_box_keep), 0.0, 1.0);
+    lo = min(lo, mix(lo, texelFetch(u_box_lo, t, 0).xyz, still));
+    hi = max(hi, mix(hi, texelFetch(u_box_hi, t, 0).xyz, still));
+  }
+  out_box_lo = vec4(mix(own_lo, lo, u_box_keep), 0.0);
+  out_box_hi = vec4(mix(own_hi, hi, u_box_keep), 0.0);
+  // [/box-memory]
+  // The history is stored in half floats (a relative step of 2^-11): a box narrower than twice
+  // that (a flat colour) would clip the history's own rounding, and the clip's shrink towards
+  // the centre would move its brightness with it.
+  float slack = max(max(hi.x, hi.y), max(hi.z, 1e-6)) / 1024.0;
+  lo -= slack;
+  hi += slack;
+  // [blend]
   vec3 result = centre;
   if (!rejected) {
     vec3 history = to_space(u_filter == 1 ? history_catmull_rom(uv_then) : texture(u_history, uv_then).rgb);
@@ -152,10 +180,9 @@ void main() {
     if (u_clip == 2) history = ycocg_to_rgb(clip_to_box(lo, hi, rgb_to_ycocg(history)));
     // A moving surface's history was resampled every frame and has blurred: this frame
     // weighs more the more it moved, up to a pixel a frame.
-    float moved = length(texelFetch(u_motion, nearest_p, 0).xy * vec2(size));
     result = mix(history, centre, mix(u_alpha, u_alpha_moving, clamp(moved, 0.0, 1.0)));
   }
-  // [/reproject]
+  // [/blend]
   out_color = vec4(from_space(result), here.a);
   out_rejected = rejected ? 1.0 : 0.0;
 }
