@@ -688,6 +688,7 @@ TEST(TemporalGl, AccumulatedIndirectLightIsNearerTheTruthThanTheFrameAloneAtEqua
     std::printf("\n");
   }
   EXPECT_LT(t, a);
+}
 
 // Hard cases on scenes whose geometry is known to the pixel: quads facing an orthographic
 // camera whose world units are pixels (x 0..w, y 0..h, y up), seen from 1000 units away, lit
