@@ -265,6 +265,25 @@ TEST(GlslTwins, CellBoxMatchesItsCppTwin) {
   EXPECT_TRUE(test::twins_agree(hi, cpu_hi, 3, tolerance, describe));
 }
 
+// Boolean twins: equal answers, or the case lies within both twins' rounding band of the
+// boundary (`within_band`, evaluated only where they differ).
+void booleans_agree(const char* name, const std::vector<glm::vec4>& gpu, const std::function<bool(std::size_t)>& cpu,
+                    const std::function<bool(std::size_t)>& within_band, const std::function<std::string(std::size_t)>& describe) {
+  std::size_t failed = 0, in_band = 0, met = 0;
+  for (std::size_t i = 0; i < gpu.size(); ++i) {
+    const bool c = cpu(i);
+    met += c;
+    if ((gpu[i].x > 0.5f) == c) continue;
+    if (within_band(i)) {
+      ++in_band;
+      continue;
+    }
+    if (failed++ < 5) ADD_FAILURE() << "GLSL " << gpu[i].x << ", C++ " << c << " for " << describe(i);
+  }
+  EXPECT_EQ(failed, 0u);
+  std::printf("%s: %zu cases (%zu met), %zu differ within the rounding band\n", name, gpu.size(), met, in_band);
+}
+
 TEST(GlslTwins, SphereMeetsBoxMatchesItsCppTwin) {
   // dot(d, d) <= r^2: the nearest point is exact (clamp), d = centre - nearest 0.5 ulp a
   // component, the dot's three products and two sums 2.5 ulp of dot(d, d) (fused or not); r is
@@ -287,19 +306,16 @@ TEST(GlslTwins, SphereMeetsBoxMatchesItsCppTwin) {
   cases.push_back({glm::vec4(0, 0, -1, 0), glm::vec4(-1, -1, -2, 0), glm::vec4(1, 1, -0.5f, 0)});  // inside, radius 0
   const GridRig rig;
   const auto gpu = test::run_glsl_twin(rig.twin("sphere_meets_box(a.xyz, a.w, Box(b.xyz, c.xyz)) ? 1.0 : 0.0, 0.0, 0.0, 0.0"), cases);
-  std::size_t failed = 0, in_band = 0, met = 0;
-  for (std::size_t i = 0; i < cases.size(); ++i) {
-    const TwinCase& c = cases[i];
-    const bool cpu = sphere_meets_box(glm::vec3(c.a), c.a.w, Box{glm::vec3(c.b), glm::vec3(c.c)});
-    met += cpu;
-    if ((gpu[i].x > 0.5f) == cpu) continue;
-    const glm::dvec3 d = glm::dvec3(c.a) - glm::clamp(glm::dvec3(c.a), glm::dvec3(c.b), glm::dvec3(c.c));
-    const double rr = double(c.a.w) * (1 + 1e-5) + 1e-6, dd = glm::dot(d, d);
-    if (std::abs(dd - rr * rr) <= 2 * (ulps(4) * dd + ulps(2.5) * rr * rr)) { ++in_band; continue; }
-    if (failed++ < 5) ADD_FAILURE() << "GLSL " << gpu[i].x << ", C++ " << cpu << " for sphere " << test::str(c.a) << " box " << test::str(c.b) << " " << test::str(c.c);
-  }
-  EXPECT_EQ(failed, 0u);
-  std::printf("sphere_meets_box: %zu cases (%zu met), %zu differ within the rounding band\n", cases.size(), met, in_band);
+  booleans_agree(
+      "sphere_meets_box", gpu,
+      [&](std::size_t i) { return sphere_meets_box(glm::vec3(cases[i].a), cases[i].a.w, Box{glm::vec3(cases[i].b), glm::vec3(cases[i].c)}); },
+      [&](std::size_t i) {
+        const TwinCase& c = cases[i];
+        const glm::dvec3 d = glm::dvec3(c.a) - glm::clamp(glm::dvec3(c.a), glm::dvec3(c.b), glm::dvec3(c.c));
+        const double rr = double(c.a.w) * (1 + 1e-5) + 1e-6, dd = glm::dot(d, d);
+        return std::abs(dd - rr * rr) <= 2 * (ulps(4) * dd + ulps(2.5) * rr * rr);
+      },
+      [&](std::size_t i) { return "sphere " + test::str(cases[i].a) + " box " + test::str(cases[i].b) + " " + test::str(cases[i].c); });
 }
 
 TEST(GlslTwins, CapsuleMeetsBoxMatchesItsCppTwin) {
@@ -324,31 +340,29 @@ TEST(GlslTwins, CapsuleMeetsBoxMatchesItsCppTwin) {
   }
   const GridRig rig;
   const auto gpu = test::run_glsl_twin(rig.twin("capsule_meets_box(a.xyz, b.xyz, a.w, Box(c.xyz, d.xyz)) ? 1.0 : 0.0, 0.0, 0.0, 0.0"), cases);
-  std::size_t failed = 0, in_band = 0, met = 0;
-  for (std::size_t i = 0; i < cases.size(); ++i) {
-    const TwinCase& c = cases[i];
-    const glm::vec3 a(c.a), b(c.b);
-    const bool cpu = capsule_meets_box(a, b, c.a.w, Box{glm::vec3(c.c), glm::vec3(c.d)});
-    met += cpu;
-    if ((gpu[i].x > 0.5f) == cpu) continue;
-    // The exact slab test in double, and the bound on its u's.
-    const double grow = double(c.a.w) * (1 + 1e-5) + 1e-6;
-    double t0 = 0, t1 = 1, bound = 0;
-    for (int k = 0; k < 3; ++k) {
-      const double lo = double(c.c[k]) - grow, hi = double(c.d[k]) + grow, d = double(b[k]) - a[k];
-      if (d == 0) continue;
-      for (double side : {lo, hi}) {
-        const double u = (side - a[k]) / d;
-        bound = std::max(bound, (ulps(1) * (std::abs(side) + grow) + ulps(0.5) * std::abs(side - a[k])) / std::abs(d) + ulps(2.5) * std::abs(u));
-      }
-      t0 = std::max(t0, std::min((lo - a[k]) / d, (hi - a[k]) / d));
-      t1 = std::min(t1, std::max((lo - a[k]) / d, (hi - a[k]) / d));
-    }
-    if (std::abs(t1 - t0) <= 4 * bound) { ++in_band; continue; }
-    if (failed++ < 5) ADD_FAILURE() << "GLSL " << gpu[i].x << ", C++ " << cpu << " for capsule " << test::str(c.a) << " to " << test::str(c.b) << " box " << test::str(c.c) << " " << test::str(c.d);
-  }
-  EXPECT_EQ(failed, 0u);
-  std::printf("capsule_meets_box: %zu cases (%zu met), %zu differ within the rounding band\n", cases.size(), met, in_band);
+  booleans_agree(
+      "capsule_meets_box", gpu,
+      [&](std::size_t i) {
+        return capsule_meets_box(glm::vec3(cases[i].a), glm::vec3(cases[i].b), cases[i].a.w, Box{glm::vec3(cases[i].c), glm::vec3(cases[i].d)});
+      },
+      [&](std::size_t i) {  // the exact slab test in double, and the bound on its u's
+        const TwinCase& c = cases[i];
+        const double grow = double(c.a.w) * (1 + 1e-5) + 1e-6;
+        double t0 = 0, t1 = 1, bound = 0;
+        for (int k = 0; k < 3; ++k) {
+          const double lo = double(c.c[k]) - grow, hi = double(c.d[k]) + grow, d = double(c.b[k]) - c.a[k];
+          if (d == 0) continue;
+          for (double side : {lo, hi})
+            bound = std::max(bound, (ulps(1) * (std::abs(side) + grow) + ulps(0.5) * std::abs(side - c.a[k])) / std::abs(d) +
+                                        ulps(2.5) * std::abs((side - c.a[k]) / d));
+          t0 = std::max(t0, std::min((lo - c.a[k]) / d, (hi - c.a[k]) / d));
+          t1 = std::min(t1, std::max((lo - c.a[k]) / d, (hi - c.a[k]) / d));
+        }
+        return std::abs(t1 - t0) <= 4 * bound;
+      },
+      [&](std::size_t i) {
+        return "capsule " + test::str(cases[i].a) + " to " + test::str(cases[i].b) + " box " + test::str(cases[i].c) + " " + test::str(cases[i].d);
+      });
 }
 
 }  // namespace
