@@ -265,6 +265,41 @@ TEST(GlslTwins, CellBoxMatchesItsCppTwin) {
   EXPECT_TRUE(test::twins_agree(hi, cpu_hi, 3, tolerance, describe));
 }
 
+TEST(GlslTwins, LightDepthBitsMatchItsCppTwin) {
+  // The light's 2.5D mask: bins of z - r and z + r, r = radius (1 + 1e-5) + 1e-6 + kDepthPad hi
+  // (four roundings: 2 ulp of r), each end 0.5 ulp more of |z| + r; depth_bin then as above
+  // (5 ulp of t). The masks must be equal, except where an end's exact t lies within its band,
+  // 32 x 2.5 ulp (|z| + r) / (hi - lo) + 5 ulp of t, of a bin's edge. The mask's 32 bits come
+  // back as two 16-bit halves (a float holds 24).
+  test::TwinRandom r(96);
+  std::vector<TwinCase> cases;
+  while (cases.size() < 12000) {
+    const float lo = r.log_uniform(0.05f, 500.f), hi = lo + r.log_uniform(1e-3f, 1000.f);
+    const float z = r.uniform(lo - 0.5f * (hi - lo), hi + 0.5f * (hi - lo)), radius = r.log_uniform(1e-3f, 2 * (hi - lo));
+    cases.push_back({glm::vec4(lo, hi, z, radius)});
+  }
+  const GridRig rig;
+  const auto gpu = test::run_glsl_twin(rig.twin("float(light_depth_bits(a.x, a.y, a.z, a.w) & 0xFFFFu), float(light_depth_bits(a.x, a.y, a.z, a.w) >> 16u), 0.0, 0.0"), cases);
+  std::size_t failed = 0, in_band = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const glm::vec4 c = cases[i].a;
+    const std::uint32_t cpu = light_depth_bits(c.x, c.y, c.z, c.w);
+    const std::uint32_t g = std::uint32_t(gpu[i].x) | (std::uint32_t(gpu[i].y) << 16);
+    if (g == cpu) continue;
+    const double rr = double(c.w) * (1 + 1e-5) + 1e-6 + kDepthPad * double(c.y);
+    bool near_edge = false;
+    for (double end : {double(c.z) - rr, double(c.z) + rr}) {
+      const double t = (end - c.x) / (double(c.y) - c.x) * kDepthBins;
+      const double band = kDepthBins * ulps(2.5) * (std::abs(double(c.z)) + rr) / (double(c.y) - c.x) + ulps(5) * std::abs(t);
+      near_edge |= t > -band && t < kDepthBins + band && std::abs(t - std::round(t)) <= band;
+    }
+    if (near_edge) { ++in_band; continue; }
+    if (failed++ < 5) ADD_FAILURE() << "GLSL " << std::hex << g << ", C++ " << cpu << std::dec << " for lo, hi, z, radius " << test::str(c);
+  }
+  EXPECT_EQ(failed, 0u);
+  std::printf("light_depth_bits: %zu cases, %zu differ within the rounding band\n", cases.size(), in_band);
+}
+
 // Boolean twins: equal answers, or the case lies within both twins' rounding band of the
 // boundary (`within_band`, evaluated only where they differ).
 void booleans_agree(const char* name, const std::vector<glm::vec4>& gpu, const std::function<bool(std::size_t)>& cpu,
