@@ -1,7 +1,7 @@
 # Chapter 11: time. The jitter and the paths (unit), GPU tests of the motion vectors and TAA
 # (unit/test_11_temporal_gl.cpp), and the program's bad input.
 lightpass_gtests(11_temporal unit lightpass_11_temporal unit/test_11_temporal.cpp)
-lightpass_gtests(11_temporal gl lightpass_11_temporal unit/test_11_temporal_gl.cpp)
+lightpass_gtests(11_temporal gl lightpass_11_temporal unit/test_11_temporal_gl.cpp unit/test_11_twins_gl.cpp unit/glsl_twin.cpp)
 
 set(P11 $<TARGET_FILE:11_temporal>)
 lightpass_program_test(11_temporal.bad_path 2 "path" ${P11} --path fly)

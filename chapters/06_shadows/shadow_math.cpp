@@ -255,16 +255,31 @@ float msm_hamburger(glm::vec4 b, float depth, float moment_bias) {
   const float d22 = -b.x * b.x + b.y;
   const float squared_variance = -b.y * b.y + b.w;
   const float d33_d22 = squared_variance * d22 - l32_d22 * l32_d22;
+  // Degenerate moments (the bias is lost to rounding near one depth): no variance left means
+  // one depth, and the receiver is lit in front of it and shadowed behind.
+  if (d22 <= 0.f) return depth <= b.x ? 1.f : 0.f;
   const float inv_d22 = 1.f / d22;
   const float l32 = l32_d22 * inv_d22;
-  // Solve B c = (1, d, d^2): forward substitution, scaling, backward substitution.
   glm::vec3 c(1.f, depth, depth * depth);
-  c.y -= b.x;
-  c.z -= b.y + l32 * c.y;
-  c.y *= inv_d22;
-  c.z *= d22 / d33_d22;
-  c.y -= l32 * c.z;
-  c.x -= c.y * b.x + c.z * b.y;
+  if (d33_d22 <= 0.f) {
+    // A singular Hankel matrix: at most two depths, the roots of its kernel's quadratic
+    // z^2 - l32 z + (l32 b.x - b.y), which is where c points as d33_d22 goes to 0.
+    c = glm::vec3(l32 * b.x - b.y, -l32, 1.f);
+  } else {
+    // Solve B c = (1, d, d^2): forward substitution, scaling, backward substitution.
+    c.y -= b.x;
+    c.z -= b.y + l32 * c.y;
+    c.y *= inv_d22;
+    c.z *= d22 / d33_d22;
+    c.y -= l32 * c.z;
+    c.x -= c.y * b.x + c.z * b.y;
+  }
+  // A quadratic that degenerates to a line: one root r = -c.x / c.y, the other beyond 2^20 (in
+  // the limit at infinity, with no weight); the weight in front of d is then (d - b.x) / (d - r).
+  if (std::abs(c.y) >= 0x1p20f * std::abs(c.z)) {
+    const float r = -c.x / c.y;
+    return 1.f - std::clamp(r < depth ? (depth - b.x) / (depth - r) : 0.f, 0.f, 1.f);
+  }
   // The other two support points: the roots of c.x + c.y z + c.z z^2.
   const float p = c.y / c.z, q = c.x / c.z;
   const float r = std::sqrt(std::max(p * p * 0.25f - q, 0.f));
@@ -273,7 +288,8 @@ float msm_hamburger(glm::vec4 b, float depth, float moment_bias) {
   const glm::vec4 sw = z2 < depth ? glm::vec4(z1, depth, 1.f, 1.f)
                        : z1 < depth ? glm::vec4(depth, z1, 0.f, 1.f)
                                     : glm::vec4(0.f);
-  const float quotient = (sw.x * z2 - b.x * (sw.x + z2) + b.y) / ((z2 - sw.y) * (depth - z1));
+  // (None in front when both roots lie behind: the quotient is not formed, as z1 may equal d.)
+  const float quotient = sw.w > 0.f ? (sw.x * z2 - b.x * (sw.x + z2) + b.y) / ((z2 - sw.y) * (depth - z1)) : 0.f;
   const float shadow = std::clamp(sw.z + sw.w * quotient, 0.f, 1.f);
   return 1.f - shadow;
 }

@@ -30,6 +30,7 @@ std::vector<glm::vec4> run_glsl_twin(const GlslTwin& twin, const std::vector<Twi
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, results.id());
   program.use();
   program.set("u_count", int(cases.size()));
+  if (twin.uniforms) twin.uniforms(program.id());
   glDispatchCompute(GLuint((cases.size() + 63) / 64), 1, 1);
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   glGetNamedBufferSubData(results.id(), 0, GLsizeiptr(out.size() * sizeof(glm::vec4)), out.data());

@@ -26,6 +26,8 @@ struct GlslTwin {
   std::string expression;          // GLSL over `vec4 a, b, c, d`: anything vec4(...) takes
   std::vector<std::string> defines = {};
   std::string helpers = {};        // one line of GLSL after the includes: functions the expression calls
+  // Sets the included files' uniforms before the dispatch (given the program's GL id).
+  std::function<void(unsigned program)> uniforms = {};
 };
 
 // The expression's value for every case, computed on the GPU. Throws lp::Error naming the

@@ -1,22 +1,28 @@
-// Chapter 09's GLSL against its C++ twin (glsl_twin.h): light_pair.glsl, the shading of one
-// (surface, light) pair from the records pack_cluster_lights() precomputes, and grid.glsl's
-// capsule_meets_box, the tubes' binning.
+// Chapter 09's GLSL against its C++ twins (glsl_twin.h): light_pair.glsl, the shading of one
+// (surface, light) pair from the records pack_cluster_lights() precomputes; grid.glsl, the cells
+// lights are binned into, against cluster_grid.h, and its capsule_meets_box on the tubes' hard case.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "chapters/01_forward/blinn_phong.h"
 #include "chapters/02_gbuffer/gbuffer.h"
 #include "chapters/02_gbuffer/layout.h"
 #include "chapters/03_light_volumes/light_instances.h"
+#include "chapters/09_clustered/cluster_grid.h"
 #include "chapters/09_clustered/clustered_lights.h"
 #include "tests/unit/capsule_cases.h"
+#include "common/gl.h"
 #include "tests/unit/glsl_twin.h"
 
 namespace lp::ch09 {
 namespace {
 
+using test::TwinCase;
 using test::ulps;
 
 TEST(GlslTwins, LightPairMatchesItsCppTwin) {
@@ -154,6 +160,239 @@ TEST(GlslTwins, CapsuleMeetsBoxMatchesItsCppTwin) {
     return "ends " + test::str(cases[i].a) + " " + test::str(cases[i].b) + " box " + test::str(cases[i].c) + " " +
            test::str(cases[i].d);
   }));
+}
+
+// grid.glsl against cluster_grid.h. The GLSL reads the grid from uniforms: a 24-slice cluster
+// grid of 16 x 9 tiles over 1920 x 1080, znear 0.1 m, zfar 1000 m (DOOM 2016's), and a
+// projection with a jitter (P20, P21 nonzero, as TAA's), so each term of cell_box counts.
+// The integer and boolean results must be equal, except where the exact value lies within the
+// two twins' rounding bounds of the boundary (a "band"): there either answer is right. u is
+// float's unit roundoff 2^-24 = ulps(0.5); GLSL's + - * are correctly rounded, / is 2.5 ulp,
+// log is 3 ulp (absolutely 2^-21 on [0.5, 2]), the C++ ones 0.5 ulp.
+constexpr int kW = 1920, kH = 1080, kTilesX = 16, kTilesY = 9, kSlices = 24;
+constexpr float kNear = 0.1f, kFar = 1000.f;
+
+struct GridRig {
+  Grid grid = grid_of_counts(kW, kH, kTilesX, kTilesY, kSlices, kNear, kFar);
+  FrameCamera camera;
+  GridRig() {
+    camera.projection = glm::perspective(0.8f, float(kW) / float(kH), kNear, kFar);
+    camera.projection[2][0] = 0.37f / float(kW);  // a jitter of a fraction of a pixel
+    camera.projection[2][1] = -0.81f / float(kH);
+  }
+  test::GlslTwin twin(const std::string& expression, const std::string& helpers = {}) const {
+    const glm::mat4 p = camera.projection;
+    const Grid g = grid;
+    return {{"09_clustered/shaders/grid.glsl"}, expression, {}, helpers, [p, g](unsigned program) {
+              glProgramUniform4f(program, glGetUniformLocation(program, "u_projection"), p[0][0], p[1][1], p[2][0], p[2][1]);
+              glProgramUniform4i(program, glGetUniformLocation(program, "u_grid"), g.width, g.height, g.tile_w, g.tile_h);
+              glProgramUniform4i(program, glGetUniformLocation(program, "u_tiles"), g.tiles_x, g.tiles_y, g.slices, 0);
+              glProgramUniform2f(program, glGetUniformLocation(program, "u_depth_range"), g.znear, g.zfar);
+            }};
+  }
+};
+
+// The integer result agrees, or the exact t lies within `band` of the integer between them.
+std::size_t count_beyond_band(const std::vector<glm::vec4>& gpu, const std::vector<int>& cpu,
+                              const std::vector<double>& exact, const std::vector<double>& band,
+                              const std::function<std::string(std::size_t)>& describe, std::size_t* in_band) {
+  std::size_t failed = 0;
+  for (std::size_t i = 0; i < cpu.size(); ++i) {
+    const int g = int(gpu[i].x);
+    if (g == cpu[i]) continue;
+    const double boundary = std::max(g, cpu[i]);  // the integer the two results lie either side of
+    if (std::abs(g - cpu[i]) == 1 && std::abs(exact[i] - boundary) <= band[i]) {
+      ++*in_band;
+      continue;
+    }
+    if (failed++ < 5) ADD_FAILURE() << "GLSL " << g << ", C++ " << cpu[i] << " (exact " << exact[i] << ", band " << band[i] << ") for " << describe(i);
+  }
+  return failed;
+}
+
+TEST(GlslTwins, SliceOfMatchesItsCppTwin) {
+  // t = log(d / znear) / log(zfar / znear), slice floor(t S). The GPU's t: d / znear 2.5 ulp
+  // (in the log: 2.5 ulp absolutely), log 3 ulp or 2^-21 absolutely, log(zfar / znear) the
+  // same, the quotient 2.5 ulp: |dt| <= |t| (3 + 2.5 + 2.5 + 1) ulp + (2^-21 + 3 ulp) / L, and the
+  // C++ one far less (inside the GPU's allowance doubled). The band is S times twice that.
+  const GridRig rig;
+  test::TwinRandom r(91);
+  std::vector<TwinCase> cases;
+  for (int k = 0; k <= kSlices; ++k) {  // each slice's start and its neighbouring floats
+    const float d = slice_start(rig.grid, k);
+    for (float e : {d, std::nextafter(d, 0.f), std::nextafter(d, 1e9f), d * (1 + 1e-4f), d * (1 - 1e-4f)}) cases.push_back({glm::vec4(e, 0, 0, 0)});
+  }
+  for (float e : {0.f, 1e-3f, kNear, kFar, 5000.f}) cases.push_back({glm::vec4(e, 0, 0, 0)});
+  while (cases.size() < 12000) cases.push_back({glm::vec4(r.log_uniform(0.01f, 2000.f), 0, 0, 0)});
+  const auto gpu = test::run_glsl_twin(rig.twin("float(slice_of(a.x)), 0.0, 0.0, 0.0"), cases);
+  std::vector<int> cpu;
+  std::vector<double> exact, band;
+  const double L = std::log(double(kFar) / double(kNear));
+  for (const TwinCase& c : cases) {
+    cpu.push_back(slice_of(rig.grid, c.a.x));
+    const double t = std::log(std::max(double(c.a.x), double(kNear)) / double(kNear)) / L;
+    exact.push_back(t * kSlices);
+    band.push_back(2 * kSlices * (std::abs(t) * ulps(9) + (0x1p-21 + ulps(3)) / L));
+  }
+  std::size_t in_band = 0;
+  EXPECT_EQ(count_beyond_band(gpu, cpu, exact, band, [&](std::size_t i) { return "d " + std::to_string(cases[i].a.x); }, &in_band), 0u);
+  std::printf("slice_of: %zu cases, %zu differ within the rounding band\n", cases.size(), in_band);
+}
+
+TEST(GlslTwins, DepthBinMatchesItsCppTwin) {
+  // t = (d - lo) / (hi - lo) x 32: two subtractions (0.5 ulp each), the GPU's division 2.5 ulp,
+  // x 32 exact: |dt| <= |t| 3.5 ulp on the GPU, 1.5 in C++; the band is their sum, 5 ulp of t.
+  test::TwinRandom r(92);
+  std::vector<TwinCase> cases;
+  while (cases.size() < 12000) {
+    const float lo = r.log_uniform(0.05f, 500.f), hi = lo + r.log_uniform(1e-4f, 1000.f);
+    float d = r.uniform(lo - 0.1f * (hi - lo), hi + 0.1f * (hi - lo));
+    if (cases.size() % 4 == 0) d = lo + (hi - lo) * float(int(r.uniform(0, 33))) / 32.f;  // on a bin's edge
+    cases.push_back({glm::vec4(lo, hi, d, 0)});
+  }
+  cases.push_back({glm::vec4(1, 1, 1, 0)});  // an empty range: every depth in one bin
+  cases.push_back({glm::vec4(1, 1, 2, 0)});
+  const GridRig rig;
+  const auto gpu = test::run_glsl_twin(rig.twin("float(depth_bin(a.x, a.y, a.z)), 0.0, 0.0, 0.0"), cases);
+  std::vector<int> cpu;
+  std::vector<double> exact, band;
+  for (const TwinCase& c : cases) {
+    cpu.push_back(depth_bin(c.a.x, c.a.y, c.a.z));
+    const double t = (double(c.a.z) - c.a.x) / std::max(double(c.a.y) - c.a.x, 1e-30) * kDepthBins;
+    exact.push_back(t);
+    band.push_back(std::abs(t) * ulps(5));
+  }
+  std::size_t in_band = 0;
+  EXPECT_EQ(count_beyond_band(gpu, cpu, exact, band, [&](std::size_t i) { return "lo, hi, d " + test::str(cases[i].a); }, &in_band), 0u);
+  std::printf("depth_bin: %zu cases, %zu differ within the rounding band\n", cases.size(), in_band);
+}
+
+TEST(GlslTwins, CellBoxMatchesItsCppTwin) {
+  // A corner's x = d (ndc + P20) / P00, ndc = pixel / width x 2 - 1: the GPU's two divisions
+  // 2.5 ulp each, the rest 0.5 ulp an operation, each of magnitude at most d (2 + |P20|) / P00:
+  // 8 ulp of that (C++: 3), and the padded depth's 1: 12 ulp of it bounds the difference; z is
+  // -d times the pad, 1 ulp. The min / max over the corners cannot add to it.
+  const GridRig rig;
+  test::TwinRandom r(93);
+  std::vector<TwinCase> cases;
+  while (cases.size() < 10000) {
+    const int x0 = int(r.uniform(0, kW)), y0 = int(r.uniform(0, kH));
+    const int x1 = std::min(kW, x0 + 1 + int(r.uniform(0, 200))), y1 = std::min(kH, y0 + 1 + int(r.uniform(0, 200)));
+    const float d0 = r.log_uniform(kNear, kFar), d1 = std::min(kFar, d0 * r.uniform(1, 2));
+    cases.push_back({glm::vec4(x0, y0, x1, y1), glm::vec4(d0, d1, 0, 0)});
+  }
+  for (int k = 0; k < kSlices; ++k)  // the grid's own cells, corners of the image included
+    for (glm::ivec2 t : {glm::ivec2(0, 0), glm::ivec2(kTilesX - 1, kTilesY - 1), glm::ivec2(7, 4)}) {
+      const int tw = rig.grid.tile_w, th = rig.grid.tile_h;
+      cases.push_back({glm::vec4(t.x * tw, t.y * th, std::min(kW, (t.x + 1) * tw), std::min(kH, (t.y + 1) * th)),
+                       glm::vec4(slice_start(rig.grid, k), slice_start(rig.grid, k + 1), 0, 0)});
+    }
+  const std::string helper = "Box twin_box(vec4 a, vec4 b) { return cell_box(ivec2(a.xy), ivec2(a.zw), b.x, b.y); }";
+  const auto lo = test::run_glsl_twin(rig.twin("twin_box(a, b).lo, 0.0", helper), cases);
+  const auto hi = test::run_glsl_twin(rig.twin("twin_box(a, b).hi, 0.0", helper), cases);
+  std::vector<glm::vec4> cpu_lo, cpu_hi;
+  const glm::mat4& p = rig.camera.projection;
+  for (const TwinCase& c : cases) {
+    const Box b = cell_box(rig.camera, rig.grid, int(c.a.x), int(c.a.y), int(c.a.z), int(c.a.w), c.b.x, c.b.y);
+    cpu_lo.push_back(glm::vec4(b.lo, 0));
+    cpu_hi.push_back(glm::vec4(b.hi, 0));
+  }
+  const auto tolerance = [&](std::size_t i) {
+    const double d = cases[i].b.y * (1 + kDepthPad);
+    const double scale = d * (2 + std::max(std::abs(p[2][0]), std::abs(p[2][1]))) / std::min(p[0][0], p[1][1]);
+    return test::TwinTolerance{ulps(12) * scale, 0};
+  };
+  const auto describe = [&](std::size_t i) { return "pixels " + test::str(cases[i].a) + " depths " + test::str(cases[i].b); };
+  EXPECT_TRUE(test::twins_agree(lo, cpu_lo, 3, tolerance, describe));
+  EXPECT_TRUE(test::twins_agree(hi, cpu_hi, 3, tolerance, describe));
+}
+
+TEST(GlslTwins, LightDepthBitsMatchItsCppTwin) {
+  // The light's 2.5D mask: bins of z - r and z + r, r = radius (1 + 1e-5) + 1e-6 + kDepthPad hi
+  // (four roundings: 2 ulp of r), each end 0.5 ulp more of |z| + r; depth_bin then as above
+  // (5 ulp of t). The masks must be equal, except where an end's exact t lies within its band,
+  // 32 x 2.5 ulp (|z| + r) / (hi - lo) + 5 ulp of t, of a bin's edge. The mask's 32 bits come
+  // back as two 16-bit halves (a float holds 24).
+  test::TwinRandom r(96);
+  std::vector<TwinCase> cases;
+  while (cases.size() < 12000) {
+    const float lo = r.log_uniform(0.05f, 500.f), hi = lo + r.log_uniform(1e-3f, 1000.f);
+    const float z = r.uniform(lo - 0.5f * (hi - lo), hi + 0.5f * (hi - lo)), radius = r.log_uniform(1e-3f, 2 * (hi - lo));
+    cases.push_back({glm::vec4(lo, hi, z, radius)});
+  }
+  const GridRig rig;
+  const auto gpu = test::run_glsl_twin(rig.twin("float(light_depth_bits(a.x, a.y, a.z, a.w) & 0xFFFFu), float(light_depth_bits(a.x, a.y, a.z, a.w) >> 16u), 0.0, 0.0"), cases);
+  std::size_t failed = 0, in_band = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const glm::vec4 c = cases[i].a;
+    const std::uint32_t cpu = light_depth_bits(c.x, c.y, c.z, c.w);
+    const std::uint32_t g = std::uint32_t(gpu[i].x) | (std::uint32_t(gpu[i].y) << 16);
+    if (g == cpu) continue;
+    const double rr = double(c.w) * (1 + 1e-5) + 1e-6 + kDepthPad * double(c.y);
+    bool near_edge = false;
+    for (double end : {double(c.z) - rr, double(c.z) + rr}) {
+      const double t = (end - c.x) / (double(c.y) - c.x) * kDepthBins;
+      const double band = kDepthBins * ulps(2.5) * (std::abs(double(c.z)) + rr) / (double(c.y) - c.x) + ulps(5) * std::abs(t);
+      near_edge |= t > -band && t < kDepthBins + band && std::abs(t - std::round(t)) <= band;
+    }
+    if (near_edge) { ++in_band; continue; }
+    if (failed++ < 5) ADD_FAILURE() << "GLSL " << std::hex << g << ", C++ " << cpu << std::dec << " for lo, hi, z, radius " << test::str(c);
+  }
+  EXPECT_EQ(failed, 0u);
+  std::printf("light_depth_bits: %zu cases, %zu differ within the rounding band\n", cases.size(), in_band);
+}
+
+// Boolean twins: equal answers, or the case lies within both twins' rounding band of the
+// boundary (`within_band`, evaluated only where they differ).
+void booleans_agree(const char* name, const std::vector<glm::vec4>& gpu, const std::function<bool(std::size_t)>& cpu,
+                    const std::function<bool(std::size_t)>& within_band, const std::function<std::string(std::size_t)>& describe) {
+  std::size_t failed = 0, in_band = 0, met = 0;
+  for (std::size_t i = 0; i < gpu.size(); ++i) {
+    const bool c = cpu(i);
+    met += c;
+    if ((gpu[i].x > 0.5f) == c) continue;
+    if (within_band(i)) {
+      ++in_band;
+      continue;
+    }
+    if (failed++ < 5) ADD_FAILURE() << "GLSL " << gpu[i].x << ", C++ " << c << " for " << describe(i);
+  }
+  EXPECT_EQ(failed, 0u);
+  std::printf("%s: %zu cases (%zu met), %zu differ within the rounding band\n", name, gpu.size(), met, in_band);
+}
+
+TEST(GlslTwins, SphereMeetsBoxMatchesItsCppTwin) {
+  // dot(d, d) <= r^2: the nearest point is exact (clamp), d = centre - nearest 0.5 ulp a
+  // component, the dot's three products and two sums 2.5 ulp of dot(d, d) (fused or not); r is
+  // radius (1 + 1e-5) + 1e-6 (1 ulp), r^2 2.5 ulp: the band is both twins' bounds, 2 (4 ulp
+  // dot + 2.5 ulp r^2) of the exact values' sum. Spheres are placed at their radius from the
+  // box, times 1 +- up to 1e-3, so the padding (1e-5 relative) and the band both matter.
+  test::TwinRandom r(94);
+  std::vector<TwinCase> cases;
+  while (cases.size() < 12000) {
+    const glm::vec3 lo(r.uniform(-50, 50), r.uniform(-50, 50), r.uniform(-500, -0.1f));
+    const glm::vec3 hi = lo + glm::vec3(r.log_uniform(1e-3f, 50), r.log_uniform(1e-3f, 50), r.log_uniform(1e-3f, 50));
+    const float radius = r.log_uniform(0.01f, 30.f);
+    const glm::vec3 inside(r.uniform(lo.x, hi.x), r.uniform(lo.y, hi.y), r.uniform(lo.z, hi.z));
+    glm::vec3 centre = glm::clamp(inside + r.unit() * 1000.f, lo, hi);  // a point on the box's surface
+    const glm::vec3 out = r.unit();
+    const float scale = cases.size() % 3 == 0 ? r.uniform(0, 3) : 1 + r.uniform(-1e-3f, 1e-3f) * (cases.size() % 3 == 1 ? 1.f : 0.01f);
+    centre += out * radius * scale;
+    cases.push_back({glm::vec4(centre, radius), glm::vec4(lo, 0), glm::vec4(hi, 0)});
+  }
+  cases.push_back({glm::vec4(0, 0, -1, 0), glm::vec4(-1, -1, -2, 0), glm::vec4(1, 1, -0.5f, 0)});  // inside, radius 0
+  const GridRig rig;
+  const auto gpu = test::run_glsl_twin(rig.twin("sphere_meets_box(a.xyz, a.w, Box(b.xyz, c.xyz)) ? 1.0 : 0.0, 0.0, 0.0, 0.0"), cases);
+  booleans_agree(
+      "sphere_meets_box", gpu,
+      [&](std::size_t i) { return sphere_meets_box(glm::vec3(cases[i].a), cases[i].a.w, Box{glm::vec3(cases[i].b), glm::vec3(cases[i].c)}); },
+      [&](std::size_t i) {
+        const TwinCase& c = cases[i];
+        const glm::dvec3 d = glm::dvec3(c.a) - glm::clamp(glm::dvec3(c.a), glm::dvec3(c.b), glm::dvec3(c.c));
+        const double rr = double(c.a.w) * (1 + 1e-5) + 1e-6, dd = glm::dot(d, d);
+        return std::abs(dd - rr * rr) <= 2 * (ulps(4) * dd + ulps(2.5) * rr * rr);
+      },
+      [&](std::size_t i) { return "sphere " + test::str(cases[i].a) + " box " + test::str(cases[i].b) + " " + test::str(cases[i].c); });
 }
 
 }  // namespace

@@ -65,6 +65,7 @@ layout(binding = SHADOW_UNIT + 6) uniform samplerCubeArray sh_point_maps;
 layout(binding = SHADOW_UNIT + 7) uniform sampler2DArray sh_csm;
 #include "06_shadows/shaders/csm_math.glsl"
 #include "06_shadows/shaders/msm_math.glsl"
+#include "06_shadows/shaders/filtered_math.glsl"
 
 // The map a lookup reads: the sun's one map, or the cascade chosen for the pixel (all share the
 // light's view, sh.view, and its depth range, sh.depth_range).
@@ -184,20 +185,10 @@ float sun_map_visibility(Surface s, vec3 to_light) {
 #ifdef EXERCISE_VSM_BOUND
   return vsm_visibility(texture(sh_moments, q.xy).xy, q.z);
 #else
-  // [vsm-glsl]
-  vec2 m = texture(sh_moments, q.xy).xy;
-  if (q.z <= m.x) return 1.0;
-  float variance = max(m.y - m.x * m.x, sh.min_variance);
-  float d = q.z - m.x;
-  float p_max = variance / (variance + d * d);
-  return clamp((p_max - sh.vsm_p_min) / (1.0 - sh.vsm_p_min), 0.0, 1.0);
-  // [/vsm-glsl]
+  return vsm_lit_fraction(texture(sh_moments, q.xy).xy, q.z, sh.min_variance, sh.vsm_p_min);
 #endif
 #elif SHADOW_METHOD == SHADOW_ESM
-  // [esm-glsl]
-  float l = texture(sh_moments, q.xy).x;  // log of the filtered exp(c z)
-  return clamp(exp(min(l - sh.esm_c * q.z, 0.0)), 0.0, 1.0);
-  // [/esm-glsl]
+  return esm_lit_fraction(texture(sh_moments, q.xy).x, sh.esm_c, q.z);
 #elif SHADOW_METHOD == SHADOW_PCSS
   // [pcss-glsl]
   // shadow_math.h's pcss(): depths in window units (q.z: the receiver's) times the box's depth
