@@ -17,20 +17,17 @@ layout(r32f, binding = 3) readonly uniform image2D u_transfer;    // this frame'
 uniform int u_reset;
 uniform float u_max_frames;
 
-// [gi-accumulate]
 void main() {
   ivec2 size = imageSize(u_gi);
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(p, size))) return;
-  vec4 g = imageLoad(u_gi, p);
-  float t = imageLoad(u_transfer, p).r;
-  g.rgb *= max(t, 1.0);  // this frame's light before its clamp
+  // [gi-accumulate]
+  vec4 result = imageLoad(u_gi, p);  // this frame's, clamped by its own transfer: a history starts so
+  float t = imageLoad(u_transfer, p).r, n = 1.0, transfer = t;
+  vec4 sums = vec4(result.rgb * max(t, 1.0), result.a);  // its light before the clamp
   vec4 own = texelFetch(u_motion, p, 0);
   vec2 uv_then;
   float slack;
-  vec4 result = imageLoad(u_gi, p);  // a history started: this frame's, clamped by its own transfer
-  vec4 sums = g;
-  float n = 1.0, transfer = t;
   if (!history_lost(p, size, own, u_reset != 0, uv_then, slack)) {
     ivec2 q[4];
     float w[4];
@@ -43,15 +40,13 @@ void main() {
     }
     if (weights > 0.0) {
       n = min(frames.x / weights + 1.0, u_max_frames);  // this frame weighs 1 / n, as the AO's
-      sums = mix(h / weights, g, 1.0 / n);
+      sums = mix(h / weights, sums, 1.0 / n);
       transfer = mix(frames.y / weights, t, 1.0 / n);
-      // [gi-accumulate-clamp]
       result = vec4(sums.rgb / max(transfer, 1.0), sums.a);  // the clamp, on the accumulated sums
-      // [/gi-accumulate-clamp]
     }
   }
   imageStore(u_gi, p, result);
   imageStore(u_out, p, sums);
   imageStore(u_out_frames, p, vec4(n, transfer, 0.0, 0.0));
+  // [/gi-accumulate]
 }
-// [/gi-accumulate]
