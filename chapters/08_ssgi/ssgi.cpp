@@ -16,7 +16,7 @@ int Ssgi::used_samples(Pattern pattern, int samples) {
 }
 
 void Ssgi::pass(const ch02::GBuffer& gbuffer, GLuint light, GLuint extra, const FrameCamera& camera,
-                const GiSettings& s, const BackFaceTextures* back, GLuint out) {
+                const GiSettings& s, const BackFaceTextures* back, GLuint out, GLuint transfer_out) {
   const ShaderProgram& p = program("08_ssgi/shaders/ssgi.comp", gbuffer);
   const int rings = regular_rings(s.samples);
   p.set("u_view", camera.view);
@@ -37,6 +37,7 @@ void Ssgi::pass(const ch02::GBuffer& gbuffer, GLuint light, GLuint extra, const 
   p.set("u_parts", s.kernel_parts);
   p.set("u_part", s.kernel_part);
   p.set("u_turn", s.turn);
+  p.set("u_keep_transfer", transfer_out ? 1 : 0);
   p.use();
   glBindTextureUnit(9, light);
   glBindTextureUnit(10, extra ? extra : light);
@@ -49,19 +50,26 @@ void Ssgi::pass(const ch02::GBuffer& gbuffer, GLuint light, GLuint extra, const 
   glBindTextureUnit(13, b.albedo);
   glBindTextureUnit(14, b.light);
   glBindImageTexture(0, out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  if (transfer_out) glBindImageTexture(1, transfer_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
   glDispatchCompute(GLuint((width_ + 7) / 8), GLuint((height_ + 7) / 8), 1);
   glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
   for (GLuint unit = 9; unit <= 14; ++unit) glBindTextureUnit(unit, 0);  // the light buffers are drawn into next
 }
 
-void Ssgi::blur(const ch02::GBuffer& gbuffer, const FrameCamera& camera, const GiSettings& s, GLuint in, GLuint out) {
+void Ssgi::blur(const ch02::GBuffer& gbuffer, const FrameCamera& camera, const GiSettings& s, GLuint in, GLuint out,
+                GLuint transfer_in, GLuint transfer_out) {
   const ShaderProgram& b = program("08_ssgi/shaders/blur.comp", gbuffer);
   b.set("u_view", camera.view);
   b.set("u_depth_threshold", s.blur_depth);
   b.set("u_normal_threshold", s.blur_normal);
+  b.set("u_keep_transfer", transfer_in ? 1 : 0);
   b.use();
   glBindImageTexture(0, in, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
   glBindImageTexture(1, out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  if (transfer_in) {
+    glBindImageTexture(2, transfer_in, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
+    glBindImageTexture(3, transfer_out, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+  }
   glDispatchCompute(GLuint((width_ + 7) / 8), GLuint((height_ + 7) / 8), 1);
   glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
@@ -90,19 +98,30 @@ void Ssgi::compute(const ch02::GBuffer& gbuffer, GLuint light, const FrameCamera
     width_ = w;
     height_ = h;
   }
+  if (s.keep_transfer && (w != transfer_width_ || h != transfer_height_)) {
+    transfer_raw_ = gl::make_texture_2d(GL_R32F, w, h);
+    transfer_first_ = gl::make_texture_2d(GL_R32F, w, h);
+    transfer_second_ = gl::make_texture_2d(GL_R32F, w, h);
+    transfer_width_ = w;
+    transfer_height_ = h;
+  }
+  auto kept = [&](const gl::Texture& t) { return s.keep_transfer ? t.id() : 0u; };
   const bool blurred = s.blur && s.pattern == Pattern::Randomised;
   if (!s.back_faces || !s.indirect || s.gather != Gather::Disk) back = nullptr;
   // 1. the first bounce (and the AO) from the direct light
-  pass(gbuffer, light, 0, camera, s, back, blurred ? raw_.id() : first_.id());
-  if (blurred) blur(gbuffer, camera, s, raw_.id(), first_.id());
+  pass(gbuffer, light, 0, camera, s, back, blurred ? raw_.id() : first_.id(), kept(blurred ? transfer_raw_ : transfer_first_));
+  if (blurred) blur(gbuffer, camera, s, raw_.id(), first_.id(), kept(transfer_raw_), kept(transfer_first_));
   result_ = first_.id();
+  transfer_result_ = kept(transfer_first_);
   // 2. a second pass: the emitters now send direct + first-bounce light, so its result is the
   //    first bounce and the second together (and the same AO); the back faces send their direct
   //    light again (the layer has no first bounce of its own)
   if (s.bounces == 2) {
-    pass(gbuffer, light, first_.id(), camera, s, back, blurred ? raw_.id() : second_.id());
-    if (blurred) blur(gbuffer, camera, s, raw_.id(), second_.id());
+    pass(gbuffer, light, first_.id(), camera, s, back, blurred ? raw_.id() : second_.id(),
+         kept(blurred ? transfer_raw_ : transfer_second_));
+    if (blurred) blur(gbuffer, camera, s, raw_.id(), second_.id(), kept(transfer_raw_), kept(transfer_second_));
     result_ = second_.id();
+    transfer_result_ = kept(transfer_second_);
   }
 }
 // [/compute]

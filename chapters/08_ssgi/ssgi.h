@@ -50,6 +50,10 @@ struct GiSettings {
   // every pixel's. The defaults: the whole pattern, unturned.
   int kernel_parts = 1, kernel_part = 0;
   float turn = 0.f;
+  // Chapter 11 too: keep each pixel's transfer total, the clamp's denominator (Ssgi::transfer()),
+  // so that an accumulation can clamp its sums instead of each frame's; the blur then averages
+  // the light before the clamp (light x max(transfer, 1)) and the transfer with it.
+  bool keep_transfer = false;
 };
 inline constexpr int kMaxSamples = 128;
 // [/settings]
@@ -63,6 +67,9 @@ class Ssgi {
   void compute(const ch02::GBuffer& gbuffer, GLuint light, const FrameCamera& camera, const GiSettings& settings,
                const BackFaceTextures* back = nullptr);
   GLuint texture() const { return result_; }
+  // With keep_transfer: R32F, each pixel's transfer total after the parts' scaling (texture()'s
+  // light is the light before the clamp divided by max(transfer, 1)); else 0.
+  GLuint transfer() const { return transfer_result_; }
   int width() const { return width_; }
   int height() const { return height_; }
   // The result read back, rows top to bottom: 4 channels, rgb L1_ind, a A.
@@ -73,12 +80,15 @@ class Ssgi {
  private:
   const ShaderProgram& program(const std::string& file, const ch02::GBuffer& gbuffer);
   void pass(const ch02::GBuffer& gbuffer, GLuint light, GLuint extra, const FrameCamera& camera, const GiSettings& s,
-            const BackFaceTextures* back, GLuint out);
-  void blur(const ch02::GBuffer& gbuffer, const FrameCamera& camera, const GiSettings& s, GLuint in, GLuint out);
+            const BackFaceTextures* back, GLuint out, GLuint transfer_out);
+  void blur(const ch02::GBuffer& gbuffer, const FrameCamera& camera, const GiSettings& s, GLuint in, GLuint out,
+            GLuint transfer_in, GLuint transfer_out);
 
   ProgramCache programs_;
   gl::Texture raw_{GL_TEXTURE_2D}, first_{GL_TEXTURE_2D}, second_{GL_TEXTURE_2D};
-  GLuint result_ = 0;
+  gl::Texture transfer_raw_{GL_TEXTURE_2D}, transfer_first_{GL_TEXTURE_2D}, transfer_second_{GL_TEXTURE_2D};  // keep_transfer
+  GLuint result_ = 0, transfer_result_ = 0;
+  int transfer_width_ = 0, transfer_height_ = 0;
   int width_ = 0, height_ = 0;
 };
 

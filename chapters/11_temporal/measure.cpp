@@ -306,6 +306,12 @@ std::vector<GiPathFrame> measure_gi_path(const SceneGpu& scene, const CameraPath
   };
   auto after = [&](int i, const FrameCamera& camera, const std::vector<int>& since) {
     GiPathFrame f{.frame = i, .gi = gi.ssgi().read()};
+    if (gi.ssgi().transfer()) {
+      f.transfer = ImageF::blank(w, h, 1);
+      glGetTextureImage(gi.ssgi().transfer(), 0, GL_RED, GL_FLOAT, GLsizei(f.transfer.data.size() * sizeof(float)),
+                        f.transfer.data.data());
+      flip_vertically(f.transfer);
+    }
     if (o.truth_samples <= 0) {  // the pass's results alone
       out.push_back(f);
       return;

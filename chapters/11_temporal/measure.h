@@ -113,6 +113,7 @@ struct GiPathFrame {
   double error = 0;     // mean |L1_ind - truth| over rgb and the pixels that see a surface
   double ao_error = 0;  // mean |A - truth| (0 without options.ao_truth)
   ImageF gi;            // the pass's result, rgb L1_ind, a A, rows top first
+  ImageF transfer;      // with GiSettings::keep_transfer, this frame's transfer totals (1 channel), else empty
   std::vector<double> since_error;  // the indirect light's, on the pixels disoccluded exactly k frames ago
   std::vector<std::size_t> since_pixels;
 };

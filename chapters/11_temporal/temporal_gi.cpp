@@ -14,6 +14,7 @@ ch08::GiSettings frame_gi(const ch08::GiSettings& gi, const TemporalGiSettings& 
   s.kernel_parts = std::max(1, temporal.kernel_parts);
   s.kernel_part = int(frame % unsigned(s.kernel_parts));
   if (temporal.turn) s.turn = ao_turn(frame);
+  s.keep_transfer = true;  // the accumulation clamps its sums, not each frame's (gi_accumulate.comp)
   return s;
 }
 
@@ -32,13 +33,15 @@ void TemporalGiStage::filter(ch03::DeferredFrame& frame, const ch08::Ssgi& ssgi,
     throw Error("temporal GI: the pass is " + std::to_string(ssgi.width()) + "x" + std::to_string(ssgi.height()) +
                 " and the motion " + std::to_string(motion_.width()) + "x" + std::to_string(motion_.height()) +
                 "; accumulate without a guard band");
+  if (!ssgi.transfer())
+    throw Error("temporal GI: chapter 08's pass kept no transfer totals (GiSettings::keep_transfer; frame_gi sets it)");
   auto pass = timed(metrics, "temporal AO + indirect");
   if (ssgi.width() != width_ || ssgi.height() != height_) {
     width_ = ssgi.width();
     height_ = ssgi.height();
     for (int k = 0; k < 2; ++k) {
       history_[k] = gl::make_texture_2d(GL_RGBA32F, width_, height_);
-      frames_[k] = gl::make_texture_2d(GL_R32F, width_, height_);
+      frames_[k] = gl::make_texture_2d(GL_RG32F, width_, height_);
     }
     reset_ = true;
   }
@@ -50,7 +53,8 @@ void TemporalGiStage::filter(ch03::DeferredFrame& frame, const ch08::Ssgi& ssgi,
   // Chapter 08's result, which the light buffer adds next: this frame's in, the accumulated out.
   glBindImageTexture(0, ssgi.texture(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
   glBindImageTexture(1, history_[next].id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-  glBindImageTexture(2, frames_[next].id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+  glBindImageTexture(2, frames_[next].id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+  glBindImageTexture(3, ssgi.transfer(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
   glDispatchCompute(GLuint((width_ + 7) / 8), GLuint((height_ + 7) / 8), 1);
   glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
   frame.gbuffer().bind_textures();  // units 1-4 were ours for this pass only

@@ -41,12 +41,13 @@ class TemporalGiStage : public ch08::GiFilter {
 
   void filter(ch03::DeferredFrame& frame, const ch08::Ssgi& ssgi, PassMetrics* metrics) override;
 
-  // After the pass: RGBA32F, rgb L1_ind and a A accumulated; R32F, the frames in each pixel's
-  // history (1: dropped or started this frame); whether this frame ran.
+  // After the pass: RGBA32F, rgb L1_ind before the clamp and a A accumulated; RG32F, r the frames
+  // in each pixel's history (1: dropped or started this frame), g the transfer total accumulated
+  // (the clamp's denominator); whether this frame ran.
   GLuint history() const { return history_[cur_].id(); }
   GLuint frames() const { return frames_[cur_].id(); }
   bool ran() const { return ran_; }
-  std::size_t allocated_bytes() const { return std::size_t(width_) * height_ * (16 + 4) * 2; }
+  std::size_t allocated_bytes() const { return std::size_t(width_) * height_ * (16 + 8) * 2; }
 
  private:
   const MotionStage& motion_;

@@ -594,19 +594,21 @@ TEST(TemporalGl, ACutStartsTheAccumulatedAoAndIndirectLightAgain) {
 // On a still camera the accumulation is the whole pattern: with the history's reach the
 // pattern's 8 parts (a running mean over them) and no turn, 8 frames of 4 samples are chapter
 // 08's pass with all 32 (each part's sums stand for the whole pattern, times 8; the mean of the
-// parts is the whole's sum), where its clamps do not act. Without the blur (linear in the
-// results, its weights the surfaces': it changes nothing here, and without it the clamps show).
+// parts is the whole's sum). Without the blur (linear in the results, its weights the
+// surfaces': it changes nothing here, and without it the clamps show).
 // Allowed per value: the RGBA16F roundings, half a unit in the last place (2^-11 relative)
 // each: a part's result and the whole's, each once; the accumulated result once more when
-// stored; the running mean in float (8 blends, 1e-6 relative). So 3 x 2^-11 x the larger of
-// the two values, + 1e-7 for half's subnormals.
+// stored; and the float sums (32 samples, 8 blends, the clamp's division: under 1e-5
+// relative). So (3 x 2^-11 + 1e-5) x the larger of the two values, + 1e-7 for half's
+// subnormals.
 // - The AO: on every pixel where neither a part's occlusion nor the whole's reaches 1 (A = 0,
 //   clamped).
-// - The indirect light: a part whose transfer passes 1 (a wall beside the pixel, its disks
-//   summed over 1) is scaled back to 1, which only lowers it, and which the output does not
-//   show: the accumulated light is nowhere above the whole's by more than the roundings, and
-//   where no part's clamp acts equal to it. That the clamps leave most of it is a regression
-//   bound: at least 80 % of the whole's light over the image (measured: 88 %).
+// - The indirect light: on every value, both ways. Chapter 08's clamp (a transfer total over 1,
+//   a wall beside the pixel, scales the light back to 1) acts on the accumulated sums, not on
+//   each part's: a part's 4 samples pass 1 more often than the 32 together, and clamped one by
+//   one the light came out low (0.876 of the whole's over the image). The whole's own clamp
+//   does not act on this view (its transfer stays under 1; printed): that the clamp after the
+//   blend is applied at all is left untested (mutation 11.gi-accumulated-clamp-dropped).
 TEST(TemporalGl, StillAccumulatedAoAndIndirectOfEightPartsAreTheWholePattern) {
   const CameraPath still{"still", "street_shop", 30.f, {{0.f, "shops", {0, 0, 0}, 0.f, 0.f}, {1.f, "shops", {0, 0, 0}, 0.f, 0.f}}};
   ch08::GiSettings four;
@@ -614,6 +616,7 @@ TEST(TemporalGl, StillAccumulatedAoAndIndirectOfEightPartsAreTheWholePattern) {
   four.blur = false;
   ch08::GiSettings whole = four;
   whole.samples = 32;
+  whole.keep_transfer = true;  // read back below: where the whole's own clamp acts (its light the same)
   TemporalGiSettings t;
   t.enabled = true;
   t.max_frames = t.kernel_parts = 8;
@@ -630,20 +633,22 @@ TEST(TemporalGl, StillAccumulatedAoAndIndirectOfEightPartsAreTheWholePattern) {
   const ImageF& a = accumulated.back().gi;
   const ImageF& b = at_once.back().gi;
   const float half_ulp = std::ldexp(1.f, -11);
-  std::size_t ao_outside = 0, ao_counted = 0, light_above = 0;
+  std::size_t ao_outside = 0, ao_counted = 0, light_outside = 0, whole_clamped = 0;
   double light_a = 0, light_b = 0;
-  float worst_ao = 0;
+  float worst_ao = 0, worst_light = 0;
   for (int y = 0; y < kH; ++y)
     for (int x = 0; x < kW; ++x) {
+      if (at_once.back().transfer.at(x, y, 0) > 1.f) ++whole_clamped;
       bool clamp = b.at(x, y, 3) == 0.f;
       for (const ImageF& p : parts) clamp = clamp || p.at(x, y, 3) == 0.f;
       for (int c = 0; c < 4; ++c) {
         const float d = a.at(x, y, c) - b.at(x, y, c);
-        const float bound = 3.f * half_ulp * std::max(std::abs(a.at(x, y, c)), std::abs(b.at(x, y, c))) + 1e-7f;
+        const float bound = (3.f * half_ulp + 1e-5f) * std::max(std::abs(a.at(x, y, c)), std::abs(b.at(x, y, c))) + 1e-7f;
         if (c < 3) {
           light_a += a.at(x, y, c);
           light_b += b.at(x, y, c);
-          if (d > bound) ++light_above;
+          worst_light = std::max(worst_light, std::abs(d) / bound);
+          if (std::abs(d) > bound) ++light_outside;
         } else if (!clamp) {
           ++ao_counted;
           worst_ao = std::max(worst_ao, std::abs(d) / bound);
@@ -652,13 +657,13 @@ TEST(TemporalGl, StillAccumulatedAoAndIndirectOfEightPartsAreTheWholePattern) {
       }
     }
   std::printf("still, 8 parts of 4 accumulated against 32 at once: AO on %zu pixels, %zu outside the bound (the worst at %.3g "
-              "of it); indirect light above on %zu values, %.3f of the whole's over the image\n",
-              ao_counted, ao_outside, worst_ao, light_above, light_a / light_b);
+              "of it); indirect light outside on %zu values (the worst at %.3g of it), %.4f of the whole's over the image; the "
+              "whole's clamp acts on %zu pixels\n",
+              ao_counted, ao_outside, worst_ao, light_outside, worst_light, light_a / light_b, whole_clamped);
   EXPECT_GT(ao_counted, std::size_t(kW * kH / 2));
   EXPECT_EQ(ao_outside, 0u);
-  EXPECT_EQ(light_above, 0u);
-  EXPECT_GT(light_a, 0.8 * light_b);
-  EXPECT_LE(light_a, light_b);
+  EXPECT_GT(light_b, 0.0);  // there is indirect light to compare
+  EXPECT_EQ(light_outside, 0u);
 }
 
 // Along the walk, at equal samples a frame: 4 accumulated are nearer the ray-traced indirect

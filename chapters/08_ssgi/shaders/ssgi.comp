@@ -11,6 +11,8 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "02_gbuffer/shaders/gbuffer.glsl"
 
 layout(rgba16f, binding = 0) uniform writeonly image2D u_out;
+layout(r32f, binding = 1) uniform writeonly image2D u_transfer_out;  // u_keep_transfer: the clamp's denominator
+uniform int u_keep_transfer;                                         // (chapter 11 accumulates it)
 layout(binding = 9) uniform sampler2D u_light;   // chapter 03's L1: direct diffuse light
 layout(binding = 10) uniform sampler2D u_extra;  // a first bounce's L1_ind (u_bounce = 1), else unused
 
@@ -156,7 +158,11 @@ void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(pixel, ivec2(gb_size.xy)))) return;
   Surface s = decode_gbuffer(pixel);
-  if (s.is_sky) { imageStore(u_out, pixel, vec4(0.0, 0.0, 0.0, 1.0)); return; }
+  if (s.is_sky) {
+    imageStore(u_out, pixel, vec4(0.0, 0.0, 0.0, 1.0));
+    if (u_keep_transfer != 0) imageStore(u_transfer_out, pixel, vec4(0.0));
+    return;
+  }
   float zr = view_depth(s.position);
   // [ssgi-radii]
   float scale_px = u_projection[1][1] * 0.5 * gb_size.y / zr;  // pixels per world unit at depth zr
@@ -220,5 +226,6 @@ void main() {
   if (transfer > 1.0) indirect /= transfer;
   // [/ssgi-clamp]
   imageStore(u_out, pixel, vec4(indirect, 1.0 - clamp(occlusion, 0.0, 1.0)));
+  if (u_keep_transfer != 0) imageStore(u_transfer_out, pixel, vec4(transfer, 0.0, 0.0, 0.0));
 }
 // [/ssgi]
