@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 
@@ -105,6 +106,67 @@ TEST(GlslTwins, DisocclusionMatchesItsCppTwin) {
   EXPECT_GT(hidden, cases.size() / 10);  // both answers occur often
   EXPECT_LT(hidden, cases.size() * 9 / 10);
   std::printf("disocclusion: %zu pixels, %zu hidden, %zu differ within the rounding band\n", cases.size(), hidden, in_band);
+}
+
+// Catmull-Rom's per-axis weights at a fraction t of the way from texel 1 to texel 2 of four,
+// expanded from the spline through four points with tangents (p2 - p0) / 2 and (p3 - p1) / 2.
+std::array<double, 4> catmull_rom_weights(double t) {
+  const double t2 = t * t, t3 = t2 * t;
+  return {-0.5 * t3 + t2 - 0.5 * t, 1.5 * t3 - 2.5 * t2 + 1.0, -1.5 * t3 + 2.0 * t2 + 0.5 * t, 0.5 * t3 - 0.5 * t2};
+}
+
+TEST(GlslTwins, CatmullRomInNineReadsIsTheSixteenTapFilter) {
+  // catmull_rom.glsl reads a 4 x 4 block of texels in 9 bilinear reads (the middle two weights
+  // of each axis merged into one read between their texels); the filter it stands for reads
+  // the 16 texels one by one. A 41 x 29 texture of random values in [0, 1] (RGBA32F: exact),
+  // read at 10 000 random points (some beyond the edges: the sampler clamps, as the 16 taps'
+  // indices do) and at every texel's centre and corner.
+  // The tolerance: a bilinear read weighs its texels by fractions the texture unit rounds to
+  // its sub-texel precision, 8 bits on the GPUs we know (llvmpipe's float path is exact); a
+  // read's value then moves by at most 2^-8 (half a step per axis, texel values differing by
+  // at most 1), and each read is weighed by its two axes' weights, so the filtered value moves
+  // by at most 2^-8 (|w0| + |w12| + |w3|)_x (|w0| + |w12| + |w3|)_y; plus float rounding
+  // of the weights (1e-5).
+  constexpr int kW = 41, kH = 29;
+  test::TwinRandom r(1211);
+  ImageF texels = ImageF::blank(kW, kH, 4);
+  for (float& v : texels.data) v = r.uniform(0, 1);
+  gl::Texture texture = upload(texels);
+  glTextureParameteri(texture.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTextureParameteri(texture.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  std::vector<TwinCase> cases;
+  for (int k = 0; k < 10000; ++k) cases.push_back({glm::vec4(r.uniform(-0.03f, 1.03f), r.uniform(-0.03f, 1.03f), 0, 0)});
+  for (int j = 0; j <= 2 * kH; ++j)
+    for (int i = 0; i <= 2 * kW; ++i) cases.push_back({glm::vec4(0.5f * float(i) / kW, 0.5f * float(j) / kH, 0, 0)});
+  glBindTextureUnit(6, texture.id());
+  const auto gpu = test::run_glsl_twin({{"11_temporal/shaders/catmull_rom.glsl"}, "catmull_rom(twin_texture, a.xy), 0.0", {},
+                                        "layout(binding = 6) uniform sampler2D twin_texture;"},
+                                       cases);
+  // The 16 taps; the texture's rows run bottom first in GL (upload() flips them).
+  const auto texel = [&](int x, int y, int c) {
+    return double(texels.at(std::clamp(x, 0, kW - 1), kH - 1 - std::clamp(y, 0, kH - 1), c));
+  };
+  std::vector<glm::vec4> cpu;
+  std::vector<double> bound;
+  for (const TwinCase& c : cases) {
+    const double px = double(c.a.x) * kW, py = double(c.a.y) * kH;
+    const double x1 = std::floor(px - 0.5), y1 = std::floor(py - 0.5);
+    const auto wx = catmull_rom_weights(px - x1 - 0.5), wy = catmull_rom_weights(py - y1 - 0.5);
+    glm::vec4 v(0);
+    for (int ch = 0; ch < 3; ++ch) {
+      double sum = 0;
+      for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) sum += wx[std::size_t(i)] * wy[std::size_t(j)] * texel(int(x1) - 1 + i, int(y1) - 1 + j, ch);
+      v[ch] = float(std::max(sum, 0.0));
+    }
+    cpu.push_back(v);
+    const auto spread = [](const std::array<double, 4>& w) { return std::abs(w[0]) + std::abs(w[1] + w[2]) + std::abs(w[3]); };
+    bound.push_back(0x1p-8 * spread(wx) * spread(wy) + 1e-5);
+  }
+  EXPECT_TRUE(test::twins_agree(gpu, cpu, 3, [&](std::size_t i) { return test::TwinTolerance{bound[i], 0}; },
+                                [&](std::size_t i) { return "uv " + test::str(cases[i].a); }));
 }
 
 }  // namespace

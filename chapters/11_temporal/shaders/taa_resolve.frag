@@ -53,30 +53,7 @@ vec3 ycocg_to_rgb(vec3 y) {
 }
 // [/resolve-space]
 
-// [catmull-rom]
-// Catmull-Rom through 4x4 texels in 9 bilinear reads: the middle two weights of each axis
-// merged into one read between their texels (their sum is positive).
-vec3 history_catmull_rom(vec2 uv) {
-  vec2 size = vec2(textureSize(u_history, 0));
-  vec2 pos = uv * size;
-  vec2 p1 = floor(pos - 0.5) + 0.5;
-  vec2 f = pos - p1;
-  vec2 w0 = f * (-0.5 + f * (1.0 - 0.5 * f));
-  vec2 w1 = 1.0 + f * f * (-2.5 + 1.5 * f);
-  vec2 w2 = f * (0.5 + f * (2.0 - 1.5 * f));
-  vec2 w3 = f * f * (-0.5 + 0.5 * f);
-  vec2 w12 = w1 + w2;
-  vec2 t0 = (p1 - 1.0) / size, t3 = (p1 + 2.0) / size, t12 = (p1 + w2 / w12) / size;
-  vec3 r = vec3(0.0);
-  r += (texture(u_history, vec2(t0.x, t0.y)).rgb * w0.x + texture(u_history, vec2(t12.x, t0.y)).rgb * w12.x +
-        texture(u_history, vec2(t3.x, t0.y)).rgb * w3.x) * w0.y;
-  r += (texture(u_history, vec2(t0.x, t12.y)).rgb * w0.x + texture(u_history, vec2(t12.x, t12.y)).rgb * w12.x +
-        texture(u_history, vec2(t3.x, t12.y)).rgb * w3.x) * w12.y;
-  r += (texture(u_history, vec2(t0.x, t3.y)).rgb * w0.x + texture(u_history, vec2(t12.x, t3.y)).rgb * w12.x +
-        texture(u_history, vec2(t3.x, t3.y)).rgb * w3.x) * w3.y;
-  return max(r, vec3(0.0));  // its negative lobes can undershoot below black
-}
-// [/catmull-rom]
+#include "11_temporal/shaders/catmull_rom.glsl"
 
 // With --exercise 2 the reader's clip_to_box (chapters/11_temporal/exercises/) stands in.
 #ifdef EXERCISE_CLIP_TO_BOX
@@ -175,7 +152,7 @@ void main() {
   // [blend]
   vec3 result = centre;
   if (!rejected) {
-    vec3 history = to_space(u_filter == 1 ? history_catmull_rom(uv_then) : texture(u_history, uv_then).rgb);
+    vec3 history = to_space(u_filter == 1 ? catmull_rom(u_history, uv_then) : texture(u_history, uv_then).rgb);
     if (u_clip == 1) history = clamp(history, lo, hi);
     if (u_clip == 2) history = ycocg_to_rgb(clip_to_box(lo, hi, rgb_to_ycocg(history)));
     // A moving surface's history was resampled every frame and has blurred: this frame
