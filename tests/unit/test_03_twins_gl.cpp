@@ -67,8 +67,9 @@ TEST(GlslTwins, UnpackedLightsMatchTheirCppTwins) {
     EXPECT_TRUE(test::twins_agree(gpu_point, want_point, 4, {0, 0}, describe)) << "point, vec4 " << k;
     // the direction's xyz (k = 1) carries the unfold's rounding; its w, the range, is a copy
     std::vector<glm::vec4> g = gpu_spot, w = want_spot;
-    if (k == 1)
+    if (k == 1) {
       for (std::size_t i = 0; i < g.size(); ++i) EXPECT_EQ(g[i].w, w[i].w) << describe(i);
+    }
     EXPECT_TRUE(test::twins_agree(g, w, k == 1 ? 3 : 4, {k == 1 ? ulps(12) : 0, 0}, describe)) << "spot, vec4 " << k;
   }
 }

@@ -63,8 +63,9 @@ TEST(CubeMath, TheDepthPassDrawsEachDirectionWhereTheLookupReadsIt) {
       if (f == int(c.face)) continue;
       const Drawn other = drawn(d, CubeFace(f));
       // Another face may hold it only on its very edge (a direction on a seam belongs to both).
-      if (other.inside)
+      if (other.inside) {
         EXPECT_TRUE(std::min({other.st.x, other.st.y, 1.f - other.st.x, 1.f - other.st.y}) < 1e-4f) << i << " on " << f;
+      }
     }
     ++checked;
   }

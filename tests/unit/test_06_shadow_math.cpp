@@ -86,8 +86,8 @@ TEST(ShadowMath, PminMapsItselfToZeroOneToOneAndIsMonotone) {
     for (float p = 0; p <= 1.f; p += 0.01f) {
       const float r = reduce_light_bleeding(p, pmin);
       EXPECT_GE(r, previous);
-      if (p < pmin) EXPECT_EQ(r, 0.f);
-      if (pmin == 0.f) EXPECT_FLOAT_EQ(r, p);
+      if (p < pmin) { EXPECT_EQ(r, 0.f); }
+      if (pmin == 0.f) { EXPECT_FLOAT_EQ(r, p); }
       previous = r;
     }
   }
@@ -483,7 +483,7 @@ TEST(ShadowLights, MarkedPointLightsGetCubeMapsUpToTheLimit) {
   Scene s;
   for (int i = 0; i < kMaxPointShadows + 2; ++i) {
     Light l;
-    l.type = LightType::Point, l.name = "p" + std::to_string(i), l.intensity = 1.f;
+    l.type = LightType::Point, l.name = std::string("p").append(std::to_string(i)), l.intensity = 1.f;
     l.casts_shadows = i != 1;  // p1 unmarked
     s.lights.push_back(l);
   }
@@ -615,7 +615,7 @@ TEST(ShadowCascades, TheSliceSphereHoldsTheSliceAndKeepsItsSizeAsTheCameraMoves)
       // The smallest: a centre on the axis moved either way would leave the near or the far
       // corners outside, so both are on the sphere; or the centre is on the far rectangle.
       const float depth = glm::dot(s.centre - eye, -glm::vec3(world[2]));
-      if (std::abs(depth - f) > 1e-3f * f) EXPECT_NEAR(near_corner, far_corner, 1e-4f * s.radius) << n << " " << f;
+      if (std::abs(depth - f) > 1e-3f * f) { EXPECT_NEAR(near_corner, far_corner, 1e-4f * s.radius) << n << " " << f; }
       else EXPECT_NEAR(far_corner, s.radius, 1e-4f * s.radius);
       if (n == 7.8f) {
         if (radius < 0.f) radius = s.radius;

@@ -1080,7 +1080,7 @@ TEST(ShadowsGlSpot, MarkedSpotLightMatchesItsRayTracedShadowsOutsideTheBand) {
   World w(std::nullopt, add_marked_spot);
   ASSERT_TRUE(w.stage.spot().has_value());
   EXPECT_TRUE(unshadowed_casters(w.scene).empty());
-  const Light& spot = *w.stage.spot();
+  const Light spot = *w.stage.spot();  // a copy: spot() returns the light by value
   const FrameCamera cam = w.camera("overview");
   const ImageF truth = spot_shadow_truth(w.rays, cam, kW, kH, spot);
   const auto hits = primary_hits(w.rays, cam, kW, kH);
@@ -1155,7 +1155,7 @@ TEST(ShadowsGlSpot, NoMapForASpotWhoseReachIsOffScreen) {
   World marked(std::nullopt, bounded), plain(std::nullopt, unmarked);
   ASSERT_TRUE(marked.stage.spot().has_value());
   ASSERT_FALSE(plain.stage.spot().has_value());
-  const Light& spot = *marked.stage.spot();
+  const Light spot = *marked.stage.spot();
   ColourTarget target(kW, kH, GL_RGBA32F);
   // In view: the overview sees the spot's cone.
   FrameCamera cam = marked.camera("overview");

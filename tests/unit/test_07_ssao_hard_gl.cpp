@@ -360,7 +360,7 @@ TEST(SsaoHardCases, SurfaceRightInFrontOfTheCameraIsNotDarkened) {
     occlusion /= double(clamped_n);
     std::printf("%s: mean occlusion %.4f, %.0f %% of the clamped reach's\n", kMethodNames[int(s.method)].c_str(), occlusion,
                 100 * occlusion / clamped_occlusion);
-    if (s.method != AoMethod::Classic) EXPECT_GT(occlusion, 0.5 * clamped_occlusion) << kMethodNames[int(s.method)] << ": AO gone";
+    if (s.method != AoMethod::Classic) { EXPECT_GT(occlusion, 0.5 * clamped_occlusion) << kMethodNames[int(s.method)] << ": AO gone"; }
     EXPECT_GT(n, kW * kH / 2);
     EXPECT_EQ(bad, 0);
     EXPECT_GE(diff, -0.02) << kMethodNames[int(s.method)];

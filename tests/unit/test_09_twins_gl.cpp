@@ -150,8 +150,8 @@ TEST(GlslTwins, CapsuleMeetsBoxMatchesItsCppTwin) {
       }
       cases.push_back({glm::vec4(a, k.radius), glm::vec4(b, k.eye_distance), glm::vec4(k.box.lo, 0.f), glm::vec4(k.box.hi, 0.f)});
       cpu.push_back(glm::vec4(capsule_meets_box(a, b, k.radius, k.box, k.eye_distance) ? 1.f : 0.f));
-      if (!away) EXPECT_EQ(cpu.back().x, 1.f) << "the C++ twin drops a touching capsule";
-      if (away) EXPECT_EQ(cpu.back().x, 0.f) << "the C++ twin bins a capsule 3 radii away";
+      if (!away) { EXPECT_EQ(cpu.back().x, 1.f) << "the C++ twin drops a touching capsule"; }
+      if (away) { EXPECT_EQ(cpu.back().x, 0.f) << "the C++ twin bins a capsule 3 radii away"; }
     }
   const auto gpu = test::run_glsl_twin({{"09_clustered/shaders/grid.glsl"},
                                         "vec4(capsule_meets_box(a.xyz, b.xyz, a.w, Box(c.xyz, d.xyz), b.w) ? 1.0 : 0.0)"},

@@ -110,7 +110,7 @@ TEST(MsaaGl, EveryPixelMarkedEqualsPerSampleShadingEverywhere) {
     // The volumes: every sample inside a light shaded once per sample, none per pixel.
     EXPECT_EQ(m.volume_pixel_samples, 0u);
     EXPECT_EQ(m.volume_per_sample, e.volume_per_sample);
-    if (mode.lights == MsaaLights::Volumes) EXPECT_GT(m.volume_per_sample, 4u * m.pixels);  // the lights overlap
+    if (mode.lights == MsaaLights::Volumes) { EXPECT_GT(m.volume_per_sample, 4u * m.pixels); }  // the lights overlap
     const CompareResult r = compare(all_marked, everywhere, {.threshold = 0, .max_failing_fraction = 0});
     EXPECT_TRUE(r.passed) << r.summary();
     EXPECT_EQ(r.max_error, 0) << r.summary();

@@ -80,7 +80,7 @@ TEST(WholeFrameGl, EachStageOffAndOnAgainGivesTheFirstImage) {
                          std::pair{"neon", off(&WholeFrameSettings::neon)}}) {
     SCOPED_TRACE(name);
     const ImageRGBA8 without = draw(frame, scene, 160, 90, s);
-    if (std::string(name) != "clustered") EXPECT_FALSE(without.pixels == all.pixels) << "switching it off changed nothing";
+    if (std::string(name) != "clustered") { EXPECT_FALSE(without.pixels == all.pixels) << "switching it off changed nothing"; }
     const ImageRGBA8 back = draw(frame, scene, 160, 90);
     EXPECT_TRUE(back.pixels == all.pixels) << compare(back, all).summary();
   }
