@@ -210,33 +210,41 @@ std::size_t count_beyond_band(const std::vector<glm::vec4>& gpu, const std::vect
   return failed;
 }
 
-TEST(GlslTwins, SliceOfMatchesItsCppTwin) {
-  // t = log(d / znear) / log(zfar / znear), slice floor(t S). The GPU's t: d / znear 2.5 ulp
-  // (in the log: 2.5 ulp absolutely), log 3 ulp or 2^-21 absolutely, log(zfar / znear) the
-  // same, the quotient 2.5 ulp: |dt| <= |t| (3 + 2.5 + 2.5 + 1) ulp + (2^-21 + 3 ulp) / L, and the
-  // C++ one far less (inside the GPU's allowance doubled). The band is S times twice that.
-  const GridRig rig;
-  test::TwinRandom r(91);
+// slice_of, and zbin_of with its bins: t = log(d / znear) / log(zfar / znear), the index
+// floor(t S). The GPU's t: d / znear 2.5 ulp (in the log: 2.5 ulp absolutely), log 3 ulp or
+// 2^-21 absolutely, log(zfar / znear) the same, the quotient 2.5 ulp: |dt| <= |t| (3 + 2.5 + 2.5
+// + 1) ulp + (2^-21 + 3 ulp) / L, and the C++ one far less (inside the GPU's allowance doubled).
+// The band is S times twice that. Cases: each slice's start (every one, or 500 spread over
+// many), its neighbouring floats and 1e-4 either side, the range's ends, beyond them, and
+// log-uniform depths. The C++ twin is slice_of on the rig's grid (rig.grid.slices = S).
+void expect_slice_index_matches(const GridRig& rig, const test::GlslTwin& twin, std::uint64_t seed, const char* name) {
+  const int slices = rig.grid.slices;
+  test::TwinRandom r(seed);
   std::vector<TwinCase> cases;
-  for (int k = 0; k <= kSlices; ++k) {  // each slice's start and its neighbouring floats
+  for (int k = 0; k <= slices; k += std::max(1, slices / 500)) {
     const float d = slice_start(rig.grid, k);
     for (float e : {d, std::nextafter(d, 0.f), std::nextafter(d, 1e9f), d * (1 + 1e-4f), d * (1 - 1e-4f)}) cases.push_back({glm::vec4(e, 0, 0, 0)});
   }
-  for (float e : {0.f, 1e-3f, kNear, kFar, 5000.f}) cases.push_back({glm::vec4(e, 0, 0, 0)});
+  for (float e : {0.f, 1e-3f, kNear, kFar, 5000.f, -1.f}) cases.push_back({glm::vec4(e, 0, 0, 0)});
   while (cases.size() < 12000) cases.push_back({glm::vec4(r.log_uniform(0.01f, 2000.f), 0, 0, 0)});
-  const auto gpu = test::run_glsl_twin(rig.twin("float(slice_of(a.x)), 0.0, 0.0, 0.0"), cases);
+  const auto gpu = test::run_glsl_twin(twin, cases);
   std::vector<int> cpu;
   std::vector<double> exact, band;
   const double L = std::log(double(kFar) / double(kNear));
   for (const TwinCase& c : cases) {
     cpu.push_back(slice_of(rig.grid, c.a.x));
     const double t = std::log(std::max(double(c.a.x), double(kNear)) / double(kNear)) / L;
-    exact.push_back(t * kSlices);
-    band.push_back(2 * kSlices * (std::abs(t) * ulps(9) + (0x1p-21 + ulps(3)) / L));
+    exact.push_back(t * slices);
+    band.push_back(2 * slices * (std::abs(t) * ulps(9) + (0x1p-21 + ulps(3)) / L));
   }
   std::size_t in_band = 0;
   EXPECT_EQ(count_beyond_band(gpu, cpu, exact, band, [&](std::size_t i) { return "d " + std::to_string(cases[i].a.x); }, &in_band), 0u);
-  std::printf("slice_of: %zu cases, %zu differ within the rounding band\n", cases.size(), in_band);
+  std::printf("%s, %d slices: %zu cases, %zu differ within the rounding band\n", name, slices, cases.size(), in_band);
+}
+
+TEST(GlslTwins, SliceOfMatchesItsCppTwin) {
+  const GridRig rig;
+  expect_slice_index_matches(rig, rig.twin("float(slice_of(a.x)), 0.0, 0.0, 0.0"), 91, "slice_of");
 }
 
 TEST(GlslTwins, SliceStartMatchesItsCppTwin) {
@@ -446,35 +454,12 @@ test::GlslTwin zbin_twin(const GridRig& rig, int bins, const std::string& expres
 
 TEST(GlslTwins, ZbinOfMatchesItsCppTwin) {
   // zbin_of is slice_of with u_zbins slices: its C++ twin is slice_of on a grid of that many
-  // (what ZBinRangesAndTileBitsHoldExactlyTheLightsThatReach takes it for), and its band is
-  // slice_of's: t = log(d / znear) / log(zfar / znear) within |t| 9 ulp + (2^-21 + 3 ulp) / L on
-  // the GPU, the C++ far less, the bin floor(t B) within B times twice that of its edge. Bins:
-  // 1 (everything in bin 0), the program's 1024, the largest, 16 384, and 24 (a slice's worth).
+  // (what ZBinRangesAndTileBitsHoldExactlyTheLightsThatReach takes it for), with slice_of's band.
+  // Bins: 1 (everything in bin 0), 24 (a slice's worth), the program's 1024, the most, 16 384.
   for (const int bins : {1, 24, 1024, 16384}) {
-    SCOPED_TRACE(std::to_string(bins) + " bins");
     GridRig rig;
     rig.grid = grid_of_tiles(kW, kH, 16, bins, kNear, kFar);
-    test::TwinRandom r(97 + std::uint64_t(bins));
-    std::vector<TwinCase> cases;
-    for (int k = 0; k <= bins; k += std::max(1, bins / 500)) {  // bin starts and their neighbouring floats
-      const float d = slice_start(rig.grid, k);
-      for (float e : {d, std::nextafter(d, 0.f), std::nextafter(d, 1e9f)}) cases.push_back({glm::vec4(e, 0, 0, 0)});
-    }
-    for (float e : {0.f, 1e-3f, kNear, kFar, 5000.f, -1.f}) cases.push_back({glm::vec4(e, 0, 0, 0)});
-    while (cases.size() < 12000) cases.push_back({glm::vec4(r.log_uniform(0.01f, 2000.f), 0, 0, 0)});
-    const auto gpu = test::run_glsl_twin(zbin_twin(rig, bins, "float(zbin_of(a.x)), 0.0, 0.0, 0.0"), cases);
-    std::vector<int> cpu;
-    std::vector<double> exact, band;
-    const double L = std::log(double(kFar) / double(kNear));
-    for (const TwinCase& c : cases) {
-      cpu.push_back(slice_of(rig.grid, c.a.x));
-      const double t = std::log(std::max(double(c.a.x), double(kNear)) / double(kNear)) / L;
-      exact.push_back(t * bins);
-      band.push_back(2 * bins * (std::abs(t) * ulps(9) + (0x1p-21 + ulps(3)) / L));
-    }
-    std::size_t in_band = 0;
-    EXPECT_EQ(count_beyond_band(gpu, cpu, exact, band, [&](std::size_t i) { return "d " + std::to_string(cases[i].a.x); }, &in_band), 0u);
-    std::printf("zbin_of, %d bins: %zu cases, %zu differ within the rounding band\n", bins, cases.size(), in_band);
+    expect_slice_index_matches(rig, zbin_twin(rig, bins, "float(zbin_of(a.x)), 0.0, 0.0, 0.0"), 97 + std::uint64_t(bins), "zbin_of");
   }
 }
 
