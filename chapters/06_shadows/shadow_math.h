@@ -73,7 +73,7 @@ LightFrustum fit_cascade(glm::vec3 direction, glm::vec3 scene_min, glm::vec3 sce
 // Which cascade a point at view depth `depth` reads (the first whose far split lies beyond it;
 // -1 beyond the last: lit), and the weight of the next cascade in the blend band: the last
 // `band` fraction of a cascade's depth range fades into the next, so no seam shows where the
-// texel's size jumps. shadow_visibility.glsl's cascade choice is the twin.
+// texel's size jumps. lookup_math.glsl's choose_cascade is the twin.
 struct CascadeChoice {
   int cascade = -1;
   float next_weight = 0;

@@ -24,7 +24,7 @@ struct AtlasTile {
 // an Error for a count, index or size out of range.
 AtlasTile spot_atlas_tile(int index, int count, int atlas_size);
 // The atlas's (u, v) that a tile-local (u, v) reads: clamped to the centres of the tile's border
-// texels, then placed in the tile (shadow_visibility.glsl's spot_atlas_uv, its twin).
+// texels, then placed in the tile (lookup_math.glsl's spot_atlas_uv, its twin).
 glm::vec2 spot_atlas_uv(const AtlasTile& tile, glm::vec2 uv);
 
 }  // namespace lp::ch06

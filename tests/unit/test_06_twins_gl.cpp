@@ -8,9 +8,12 @@
 #include <cmath>
 #include <cstdio>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "chapters/06_shadows/csm_math.h"
 #include "chapters/06_shadows/cube_math.h"
 #include "chapters/06_shadows/shadow_math.h"
+#include "chapters/06_shadows/spot_atlas.h"
 #include "common/gl.h"
 #include "tests/unit/glsl_twin.h"
 
@@ -294,6 +297,196 @@ TEST(GlslTwins, CubeFaceCoordsNameTheTexelTheSamplerReads) {
   std::printf("  %zu directions (%zu ties); (s, t) at most %.4f texels from the centre read, allowed %.4f\n", cases.size(),
               ties, worst * kN, allowed * kN);
   EXPECT_EQ(failed, 0u);
+}
+
+// lookup_math.glsl: where a lookup reads. u below is float's unit roundoff 2^-24 = ulps(0.5).
+constexpr double kU = 0x1p-24;
+
+// PCF's receiver plane (receiver_plane_gradient against shadow_math.h's). The light's view is a
+// rotation (random directions, as fit_light_frustum's lookAt makes them); n = M w, each
+// component a three-term dot product: at most 3 u of sum_j |M_kj w_j| (S_k) on either side, fused
+// or not. n.x / nz, * extent, / depth_range: GLSL's two divisions 2.5 ulp each and the product's
+// half, 5.5 ulp, C++'s 1.5, so 7 ulp of the gradient; the max is exact and moves nz by no more
+// than n.z moves. To first order (the second-order terms are below 2^-40 relatively):
+//   |dg_k| <= E_k / R (6 u S_k / nz + |n_k| 6 u S_z / nz^2) + 7 ulp |g_k|.
+// Cases: random normals (half facing the light), the grazing ones near the 20:1 floor (n.z just
+// above and below 0.05), the floor exactly, normals facing away, along the light and across it;
+// extents 1 to 1000 m, depth ranges 1 to 2000 m, log-uniform.
+TEST(GlslTwins, ReceiverPlaneGradientMatchesItsCppTwin) {
+  test::TwinRandom r(67);
+  std::vector<TwinCase> cases;
+  std::vector<LightFrustum> frusta;
+  const auto add = [&](glm::vec3 direction, glm::vec3 view_normal, bool normal_in_view) {
+    LightFrustum f;
+    const glm::vec3 up = std::abs(direction.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+    f.view = glm::lookAt(glm::vec3(0), direction, up);
+    const float ex = r.log_uniform(1, 1000), ey = r.log_uniform(1, 1000), z0 = r.uniform(-500, 0);
+    f.box_min = glm::vec3(-0.5f * ex, -0.5f * ey, z0 - r.log_uniform(1, 2000));
+    f.box_max = glm::vec3(0.5f * ex, 0.5f * ey, z0);
+    // A normal given in the light's view space is taken back to the world by the transpose.
+    const glm::vec3 w = normal_in_view ? glm::transpose(glm::mat3(f.view)) * view_normal : view_normal;
+    const glm::mat3 m(f.view);
+    const glm::vec2 extent(f.box_max - f.box_min);
+    cases.push_back({glm::vec4(m[0], extent.x), glm::vec4(m[1], extent.y), glm::vec4(m[2], f.depth_range()), glm::vec4(w, 0)});
+    frusta.push_back(f);
+  };
+  for (float nz : {1.f, 0.5f, 0.2f, 0.1f, 0.0501f, 0.05f, 0.0499f, 0.01f, 0.f, -0.3f, -1.f})
+    for (float phi : {0.f, 0.7f, 1.5707964f, 2.9f, 4.4f}) {
+      const float s = std::sqrt(std::max(0.f, 1 - nz * nz));
+      add(r.unit(), glm::vec3(s * std::cos(phi), s * std::sin(phi), nz), true);
+    }
+  while (cases.size() < 12000) {
+    glm::vec3 n = r.unit();
+    if (cases.size() % 2 == 0) n.z = std::abs(n.z);  // facing the light
+    if (cases.size() % 5 == 0) n = glm::normalize(glm::vec3(n.x, n.y, r.uniform(0.03f, 0.2f)));  // grazing
+    add(r.unit(), n, true);
+  }
+  const auto gpu = test::run_glsl_twin(
+      {{"06_shadows/shaders/lookup_math.glsl"}, "receiver_plane_gradient(mat3(a.xyz, b.xyz, c.xyz), d.xyz, vec2(a.w, b.w), c.w), 0.0, 0.0"},
+      cases);
+  std::vector<glm::vec4> cpu;
+  std::vector<double> tolerance;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const TwinCase& c = cases[i];
+    const glm::vec2 g = receiver_plane_gradient(frusta[i], glm::vec3(c.d));
+    cpu.push_back(glm::vec4(g, 0, 0));
+    const glm::dmat3 m(glm::dvec3(c.a), glm::dvec3(c.b), glm::dvec3(c.c));
+    const glm::dvec3 w(c.d), n = m * w;
+    double sum[3];
+    for (int k = 0; k < 3; ++k) sum[k] = std::abs(m[0][k] * w.x) + std::abs(m[1][k] * w.y) + std::abs(m[2][k] * w.z);
+    const double nz = std::max(n.z, 0.05), extent[2] = {c.a.w, c.b.w}, range = c.c.w;
+    double t = 0;
+    for (int k = 0; k < 2; ++k)
+      t = std::max(t, extent[k] / range * (6 * kU * sum[k] / nz + std::abs(n[k]) * 6 * kU * sum[2] / (nz * nz)) +
+                          test::ulps(7) * std::abs(n[k] / nz * extent[k] / range));
+    tolerance.push_back(t);
+  }
+  EXPECT_TRUE(test::twins_agree(gpu, cpu, 2, [&](std::size_t i) { return test::TwinTolerance{tolerance[i], 0}; },
+                                [&](std::size_t i) { return describe4(cases, i); }));
+}
+
+// The cascade choice (choose_cascade against shadow_math.h's). Which cascade: both compare the
+// same floats (depth < far), so it must be equal. The blend weight w = (depth - (F - L)) / L,
+// L = band (F - P): L rounds twice (2 u of L), F - L once more (u |F - L|), the numerator once
+// more (u |N|, |N| / L = w), the division 2.5 ulp (5 u) in GLSL, u in C++; the clamp moves
+// nothing apart. Per side |dw| <= 2 u + u |F - L| / L + (1 + 2 + division) u w, both sides:
+//   4 u + 2 u |F - L| / L + 12 u w   (w taken at most 2: beyond 1 both clamp to 1).
+// Cases: 1 to 4 cascades (the chapter's practical splits and random ones), bands 0 to 1; depths
+// anywhere from before the near plane to past the last split, and on every split, the band's
+// start and their neighbouring floats.
+TEST(GlslTwins, CascadeChoiceMatchesItsCppTwin) {
+  test::TwinRandom r(68);
+  std::vector<TwinCase> cases;
+  std::vector<std::vector<float>> split_sets;
+  const auto add = [&](const std::vector<float>& splits, float depth, float band) {
+    glm::vec4 far(0);
+    for (std::size_t i = 1; i < splits.size(); ++i) far[int(i) - 1] = splits[i];
+    cases.push_back({far, glm::vec4(depth, splits[0], float(splits.size() - 1), band)});
+    split_sets.push_back(splits);
+  };
+  const auto random_splits = [&]() {
+    const int count = 1 + int(r.uniform(0, 4)) % 4;
+    const float near = r.log_uniform(0.01f, 1.f), far = near * r.log_uniform(2, 10000);
+    if (r.uniform(0, 1) < 0.5f) return cascade_splits(count, near, far, r.uniform(0, 1));
+    std::vector<float> z{near};
+    for (int i = 0; i < count; ++i) z.push_back(z.back() * r.log_uniform(1.01f, 20));
+    return z;
+  };
+  while (cases.size() < 4000) {  // the edges
+    const std::vector<float> z = random_splits();
+    const float band = cases.size() % 8 == 0 ? 0.f : cases.size() % 8 == 1 ? 1.f : r.uniform(0, 0.5f);
+    for (std::size_t i = 0; i < z.size(); ++i) {
+      for (float d : {z[i], std::nextafter(z[i], 0.f), std::nextafter(z[i], 1e9f)}) add(z, d, band);
+      if (i == 0) continue;
+      const float start = z[i] - band * (z[i] - z[i - 1]);  // where the band begins
+      for (float d : {start, std::nextafter(start, 0.f), std::nextafter(start, 1e9f)}) add(z, d, band);
+    }
+    add(z, 0.f, band);
+    add(z, -1.f, band);
+  }
+  while (cases.size() < 16000) {
+    const std::vector<float> z = random_splits();
+    add(z, r.log_uniform(0.5f * z.front(), 1.5f * z.back()), cases.size() % 4 == 0 ? 0.f : r.uniform(0, 1));
+  }
+  const std::string helper =
+      "vec2 twin_cascade(vec4 a, vec4 b) { CascadeChoice c = choose_cascade(b.x, a, b.y, int(b.z), b.w); "
+      "return vec2(float(c.cascade), c.next_weight); }";
+  const auto gpu = test::run_glsl_twin({{"06_shadows/shaders/lookup_math.glsl"}, "twin_cascade(a, b), 0.0, 0.0", {}, helper}, cases);
+  std::vector<glm::vec4> gpu_cascade, gpu_weight, cpu_cascade, cpu_weight;
+  std::vector<double> tolerance;
+  std::size_t blended = 0, beyond = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const std::vector<float>& z = split_sets[i];
+    const float depth = cases[i].b.x, band = cases[i].b.w;
+    const CascadeChoice c = choose_cascade(depth, z, band);
+    gpu_cascade.push_back(glm::vec4(gpu[i].x, 0, 0, 0));
+    gpu_weight.push_back(glm::vec4(gpu[i].y, 0, 0, 0));
+    cpu_cascade.push_back(glm::vec4(float(c.cascade), 0, 0, 0));
+    cpu_weight.push_back(glm::vec4(c.next_weight, 0, 0, 0));
+    blended += c.next_weight > 0.f && c.next_weight < 1.f;
+    beyond += c.cascade < 0;
+    double t = 0;
+    if (c.cascade >= 0) {
+      const std::size_t k = std::size_t(c.cascade);
+      const double l = double(band) * (double(z[k + 1]) - z[k]), f = z[k + 1];
+      if (l > 0) {
+        const double w = std::min(std::abs((depth - (f - l)) / l), 2.0);
+        t = 4 * kU + 2 * kU * std::abs(f - l) / l + 12 * kU * w;
+      }
+    }
+    tolerance.push_back(t);
+  }
+  auto describe = [&](std::size_t i) { return "far splits " + test::str(cases[i].a) + " (depth, near, count, band) " + test::str(cases[i].b); };
+  EXPECT_TRUE(test::twins_agree(gpu_cascade, cpu_cascade, 1, test::TwinTolerance{0, 0}, describe)) << "the cascade";
+  EXPECT_TRUE(test::twins_agree(gpu_weight, cpu_weight, 1, [&](std::size_t i) { return test::TwinTolerance{tolerance[i], 0}; }, describe))
+      << "the next cascade's weight";
+  std::printf("  %zu cases, %zu inside a blend band, %zu beyond the last cascade\n", cases.size(), blended, beyond);
+  EXPECT_GT(blended, 1000u);
+  EXPECT_GT(beyond, 100u);
+}
+
+// The spots' atlas (spot_atlas_uv against spot_atlas.h's): half a texel, 0.5 / N, is 2.5 ulp in
+// GLSL and 0.5 in C++ (6 u of it apart), 1 - h rounds on each side (u each), so the clamp's
+// bounds, and the clamped (u, v), are at most 6 u h + 2 u apart; then corner + c side rounds twice
+// on each side (fused or not): |d| <= side (6 u h + 2 u) + 2 u (|c| side + |result|). Cases: every
+// tile of 1 to 16 spots in atlases of 64 to 4096 texels (powers of two and not), (u, v) over
+// [-0.5, 1.5] (PCF's taps past the tile's edges), on the tile's edges, on the border texels'
+// centres and their neighbouring floats.
+TEST(GlslTwins, SpotAtlasUvMatchesItsCppTwin) {
+  test::TwinRandom r(69);
+  std::vector<TwinCase> cases;
+  std::vector<AtlasTile> tiles;
+  const int sizes[] = {64, 100, 128, 1000, 1024, 2048, 3000, 4096};
+  std::size_t round = 0;
+  while (cases.size() < 12000) {
+    const int atlas = sizes[round % 8], count = 1 + int(round / 8) % kMaxSpotShadows;
+    ++round;
+    for (int index = 0; index < count; ++index) {
+      const AtlasTile t = spot_atlas_tile(index, count, atlas);
+      const float h = 0.5f / float(t.size);
+      std::vector<float> edge{0.f, 1.f, h, 1 - h, std::nextafter(h, 0.f), std::nextafter(h, 1.f), std::nextafter(1 - h, 0.f),
+                              std::nextafter(1 - h, 1.f), -1e-7f, 1 + 1e-7f};
+      const float u = edge[std::size_t(index) % edge.size()], v = edge[std::size_t(index + round) % edge.size()];
+      for (glm::vec2 uv : {glm::vec2(u, v), glm::vec2(r.uniform(-0.5f, 1.5f), r.uniform(-0.5f, 1.5f)),
+                           glm::vec2(r.uniform(0, 1), r.uniform(0, 1))}) {
+        cases.push_back({glm::vec4(t.corner, t.side, float(t.size)), glm::vec4(uv, 0, 0)});
+        tiles.push_back(t);
+      }
+    }
+  }
+  const auto gpu = test::run_glsl_twin({{"06_shadows/shaders/lookup_math.glsl"}, "spot_atlas_uv(a.xyz, a.w, b.xy), 0.0, 0.0"}, cases);
+  std::vector<glm::vec4> cpu;
+  std::vector<double> tolerance;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const glm::vec2 uv = spot_atlas_uv(tiles[i], glm::vec2(cases[i].b));
+    cpu.push_back(glm::vec4(uv, 0, 0));
+    const double side = tiles[i].side, h = 0.5 / tiles[i].size;
+    const double c = std::max(std::abs(double(cases[i].b.x)), std::abs(double(cases[i].b.y)));
+    const double clamped = std::clamp(c, 0.0, 1.0);
+    tolerance.push_back(side * (6 * kU * h + 2 * kU) + 2 * kU * (clamped * side + std::max(std::abs(uv.x), std::abs(uv.y))));
+  }
+  EXPECT_TRUE(test::twins_agree(gpu, cpu, 2, [&](std::size_t i) { return test::TwinTolerance{tolerance[i], 0}; },
+                                [&](std::size_t i) { return describe4(cases, i); }));
 }
 
 }  // namespace

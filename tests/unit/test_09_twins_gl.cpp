@@ -210,33 +210,77 @@ std::size_t count_beyond_band(const std::vector<glm::vec4>& gpu, const std::vect
   return failed;
 }
 
-TEST(GlslTwins, SliceOfMatchesItsCppTwin) {
-  // t = log(d / znear) / log(zfar / znear), slice floor(t S). The GPU's t: d / znear 2.5 ulp
-  // (in the log: 2.5 ulp absolutely), log 3 ulp or 2^-21 absolutely, log(zfar / znear) the
-  // same, the quotient 2.5 ulp: |dt| <= |t| (3 + 2.5 + 2.5 + 1) ulp + (2^-21 + 3 ulp) / L, and the
-  // C++ one far less (inside the GPU's allowance doubled). The band is S times twice that.
-  const GridRig rig;
-  test::TwinRandom r(91);
+// slice_of, and zbin_of with its bins: t = log(d / znear) / log(zfar / znear), the index
+// floor(t S). The GPU's t: d / znear 2.5 ulp (in the log: 2.5 ulp absolutely), log 3 ulp or
+// 2^-21 absolutely, log(zfar / znear) the same, the quotient 2.5 ulp: |dt| <= |t| (3 + 2.5 + 2.5
+// + 1) ulp + (2^-21 + 3 ulp) / L, and the C++ one far less (inside the GPU's allowance doubled).
+// The band is S times twice that. Cases: each slice's start (every one, or 500 spread over
+// many), its neighbouring floats and 1e-4 either side, the range's ends, beyond them, and
+// log-uniform depths. The C++ twin is slice_of on the rig's grid (rig.grid.slices = S).
+void expect_slice_index_matches(const GridRig& rig, const test::GlslTwin& twin, std::uint64_t seed, const char* name) {
+  const int slices = rig.grid.slices;
+  test::TwinRandom r(seed);
   std::vector<TwinCase> cases;
-  for (int k = 0; k <= kSlices; ++k) {  // each slice's start and its neighbouring floats
+  for (int k = 0; k <= slices; k += std::max(1, slices / 500)) {
     const float d = slice_start(rig.grid, k);
     for (float e : {d, std::nextafter(d, 0.f), std::nextafter(d, 1e9f), d * (1 + 1e-4f), d * (1 - 1e-4f)}) cases.push_back({glm::vec4(e, 0, 0, 0)});
   }
-  for (float e : {0.f, 1e-3f, kNear, kFar, 5000.f}) cases.push_back({glm::vec4(e, 0, 0, 0)});
+  for (float e : {0.f, 1e-3f, kNear, kFar, 5000.f, -1.f}) cases.push_back({glm::vec4(e, 0, 0, 0)});
   while (cases.size() < 12000) cases.push_back({glm::vec4(r.log_uniform(0.01f, 2000.f), 0, 0, 0)});
-  const auto gpu = test::run_glsl_twin(rig.twin("float(slice_of(a.x)), 0.0, 0.0, 0.0"), cases);
+  const auto gpu = test::run_glsl_twin(twin, cases);
   std::vector<int> cpu;
   std::vector<double> exact, band;
   const double L = std::log(double(kFar) / double(kNear));
   for (const TwinCase& c : cases) {
     cpu.push_back(slice_of(rig.grid, c.a.x));
     const double t = std::log(std::max(double(c.a.x), double(kNear)) / double(kNear)) / L;
-    exact.push_back(t * kSlices);
-    band.push_back(2 * kSlices * (std::abs(t) * ulps(9) + (0x1p-21 + ulps(3)) / L));
+    exact.push_back(t * slices);
+    band.push_back(2 * slices * (std::abs(t) * ulps(9) + (0x1p-21 + ulps(3)) / L));
   }
   std::size_t in_band = 0;
   EXPECT_EQ(count_beyond_band(gpu, cpu, exact, band, [&](std::size_t i) { return "d " + std::to_string(cases[i].a.x); }, &in_band), 0u);
-  std::printf("slice_of: %zu cases, %zu differ within the rounding band\n", cases.size(), in_band);
+  std::printf("%s, %d slices: %zu cases, %zu differ within the rounding band\n", name, slices, cases.size(), in_band);
+}
+
+TEST(GlslTwins, SliceOfMatchesItsCppTwin) {
+  const GridRig rig;
+  expect_slice_index_matches(rig, rig.twin("float(slice_of(a.x)), 0.0, 0.0, 0.0"), 91, "slice_of");
+}
+
+TEST(GlslTwins, SliceStartMatchesItsCppTwin) {
+  // near (far / near)^(k / S), the depth where a cluster slice begins (assign.comp's cell boxes).
+  // GLSL: far / near and k / S 2.5 ulp each, pow is exp2(y log2 x): log2 3 ulp (x = far / near
+  // is beyond [0.5, 2]), the product half an ulp, so the exponent x' = y log2 x is within
+  // x' 6 ulp + y 2.5 ulp / ln 2 (the quotient's error through log2), which exp2 turns into a
+  // relative ln 2 times that, plus its own (3 + 2 x') ulp, and near times it half an ulp. C++:
+  // the same with 0.5 ulp divisions and powf within an ulp. The ends (k <= 0, k >= S) are near
+  // and far exactly on both sides. Every k from -2 to S + 2, for 24, 1024 and 16 384 slices over
+  // three depth ranges (ratios 1e4, 1e4 and 2e5).
+  std::size_t total = 0;
+  for (const int slices : {24, 1024, 16384})
+    for (const glm::vec2 range : {glm::vec2(kNear, kFar), glm::vec2(0.01f, 100.f), glm::vec2(0.5f, 1e5f)}) {
+      SCOPED_TRACE(std::to_string(slices) + " slices, depths " + std::to_string(range.x) + " to " + std::to_string(range.y));
+      GridRig rig;
+      rig.grid = grid_of_counts(kW, kH, kTilesX, kTilesY, slices, range.x, range.y);
+      std::vector<TwinCase> cases;
+      for (int k = -2; k <= slices + 2; ++k) cases.push_back({glm::vec4(float(k), 0, 0, 0)});
+      total += cases.size();
+      const auto gpu = test::run_glsl_twin(rig.twin("slice_start(int(a.x)), 0.0, 0.0, 0.0"), cases);
+      std::vector<glm::vec4> cpu;
+      std::vector<double> tolerance;
+      const double ln2 = std::log(2.0), log2_ratio = std::log2(double(range.y) / range.x);
+      for (const TwinCase& c : cases) {
+        const int k = int(c.a.x);
+        const float v = slice_start(rig.grid, k);
+        cpu.push_back(glm::vec4(v, 0, 0, 0));
+        const double y = std::clamp(double(k) / slices, 0.0, 1.0), x = y * log2_ratio;
+        const double gpu_ulps = ln2 * (6 * x + 2.5 * y / ln2) + 3 + 2 * x + 0.5, cpu_ulps = ln2 * (1.5 * x + 0.5 * y / ln2) + 1 + 0.5;
+        tolerance.push_back(k <= 0 || k >= slices ? 0.0 : ulps(gpu_ulps + cpu_ulps) * v);
+      }
+      EXPECT_TRUE(test::twins_agree(gpu, cpu, 1, [&](std::size_t i) { return test::TwinTolerance{tolerance[i], 0}; },
+                                    [&](std::size_t i) { return "k " + std::to_string(int(cases[i].a.x)); }));
+    }
+  EXPECT_GE(total, 10000u);
 }
 
 TEST(GlslTwins, DepthBinMatchesItsCppTwin) {
@@ -393,6 +437,133 @@ TEST(GlslTwins, SphereMeetsBoxMatchesItsCppTwin) {
         return std::abs(dd - rr * rr) <= 2 * (ulps(4) * dd + ulps(2.5) * rr * rr);
       },
       [&](std::size_t i) { return "sphere " + test::str(cases[i].a) + " box " + test::str(cases[i].b) + " " + test::str(cases[i].c); });
+}
+
+// zbin.glsl against cluster_grid.h: Z-binning's bins and a light's screen rectangle. The GLSL
+// reads grid.glsl's uniforms (the rig's camera, and here zbin's own grid: 16-pixel tiles, the
+// last row cut short) and u_zbins.
+test::GlslTwin zbin_twin(const GridRig& rig, int bins, const std::string& expression) {
+  test::GlslTwin t = rig.twin(expression);
+  t.files.push_back("09_clustered/shaders/zbin.glsl");
+  t.uniforms = [set = t.uniforms, bins](unsigned program) {
+    set(program);
+    glProgramUniform1i(program, glGetUniformLocation(program, "u_zbins"), bins);
+  };
+  return t;
+}
+
+TEST(GlslTwins, ZbinOfMatchesItsCppTwin) {
+  // zbin_of is slice_of with u_zbins slices: its C++ twin is slice_of on a grid of that many
+  // (what ZBinRangesAndTileBitsHoldExactlyTheLightsThatReach takes it for), with slice_of's band.
+  // Bins: 1 (everything in bin 0), 24 (a slice's worth), the program's 1024, the most, 16 384.
+  for (const int bins : {1, 24, 1024, 16384}) {
+    GridRig rig;
+    rig.grid = grid_of_tiles(kW, kH, 16, bins, kNear, kFar);
+    expect_slice_index_matches(rig, zbin_twin(rig, bins, "float(zbin_of(a.x)), 0.0, 0.0, 0.0"), 97 + std::uint64_t(bins), "zbin_of");
+  }
+}
+
+// A light's screen rectangle (zbin.glsl's sphere_tiles against cluster_grid.h's). Each end is
+// floor(e) of e = px / tile, px = ((q P - O) 0.5 + 0.5) W -+ 1, q = (c.x -+ r) / d over the two
+// depths d0 (the box's near side, or half the near plane) and d1; the tiles are integers, equal
+// unless the exact e lies within both twins' rounding band of the integer between them. Per
+// side, u = 2^-24 and a division's allowance v (GLSL 5 u, C++ u): r = radius (1 + 1e-5) + 1e-6
+// rounds twice (2 u r); d1 and d0 once more (dd = u (|c.z| + r) + 2 u r; d0 not at all where
+// it is half the near plane, constant); the numerator u |c.x -+ r| + 2 u r; each q = num / d
+// within dnum / d + |q| (dd / d + v), the min / max no further than the larger; q P - O:
+// P dq + u |q P| + u (|q P| + |O|); the pixel: W / 2 of that plus u W (|ndc| / 2 + 1 / 2)
+// + 2 u (|px| + 1); e: dpx / T + v |e|. The band is the two sides' sum (at most 0.3 tiles, for
+// spheres around the camera cut at half the near plane: r's rounding over d0 = 5 cm). Whether the rectangle is empty (d1 < d0) is decided within 2 (u (|c.z| + r) + 2 u r) of
+// d1 = d0: there either answer is right. Cases: spheres in front of the camera, in and out of
+// the view, large and small; ones cut by or behind the near plane, on the camera; spheres
+// grazing a tile's edge (their rectangle's exact end on an integer).
+TEST(GlslTwins, SphereTilesMatchesItsCppTwin) {
+  GridRig rig;
+  rig.grid = grid_of_tiles(kW, kH, 16, 1024, kNear, kFar);
+  const Grid& g = rig.grid;
+  const glm::mat4& p = rig.camera.projection;
+  test::TwinRandom r(98);
+  std::vector<TwinCase> cases;
+  const float tan_x = 1.f / p[0][0], tan_y = 1.f / p[1][1];
+  while (cases.size() < 12000) {
+    const int kind = int(cases.size() % 6);
+    const float depth = kind == 0 ? r.uniform(-2.f, 0.2f) : r.log_uniform(0.05f, 1500.f);
+    const float spread = kind == 1 ? 3.f : 1.2f;
+    glm::vec3 c(r.uniform(-spread, spread) * tan_x * std::max(depth, 0.1f), r.uniform(-spread, spread) * tan_y * std::max(depth, 0.1f), -depth);
+    float radius = r.log_uniform(0.01f, 50.f);
+    if (kind == 2) radius = std::max(0.001f, depth - 0.5f * kNear + r.uniform(-1e-3f, 1e-3f));  // d0 at half the near plane
+    if (kind == 3) radius = depth + r.uniform(-0.1f, 0.1f);  // the near plane's cut
+    if (kind >= 4) {  // x's low end (4) or y's high end (5) exactly on a tile's edge, before c rounds to float
+      const int axis = kind - 4, sign = kind == 4 ? -1 : 1;
+      const double rr = double(radius) * double(1.f + 1e-5f) + double(1e-6f);
+      const double d0 = std::max(double(depth) - rr, 0.5 * double(kNear)), d1 = double(depth) + rr;
+      const int tiles = axis == 0 ? g.tiles_x : g.tiles_y, size = axis == 0 ? g.width : g.height, tile = axis == 0 ? g.tile_w : g.tile_h;
+      const double edge = double(1 + int(r.uniform(0, float(tiles - 1)))) * tile - sign;  // the pixel before the margin
+      const double ndc = 2 * edge / size - 1, q = (ndc + p[2][axis]) / p[axis][axis];
+      // lo = min over d of (c - r) / d: at d1 when c - r > 0; hi = max of (c + r) / d: at d0 when c + r > 0.
+      const double num = q * (sign < 0 ? (q > 0 ? d1 : d0) : (q > 0 ? d0 : d1));
+      c[axis] = float(num - sign * rr);
+    }
+    cases.push_back({glm::vec4(c, radius)});
+  }
+  cases.push_back({glm::vec4(0, 0, 0, 0)});          // on the camera, radius 0
+  cases.push_back({glm::vec4(0, 0, 0, 1)});          // around the camera
+  cases.push_back({glm::vec4(0, 0, 5, 1)});          // wholly behind it
+  cases.push_back({glm::vec4(0, 0, -1000, 2000)});   // the whole screen
+  const auto gpu = test::run_glsl_twin(zbin_twin(rig, 1024, "vec4(sphere_tiles(a.xyz, a.w))"), cases);
+  const double P[2] = {p[0][0], p[1][1]}, O[2] = {p[2][0], p[2][1]}, W[2] = {double(g.width), double(g.height)};
+  const double T[2] = {double(g.tile_w), double(g.tile_h)}, u = 0x1p-24;
+  std::size_t failed = 0, in_band = 0, empty = 0, either = 0, grazing = 0;
+  double widest = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const glm::vec4 c = cases[i].a;
+    const TileRect cpu = sphere_tiles(rig.camera, g, glm::vec3(c), c.w);
+    const glm::ivec4 want(cpu.lo, cpu.hi), got(gpu[i]);
+    const double rr = double(c.w) * double(1.f + 1e-5f) + double(1e-6f), dr = 2 * u * rr;
+    const double d0 = std::max(-double(c.z) - rr, 0.5 * double(kNear)), d1 = -double(c.z) + rr;
+    const double dd = u * (std::abs(double(c.z)) + rr) + dr;
+    empty += cpu.lo.x > cpu.hi.x;
+    if (std::abs(d1 - d0) <= 2 * dd) {  // empty or not: within the rounding of d0 and d1
+      either += got != want;
+      continue;
+    }
+    bool ok = got == want || d1 >= d0, near_edge = false;
+    for (int e = 0; e < 4 && d1 >= d0; ++e) {
+      const int axis = e % 2, sign = e < 2 ? -1 : 1;  // lo (x, y) then hi (x, y)
+      const double num = double(c[axis]) + sign * rr, q = sign < 0 ? std::min(num / d0, num / d1) : std::max(num / d0, num / d1);
+      const double ndc = q * P[axis] - O[axis], px = (ndc * 0.5 + 0.5) * W[axis] + sign, exact = px / T[axis];
+      near_edge |= std::abs(exact - std::round(exact)) < 1e-3;
+      // d0 is exact where half the near plane is taken (its max more than dd from the box's side).
+      const double dd0 = -double(c.z) - rr < 0.5 * double(kNear) - dd ? 0.0 : dd;
+      const double qmax = std::max(std::abs(num / d0), std::abs(num / d1)), dnum = u * std::abs(num) + dr;
+      double band = 0;
+      for (double v : {5 * u, u}) {
+        const double dq = std::max(dnum / d0 + std::abs(num / d0) * (dd0 / d0 + v), dnum / d1 + std::abs(num / d1) * (dd / d1 + v));
+        const double dndc = P[axis] * dq + u * qmax * P[axis] + u * (qmax * P[axis] + std::abs(O[axis]));
+        const double dpx = W[axis] / 2 * dndc + u * W[axis] * (std::abs(ndc) / 2 + 0.5) + 2 * u * (std::abs(px) + 1);
+        band += dpx / T[axis] + v * std::abs(exact);
+      }
+      if (std::abs(exact) < 2 * (axis == 0 ? g.tiles_x : g.tiles_y)) widest = std::max(widest, band);  // (on the screen or near it)
+      if (got[e] == want[e]) continue;
+      const double boundary = std::max(got[e], want[e]);
+      ok = ok && std::abs(got[e] - want[e]) == 1 && std::abs(exact - boundary) <= band;
+    }
+    grazing += near_edge;
+    if (got == want) continue;
+    if (ok) {
+      ++in_band;
+      continue;
+    }
+    if (failed++ < 5)
+      ADD_FAILURE() << "GLSL tiles " << got.x << "," << got.y << " .. " << got.z << "," << got.w << ", C++ " << want.x << ","
+                    << want.y << " .. " << want.z << "," << want.w << " for the sphere " << test::str(c);
+  }
+  EXPECT_EQ(failed, 0u);
+  EXPECT_GT(empty, 100u) << "cases wholly nearer than the near plane";
+  EXPECT_GT(grazing, 2000u) << "cases with an end within 1e-3 tiles of a tile's edge";
+  std::printf("sphere_tiles: %zu cases (%zu empty, %zu with an end within 1e-3 tiles of an edge), %zu differ within the "
+              "rounding band (at most %.2g tiles wide near the screen), %zu at the emptiness's\n",
+              cases.size(), empty, grazing, in_band, widest, either);
 }
 
 }  // namespace

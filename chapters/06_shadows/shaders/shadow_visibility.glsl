@@ -66,6 +66,7 @@ layout(binding = SHADOW_UNIT + 7) uniform sampler2DArray sh_csm;
 #include "06_shadows/shaders/csm_math.glsl"
 #include "06_shadows/shaders/msm_math.glsl"
 #include "06_shadows/shaders/filtered_math.glsl"
+#include "06_shadows/shaders/lookup_math.glsl"
 
 // The map a lookup reads: the sun's one map, or the cascade chosen for the pixel (all share the
 // light's view, sh.view, and its depth range, sh.depth_range).
@@ -100,17 +101,10 @@ vec3 shadow_lookup(Surface s, vec3 to_light) {
 #ifdef EXERCISE_RECEIVER_PLANE
 #include EXERCISE_RECEIVER_PLANE
 #else
-// [receiver-plane-glsl]
-// shadow_math.h's receiver_plane_gradient: how the receiver's window depth changes per unit
-// of the map's (u, v), from its normal in the light's view space. A PCF tap `o` away from the
-// lookup compares the map with the receiver's plane there, q.z + dot(gradient, o), not with
-// q.z: a tilted receiver no longer shadows itself in the kernel's outer taps.
+// lookup_math.glsl's receiver_plane_gradient for the map being read (sh_map).
 vec2 receiver_plane_gradient(Surface s) {
-  vec3 n = mat3(sh.view) * s.normal;
-  float nz = max(n.z, 0.05);  // faces the light (n.z > 0); at most 20:1 slopes
-  return vec2(n.x, n.y) / nz * sh_map.extent / sh.depth_range;
+  return receiver_plane_gradient(mat3(sh.view), s.normal, sh_map.extent, sh.depth_range);
 }
-// [/receiver-plane-glsl]
 #endif
 
 // [poisson-glsl]
@@ -257,23 +251,17 @@ float directional_visibility(int index, GpuLight light, Surface s) {
   s.normal = geometric_normal(s);
   // [/geometric-surface-glsl]
 #if SHADOW_CASCADES > 1
-  // [cascade-choice-glsl]
-  // shadow_math.h's choose_cascade: the first cascade whose far split lies beyond the pixel's
-  // view depth; in the last `band` of its depth range, faded into the next one.
+  // [cascade-lookup-glsl]
+  // lookup_math.glsl's choose_cascade at the pixel's view depth: its cascade, faded into the
+  // next one in the blend band.
   float depth = dot(sh.camera_depth.xyz, s.position) + sh.camera_depth.w;
-  int count = int(sh.cascade_count);
-  for (int i = 0; i < count; ++i) {
-    if (depth >= sh.cascade_far[i]) continue;
-    float band = sh.cascade_band * (sh.cascade_far[i] - (i == 0 ? sh.cascade_near : sh.cascade_far[i - 1]));
-    float next = i + 1 < count && band > 0.0 ? clamp((depth - (sh.cascade_far[i] - band)) / band, 0.0, 1.0) : 0.0;
-    float v = cascade_visibility(i, s, to_light);
-    if (next > 0.0) v = mix(v, cascade_visibility(i + 1, s, to_light), next);
-    sh_cascade_shown = float(i) + next;
-    return v;
-  }
-  sh_cascade_shown = -1.0;
-  return 1.0;  // beyond the last cascade: no map covers it
-  // [/cascade-choice-glsl]
+  CascadeChoice c = choose_cascade(depth, sh.cascade_far, sh.cascade_near, int(sh.cascade_count), sh.cascade_band);
+  sh_cascade_shown = float(c.cascade) + c.next_weight;
+  if (c.cascade < 0) return 1.0;  // beyond the last cascade: no map covers it
+  float v = cascade_visibility(c.cascade, s, to_light);
+  if (c.next_weight > 0.0) v = mix(v, cascade_visibility(c.cascade + 1, s, to_light), c.next_weight);
+  return v;
+  // [/cascade-lookup-glsl]
 #else
   sh_map = SunMap(sh.matrix, sh.texel_metres, sh.extent);
   return sun_map_visibility(s, to_light);
@@ -304,16 +292,6 @@ float local_visibility(int index, GpuLight light, Surface s) {
     if (distance(light.position_type.xyz, sh.spot[i].position.xyz) <= 1e-4) return spot_visibility(i, s);
   return 1.0;
 }
-
-// [atlas-glsl]
-// spot_atlas.h's spot_atlas_uv: a tile-local (u, v) clamped to the centres of the tile's border
-// texels, then placed in the tile. A PCF tap past the tile's edge reads the tile's own border,
-// never the neighbour's depths.
-vec2 spot_atlas_uv(SpotTile t, vec2 uv) {
-  float half_texel = 0.5 / t.frustum.w;
-  return t.tile.xy + clamp(uv, vec2(half_texel), vec2(1.0 - half_texel)) * t.tile.z;
-}
-// [/atlas-glsl]
 
 float spot_visibility(int i, Surface s) {
   SpotTile t = sh.spot[i];
@@ -347,7 +325,7 @@ float spot_visibility(int i, Surface s) {
       vec3 ray = vec3((2.0 * uv - 1.0) * tan_cone, -1.0);
       float across = dot(n_view, ray);
       float receiver = (r == 0 || abs(across) < 1e-4 ? clip.w : dot(n_view, p_view) / across) - bias;
-      float z = 2.0 * texture(sh_spot_atlas, spot_atlas_uv(t, uv)).r - 1.0;
+      float z = 2.0 * texture(sh_spot_atlas, spot_atlas_uv(t.tile.xyz, size, uv)).r - 1.0;  // lookup_math.glsl
       float stored = 2.0 * n * f / (f + n - z * (f - n));  // the map's depth, linear
       lit += receiver <= stored ? 1.0 : 0.0;
     }

@@ -99,19 +99,8 @@ void main() {
   if (g >= lights()) return;
   vec4 l = cluster_lights[light_indices[g]].position_radius;
   vec3 c = (u_view * vec4(l.xyz, 1.0)).xyz;
-  float r = l.w * (1.0 + 1e-5) + 1e-6;
-  // The sphere's view-space box, cut at half the near plane (no surface is nearer), seen
-  // from the eye: x / d over the box is extreme at its corners, so the rectangle of the
-  // corners' projections holds the sphere's.
-  float d0 = max(-c.z - r, 0.5 * u_depth_range.x), d1 = -c.z + r;
-  if (d1 < d0) return;  // wholly nearer than the near plane
-  vec2 lo = min((c.xy - r) / d0, (c.xy - r) / d1), hi = max((c.xy + r) / d0, (c.xy + r) / d1);
-  vec2 ndc_lo = lo * u_projection.xy - u_projection.zw, ndc_hi = hi * u_projection.xy - u_projection.zw;
-  // Pixels, a pixel wider on each side for rounding (each tile is then tested exactly), in tiles.
-  vec2 px_lo = (ndc_lo * 0.5 + 0.5) * vec2(u_grid.xy) - 1.0, px_hi = (ndc_hi * 0.5 + 0.5) * vec2(u_grid.xy) + 1.0;
-  vec2 tiles = vec2(u_tiles.xy);
-  ivec2 t0 = ivec2(clamp(floor(px_lo / vec2(u_grid.zw)), vec2(0.0), tiles));
-  ivec2 t1 = ivec2(clamp(floor(px_hi / vec2(u_grid.zw)), vec2(-1.0), tiles - 1.0));
+  ivec4 rect = sphere_tiles(c, l.w);  // zbin.glsl: the tiles it can cover, empty when nearer than the near plane
+  ivec2 t0 = rect.xy, t1 = rect.zw;
   uint word = g / 32u, bit = 1u << (g % 32u), entries = 0u;
   for (int ty = t0.y; ty <= t1.y; ++ty)
     for (int tx = t0.x; tx <= t1.x; ++tx) {
