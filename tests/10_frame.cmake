@@ -112,10 +112,13 @@ lightpass_image_test(10_frame.whole_msaa_4_is_chapter_05s_street_with_resolved_e
   --differs-from ${CMAKE_SOURCE_DIR}/tests/reference/05_hdr/street_level_reinhard.png 0.5
   RUN ${P10} --headless --mode whole --size 320x180 --scene assets/street/street.gltf --view street_level --msaa 4
       --shadows 0 --clustered 0 --ao 0 --indirect 0 --transparency off --bloom off --out ${CMAKE_BINARY_DIR}/out/10_msaa.png)
-# The tubes too: with MSAA there are no clusters to shade them in, nor volumes drawn per sample.
+# The sun's map, the tubes (their capsules, per sample on the edges: with MSAA there are no
+# clusters to shade them in) and the glass (into the samples before the resolve) run; AO does not.
 add_test(NAME 10_frame.whole_msaa_says_what_it_does_not_run COMMAND ${EXPECT} 0
   "runs     shadow map of the sun [(]chapter 06[)]"
-  "not run  neon tubes: capsule volumes [(]chapter 04[)] [(]no MSAA yet: --msaa 1 runs it[)]"
+  "runs     neon tubes: capsule volumes [(]chapter 04; per sample on edges, chapter 10[)]"
+  "runs     glass, into the samples before the resolve [(]chapter 10[)]"
+  "not run  ambient occlusion [(]chapters 07, 08[)] [(]no MSAA yet: --msaa 1 runs it[)]"
   -- ${P10} --headless --mode whole --size 64x36 --msaa 4 --out ${CMAKE_BINARY_DIR}/out/10_msaa_plan.png)
 set_tests_properties(10_frame.whole_msaa_says_what_it_does_not_run PROPERTIES TIMEOUT 300)
 lightpass_program_test(10_frame.msaa_in_the_glass_study_is_refused 2 "--msaa 4 is an option of the whole frame"

@@ -34,10 +34,12 @@ void NeonStage::after_composite(ch03::DeferredFrame& frame, PassMetrics* metrics
   if (!pictures && !wants_scene_lights()) return;
   frame.copy_depth_to_output();  // the glass and the pictures are depth-tested against the scene
   if (pictures) volumes_.draw_pictures(tubes_, frame.view(), picture_ == NeonPicture::Masks);
-  if (wants_scene_lights()) {
-    auto pass = timed(metrics, "glass: the tubes themselves");
-    glass_.draw_glass(frame.camera(), tubes_);
-  }
+  if (wants_scene_lights()) draw_glass(frame.camera(), metrics);
+}
+
+void NeonStage::draw_glass(const FrameCamera& camera, PassMetrics* metrics) const {
+  auto pass = timed(metrics, "glass: the tubes themselves");
+  glass_.draw_glass(camera, tubes_);
 }
 // [/neon-stage]
 

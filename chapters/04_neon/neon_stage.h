@@ -42,6 +42,9 @@ class NeonStage : public ch03::FrameStage {
   void add_light(ch03::DeferredFrame& frame, PassMetrics* metrics) override;
   bool composite(ch03::DeferredFrame& frame, PassMetrics* metrics) override;
   void after_composite(ch03::DeferredFrame& frame, PassMetrics* metrics) override;
+  // The glass of the tubes alone into the bound target, depth-tested against its depth
+  // (after_composite's; chapter 10's MSAA into its samples).
+  void draw_glass(const FrameCamera& camera, PassMetrics* metrics) const;
 
  private:
   const NeonTubes& tubes_;

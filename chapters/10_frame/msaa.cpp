@@ -45,6 +45,7 @@ MsaaFrame::MsaaFrame(const SceneGpu& scene, ch03::LightVolumes& lights)
 
 void MsaaFrame::reload_shaders() {
   geometry_.reload_shaders();
+  tube_programs_.clear();
   programs_.reset();  // the volumes' programs are the frame's: its reload_shaders() makes them again
 }
 
@@ -88,6 +89,16 @@ void MsaaFrame::resize(int width, int height, int samples) {
     throw Error("MSAA: asked for " + std::to_string(samples) + " samples per pixel, this renderer made " +
                 std::to_string(made) + "; use " + std::to_string(made));
   if (programs_samples_ != samples) programs_.reset();
+}
+
+// The G-buffer on units 0.., the light target bound, no depth test, culling or blending.
+void MsaaFrame::bind_light_target() const {
+  gbuffer_->bind_textures(0);
+  glBindFramebuffer(GL_FRAMEBUFFER, radiance_fbo_.id());
+  glViewport(0, 0, gbuffer_->width(), gbuffer_->height());
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_BLEND);
 }
 
 std::size_t MsaaFrame::allocated_bytes() const {
@@ -141,12 +152,7 @@ void MsaaFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outpu
     auto pass = timed(metrics, "msaa: G-buffer (chapter 02, " + std::to_string(s.samples) + " samples)");
     geometry_.draw(*gbuffer_, camera);
   }
-  gbuffer_->bind_textures(0);
-  glBindFramebuffer(GL_FRAMEBUFFER, radiance_fbo_.id());
-  glViewport(0, 0, output.width, output.height);
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_CULL_FACE);
-  glDisable(GL_BLEND);
+  bind_light_target();
   glDisable(GL_FRAMEBUFFER_SRGB);
   glEnable(GL_STENCIL_TEST);
   glStencilMask(0xFF);
@@ -225,6 +231,30 @@ void MsaaFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outpu
     glBindFramebuffer(GL_FRAMEBUFFER, radiance_fbo_.id());
     glDisable(GL_DEPTH_TEST);
   }
+  if (tubes_ && tubes_->count() > 0) {
+    auto pass = timed(metrics, "msaa: neon tubes (chapter 04's capsules)");
+    if (!volumes)  // the capsules' depth tests: the G-buffer's (the loop drew no volumes)
+      glBlitNamedFramebuffer(gbuffer_->framebuffer(), radiance_fbo_.id(), 0, 0, output.width, output.height, 0, 0,
+                             output.width, output.height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+    draw_tubes(s);
+    glBindFramebuffer(GL_FRAMEBUFFER, radiance_fbo_.id());
+    glDisable(GL_DEPTH_TEST);
+  }
+  // [over-samples]
+  // 4b. Over the lit samples, before the resolve: the glass of the whole frame. Its depth test
+  //     reads the G-buffer's depth again, sample for sample (the volumes' pass left the centre's
+  //     on unmarked pixels); its fragments are shaded once per pixel and blended into the
+  //     samples they cover, so its edges and the opaque edges in front of it are resolved too.
+  if (over_) {
+    glBlitNamedFramebuffer(gbuffer_->framebuffer(), radiance_fbo_.id(), 0, 0, output.width, output.height, 0, 0,
+                           output.width, output.height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+    ch03::SurfaceView view = ch03::surface_view(*gbuffer_);
+    if (stages_) view.hooks = stages_->stage_hooks();
+    glDisable(GL_STENCIL_TEST);
+    over_(*gbuffer_, view, {radiance_fbo_.id(), output.width, output.height}, metrics);
+    bind_light_target();  // and the state the passes below expect, whatever it left
+  }
+  // [/over-samples]
   // What the lights left in the stencil, counted: the samples whose stencil is exactly the
   // edge bit (marked, and no volume count left behind); the picture draws them red.
   if (!everywhere && (counting || s.show == MsaaShow::Edges)) {
@@ -317,5 +347,40 @@ void MsaaFrame::draw_volumes(const MsaaSettings& s, bool counting) {
   }, kVolumeBits);
   // [/msaa-volumes]
 }
+
+// [msaa-tubes]
+// The tubes as the local lights above: per tube, its capsule's mask in bits 0-6, then its light,
+// per sample where the edge bit is set, per pixel where a count is left.
+void MsaaFrame::draw_tubes(const MsaaSettings& s) {
+  ch03::SurfaceView view = ch03::surface_view(*gbuffer_);
+  std::vector<std::string> d = view.defines;
+  if (stages_) view.hooks = stages_->stage_hooks();
+  for (const std::string& x : view.hooks.glsl_defines()) d.push_back(x);
+  d.push_back("MSAA_SAMPLES " + std::to_string(s.samples));
+  const ShaderStage vs{GL_VERTEX_SHADER, "04_neon/shaders/capsule.vert"};
+  const ShaderProgram& mark = tube_programs_.get({vs, {GL_FRAGMENT_SHADER, "03_light_volumes/shaders/stencil.frag"}}, d);
+  const ShaderProgram& per_pixel = tube_programs_.get({vs, {GL_FRAGMENT_SHADER, "10_frame/shaders/msaa_tube.frag"}}, d);
+  d.push_back("PER_SAMPLE 1");
+  const ShaderProgram& per_sample = tube_programs_.get({vs, {GL_FRAGMENT_SHADER, "10_frame/shaders/msaa_tube.frag"}}, d);
+  for (const ShaderProgram* p : {&mark, &per_pixel, &per_sample}) {
+    p->set("u_view_projection", view.camera.view_projection());
+    p->set("u_glass", 0);  // the light's volume, not the glass
+    p->set("u_method", static_cast<int>(tube_how_.method));
+    p->set("u_samples", tube_how_.samples);
+  }
+  const bool everywhere = s.shading == MsaaShading::PerSampleEverywhere;
+  ch03::draw_stencil_volumes(view, tubes_->count(), [&](int i, ch03::VolumePass pass) {
+    const ShaderProgram& light = pass == ch03::VolumePass::Mark ? mark : per_sample;
+    if (pass != ch03::VolumePass::Mark && everywhere) glStencilFunc(GL_NOTEQUAL, 0, kVolumeBits);  // all samples inside
+    else if (pass != ch03::VolumePass::Mark) glStencilFunc(GL_LESS, kEdgeBit, 0xFF);             // marked and inside
+    light.use();
+    tubes_->draw_capsule(i);
+    if (pass == ch03::VolumePass::Mark || everywhere) return;
+    glStencilFunc(GL_NOTEQUAL, 0, kVolumeBits);  // a count left: inside, not marked
+    per_pixel.use();
+    tubes_->draw_capsule(i);
+  }, kVolumeBits);
+}
+// [/msaa-tubes]
 
 }  // namespace lp::ch10

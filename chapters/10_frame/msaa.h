@@ -24,6 +24,7 @@
 // lights and the ambient stay one full-screen pass at both rates. With 1 sample nothing is
 // marked and the frame is chapter 03's.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -32,6 +33,7 @@
 #include "chapters/03_light_volumes/deferred_frame.h"
 #include "chapters/03_light_volumes/light_instances.h"
 #include "chapters/03_light_volumes/light_volumes.h"
+#include "chapters/04_neon/neon_forward.h"
 #include "common/camera.h"
 #include "common/gl.h"
 #include "common/metrics.h"
@@ -126,6 +128,20 @@ class MsaaFrame {
   // defines, and frame.bind_hooks() before the light passes. nullptr: chapter 03's hooks.
   // The frame's prepare_stages() runs their before_lights; this frame draws no map itself.
   void use_stages(const ch03::DeferredFrame* frame) { stages_ = frame; }
+  // What is drawn over the lit samples before the resolve (chapter 10's glass, in the whole
+  // frame): called with this frame's G-buffer, its view (with the stages' hooks) and the
+  // multisampled light target, bound, its depth the G-buffer's sample for sample. So what it
+  // draws is resolved with the rest: its edges antialiased too. Empty: nothing.
+  using OverSamples = std::function<void(const ch02::GBuffer& gbuffer, const ch03::SurfaceView& view,
+                                         const ch03::FrameOutput& samples, PassMetrics* metrics)>;
+  void draw_over_samples(OverSamples over) { over_ = std::move(over); }
+  // Chapter 04's tubes, lit after the local lights as they are: each tube's capsule through
+  // chapter 03's stencil in bits 0-6, per sample on the marked pixels and per pixel elsewhere
+  // (msaa_tube.frag). nullptr: none. Their glass is the caller's, drawn over the samples.
+  void set_tubes(const ch04::NeonTubes* tubes, const ch04::NeonDraw& how = {}) {
+    tubes_ = tubes;
+    tube_how_ = how;
+  }
 
   // The frame into `output` (an sRGB8 target: the resolve writes linear display values; or a
   // float target, which keeps them unencoded). Each pass timed in `metrics`.
@@ -146,6 +162,8 @@ class MsaaFrame {
   void resize(int width, int height, int samples);
   // The local lights as chapter 03's volumes, into the bound light target (step 4).
   void draw_volumes(const MsaaSettings& s, bool counting);
+  void draw_tubes(const MsaaSettings& s);  // set_tubes()'s, the same way (step 4 too)
+  void bind_light_target() const;
   // MsaaLights::FullScreen: the local lights with their cuts as msaa_light.glsl reads them.
   void pack_local_lights();
 
@@ -166,6 +184,10 @@ class MsaaFrame {
   int programs_samples_ = 0;
   std::vector<std::string> programs_hooks_;  // the hooks' defines the programs were built with
   const ch03::DeferredFrame* stages_ = nullptr;
+  OverSamples over_;
+  const ch04::NeonTubes* tubes_ = nullptr;
+  ch04::NeonDraw tube_how_;
+  ProgramCache tube_programs_;
   ch03::LightVolumes& volumes_;  // the frame's: its lights, meshes and records, its volume shader
   std::vector<std::pair<bool, gl::Query>> volume_queries_;  // counting: {per sample?, GL_SAMPLES_PASSED} per draw
   MsaaCounts counts_;

@@ -21,7 +21,7 @@
 // the images' difference. Writes 10_tubes_llvmpipe.csv (or 10_tubes.csv).
 //
 // Then the whole frame with MSAA (--part whole-msaa): the shop street, every stage at its
-// default, --msaa 1, 4 and 8 (--msaa-size): the frame's time, MSAA's passes, the sun's map, the
+// default, --msaa 1, 4 and 8 (--msaa-size): the frame's time, MSAA's passes, the sun's map, the glass, the
 // pixels marked, the bytes and the stages run. Writes 10_whole_msaa_llvmpipe.csv (or
 // 10_whole_msaa.csv).
 #include <algorithm>
@@ -335,7 +335,7 @@ void sweep_tubes(const Settings& s, bool software) {
 
 // [whole-msaa-sweep]
 // --part whole-msaa: the shop street's whole frame with every stage at its default, at 1, 4 and
-// 8 samples (those the renderer makes): the frame's time, MSAA's passes, the sun's map, the
+// 8 samples (those the renderer makes): the frame's time, MSAA's passes, the sun's map, the glass, the
 // pixels marked, the bytes held, and which stages ran (plan(): with MSAA some are not run yet).
 void sweep_whole_msaa(const Settings& s, bool software) {
   const int w = s.msaa_width ? s.msaa_width : software ? 320 : 1920;
@@ -345,8 +345,9 @@ void sweep_whole_msaa(const Settings& s, bool software) {
   csv << "# " << (software ? "llvmpipe CPU time: " : "GPU time: ") << s.renderer << ", " << w << "x" << h
       << "; the shop street's whole frame (view shops), every stage at its default, --msaa 1, 4, 8\n"
       << "# ms: mean of " << s.frames << " frames; msaa_ms: the passes named msaa: (G-buffer, edges, light, resolve); "
-         "shadow_ms: the sun's map; marked: pixels lit per sample; stages_run: of the plan's lines; not_run: '+'-separated\n"
-      << "msaa,total_ms,msaa_ms,shadow_ms,marked,marked_fraction,allocated_mb,stages_run,not_run," << csv_measure_columns()
+         "shadow_ms: the sun's map; glass_ms: the passes named transparency: (with MSAA into the samples); "
+         "marked: pixels lit per sample; stages_run: of the plan's lines; not_run: '+'-separated\n"
+      << "msaa,total_ms,msaa_ms,shadow_ms,glass_ms,marked,marked_fraction,allocated_mb,stages_run,not_run," << csv_measure_columns()
       << "\n";
   const Scene scene = load_scene(from_root("assets/street_shop/street_shop.gltf"));
   WholeFrame whole(scene);
@@ -374,17 +375,18 @@ void sweep_whole_msaa(const Settings& s, bool software) {
     PassMetrics metrics;
     const Measurement m = measure(metrics, [&] { whole.render(camera, output, settings, 1.f / 60.f, false, &metrics); },
                                   {.frames = s.frames});
-    double msaa_ms = 0, shadow_ms = 0;
+    double msaa_ms = 0, shadow_ms = 0, glass_ms = 0;
     for (const PassMeasurement& p : m.passes) {
       if (p.name.rfind("msaa:", 0) == 0) msaa_ms += p.mean_ms;
+      if (p.name.rfind("transparency:", 0) == 0) glass_ms += p.mean_ms;
       if (p.name.rfind("shadow map:", 0) == 0) shadow_ms += p.mean_ms;
     }
     const double fraction = double(marked) / (double(w) * double(h));
-    csv << samples << ',' << m.total_ms() << ',' << msaa_ms << ',' << shadow_ms << ',' << marked << ',' << fraction << ','
+    csv << samples << ',' << m.total_ms() << ',' << msaa_ms << ',' << shadow_ms << ',' << glass_ms << ',' << marked << ',' << fraction << ','
         << double(whole.allocated_bytes()) / (1024.0 * 1024.0) << ',' << runs << ',' << not_run << ','
         << csv_measure_values(s.renderer, w, h, m.frames) << '\n';
     std::cout << "  whole frame --msaa " << samples << ": " << m.total_ms() << " ms (msaa passes " << msaa_ms
-              << " ms, sun's map " << shadow_ms << " ms), " << marked << " pixels marked, " << runs << " stages run"
+              << " ms, sun's map " << shadow_ms << " ms, glass " << glass_ms << " ms), " << marked << " pixels marked, " << runs << " stages run"
               << std::endl;
   }
   std::cout << "wrote " << path << '\n';

@@ -77,6 +77,7 @@ TransparencyStage::TransparencyStage(const ch03::DeferredFrame& frame, const Sce
 
 void TransparencyStage::reload_shaders() {
   programs_.clear();
+  composite_samples_.reset();
   if (own_lists_) own_lists_->reload_shaders();
   composite_.reload();
 }
@@ -102,33 +103,34 @@ ch09::ClusteredLights& TransparencyStage::lists() {
 // every cluster for the local lights (a pane may lie in a cluster no opaque surface
 // occupies): the frame's own when its local lights are clusters, already built for this
 // frame's camera; else the stage's, built here for it.
-void TransparencyStage::build_lights(const ch03::DeferredFrame& frame, PassMetrics* metrics) {
+void TransparencyStage::build_lights(const GlassTarget& target, PassMetrics* metrics) {
   if (frame_lists_) return;  // the frame's draw() built them
   auto pass = timed(metrics, "transparency: light lists (chapter 09, every cluster)");
-  lists().build_lists(frame.light().width(), frame.light().height(), frame.view());
+  lists().build_lists(target.image.width, target.image.height, target.view);
 }
 
-const ShaderProgram& TransparencyStage::program(Output output, const ch03::DeferredFrame& frame) {
-  std::vector<std::string> defines = lists().forward_defines(frame.view());
+const ShaderProgram& TransparencyStage::program(Output output, const GlassTarget& target) {
+  std::vector<std::string> defines = lists().forward_defines(target.view);
   defines.push_back(output == kOver ? "GLASS_OVER 1" : output == kWboit ? "GLASS_WBOIT 1" : "GLASS_CAPTURE 1");
   return programs_.get(surface_stages(), defines);
 }
 // [/glass-lights]
 
 std::size_t TransparencyStage::allocated_bytes() const {
-  return std::size_t(width_) * std::size_t(height_) *
+  return std::size_t(width_) * std::size_t(height_) * std::size_t(samples_) *
          (gl::bytes_per_texel(GL_RGBA16F) + gl::bytes_per_texel(GL_R16F) + gl::bytes_per_texel(depth_format_));
 }
 
-// WBOIT's targets, and a depth buffer of the G-buffer's format to test against its depth.
-void TransparencyStage::resize(const ch03::DeferredFrame& frame) {
-  const int w = frame.output().width, h = frame.output().height;
-  const GLenum depth = ch02::depth_format(frame.gbuffer().layout().depth);
-  if (w == width_ && h == height_ && depth == depth_format_) return;
-  width_ = w, height_ = h, depth_format_ = depth;
-  accum_ = gl::make_texture_2d(GL_RGBA16F, w, h);
-  reveal_ = gl::make_texture_2d(GL_R16F, w, h);
-  depth_ = gl::make_texture_2d(depth, w, h);
+// WBOIT's targets, and a depth buffer of the G-buffer's format to test against its depth; as
+// many samples as the G-buffer has.
+void TransparencyStage::resize(const GlassTarget& target) {
+  const int w = target.image.width, h = target.image.height, samples = target.gbuffer.samples();
+  const GLenum depth = ch02::depth_format(target.gbuffer.layout().depth);
+  if (w == width_ && h == height_ && depth == depth_format_ && samples == samples_) return;
+  width_ = w, height_ = h, depth_format_ = depth, samples_ = samples;
+  accum_ = gl::make_render_texture(GL_RGBA16F, w, h, samples);
+  reveal_ = gl::make_render_texture(GL_R16F, w, h, samples);
+  depth_ = gl::make_render_texture(depth, w, h, samples);
   fbo_ = gl::Framebuffer();
   glNamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT0, accum_.id(), 0);
   glNamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT1, reveal_.id(), 0);
@@ -143,11 +145,11 @@ void TransparencyStage::resize(const ch03::DeferredFrame& frame) {
 // Every blended surface in `draws`' order: chapter 01's vertex shader and material, the
 // G-buffer's camera and depth convention (reversed-Z layouts included), the depth test on and
 // depth writes off, back faces culled.
-void TransparencyStage::draw_surfaces(const ch03::DeferredFrame& frame, Output output,
+void TransparencyStage::draw_surfaces(const ch03::DeferredFrame& frame, const GlassTarget& target, Output output,
                                       const std::vector<BlendedDraw>& draws, bool ranks) {
-  const FrameCamera& camera = frame.gbuffer().camera();
-  const ShaderProgram& program = this->program(output, frame);
-  lists().bind_for_forward(program, frame.view().camera);  // uses the program, sets the grid's uniforms
+  const FrameCamera& camera = target.gbuffer.camera();
+  const ShaderProgram& program = this->program(output, target);
+  lists().bind_for_forward(program, target.view.camera);  // uses the program, sets the grid's uniforms
   program.set("u_view_projection", camera.view_projection());
   program.set("u_eye", frame.camera().position);
   program.set("u_ambient", scene_.scene().ambient);
@@ -156,7 +158,8 @@ void TransparencyStage::draw_surfaces(const ch03::DeferredFrame& frame, Output o
   if (output == kCapture) program.set("u_capacity", capacity_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDirectionalBinding, frame.volumes().directional_buffer());
   frame.bind_hooks();  // the stages' passes since the lights (chapter 08's) may have taken their units
-  frame.gbuffer().begin_depth_convention();
+  target.gbuffer.bind_textures(0);  // what the hooks read of it (the frame's is bound already; MSAA's is not)
+  target.gbuffer.begin_depth_convention();
   glEnable(GL_DEPTH_TEST);
   glDepthMask(GL_FALSE);
   glEnable(GL_CULL_FACE);
@@ -179,38 +182,44 @@ void TransparencyStage::draw_surfaces(const ch03::DeferredFrame& frame, Output o
   glDepthMask(GL_TRUE);
   ch02::GBuffer::restore_default_depth_convention();
   // The materials' textures took units 0.. where the frame keeps the G-buffer: put it back.
-  frame.gbuffer().bind_textures(0);
+  target.gbuffer.bind_textures(0);
 }
 
 // [after-composite]
 // [glass-hook]
 void TransparencyStage::after_composite(ch03::DeferredFrame& frame, PassMetrics* metrics) {
   if (settings_.method == Method::Off || draws_.empty()) return;
-  resize(frame);
-  build_lights(frame, metrics);
-  if (settings_.method == Method::Sorted) draw_sorted(frame, metrics);
-  else draw_wboit(frame, metrics);
+  if (settings_.method == Method::Sorted) frame.copy_depth_to_output();  // sorted tests against the output's depth
+  draw_over(frame, frame_target(frame), metrics);
 }
 // [/glass-hook]
 
-// Sorted: each surface blended over the image in the output itself ("over", premultiplied).
-void TransparencyStage::draw_sorted(const ch03::DeferredFrame& frame, PassMetrics* metrics) {
-  frame.copy_depth_to_output();  // the G-buffer's depth, and the output bound
+void TransparencyStage::draw_over(const ch03::DeferredFrame& frame, const GlassTarget& target, PassMetrics* metrics) {
+  if (settings_.method == Method::Off || draws_.empty()) return;
+  resize(target);
+  build_lights(target, metrics);
+  if (settings_.method == Method::Sorted) draw_sorted(frame, target, metrics);
+  else draw_wboit(frame, target, metrics);
+}
+
+// Sorted: each surface blended over the image in the target itself ("over", premultiplied).
+void TransparencyStage::draw_sorted(const ch03::DeferredFrame& frame, const GlassTarget& target, PassMetrics* metrics) {
+  target.image.bind();
   auto pass = timed(metrics, "transparency: sorted, back to front");
   const auto draws = ordered(draws_, frame.camera().view, settings_.order, settings_.shuffle_seed);
   glEnable(GL_BLEND);
   glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // C = c alpha (the shader's) + (1 - alpha) C
-  draw_surfaces(frame, kOver, draws, false);
+  draw_surfaces(frame, target, kOver, draws, false);
   glDisable(GL_BLEND);
 }
 
 // WBOIT: the sum of w * (alpha c, alpha) into RGBA16F and the product of (1 - alpha) into
 // R16F, in any order; then their average over the image where any glass is.
-void TransparencyStage::draw_wboit(const ch03::DeferredFrame& frame, PassMetrics* metrics) {
+void TransparencyStage::draw_wboit(const ch03::DeferredFrame& frame, const GlassTarget& target, PassMetrics* metrics) {
   {
     auto pass = timed(metrics, "transparency: WBOIT accumulate");
     const int w = width_, h = height_;
-    glBlitNamedFramebuffer(frame.gbuffer().framebuffer(), fbo_.id(), 0, 0, w, h, 0, 0, w, h, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+    glBlitNamedFramebuffer(target.gbuffer.framebuffer(), fbo_.id(), 0, 0, w, h, 0, 0, w, h, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
     const float zero[4] = {0, 0, 0, 0}, one[4] = {1, 0, 0, 0};
     glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 0, zero);
     glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 1, one);
@@ -219,12 +228,12 @@ void TransparencyStage::draw_wboit(const ch03::DeferredFrame& frame, PassMetrics
     glEnable(GL_BLEND);
     glBlendFunci(0, GL_ONE, GL_ONE);                  // accumulation: a sum
     glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_COLOR);  // revealage: a product of (1 - alpha)
-    draw_surfaces(frame, kWboit, ordered(draws_, frame.camera().view, settings_.order, settings_.shuffle_seed), false);
+    draw_surfaces(frame, target, kWboit, ordered(draws_, frame.camera().view, settings_.order, settings_.shuffle_seed), false);
     glBlendFunc(GL_ONE, GL_ZERO);
     glDisable(GL_BLEND);
   }
   auto pass = timed(metrics, "transparency: WBOIT composite");
-  frame.output().bind();
+  target.image.bind();
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
   const bool picture = settings_.show != TransparencyShow::Image;
@@ -232,8 +241,15 @@ void TransparencyStage::draw_wboit(const ch03::DeferredFrame& frame, PassMetrics
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // average (1 - revealage) + image revealage
   }
-  composite_.use();
-  composite_.set("u_show", int(settings_.show));
+  // A multisampled target: the composite runs per sample, each over its own sample's image.
+  if (samples_ > 1 && !composite_samples_)
+    composite_samples_ = std::make_unique<ShaderProgram>(
+        std::vector<ShaderStage>{{GL_VERTEX_SHADER, "02_gbuffer/shaders/fullscreen.vert"},
+                                 {GL_FRAGMENT_SHADER, "10_frame/shaders/wboit_composite.frag"}},
+        std::vector<std::string>{"WBOIT_SAMPLES 1"});
+  const ShaderProgram& composite = samples_ > 1 ? *composite_samples_ : composite_;
+  composite.use();
+  composite.set("u_show", int(settings_.show));
   glBindTextureUnit(0, accum_.id());
   glBindTextureUnit(1, reveal_.id());
   glBindVertexArray(empty_vao_.id());
@@ -244,8 +260,9 @@ void TransparencyStage::draw_wboit(const ch03::DeferredFrame& frame, PassMetrics
 
 // [exact]
 ExactComposite TransparencyStage::exact_composite(const ch03::DeferredFrame& frame, std::size_t max_per_pixel) {
-  resize(frame);
-  build_lights(frame, nullptr);
+  const GlassTarget target = frame_target(frame);
+  resize(target);
+  build_lights(target, nullptr);
   const int w = width_, h = height_;
   const std::size_t pixels = std::size_t(w) * std::size_t(h);
   if (max_per_pixel == 0 || max_per_pixel > 256) throw Error("exact_composite: 1 to 256 fragments per pixel");
@@ -269,7 +286,7 @@ ExactComposite TransparencyStage::exact_composite(const ch03::DeferredFrame& fra
   glViewport(0, 0, w, h);
   glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   capacity_ = int(std::min<std::size_t>(capacity, std::numeric_limits<int>::max()));
-  draw_surfaces(frame, kCapture, draws_, true);
+  draw_surfaces(frame, target, kCapture, draws_, true);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   std::uint32_t count = 0;

@@ -82,6 +82,17 @@ struct ExactComposite {
   bool overflow = false;             // more fragments than the capture holds (then not exact)
 };
 
+// Where the glass is drawn: over `image`, whose depth-stencil holds `gbuffer`'s depth sample for
+// sample, with `gbuffer`'s camera and layout and `view` (its defines with the frame's hooks).
+// after_composite() draws over the frame's output with the frame's G-buffer; chapter 10's MSAA
+// over its multisampled light target with its multisampled G-buffer, before the resolve, so the
+// glass's edges are resolved with the rest (whole_frame.cpp).
+struct GlassTarget {
+  const ch02::GBuffer& gbuffer;
+  const ch03::SurfaceView& view;
+  ch03::FrameOutput image;
+};
+
 class TransparencyStage : public ch03::FrameStage {
  public:
   // Lit by `frame`'s lights (frame.volumes().lights(), as use_lights() set them).
@@ -96,6 +107,9 @@ class TransparencyStage : public ch03::FrameStage {
   std::size_t blended_count() const { return draws_.size(); }
 
   void after_composite(ch03::DeferredFrame& frame, PassMetrics* metrics) override;
+  // The glass over `target` instead of the frame's output, lit by the frame's lights and hooks
+  // (the caller fills its depth; the frame's camera is set, e.g. by prepare_stages()).
+  void draw_over(const ch03::DeferredFrame& frame, const GlassTarget& target, PassMetrics* metrics);
 
   // The exact order over the image the frame's last render() left in its output (which must
   // hold the opaque image only: render with Method::Off first). Reads the output back as sRGB8
@@ -104,16 +118,18 @@ class TransparencyStage : public ch03::FrameStage {
   // WBOIT's targets after the last wboit frame (RGBA16F accumulation, R16F revealage).
   GLuint accumulation() const { return accum_.id(); }
   GLuint revealage() const { return reveal_.id(); }
-  std::size_t allocated_bytes() const;  // WBOIT's targets and their depth
+  std::size_t allocated_bytes() const;  // WBOIT's targets and their depth, every sample
 
  private:
   enum Output { kOver, kWboit, kCapture };
-  void resize(const ch03::DeferredFrame& frame);
-  void build_lights(const ch03::DeferredFrame& frame, PassMetrics* metrics);
-  const ShaderProgram& program(Output output, const ch03::DeferredFrame& frame);
-  void draw_surfaces(const ch03::DeferredFrame& frame, Output output, const std::vector<BlendedDraw>& draws, bool ranks);
-  void draw_sorted(const ch03::DeferredFrame& frame, PassMetrics* metrics);
-  void draw_wboit(const ch03::DeferredFrame& frame, PassMetrics* metrics);
+  void resize(const GlassTarget& target);
+  void build_lights(const GlassTarget& target, PassMetrics* metrics);
+  const ShaderProgram& program(Output output, const GlassTarget& target);
+  void draw_surfaces(const ch03::DeferredFrame& frame, const GlassTarget& target, Output output,
+                     const std::vector<BlendedDraw>& draws, bool ranks);
+  void draw_sorted(const ch03::DeferredFrame& frame, const GlassTarget& target, PassMetrics* metrics);
+  void draw_wboit(const ch03::DeferredFrame& frame, const GlassTarget& target, PassMetrics* metrics);
+  GlassTarget frame_target(const ch03::DeferredFrame& frame) const { return {frame.gbuffer(), frame.view(), frame.output()}; }
 
   const SceneGpu& scene_;
   std::vector<BlendedDraw> draws_;
@@ -126,8 +142,9 @@ class TransparencyStage : public ch03::FrameStage {
   TransparencySettings settings_;
   ProgramCache programs_;  // per output and the frame's defines
   ShaderProgram composite_;
+  std::unique_ptr<ShaderProgram> composite_samples_;  // per sample, for a multisampled target (made when needed)
   gl::VertexArray empty_vao_;
-  int width_ = 0, height_ = 0;
+  int width_ = 0, height_ = 0, samples_ = 1;
   int capacity_ = 0;  // the exact composite's fragment list
   GLenum depth_format_ = 0;
   gl::Texture accum_{GL_TEXTURE_2D}, reveal_{GL_TEXTURE_2D}, depth_{GL_TEXTURE_2D};

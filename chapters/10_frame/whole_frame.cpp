@@ -38,8 +38,8 @@ std::vector<PlannedStage> WholeFrame::plan(const WholeFrameSettings& s) const {
   p.push_back({clustered ? "local lights: clusters (chapter 09)" : "local lights: stencil volumes (chapter 03" + per_sample, true, "",
                clustered ? "G-buffer + light lists" : "G-buffer + stencil", "light buffer"});
   const bool tubes_in_clusters = clustered && s.tubes == TubeLight::Clusters;
-  p.push_back({tubes_in_clusters ? "neon tubes: in the clusters (chapters 04, 09)" : "neon tubes: capsule volumes (chapter 04)",
-               s.neon && !neon_lights_.empty() && !msaa, off(s.neon, !neon_lights_.empty(), "no neon tubes"),
+  p.push_back({tubes_in_clusters ? "neon tubes: in the clusters (chapters 04, 09)" : "neon tubes: capsule volumes (chapter 04" + per_sample,
+               s.neon && !neon_lights_.empty(), !s.neon ? "switched off" : neon_lights_.empty() ? "no neon tubes" : "",
                tubes_in_clusters ? "G-buffer + light lists" : "G-buffer + stencil", "light buffer"});
   p.push_back({"ambient occlusion (chapters 07, 08)", s.ao && ambient && !msaa, off(s.ao, ambient, "no ambient light"), "G-buffer",
                "light buffer"});
@@ -47,7 +47,8 @@ std::vector<PlannedStage> WholeFrame::plan(const WholeFrameSettings& s) const {
                "light buffer"});
   p.push_back({msaa ? "composite, then the float resolve of the samples (chapters 03, 10)" : "composite into float radiance (chapter 03)",
                true, "", "G-buffer + light buffer", "radiance RGBA16F"});
-  p.push_back({"glass (chapter 10)", glass && has_glass_ && !msaa, off(glass, has_glass_, "no alphaMode BLEND material"),
+  p.push_back({msaa ? "glass, into the samples before the resolve (chapter 10)" : "glass (chapter 10)", glass && has_glass_,
+               !glass ? "switched off" : has_glass_ ? "" : "no alphaMode BLEND material",
                "light lists + shadow map + depth", "radiance RGBA16F"});
   p.push_back({"log-average, adaptation, bloom, tonemap (chapter 05)", true, "", "radiance RGBA16F", "sRGB8 output"});
   return p;
@@ -139,7 +140,7 @@ void WholeFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outp
   frame.set_local_lights(s.clustered ? clustered_.get() : nullptr);
   // [tubes]
   // The tubes' light: binned and shaded with the clustered lights, or chapter 04's volumes.
-  const bool tubes_in_clusters = neon_ && s.clustered && s.tubes == TubeLight::Clusters;
+  const bool tubes_in_clusters = neon_ && s.clustered && s.msaa <= 1 && s.tubes == TubeLight::Clusters;
   if (neon_) neon_->set_light_by_volumes(!tubes_in_clusters);
   clustered_->set_tubes(tubes_in_clusters ? tubes_->packed() : std::vector<ch04::NeonGpu>{},
                         neon_ ? neon_->how() : ch04::NeonDraw{});
@@ -154,7 +155,9 @@ void WholeFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outp
   }
   if (glass_) {
     glass_->set({.method = s.transparency});
-    glass_->use_frame_lists(s.clustered ? clustered_.get() : nullptr);  // else its own, over the volumes' lights
+    // The frame's lists when its clusters drew the local lights; else (chapter 03's volumes, or
+    // MSAA, whose local lights are those volumes) its own, over the same lights.
+    glass_->use_frame_lists(s.clustered && s.msaa <= 1 ? clustered_.get() : nullptr);
   }
   // [one-frame]
   // 3. The frame into float radiance: G-buffer, shadow map, lights, tubes, AO + indirect,
@@ -171,6 +174,22 @@ void WholeFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outp
 }
 // [/render]
 
+// [msaa-stages]
+// MSAA's frame, lit by the source's lights, with the stages the plan runs with it besides the
+// sun's map: the tubes' light (their capsules per sample on the edges), and over the samples
+// before the resolve, depth-tested against the multisampled depth, the tubes' glass and the panes.
+void WholeFrame::make_msaa() {
+  msaa_ = std::make_unique<MsaaFrame>(source_->scene_gpu(), source_->volumes());
+  if (neon_) msaa_->set_tubes(tubes_.get(), neon_->how());
+  if (!glass_ && !neon_) return;
+  msaa_->draw_over_samples([this](const ch02::GBuffer& gbuffer, const ch03::SurfaceView& view,
+                                  const ch03::FrameOutput& samples, PassMetrics* metrics) {
+    if (neon_) neon_->draw_glass(source_->frame().camera(), metrics);
+    if (glass_) glass_->draw_over(source_->frame(), {gbuffer, view, samples}, metrics);
+  });
+}
+// [/msaa-stages]
+
 // [msaa]
 // With MSAA: chapter 10's multisampled frame lit by chapter 03's frame's lights (its volumes),
 // resolved into the radiance chapter 05's chain reads.
@@ -178,17 +197,16 @@ void WholeFrame::render_msaa(const FrameCamera& camera, const ch03::FrameOutput&
                              const ch05::HdrSettings& hdr, const ch05::ExposureEstimate& cut, PassMetrics* metrics) {
   if (!later_.empty()) throw Error("--msaa: a later chapter's stages (chapter 11's) run in chapter 03's frame, which has no MSAA");
   source_->update_lights();
-  if (!msaa_) msaa_ = std::make_unique<MsaaFrame>(source_->scene_gpu(), source_->volumes());
+  if (!msaa_) make_msaa();
   msaa_->set_emissive_scale(s.glow);
-  // The stages the plan runs with MSAA (the sun's map) before its lights, their hooks in its
-  // light passes: chapter 03's frame draws no G-buffer of its own here.
+  // The stages' before_lights (the sun's map), their hooks in MSAA's passes; no G-buffer of chapter 03's.
   const ch03::FrameOutput into{radiance_->framebuffer(), output.width, output.height};
   source_->frame().prepare_stages(camera, into, metrics);
   msaa_->use_stages(&source_->frame());
-  // The resolve's weights bend where the eye's exposure puts the curve's knee: the last one
-  // read back. A new shot has none yet: its samples are resolved with the knee at 1, chapter
-  // 05 measures that frame's exposure, and (one wait for the GPU, on a new shot only) the
-  // samples are resolved again with it, the eye reset to start from the new image.
+  // The resolve's weights bend where the eye's exposure (the last one read back) puts the curve's
+  // knee. A new shot has none: its samples are resolved with the knee at 1, chapter 05 measures
+  // that frame's exposure, and (one wait for the GPU, on a new shot only) the samples are
+  // resolved again with it, the eye reset to start from the new image.
   MsaaSettings m{.samples = s.msaa, .order = s.msaa_order, .show = s.msaa_edges ? MsaaShow::Edges : MsaaShow::Image,
                  .output = MsaaOutput::Radiance, .exposure = cut.age >= 0 && cut.read > 0.f ? cut.read : 1.f};
   msaa_->render(camera, into, m, metrics);

@@ -14,8 +14,10 @@
 // With MSAA (WholeFrameSettings::msaa > 1) steps 1, 3 and 6 are chapter 10's MsaaFrame
 // (msaa.h) lit by the same lights: a multisampled G-buffer, light per sample on the marked
 // edges, and a float resolve into the radiance the HDR chain reads. The sun's shadow map is
-// drawn as without MSAA and its hook read by MSAA's light passes, per sample on the edges. The
-// other stages do not read a multisampled G-buffer yet: they are not run with it, and plan()
+// drawn as without MSAA and its hook read by MSAA's light passes, per sample on the edges; the
+// tubes light through their capsules at both rates (MsaaFrame::set_tubes), and the tubes' glass
+// and the panes are drawn into the samples before the resolve (MsaaFrame::draw_over_samples).
+// The other stages do not read a multisampled G-buffer yet: they are not run with it, and plan()
 // says so.
 //
 // What the scene does not need is not run, and plan() says so: no tubes, no neon pass; no
@@ -113,6 +115,7 @@ class WholeFrame {
   void build(const std::vector<PlannedStage>& p);  // the radiance source with the stages the plan runs
   static std::string key(const std::vector<PlannedStage>& p);  // which stages run: one character each
   // Step 3 with MSAA: its frame into radiance_, the resolve weighted at the eye's exposure.
+  void make_msaa();  // MSAA's frame with the stages it runs (the tubes, the glass)
   void render_msaa(const FrameCamera& camera, const ch03::FrameOutput& output, const WholeFrameSettings& s,
                    const ch05::HdrSettings& hdr, const ch05::ExposureEstimate& cut, PassMetrics* metrics);
 
