@@ -12,7 +12,7 @@
 // time per frame (cpu_ms: submission, so that a read-back that waits shows) and Z-binning's
 // assignment by its timed parts (clear, sort, bins, tiles, the floor's lists).
 // --grid: the same at 100 000 and 1 000 000 lights for each grid: tiled's tile size,
-// clustered's tiles and slices, Z-binning's tile size and bins (09_grid*.csv).
+// clustered's tiles, slices and near slice, Z-binning's tile size and bins (09_grid*.csv).
 //   09_clustered_sweep [--out DIR] [--size WxH] [--frames N] [--max-lights N] [--stencil-max N] [--density] [--grid]
 //                      [--views N] [--target D]   (D: one target density alone, e.g. 32)
 #include <chrono>
@@ -96,6 +96,15 @@ std::vector<Method> grid_methods(const ch09::ClusterSettings& base) {
     k.settings.clusters = c;
     m.push_back(k);
   }
+  // The near slice (cluster_grid.h): DOOM's tiles, 24 and 96 slices, slice 0 ending 2, 5 or 10 m out.
+  for (const int slices : {24, 96})
+    for (const int near : {2, 5, 10}) {
+      Method k{"clustered", "16x9x" + std::to_string(slices) + " near " + std::to_string(near),
+               ch09::settings_for_mode("clustered", base)};
+      k.settings.clusters = {16, 9, slices};
+      k.settings.near_slice = float(near);
+      m.push_back(k);
+    }
   // (8-pixel tiles' masks for a million lights at 1080p exceed their bound: warned, not timed.)
   for (const int tile : {8, 16, 32, 64})
     for (const int bins : {256, 1024, 4096}) {

@@ -183,7 +183,10 @@ struct GridRig {
   test::GlslTwin twin(const std::string& expression, const std::string& helpers = {}) const {
     const glm::mat4 p = camera.projection;
     const Grid g = grid;
-    return {{"09_clustered/shaders/grid.glsl"}, expression, {}, helpers, [p, g](unsigned program) {
+    std::vector<std::string> defines;
+    if (g.has_near_slice()) defines.push_back("NEAR_SLICE 1");
+    return {{"09_clustered/shaders/grid.glsl"}, expression, defines, helpers, [p, g](unsigned program) {
+              glProgramUniform1f(program, glGetUniformLocation(program, "u_near_slice"), g.near_slice);
               glProgramUniform4f(program, glGetUniformLocation(program, "u_projection"), p[0][0], p[1][1], p[2][0], p[2][1]);
               glProgramUniform4i(program, glGetUniformLocation(program, "u_grid"), g.width, g.height, g.tile_w, g.tile_h);
               glProgramUniform4i(program, glGetUniformLocation(program, "u_tiles"), g.tiles_x, g.tiles_y, g.slices, 0);
@@ -237,6 +240,37 @@ TEST(GlslTwins, SliceOfMatchesItsCppTwin) {
   std::size_t in_band = 0;
   EXPECT_EQ(count_beyond_band(gpu, cpu, exact, band, [&](std::size_t i) { return "d " + std::to_string(cases[i].a.x); }, &in_band), 0u);
   std::printf("slice_of: %zu cases, %zu differ within the rounding band\n", cases.size(), in_band);
+}
+
+TEST(GlslTwins, SliceOfWithANearSliceMatchesItsCppTwin) {
+  // The same with a near slice at 3 m: t = log(d / near) / log(zfar / near), slice
+  // 1 + floor(t (S - 1)); the same operations, so the same band with S - 1 slices and L of
+  // zfar / near. Below the near slice both say 0 (one comparison, exact).
+  GridRig rig;
+  const float near_slice = 3.f;
+  rig.grid.near_slice = near_slice;
+  ASSERT_TRUE(rig.grid.has_near_slice());
+  test::TwinRandom r(97);
+  std::vector<TwinCase> cases;
+  for (int k = 0; k <= kSlices; ++k) {
+    const float d = slice_start(rig.grid, k);
+    for (float e : {d, std::nextafter(d, 0.f), std::nextafter(d, 1e9f), d * (1 + 1e-4f), d * (1 - 1e-4f)}) cases.push_back({glm::vec4(e, 0, 0, 0)});
+  }
+  for (float e : {0.f, 1e-3f, kNear, kFar, 5000.f}) cases.push_back({glm::vec4(e, 0, 0, 0)});
+  while (cases.size() < 12000) cases.push_back({glm::vec4(r.log_uniform(0.01f, 2000.f), 0, 0, 0)});
+  const auto gpu = test::run_glsl_twin(rig.twin("float(slice_of(a.x)), 0.0, 0.0, 0.0"), cases);
+  std::vector<int> cpu;
+  std::vector<double> exact, band;
+  const double L = std::log(double(kFar) / double(near_slice));
+  for (const TwinCase& c : cases) {
+    cpu.push_back(slice_of(rig.grid, c.a.x));
+    const double t = std::log(std::max(double(c.a.x), double(near_slice)) / double(near_slice)) / L;
+    exact.push_back(c.a.x < near_slice ? 0.0 : 1 + t * (kSlices - 1));
+    band.push_back(2 * (kSlices - 1) * (std::abs(t) * ulps(9) + (0x1p-21 + ulps(3)) / L));
+  }
+  std::size_t in_band = 0;
+  EXPECT_EQ(count_beyond_band(gpu, cpu, exact, band, [&](std::size_t i) { return "d " + std::to_string(cases[i].a.x); }, &in_band), 0u);
+  std::printf("slice_of with a near slice: %zu cases, %zu differ within the rounding band\n", cases.size(), in_band);
 }
 
 TEST(GlslTwins, DepthBinMatchesItsCppTwin) {
