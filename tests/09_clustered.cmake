@@ -86,6 +86,16 @@ add_test(NAME 09_clustered.grid_sweep_names_every_grid COMMAND ${EXPECT} 0
   --no-match "warning: .*(not 8|overflow|lists over|not timed)"
   -- sh -c "$<TARGET_FILE:09_clustered_sweep> --grid --target 8 --out ${GRID09_OUT} --size 64x36 --max-lights 1000 --views 1 --frames 1 2>&1 && cat ${GRID09_OUT}/09_grid_d8_summary_llvmpipe.csv")
 set_tests_properties(09_clustered.grid_sweep_names_every_grid PROPERTIES TIMEOUT 300)
+# The subgroup sweep (--subgroups): each path's light buffers and counts against the fallback's
+# (it exits 1 when they differ), the path named in the summary's grid column.
+set(SUB09_OUT ${CMAKE_BINARY_DIR}/out/09_subgroups)
+add_test(NAME 09_clustered.subgroup_sweep_equals_the_fallback COMMAND ${EXPECT} 0
+  "tiled, street_level[^:]*: [^:]* against the fallback: identical"
+  "clustered, street_level[^:]*: [^:]* against the fallback: identical"
+  "^32,1000,tiled,fallback,"  "^32,1000,clustered,(subgroups [A-Za-z_]+|fallback),"
+  --no-match "DIFFERENT|warning: .*(overflow|lists over|not timed)"
+  -- sh -c "$<TARGET_FILE:09_clustered_sweep> --subgroups --out ${SUB09_OUT} --size 64x36 --max-lights 1000 --views 1 --frames 1 2>&1 && cat ${SUB09_OUT}/09_subgroups_summary_llvmpipe.csv")
+set_tests_properties(09_clustered.subgroup_sweep_equals_the_fallback PROPERTIES TIMEOUT 300)
 add_test(NAME 09_clustered.density_sweep_bad_views COMMAND ${EXPECT} 1 "--views: 1 to 64, not 0"
   -- $<TARGET_FILE:09_clustered_sweep> --density --views 0)
 # The chapter's exercises (main.cpp's list; the book's "Exercises"): solutions pass, stubs fail,
