@@ -122,7 +122,6 @@ std::vector<Method> grid_methods(const ch09::ClusterSettings& base) {
 }
 // [/grid-methods]
 
-// [subgroup-methods]
 // The compute shading with and without the subgroup path, for the two ways whose lists a
 // subgroup may share (a tile's, a cluster's).
 std::vector<Method> subgroup_methods(const ch09::ClusterSettings& base) {
@@ -135,7 +134,6 @@ std::vector<Method> subgroup_methods(const ch09::ClusterSettings& base) {
   }
   return m;
 }
-// [/subgroup-methods]
 
 // The frame's light buffers (L1, L2) as stored, half floats, for comparing bit for bit.
 std::vector<std::uint16_t> light_buffers(const ch03::DeferredFrame& frame, int w, int h) {

@@ -141,7 +141,6 @@ void count_pixel(uint evaluated, uint lit) {
 #endif
 }
 
-// [subgroup-ops]
 // The subgroup operations the shading uses where the driver has them (ClusteredLights picks
 // one at compile time, shade.comp enables its extensions): the first active invocation's
 // value, and whether a condition holds in every active invocation.
@@ -162,7 +161,6 @@ void add_shared_light(Surface s, vec3 to_eye, uvec2 list, uint k, inout vec3 dif
   add_lamp(s, to_eye, i, cluster_lights[i], cone_of(i), diffuse, specular, lit);
 }
 #endif
-// [/subgroup-ops]
 
 // [shade-pixel]
 // diffuse goes to L1, specular (already tinted by the surface's specular colour) to L2;
