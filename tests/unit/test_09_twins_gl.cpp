@@ -213,13 +213,12 @@ std::size_t count_beyond_band(const std::vector<glm::vec4>& gpu, const std::vect
   return failed;
 }
 
-TEST(GlslTwins, SliceOfMatchesItsCppTwin) {
-  // t = log(d / znear) / log(zfar / znear), slice floor(t S). The GPU's t: d / znear 2.5 ulp
-  // (in the log: 2.5 ulp absolutely), log 3 ulp or 2^-21 absolutely, log(zfar / znear) the
-  // same, the quotient 2.5 ulp: |dt| <= |t| (3 + 2.5 + 2.5 + 1) ulp + (2^-21 + 3 ulp) / L, and the
-  // C++ one far less (inside the GPU's allowance doubled). The band is S times twice that.
-  const GridRig rig;
-  test::TwinRandom r(91);
+// slice_of's GLSL against its C++ twin on the rig's grid: each slice's start and its
+// neighbouring floats, the planes, and depths log-uniform from 0.01 to 2000 m. The exponential
+// slices start at `origin` (znear, or the near slice) with slice `first` (0, or 1 after a near
+// slice, below which both say 0: one comparison, exact).
+void expect_slice_of_matches(const GridRig& rig, unsigned seed, float origin, int first, const char* what) {
+  test::TwinRandom r(seed);
   std::vector<TwinCase> cases;
   for (int k = 0; k <= kSlices; ++k) {  // each slice's start and its neighbouring floats
     const float d = slice_start(rig.grid, k);
@@ -230,47 +229,35 @@ TEST(GlslTwins, SliceOfMatchesItsCppTwin) {
   const auto gpu = test::run_glsl_twin(rig.twin("float(slice_of(a.x)), 0.0, 0.0, 0.0"), cases);
   std::vector<int> cpu;
   std::vector<double> exact, band;
-  const double L = std::log(double(kFar) / double(kNear));
+  const double L = std::log(double(kFar) / double(origin));
+  const int slices = kSlices - first;  // the exponential ones
   for (const TwinCase& c : cases) {
     cpu.push_back(slice_of(rig.grid, c.a.x));
-    const double t = std::log(std::max(double(c.a.x), double(kNear)) / double(kNear)) / L;
-    exact.push_back(t * kSlices);
-    band.push_back(2 * kSlices * (std::abs(t) * ulps(9) + (0x1p-21 + ulps(3)) / L));
+    const double t = std::log(std::max(double(c.a.x), double(origin)) / double(origin)) / L;
+    exact.push_back(first > 0 && c.a.x < origin ? 0.0 : first + t * slices);
+    band.push_back(2 * slices * (std::abs(t) * ulps(9) + (0x1p-21 + ulps(3)) / L));
   }
   std::size_t in_band = 0;
   EXPECT_EQ(count_beyond_band(gpu, cpu, exact, band, [&](std::size_t i) { return "d " + std::to_string(cases[i].a.x); }, &in_band), 0u);
-  std::printf("slice_of: %zu cases, %zu differ within the rounding band\n", cases.size(), in_band);
+  std::printf("%s: %zu cases, %zu differ within the rounding band\n", what, cases.size(), in_band);
+}
+
+TEST(GlslTwins, SliceOfMatchesItsCppTwin) {
+  // t = log(d / znear) / log(zfar / znear), slice floor(t S). The GPU's t: d / znear 2.5 ulp
+  // (in the log: 2.5 ulp absolutely), log 3 ulp or 2^-21 absolutely, log(zfar / znear) the
+  // same, the quotient 2.5 ulp: |dt| <= |t| (3 + 2.5 + 2.5 + 1) ulp + (2^-21 + 3 ulp) / L, and the
+  // C++ one far less (inside the GPU's allowance doubled). The band is S times twice that.
+  expect_slice_of_matches(GridRig(), 91, kNear, 0, "slice_of");
 }
 
 TEST(GlslTwins, SliceOfWithANearSliceMatchesItsCppTwin) {
   // The same with a near slice at 3 m: t = log(d / near) / log(zfar / near), slice
   // 1 + floor(t (S - 1)); the same operations, so the same band with S - 1 slices and L of
-  // zfar / near. Below the near slice both say 0 (one comparison, exact).
+  // zfar / near.
   GridRig rig;
-  const float near_slice = 3.f;
-  rig.grid.near_slice = near_slice;
+  rig.grid.near_slice = 3.f;
   ASSERT_TRUE(rig.grid.has_near_slice());
-  test::TwinRandom r(97);
-  std::vector<TwinCase> cases;
-  for (int k = 0; k <= kSlices; ++k) {
-    const float d = slice_start(rig.grid, k);
-    for (float e : {d, std::nextafter(d, 0.f), std::nextafter(d, 1e9f), d * (1 + 1e-4f), d * (1 - 1e-4f)}) cases.push_back({glm::vec4(e, 0, 0, 0)});
-  }
-  for (float e : {0.f, 1e-3f, kNear, kFar, 5000.f}) cases.push_back({glm::vec4(e, 0, 0, 0)});
-  while (cases.size() < 12000) cases.push_back({glm::vec4(r.log_uniform(0.01f, 2000.f), 0, 0, 0)});
-  const auto gpu = test::run_glsl_twin(rig.twin("float(slice_of(a.x)), 0.0, 0.0, 0.0"), cases);
-  std::vector<int> cpu;
-  std::vector<double> exact, band;
-  const double L = std::log(double(kFar) / double(near_slice));
-  for (const TwinCase& c : cases) {
-    cpu.push_back(slice_of(rig.grid, c.a.x));
-    const double t = std::log(std::max(double(c.a.x), double(near_slice)) / double(near_slice)) / L;
-    exact.push_back(c.a.x < near_slice ? 0.0 : 1 + t * (kSlices - 1));
-    band.push_back(2 * (kSlices - 1) * (std::abs(t) * ulps(9) + (0x1p-21 + ulps(3)) / L));
-  }
-  std::size_t in_band = 0;
-  EXPECT_EQ(count_beyond_band(gpu, cpu, exact, band, [&](std::size_t i) { return "d " + std::to_string(cases[i].a.x); }, &in_band), 0u);
-  std::printf("slice_of with a near slice: %zu cases, %zu differ within the rounding band\n", cases.size(), in_band);
+  expect_slice_of_matches(rig, 97, rig.grid.near_slice, 1, "slice_of with a near slice");
 }
 
 TEST(GlslTwins, DepthBinMatchesItsCppTwin) {
