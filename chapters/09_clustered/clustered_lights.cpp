@@ -211,7 +211,7 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
     subgroup_path_.clear();
     if (settings_.shade != ShadeIn::Fragment) {
       if (staged) d.push_back("STAGE_TILE " + std::to_string(grid_.tile_w));
-      if (!staged) {  // the per-pixel compute pass: a shared list read once, where the driver can
+      if (!staged && settings_.kind != CullKind::ZBin) {  // a tile's or cluster's list, read once where shared
         if (!support_known_) support_ = subgroup_support();  // the context's, asked once
         support_known_ = true;
         const std::string& support = support_;

@@ -146,7 +146,7 @@ class ClusteredLights : public ch03::LocalLightPass {
   // [/tubes-api]
   // The path the last draw's compute shading took: subgroup_support()'s name, "none (fallback)"
   // where the driver has none, "off" (settings.subgroups false), or "" (the fragment or staged
-  // shading, or no draw yet).
+  // shading, Z-binning, whose lists are per pixel, or no draw yet).
   const std::string& subgroup_path() const { return subgroup_path_; }
   const ClusterSettings& settings() const { return settings_; }
   void set_settings(const ClusterSettings& s) { settings_ = s; }
