@@ -33,6 +33,10 @@ lightpass_program_test(09_clustered.bad_mode 2 "unknown mode 'forward'" ${P09} -
 lightpass_program_test(09_clustered.bench_times_the_three_passes 0
   "\"name\":\"local lights: clustered: depth bounds\".*\"name\":\"local lights: clustered: assign\".*\"name\":\"local lights: clustered: shade\",[^}]*\"counts\":\\{\"evaluated\":[1-9][0-9]*,\"lit\":[1-9][0-9]*\\}"
   ${P09} --bench --frames 2 --size 160x90)
+# Without subgroup operations the compute shading takes the fallback (today's loop) and says so.
+lightpass_program_test(09_clustered.no_subgroups_takes_the_fallback_and_says_so 0
+  "subgroups: none \\(fallback\\) \\(0 of [1-9][0-9]* pixels from a shared list\\)"
+  env LIGHTPASS_TEST_NO_SUBGROUPS=1 ${P09} --headless --size 64x36 --mode tiled --out ${CMAKE_BINARY_DIR}/out/09_no_subgroups.png)
 # A grid too large for its bounds is refused with a message, not allocated.
 lightpass_program_test(09_clustered.huge_grid_is_refused 1 "a grid of 1024 x 1024 x 256 cells is more than 4 194 304"
   ${P09} --headless --size 1024x1024 --clusters-x 1024 --clusters-y 1024 --slices 256 --out ${CMAKE_BINARY_DIR}/out/09_huge.png)
@@ -77,10 +81,21 @@ set(GRID09_OUT ${CMAKE_BINARY_DIR}/out/09_grid)
 add_test(NAME 09_clustered.grid_sweep_names_every_grid COMMAND ${EXPECT} 0
   "^target_density,lights,method,grid,"
   "^8,1000,tiled,tile 8,"  "^8,1000,tiled,tile 32,"  "^8,1000,clustered,60x34x96,"
+  "^8,1000,clustered,16x9x24 near 2,"  "^8,1000,clustered,16x9x96 near 10,"
   "^8,1000,zbin,tile 64 bins 4096,[0-9.]+,(7\\.(7[6-9]|[89])|8\\.([01]|2[0-4]))[0-9]*,"
   --no-match "warning: .*(not 8|overflow|lists over|not timed)"
   -- sh -c "$<TARGET_FILE:09_clustered_sweep> --grid --target 8 --out ${GRID09_OUT} --size 64x36 --max-lights 1000 --views 1 --frames 1 2>&1 && cat ${GRID09_OUT}/09_grid_d8_summary_llvmpipe.csv")
 set_tests_properties(09_clustered.grid_sweep_names_every_grid PROPERTIES TIMEOUT 300)
+# The subgroup sweep (--subgroups): each path's light buffers and counts against the fallback's
+# (it exits 1 when they differ), the path named in the summary's grid column.
+set(SUB09_OUT ${CMAKE_BINARY_DIR}/out/09_subgroups)
+add_test(NAME 09_clustered.subgroup_sweep_equals_the_fallback COMMAND ${EXPECT} 0
+  "tiled, street_level[^:]*: [^:]* against the fallback: identical"
+  "clustered, street_level[^:]*: [^:]* against the fallback: identical"
+  "^32,1000,tiled,fallback,"  "^32,1000,clustered,(subgroups [A-Za-z_]+|fallback),"
+  --no-match "DIFFERENT|warning: .*(overflow|lists over|not timed)"
+  -- sh -c "$<TARGET_FILE:09_clustered_sweep> --subgroups --out ${SUB09_OUT} --size 64x36 --max-lights 1000 --views 1 --frames 1 2>&1 && cat ${SUB09_OUT}/09_subgroups_summary_llvmpipe.csv")
+set_tests_properties(09_clustered.subgroup_sweep_equals_the_fallback PROPERTIES TIMEOUT 300)
 add_test(NAME 09_clustered.density_sweep_bad_views COMMAND ${EXPECT} 1 "--views: 1 to 64, not 0"
   -- $<TARGET_FILE:09_clustered_sweep> --density --views 0)
 # The chapter's exercises (main.cpp's list; the book's "Exercises"): solutions pass, stubs fail,

@@ -9,8 +9,11 @@ The plots are drawn for each CSV present: 09_lights_llvmpipe.csv (llvmpipe: time
 time with a glFinish around each pass, common/metrics.h) and, once the lead has measured it on
 the GPU (tools/device-measure writes 09_lights.csv; named after the GPU), 09_lights_h200.csv.
 The same for the fair case (--density): 09_density_summary_llvmpipe.csv and, from the GPU's
-09_density_summary.csv, 09_density_summary_h200.csv.
+09_density_summary.csv, 09_density_summary_h200.csv. The grid sweep's near slice (--grid):
+from each 09_grid*_summary_*.csv that has near-slice rows (09_grid_summary_llvmpipe.csv, the GPU's
+09_grid_d32_summary_h200.csv), 09_near_slice_<tag>.svg, <tag> the file's name after 09_grid_.
 """
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -87,6 +90,33 @@ def density_plots(d: Path, csv: Path, tag: str, where: str):
          xlog=True, ylog=True)
 
 
+def near_slice_plots(d: Path, csv: Path, tag: str, where: str):
+    """The grid sweep's clusters with a near slice (grid "16x9x24 near 5") against the same grid
+    without (depth 0 on the plot): lights evaluated per lit one and the local lights' median time,
+    a line per slice count, density and light count."""
+    notes, rows = read_csv(csv)
+    note = notes[0] if notes else ""
+    unit = "GPU" if "llvmpipe" not in tag else "llvmpipe CPU time"
+    grids = {}
+    for r in rows:
+        m = re.fullmatch(r"(\d+x\d+x\d+)(?: near (\d+(?:\.\d+)?))?", r["grid"]) if r["method"] == "clustered" else None
+        if m:
+            grids.setdefault((m.group(1), r["target_density"], r["lights"]), []).append((float(m.group(2) or 0), r))
+    lines = {k: sorted(v, key=lambda p: p[0]) for k, v in grids.items() if len(v) > 1}
+    if not lines:
+        return  # a sweep from before the near slice
+    keys = sorted(lines, key=lambda k: (float(k[1]), int(k[2]), k[0]))
+
+    def by(col):
+        return [Series(f"{g}, {float(t):g} per pixel, {int(n):,} lights", [(x, float(r[col])) for x, r in lines[(g, t, n)]],
+                       dashed=not g.endswith("x24")) for g, t, n in keys]
+    plot(d / f"09_near_slice_{tag}.svg", f"The near slice: lights evaluated per lit one ({where})",
+         "exact counts; depth 0: no near slice, every slice exponential", by("evaluated_per_lit"),
+         "the near slice's far end (m; 0: none)", "evaluated / lit")
+    plot(d / f"09_near_slice_time_{tag}.svg", f"The near slice: local lights' time ({where}, median over the views)", note,
+         by("local_median_ms"), "the near slice's far end (m; 0: none)", f"ms of the local lights ({unit}, log)", ylog=True)
+
+
 def pictures(build: Path, d: Path):
     exe = build / "chapters" / "09_clustered" / "09_clustered"
     for name, args in PICTURES:
@@ -106,6 +136,9 @@ def main(argv):
                             (d / "09_density_summary_h200.csv", "h200", "NVIDIA H200")):
         if csv.exists():
             density_plots(d, csv, tag, where)
+    for csv in sorted(d.glob("09_grid*_summary_*.csv")):
+        tag = csv.stem.replace("09_grid_", "").replace("09_grid", "").replace("summary_", "").replace("_summary", "")
+        near_slice_plots(d, csv, tag.strip("_"), "NVIDIA H200" if "h200" in tag else "llvmpipe" if "llvmpipe" in tag else tag)
     if png:
         pictures(png, d)
 

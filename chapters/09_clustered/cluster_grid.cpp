@@ -34,14 +34,31 @@ Grid grid_of_counts(int width, int height, int nx, int ny, int slices, float zne
   return g;
 }
 
+// [near-slice]
+// With a near slice: slice 0 is znear .. near_slice, slices 1 .. S - 1 exponential beyond it.
+static float slice_start_near(const Grid& g, int k) {
+  if (k <= 0) return g.znear;
+  if (k >= g.slices) return g.zfar;
+  return g.near_slice * std::pow(g.zfar / g.near_slice, float(k - 1) / float(g.slices - 1));
+}
+
+static int slice_of_near(const Grid& g, float view_depth) {
+  if (view_depth < g.near_slice) return 0;
+  const float t = std::log(view_depth / g.near_slice) / std::log(g.zfar / g.near_slice);
+  return std::clamp(1 + int(std::floor(t * float(g.slices - 1))), 1, g.slices - 1);
+}
+// [/near-slice]
+
 // [slices]
 float slice_start(const Grid& g, int k) {
+  if (g.has_near_slice()) return slice_start_near(g, k);
   if (k <= 0) return g.znear;
   if (k >= g.slices) return g.zfar;
   return g.znear * std::pow(g.zfar / g.znear, float(k) / float(g.slices));
 }
 
 int slice_of(const Grid& g, float view_depth) {
+  if (g.has_near_slice()) return slice_of_near(g, view_depth);
   const float t = std::log(std::max(view_depth, g.znear) / g.znear) / std::log(g.zfar / g.znear);
   return std::clamp(int(std::floor(t * float(g.slices))), 0, g.slices - 1);
 }

@@ -7,7 +7,10 @@
 // - tiled: one range per tile, the tile's own depth bounds, found from the G-buffer;
 // - clustered: `slices` ranges fixed in advance, exponential in depth (Olsson et al. 2012):
 //   slice k spans  near * (far / near)^(k / S)  to  near * (far / near)^((k + 1) / S),
-//   so every cell is about as deep as it is wide, near and far.
+//   so every cell is about as deep as it is wide, near and far. With a near slice (Persson's
+//   clusters in Just Cause 3, 2015), slice 0 spans near .. near_slice alone and the other S - 1
+//   are exponential from near_slice to far: the few metres in front of the camera, where little
+//   stands, no longer take half the slices.
 #include <cstdint>
 
 #include <glm/glm.hpp>
@@ -23,6 +26,8 @@ struct Grid {
   int tiles_x = 0, tiles_y = 0; // ceil(width / tile_w), ceil(height / tile_h)
   int slices = 1;               // depth slices (1 for tiled: its range comes from the G-buffer)
   float znear = 0.1f, zfar = 1000.f;  // the camera's, positive view depths
+  float near_slice = 0.f;       // clustered: where slice 1 begins (<= znear: no near slice)
+  bool has_near_slice() const { return slices > 1 && near_slice > znear && near_slice < zfar; }
   int cells() const { return tiles_x * tiles_y * slices; }
 };
 // Tiles of `tile_px` square pixels (tiled shading, or clusters of a given tile size).

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <bit>
 #include <cstddef>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <set>
 
 #include "common/error.h"
 
@@ -44,6 +46,26 @@ const std::vector<std::string>& ClusteredLights::zbin_assign_parts() {
   static const std::vector<std::string> parts = {"clear", "sort", "bins", "tiles", "floor lists"};
   return parts;
 }
+
+// [subgroup-support]
+std::string subgroup_support() {
+  const char* none = std::getenv("LIGHTPASS_TEST_NO_SUBGROUPS");
+  if (none && std::string(none) == "1") return "";
+  std::set<std::string> extensions;
+  GLint n = 0;
+  glGetIntegerv(GL_NUM_EXTENSIONS, &n);
+  for (GLint i = 0; i < n; ++i) extensions.insert(reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i))));
+  if (extensions.count("GL_KHR_shader_subgroup")) {
+    GLint stages = 0, features = 0;
+    glGetIntegerv(GL_SUBGROUP_SUPPORTED_STAGES_KHR, &stages);
+    glGetIntegerv(GL_SUBGROUP_SUPPORTED_FEATURES_KHR, &features);
+    const GLint needed = GL_SUBGROUP_FEATURE_BASIC_BIT_KHR | GL_SUBGROUP_FEATURE_VOTE_BIT_KHR | GL_SUBGROUP_FEATURE_BALLOT_BIT_KHR;
+    if ((stages & GL_COMPUTE_SHADER_BIT) && (features & needed) == needed) return "KHR_shader_subgroup";
+  }
+  if (extensions.count("GL_ARB_shader_ballot") && extensions.count("GL_ARB_shader_group_vote")) return "ARB_shader_ballot";
+  return "";
+}
+// [/subgroup-support]
 
 namespace glsl {
 using glm::vec4;
@@ -156,6 +178,7 @@ void ClusteredLights::set_grid_uniforms(const ShaderProgram& p, const FrameCamer
   set4i(p, "u_grid", grid_.width, grid_.height, grid_.tile_w, grid_.tile_h);
   set4i(p, "u_tiles", grid_.tiles_x, grid_.tiles_y, grid_.slices, light_count_);
   p.set("u_depth_range", glm::vec2(grid_.znear, grid_.zfar));
+  glProgramUniform1f(p.id(), glGetUniformLocation(p.id(), "u_near_slice"), grid_.near_slice);  // -1 (none): ignored
   glProgramUniform1i(p.id(), glGetUniformLocation(p.id(), "u_zbins"), settings_.zbins);  // -1 (none): ignored
   glProgramUniform1i(p.id(), glGetUniformLocation(p.id(), "u_first_spot"), first_spot_);
   glProgramUniform1i(p.id(), glGetUniformLocation(p.id(), "u_first_tube"), first_tube_);
@@ -185,8 +208,19 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
     if (staged && (grid_.tile_w != grid_.tile_h || grid_.tile_w > 32))
       throw Error("clustered lights: tiled-staged needs square tiles of at most 32 pixels, not " +
                   std::to_string(grid_.tile_w) + " x " + std::to_string(grid_.tile_h));
+    subgroup_path_.clear();
     if (settings_.shade != ShadeIn::Fragment) {
       if (staged) d.push_back("STAGE_TILE " + std::to_string(grid_.tile_w));
+      if (!staged && settings_.kind != CullKind::ZBin) {  // a tile's or cluster's list, read once where shared
+        if (!support_known_) support_ = subgroup_support();  // the context's, asked once
+        support_known_ = true;
+        const std::string& support = support_;
+        subgroup_path_ = !settings_.subgroups ? "off" : support.empty() ? "none (fallback)" : support;
+        if (settings_.subgroups && !support.empty()) {
+          d.push_back("SUBGROUP_LISTS 1");
+          d.push_back(support == "KHR_shader_subgroup" ? "SUBGROUP_KHR 1" : "SUBGROUP_ARB 1");
+        }
+      }
       const ShaderProgram& p = program(GL_COMPUTE_SHADER, staged ? "09_clustered/shaders/shade_staged.comp"
                                                                  : "09_clustered/shaders/shade.comp", d);
       set_grid_uniforms(p, camera);
@@ -223,6 +257,7 @@ std::vector<std::string> ClusteredLights::build_lists(int w, int h, const ch03::
   grid_ = clustered ? grid_of_counts(w, h, settings_.clusters.x, settings_.clusters.y, settings_.clusters.z,
                                      camera.znear, camera.zfar)
                     : grid_of_tiles(w, h, settings_.tile_px, 1, camera.znear, camera.zfar);
+  if (clustered) grid_.near_slice = settings_.near_slice;
   // Bounded work and memory for any knob values: at most 2^22 cells (32 MiB of cell records).
   if (std::uint64_t(grid_.tiles_x) * std::uint64_t(grid_.tiles_y) * std::uint64_t(grid_.slices) > (1u << 22))
     throw Error("clustered lights: a grid of " + std::to_string(grid_.tiles_x) + " x " + std::to_string(grid_.tiles_y) +
@@ -233,6 +268,7 @@ std::vector<std::string> ClusteredLights::build_lists(int w, int h, const ch03::
   std::vector<std::string> defines = view.defines;
   for (const auto& d : view.hooks.glsl_defines()) defines.push_back(d);
   if (clustered) defines.push_back("CLUSTERED 1");
+  if (clustered && grid_.has_near_slice()) defines.push_back("NEAR_SLICE 1");
   if (clustered && settings_.all_cells) defines.push_back("ALL_CELLS 1");
   if (!tubes_.empty()) {  // the tubes' buffer and how neon_light() lights them (shade.glsl)
     if (zbin) throw Error("clustered lights: Z-binning bins spheres, not chapter 04's tubes; use tiled or clustered");
@@ -454,6 +490,12 @@ std::vector<std::string> ClusteredLights::forward_defines(const ch03::SurfaceVie
   std::vector<std::string> d = view.defines;
   for (const auto& h : view.hooks.glsl_defines()) d.push_back(h);
   d.push_back("CLUSTERED 1");
+  Grid g;  // as build_lists() makes it for this camera: whether it has a near slice
+  g.slices = settings_.clusters.z;
+  g.znear = view.camera.znear;
+  g.zfar = view.camera.zfar;
+  g.near_slice = settings_.near_slice;
+  if (g.has_near_slice()) d.push_back("NEAR_SLICE 1");
   if (counting)
     for (const auto& c : ch03::FragmentCounters::defines()) d.push_back(c);
   return d;
@@ -478,7 +520,7 @@ void ClusteredLights::bind_for_forward(const ShaderProgram& program, const Frame
 
 EvalCounts ClusteredLights::counts() const {
   const std::vector<std::uint64_t> c = counters_.read();
-  return {c[0], c[1], c[2]};
+  return {c[0], c[1], c[2], c[3]};
 }
 
 std::vector<glm::uvec2> ClusteredLights::cell_lists() const {

@@ -37,6 +37,7 @@ struct ClusterSettings {
   int tile_px = 16;          // tiled: square tiles of this many pixels
   bool depth_mask = false;   // tiled: Harada's 2.5D culling, 32 depth bins per tile (cluster_grid.h)
   glm::ivec3 clusters{16, 9, 24};  // clustered: tiles across, tiles down, depth slices (DOOM 2016's)
+  float near_slice = 0.f;    // clustered: the first slice's far end, metres (0: every slice exponential; cluster_grid.h)
   int zbins = 1024;          // zbin: exponential depth bins (1 to 16 384); its tiles are tile_px
   // zbin-floor, a benchmark: Z-binning's lists turned into each pixel's exact list (the lights
   // whose cut reaches its surface) in the assignment, so that the shading pass is the per-pair
@@ -52,6 +53,10 @@ struct ClusterSettings {
   // Clustered forward (bind_for_forward): build the list of every cluster, not only of those
   // the G-buffer's surfaces occupy, so that any fragment a forward pass draws finds its lights.
   bool all_cells = false;
+  // The compute shading (shade.comp) reads a list that every invocation of a subgroup shares
+  // once for the subgroup, where the driver has subgroup operations (subgroup_support());
+  // false: today's per-invocation loop everywhere (the fallback). The same image either way.
+  bool subgroups = true;
 };
 // The seven ways of the program's --mode, beside chapter 03's: "tiled", "tiled-2.5d" (with the
 // depth mask), "tiled-fragment", "tiled-staged" (the tile's lights staged in shared memory,
@@ -63,6 +68,10 @@ inline const std::vector<std::string> kBenchModes = {"zbin-floor"};
 bool is_cluster_mode(const std::string& name);  // one of kClusterModes or kBenchModes
 ClusterSettings settings_for_mode(const std::string& name, ClusterSettings base = {});  // throws Error
 std::string mode_name(const ClusterSettings& s);
+// The subgroup operations this context's driver offers compute shaders, best first:
+// "KHR_shader_subgroup" (with vote and ballot), "ARB_shader_ballot" (with ARB_shader_group_vote;
+// Mesa's llvmpipe), or "" (none: the fallback). LIGHTPASS_TEST_NO_SUBGROUPS=1 says none, for tests.
+std::string subgroup_support();
 // [/settings]
 
 // [stats]
@@ -88,6 +97,7 @@ struct EvalCounts {
   std::uint64_t evaluated = 0;  // (pixel, light) pairs the shading looked at
   std::uint64_t lit = 0;        // of those, the ones where the light added anything
   std::uint64_t surface = 0;    // pixels shaded (not sky): lit / surface is the density
+  std::uint64_t shared = 0;     // of those, shaded from a list their whole subgroup shared (read once)
   double density() const { return surface ? double(lit) / double(surface) : 0.0; }
   double evaluated_per_lit() const { return lit ? double(evaluated) / double(lit) : 0.0; }
 };
@@ -134,6 +144,10 @@ class ClusteredLights : public ch03::LocalLightPass {
   void set_tubes(const std::vector<ch04::NeonGpu>& tubes, const ch04::NeonDraw& how = {});
   int tube_count() const { return int(tubes_.size()); }
   // [/tubes-api]
+  // The path the last draw's compute shading took: subgroup_support()'s name, "none (fallback)"
+  // where the driver has none, "off" (settings.subgroups false), or "" (the fragment or staged
+  // shading, Z-binning, whose lists are per pixel, or no draw yet).
+  const std::string& subgroup_path() const { return subgroup_path_; }
   const ClusterSettings& settings() const { return settings_; }
   void set_settings(const ClusterSettings& s) { settings_ = s; }
   void set_counting(bool on) { counting_ = on; }
@@ -221,7 +235,9 @@ class ClusteredLights : public ch03::LocalLightPass {
   };
   std::array<PendingState, 4> pending_;
   std::uint64_t frame_ = 0;
-  ch03::FragmentCounters counters_{3};
+  ch03::FragmentCounters counters_{4};
+  std::string subgroup_path_, support_;
+  bool support_known_ = false;
   ch02::FullScreenPass full_screen_;
   ProgramCache programs_;
 };

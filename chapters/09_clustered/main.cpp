@@ -115,6 +115,8 @@ const lp::Chapter kChapter{
                       {"clusters-x", "clustered: tiles across (DOOM 2016: 16)", 16, 1, 1024, true},
                       {"clusters-y", "clustered: tiles down (DOOM 2016: 9)", 9, 1, 1024, true},
                       {"slices", "clustered: exponential depth slices (DOOM 2016: 24)", 24, 1, 256, true},
+                      {"near-slice", "clustered: the first slice's far end in metres, the others exponential beyond it "
+                                     "(0: none)", 0, 0, 100, false},
                       {"bins", "zbin: exponential depth bins", 1024, 1, 16384, true},
                       {"heat-scale", "heat maps: lights per pixel or per cluster shown white", 100, 1, 1e7, false},
                       {"count", "count lights evaluated and lit (atomic counters, costs a little time)", 1, 0, 1, true}},
@@ -186,6 +188,7 @@ int main(int argc, char** argv) {
         ClusterSettings s = settings_for_mode(is_forward ? "clustered" : f.mode);
         s.tile_px = std::max(f.knob_int("tile"), 1);
         s.clusters = {f.knob_int("clusters-x"), f.knob_int("clusters-y"), f.knob_int("slices")};
+        s.near_slice = float(f.knob("near-slice"));
         s.zbins = f.knob_int("bins");
         if (is_forward) {
           forward.set_settings(s);
@@ -228,12 +231,14 @@ int main(int argc, char** argv) {
       if (show != kResult && (ours || show != kClusters)) draw_keys(f, show, lists.grid());
 
       // What it did: lights evaluated against lit, the lists, any overflow.
-      std::uint64_t evaluated = 0, lit = 0;
+      std::uint64_t evaluated = 0, lit = 0, shared = 0, surface = 0;
       if (f.knob_int("count")) {
         if (ours) {
           const EvalCounts c = lists.counts();
           evaluated = c.evaluated;
           lit = c.lit;
+          shared = c.shared;
+          surface = c.surface;
         } else {
           const ch03::FragmentCounts c = frame.volumes().counts();
           evaluated = c.shaded;
@@ -271,6 +276,10 @@ int main(int argc, char** argv) {
           out << "; " << st.cells << " cells, " << st.indices << " list entries (longest " << st.max_list << "), "
               << st.bytes << " bytes of lists, regrown " << st.regrown << ", cells over " << st.cells_over
               << ", dropped 0";  // a full cell is shaded from every light: nothing is dropped
+        if (ours && !lists.subgroup_path().empty()) {  // the compute shading: subgroups or the fallback
+          out << "; subgroups: " << lists.subgroup_path();
+          if (f.knob_int("count") && !is_forward) out << " (" << shared << " of " << surface << " pixels from a shared list)";
+        }
         out << '\n';
       }
       app.panel([&] {

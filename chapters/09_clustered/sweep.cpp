@@ -12,9 +12,13 @@
 // time per frame (cpu_ms: submission, so that a read-back that waits shows) and Z-binning's
 // assignment by its timed parts (clear, sort, bins, tiles, the floor's lists).
 // --grid: the same at 100 000 and 1 000 000 lights for each grid: tiled's tile size,
-// clustered's tiles and slices, Z-binning's tile size and bins (09_grid*.csv).
+// clustered's tiles, slices and near slice, Z-binning's tile size and bins (09_grid*.csv).
+// --subgroups: tiled and clustered with the subgroup path (shade.glsl's shared-list loop) and
+// without it (the fallback), each view's light buffers compared bit for bit and the exact counts
+// compared; timed side by side (09_subgroups*.csv, the path in the grid column). Exits 1 when
+// the two differ anywhere.
 //   09_clustered_sweep [--out DIR] [--size WxH] [--frames N] [--max-lights N] [--stencil-max N] [--density] [--grid]
-//                      [--views N] [--target D]   (D: one target density alone, e.g. 32)
+//                      [--subgroups] [--views N] [--target D]   (D: one target density alone, e.g. 32)
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -50,6 +54,7 @@ struct Settings {
   std::string view = "street_level";
   bool density = false;
   bool grid = false;
+  bool subgroups = false;
   int views = kViewsUnset;  // 6, the grid sweep 3
   int target = 0;           // one target density alone (0: every one)
   static constexpr int kViewsUnset = -1000000;
@@ -96,6 +101,15 @@ std::vector<Method> grid_methods(const ch09::ClusterSettings& base) {
     k.settings.clusters = c;
     m.push_back(k);
   }
+  // The near slice (cluster_grid.h): DOOM's tiles, 24 and 96 slices, slice 0 ending 2, 5 or 10 m out.
+  for (const int slices : {24, 96})
+    for (const int near : {2, 5, 10}) {
+      Method k{"clustered", "16x9x" + std::to_string(slices) + " near " + std::to_string(near),
+               ch09::settings_for_mode("clustered", base)};
+      k.settings.clusters = {16, 9, slices};
+      k.settings.near_slice = float(near);
+      m.push_back(k);
+    }
   // (8-pixel tiles' masks for a million lights at 1080p exceed their bound: warned, not timed.)
   for (const int tile : {8, 16, 32, 64})
     for (const int bins : {256, 1024, 4096}) {
@@ -108,19 +122,43 @@ std::vector<Method> grid_methods(const ch09::ClusterSettings& base) {
 }
 // [/grid-methods]
 
+// The compute shading with and without the subgroup path, for the two ways whose lists a
+// subgroup may share (a tile's, a cluster's).
+std::vector<Method> subgroup_methods(const ch09::ClusterSettings& base) {
+  std::vector<Method> m;
+  for (const std::string mode : {"tiled", "clustered"}) {
+    Method fallback{mode, "fallback", ch09::settings_for_mode(mode, base)};
+    fallback.settings.subgroups = false;
+    m.push_back(fallback);
+    m.push_back({mode, "subgroups", ch09::settings_for_mode(mode, base)});
+  }
+  return m;
+}
+
+// The frame's light buffers (L1, L2) as stored, half floats, for comparing bit for bit.
+std::vector<std::uint16_t> light_buffers(const ch03::DeferredFrame& frame, int w, int h) {
+  std::vector<std::uint16_t> v(std::size_t(w) * std::size_t(h) * 8);
+  const GLsizei half = GLsizei(v.size() * sizeof(std::uint16_t) / 2);
+  glGetTextureImage(frame.light().diffuse(), 0, GL_RGBA, GL_HALF_FLOAT, half, v.data());
+  glGetTextureImage(frame.light().specular(), 0, GL_RGBA, GL_HALF_FLOAT, half, v.data() + v.size() / 2);
+  return v;
+}
+
 void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03::DeferredFrame& frame, OutputTarget& target) {
   const auto began = std::chrono::steady_clock::now();
   const bool software = context.is_software();
   const std::vector<Camera> views = ch09::views_along(scene.camera(s.view), s.views, 12.f);
   std::vector<int> counts = {1000, 10000, 100000, 1000000};
-  if (s.grid) counts = software ? std::vector<int>{1000} : std::vector<int>{100000, 1000000};
+  if (s.grid || s.subgroups) counts = software ? std::vector<int>{1000} : std::vector<int>{100000, 1000000};
   std::vector<double> densities = {8, 32, 128};
   if (software) densities = {8, 32};
+  if (s.subgroups) densities = {32};
   if (s.target > 0) densities = {double(s.target)};
   const float threshold = ch03::cut_threshold(1.f, ch03::peak_reflectance(scene));
   // One target alone writes its own files (09_grid_d32...), so that runs of each density add up.
   const std::string label = software ? "_llvmpipe" : "";
-  const std::string name = std::string(s.grid ? "09_grid" : "09_density") + (s.target > 0 ? "_d" + std::to_string(s.target) : "");
+  const std::string name = std::string(s.subgroups ? "09_subgroups" : s.grid ? "09_grid" : "09_density") +
+                           (s.target > 0 ? "_d" + std::to_string(s.target) : "");
   const std::string rows_file = s.out + "/" + name + label + ".csv", summary_file = s.out + "/" + name + "_summary" + label + ".csv";
   std::ofstream rows(rows_file), summary(summary_file);
   // cpu_ms: the CPU's time per frame (submission; a read-back that waits shows here), and
@@ -141,7 +179,13 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
   // lights: on a GPU the lists start at 2^26 entries (256 MiB), so they rarely grow.
   ch09::ClusterSettings base_settings;
   if (!software) base_settings.initial_indices = 1u << 26;
-  const std::vector<Method> methods = s.grid ? grid_methods(base_settings) : density_methods(base_settings);
+  const std::vector<Method> methods = s.subgroups ? subgroup_methods(base_settings)
+                                     : s.grid    ? grid_methods(base_settings)
+                                                 : density_methods(base_settings);
+  // --subgroups: each mode's fallback buffers per view, which its subgroup path must equal.
+  std::map<std::string, std::vector<std::uint16_t>> fallback_buffers;  // by "mode|view"
+  std::map<std::string, ch09::EvalCounts> fallback_counts;
+  std::vector<std::string> differences;
   std::vector<std::unique_ptr<ch09::ClusteredLights>> passes;
   for (const Method& m : methods) passes.push_back(std::make_unique<ch09::ClusteredLights>(frame.volumes(), m.settings));
   ch09::ClusteredLights fit_pass(frame.volumes(), ch09::settings_for_mode("clustered", base_settings));
@@ -194,9 +238,11 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
       use(fit.scale);
       if (!fit.met) std::cerr << "warning: " << n << " lights: density " << fit.density << " not " << target_density << "\n";
       double floor_shade = 0;  // the floor's median shading time at this density and count
+      fallback_buffers.clear();
+      fallback_counts.clear();
       for (std::size_t mi = 0; mi < methods.size(); ++mi) {
         const std::string& method = methods[mi].mode;
-        const std::string& grid = methods[mi].grid;
+        std::string grid = methods[mi].grid;
         ch09::ClusteredLights& pass = *passes[mi];
         std::vector<double> local, assign, shade, cpu;
         std::vector<std::vector<double>> assign_parts(ch09::ClusteredLights::zbin_assign_parts().size());
@@ -220,6 +266,27 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
           MeasureOptions options{.frames = s.frames};
           options.warmup = {.block_frames = 2, .block_seconds = 0.05, .min_seconds = 0.1, .tolerance = 0.03, .max_seconds = 2};
           const Measurement t = measure(metrics, [&] { render(view, pass, &metrics); }, options);
+          if (s.subgroups) {  // the path taken, and the last timed frame's buffers against the fallback's
+            grid = methods[mi].grid == "fallback" ? "fallback" : "subgroups " + pass.subgroup_path();
+            std::vector<std::uint16_t> buffers = light_buffers(frame, s.width, s.height);
+            const std::string key = method + "|" + view.name;
+            if (methods[mi].grid == "fallback") {
+              fallback_buffers[key] = std::move(buffers);
+              fallback_counts[key] = c;
+            } else {
+              const bool have = fallback_buffers.count(key) > 0;
+              std::size_t differ = 0;
+              if (have)
+                for (std::size_t k = 0; k < buffers.size(); ++k) differ += buffers[k] != fallback_buffers[key][k];
+              const ch09::EvalCounts& f = have ? fallback_counts[key] : c;
+              const bool same = have && differ == 0 && f.lit == c.lit && f.evaluated == c.evaluated && f.surface == c.surface;
+              std::cout << "  " << method << ", " << view.name << ": " << grid << " against the fallback: "
+                        << (same ? "identical" : "DIFFERENT") << " (" << differ << " half floats differ, lit " << c.lit
+                        << " / " << f.lit << ", evaluated " << c.evaluated << " / " << f.evaluated << "; " << c.shared
+                        << " of " << c.surface << " pixels from a shared list)" << std::endl;
+              if (!same) differences.push_back(method + " at " + std::to_string(n) + " lights, " + view.name);
+            }
+          }
           const auto names = ch09::ClusteredLights::pass_names(method);
           const double parts[3] = {pass_ms(t, names[0]), pass_ms(t, names[1]), pass_ms(t, names[2])};
           std::string parts_values;
@@ -265,6 +332,11 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
   frame.set_local_lights(nullptr);
   std::cout << "took " << std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count() << " s\n";
   std::cout << "wrote " << rows_file << " and " << summary_file << '\n';
+  if (!differences.empty()) {
+    std::string where;
+    for (const std::string& d : differences) where += (where.empty() ? "" : "; ") + d;
+    throw Error("the subgroup path differs from the fallback: " + where);
+  }
 }
 // [/density-sweep]
 }  // namespace
@@ -274,13 +346,14 @@ int main(int argc, char** argv) {
   return run_sweep(argc, argv, "09_clustered_sweep", [&](SweepArgs& args) {
     args.text("--out", s.out).size("--size", s.width, s.height, &s.size_given).integer("--frames", s.frames)
         .integer("--max-lights", s.max_lights).integer("--stencil-max", s.stencil_max).text("--view", s.view)
-        .flag("--density", s.density).flag("--grid", s.grid).integer("--views", s.views)
+        .flag("--density", s.density).flag("--grid", s.grid).flag("--subgroups", s.subgroups).integer("--views", s.views)
         .integer("--target", s.target);
   }, [&] {
     std::filesystem::create_directories(s.out);
-    if (s.views == Settings::kViewsUnset) s.views = s.grid ? 3 : 6;
+    if (s.views == Settings::kViewsUnset) s.views = s.grid || s.subgroups ? 3 : 6;
     if (s.views < 1 || s.views > 64) throw Error("--views: 1 to 64, not " + std::to_string(s.views));
-    if (s.grid) s.density = true;  // the grid sweep is the density sweep over grids
+    if (s.grid && s.subgroups) throw UsageError("--grid and --subgroups: one at a time");
+    if (s.grid || s.subgroups) s.density = true;  // the density sweep over grids, or over the two paths
     if (s.density) {  // many configurations: fewer frames each
       s.frames = std::min(s.frames, 10);
     }
@@ -292,7 +365,7 @@ int main(int argc, char** argv) {
       s.height = 90;
       s.frames = std::min(s.frames, 2);
       s.max_lights = std::min(s.max_lights, 10000);
-      s.views = std::min(s.views, s.grid ? 2 : 3);
+      s.views = std::min(s.views, s.grid || s.subgroups ? 2 : 3);
     } else if (software && !s.size_given) {  // a CPU: small, few lights, few frames
       s.width = 320;
       s.height = 180;

@@ -45,6 +45,33 @@ TEST(ClusterGrid, ExponentialSlicesGrowByAConstantRatio) {
   EXPECT_EQ(slice_of(kDoom, 1000.f), 23);  // past the far plane: the last
 }
 
+TEST(ClusterGrid, ANearSliceSpansTheNearMetresAndTheRestGrowByAConstantRatio) {
+  // Slice 0 is znear .. 5 m; the other 23 are exponential from 5 m to 100 m: a ratio of 20^(1/23).
+  Grid g = kDoom;
+  g.near_slice = 5.f;
+  ASSERT_TRUE(g.has_near_slice());
+  EXPECT_FLOAT_EQ(slice_start(g, 0), 0.1f);
+  EXPECT_FLOAT_EQ(slice_start(g, 1), 5.f);
+  EXPECT_FLOAT_EQ(slice_start(g, 24), 100.f);
+  const double ratio = std::pow(20.0, 1.0 / 23.0);
+  for (int k = 1; k < 24; ++k)
+    EXPECT_NEAR(slice_start(g, k + 1) / slice_start(g, k), ratio, 1e-4) << "slice " << k;
+  for (int k = 0; k < 24; ++k) {  // a depth inside a slice finds that slice
+    const float mid = std::sqrt(slice_start(g, k) * slice_start(g, k + 1));
+    EXPECT_EQ(slice_of(g, mid), k) << "slice " << k;
+  }
+  EXPECT_EQ(slice_of(g, 4.99f), 0);
+  EXPECT_EQ(slice_of(g, 5.01f), 1);
+  EXPECT_EQ(slice_of(g, 0.01f), 0);
+  EXPECT_EQ(slice_of(g, 1000.f), 23);
+  // None at or before the near plane, or with one slice: the exponential slices as they were.
+  for (const float none : {0.f, 0.1f}) {
+    g.near_slice = none;
+    EXPECT_FALSE(g.has_near_slice());
+    EXPECT_EQ(slice_start(g, 5), slice_start(kDoom, 5));
+  }
+}
+
 TEST(ClusterGrid, ACellBoxHoldsTheFrustumPieceOverItsPixels) {
   const FrameCamera c = test_camera();
   const Box b = cluster_box(c, kDoom, 0, 0, 10);

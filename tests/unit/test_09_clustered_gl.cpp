@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <map>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -290,6 +291,86 @@ TEST_F(ClusteredGl, LitPairsEqualTheFullScreenPassExactly) {
       EXPECT_LT(evaluated["zbin-floor"], e) << mode;
     }
   EXPECT_GT(evaluated["zbin-floor"], full.lit) << "lights within their cut that face away light nothing";
+}
+
+// A near slice (cluster_grid.h) moves where the slices begin, nothing else: every lit pair is
+// still listed, each pixel's list holds its lights in light order, so the sums are the same
+// bit for bit. A few metres deep, the slices it frees for the far street evaluate fewer lights;
+// 12 m deep it holds the nearest lamps in one slice and evaluates more (the trade-off the grid
+// sweep measures).
+TEST_F(ClusteredGl, ANearSliceListsEveryLitPairAndChangesNoPixel) {
+  World& w = street();
+  set_lights(w, 2000);
+  const int width = 160, height = 90;
+  const FrameCamera cam = camera(w, "street_level", width, height);
+  ClusteredLights plain(w.frame_.volumes(), clusters_like_tiles());
+  const Render a = render(w, cam, width, height, &plain, false);
+  std::map<float, std::uint64_t> evaluated;
+  for (const float near_slice : {2.f, 5.f, 12.f}) {
+    SCOPED_TRACE("near slice " + std::to_string(near_slice) + " m");
+    ClusterSettings s = clusters_like_tiles();
+    s.near_slice = near_slice;
+    ClusteredLights near(w.frame_.volumes(), s);
+    const Render b = render(w, cam, width, height, &near, false);
+    ASSERT_TRUE(near.grid().has_near_slice());
+    EXPECT_EQ(b.counts.lit, a.counts.lit);
+    std::printf("near slice %.0f m: evaluated %llu against %llu without\n", near_slice, (unsigned long long)b.counts.evaluated,
+                (unsigned long long)a.counts.evaluated);
+    evaluated[near_slice] = b.counts.evaluated;
+    EXPECT_EQ(b.stats.cells_over, 0u);
+    EXPECT_TRUE(b.l1 == a.l1 && b.l2 == a.l2) << "the light buffers differ";
+    EXPECT_TRUE(b.image.pixels == a.image.pixels) << "the images differ";
+  }
+  EXPECT_LT(evaluated[2.f], a.counts.evaluated);
+  EXPECT_LT(evaluated[5.f], a.counts.evaluated);
+  EXPECT_GT(evaluated[12.f], evaluated[5.f]);
+}
+
+// The subgroup path (shade.glsl's shared-list loop, where the driver has subgroup operations)
+// reads a list the whole subgroup shares once, and each invocation adds the same lights in the
+// same order as the fallback: the light buffers equal bit for bit, the counts exactly. Tiled
+// with 16-pixel tiles, every subgroup shares its list: a subgroup lies within one 8 x 8 work
+// group, and those lie within one tile. A driver without subgroups takes the fallback and says so
+// (LIGHTPASS_TEST_NO_SUBGROUPS=1 stands for one here).
+TEST_F(ClusteredGl, ASharedListReadOnceForTheSubgroupChangesNoPixel) {
+  World& w = street();
+  set_lights(w, 2000);
+  const int width = 160, height = 90;
+  const FrameCamera cam = camera(w, "street_level", width, height);
+  const std::string support = subgroup_support();
+  std::printf("subgroup operations here: %s\n", support.empty() ? "none" : support.c_str());
+  for (const std::string mode : {"tiled", "clustered"}) {
+    SCOPED_TRACE(mode);
+    ClusterSettings off = settings_for_mode(mode);
+    off.subgroups = false;
+    ClusteredLights fallback(w.frame_.volumes(), off);
+    const Render a = render(w, cam, width, height, &fallback, false);
+    EXPECT_EQ(fallback.subgroup_path(), "off");
+    EXPECT_EQ(a.counts.shared, 0u);
+    ASSERT_GT(a.counts.lit, 1000u);
+    ::setenv("LIGHTPASS_TEST_NO_SUBGROUPS", "1", 1);
+    ClusteredLights without(w.frame_.volumes(), settings_for_mode(mode));
+    const Render b = render(w, cam, width, height, &without, false);
+    ::unsetenv("LIGHTPASS_TEST_NO_SUBGROUPS");
+    EXPECT_EQ(without.subgroup_path(), "none (fallback)");
+    EXPECT_EQ(b.counts.shared, 0u);
+    EXPECT_TRUE(b.l1 == a.l1 && b.l2 == a.l2);
+    if (support.empty()) continue;  // nothing more to compare on this driver
+    ClusteredLights with(w.frame_.volumes(), settings_for_mode(mode));
+    const Render c = render(w, cam, width, height, &with, false);
+    EXPECT_EQ(with.subgroup_path(), support);
+    EXPECT_EQ(c.counts.lit, a.counts.lit);
+    EXPECT_EQ(c.counts.evaluated, a.counts.evaluated);
+    EXPECT_EQ(c.counts.surface, a.counts.surface);
+    EXPECT_TRUE(c.l1 == a.l1 && c.l2 == a.l2) << "the light buffers differ";
+    EXPECT_TRUE(c.image.pixels == a.image.pixels) << "the images differ";
+    if (mode == "tiled")
+      EXPECT_EQ(c.counts.shared, c.counts.surface) << "every subgroup lies in one tile";
+    else
+      EXPECT_GT(c.counts.shared, 0u) << "no subgroup shared a cluster's list";
+    std::printf("%s: %llu of %llu pixels shaded from a shared list\n", mode.c_str(), (unsigned long long)c.counts.shared,
+                (unsigned long long)c.counts.surface);
+  }
 }
 
 // The index list is compacted: the cells' lists tile [0, total) without gap or overlap, each

@@ -183,7 +183,10 @@ struct GridRig {
   test::GlslTwin twin(const std::string& expression, const std::string& helpers = {}) const {
     const glm::mat4 p = camera.projection;
     const Grid g = grid;
-    return {{"09_clustered/shaders/grid.glsl"}, expression, {}, helpers, [p, g](unsigned program) {
+    std::vector<std::string> defines;
+    if (g.has_near_slice()) defines.push_back("NEAR_SLICE 1");
+    return {{"09_clustered/shaders/grid.glsl"}, expression, defines, helpers, [p, g](unsigned program) {
+              glProgramUniform1f(program, glGetUniformLocation(program, "u_near_slice"), g.near_slice);
               glProgramUniform4f(program, glGetUniformLocation(program, "u_projection"), p[0][0], p[1][1], p[2][0], p[2][1]);
               glProgramUniform4i(program, glGetUniformLocation(program, "u_grid"), g.width, g.height, g.tile_w, g.tile_h);
               glProgramUniform4i(program, glGetUniformLocation(program, "u_tiles"), g.tiles_x, g.tiles_y, g.slices, 0);
@@ -210,18 +213,21 @@ std::size_t count_beyond_band(const std::vector<glm::vec4>& gpu, const std::vect
   return failed;
 }
 
-// slice_of, and zbin_of with its bins: t = log(d / znear) / log(zfar / znear), the index
-// floor(t S). The GPU's t: d / znear 2.5 ulp (in the log: 2.5 ulp absolutely), log 3 ulp or
-// 2^-21 absolutely, log(zfar / znear) the same, the quotient 2.5 ulp: |dt| <= |t| (3 + 2.5 + 2.5
-// + 1) ulp + (2^-21 + 3 ulp) / L, and the C++ one far less (inside the GPU's allowance doubled).
-// The band is S times twice that. Cases: each slice's start (every one, or 500 spread over
-// many), its neighbouring floats and 1e-4 either side, the range's ends, beyond them, and
-// log-uniform depths. The C++ twin is slice_of on the rig's grid (rig.grid.slices = S).
-void expect_slice_index_matches(const GridRig& rig, const test::GlslTwin& twin, std::uint64_t seed, const char* name) {
-  const int slices = rig.grid.slices;
+// slice_of, and zbin_of with its bins: t = log(d / origin) / log(zfar / origin), the index
+// first + floor(t S). The exponential slices start at `origin` (znear, or the near slice) with
+// slice `first` (0, or 1 after a near slice, below which both say 0: one comparison, exact).
+// The GPU's t: d / origin 2.5 ulp (in the log: 2.5 ulp absolutely), log 3 ulp or 2^-21
+// absolutely, log(zfar / origin) the same, the quotient 2.5 ulp: |dt| <= |t| (3 + 2.5 + 2.5 + 1)
+// ulp + (2^-21 + 3 ulp) / L, and the C++ one far less (inside the GPU's allowance doubled). The
+// band is S times twice that. Cases: each slice's start (every one, or 500 spread over many),
+// its neighbouring floats and 1e-4 either side, the range's ends, beyond them, and log-uniform
+// depths. The C++ twin is slice_of on the rig's grid (rig.grid.slices = S + first).
+void expect_slice_index_matches(const GridRig& rig, const test::GlslTwin& twin, std::uint64_t seed, float origin, int first,
+                                const char* name) {
+  const int slices = rig.grid.slices - first;  // the exponential ones
   test::TwinRandom r(seed);
   std::vector<TwinCase> cases;
-  for (int k = 0; k <= slices; k += std::max(1, slices / 500)) {
+  for (int k = 0; k <= rig.grid.slices; k += std::max(1, rig.grid.slices / 500)) {
     const float d = slice_start(rig.grid, k);
     for (float e : {d, std::nextafter(d, 0.f), std::nextafter(d, 1e9f), d * (1 + 1e-4f), d * (1 - 1e-4f)}) cases.push_back({glm::vec4(e, 0, 0, 0)});
   }
@@ -230,11 +236,11 @@ void expect_slice_index_matches(const GridRig& rig, const test::GlslTwin& twin, 
   const auto gpu = test::run_glsl_twin(twin, cases);
   std::vector<int> cpu;
   std::vector<double> exact, band;
-  const double L = std::log(double(kFar) / double(kNear));
+  const double L = std::log(double(kFar) / double(origin));
   for (const TwinCase& c : cases) {
     cpu.push_back(slice_of(rig.grid, c.a.x));
-    const double t = std::log(std::max(double(c.a.x), double(kNear)) / double(kNear)) / L;
-    exact.push_back(t * slices);
+    const double t = std::log(std::max(double(c.a.x), double(origin)) / double(origin)) / L;
+    exact.push_back(first > 0 && c.a.x < origin ? 0.0 : first + t * slices);
     band.push_back(2 * slices * (std::abs(t) * ulps(9) + (0x1p-21 + ulps(3)) / L));
   }
   std::size_t in_band = 0;
@@ -244,7 +250,7 @@ void expect_slice_index_matches(const GridRig& rig, const test::GlslTwin& twin, 
 
 TEST(GlslTwins, SliceOfMatchesItsCppTwin) {
   const GridRig rig;
-  expect_slice_index_matches(rig, rig.twin("float(slice_of(a.x)), 0.0, 0.0, 0.0"), 91, "slice_of");
+  expect_slice_index_matches(rig, rig.twin("float(slice_of(a.x)), 0.0, 0.0, 0.0"), 91, kNear, 0, "slice_of");
 }
 
 TEST(GlslTwins, SliceStartMatchesItsCppTwin) {
@@ -281,6 +287,17 @@ TEST(GlslTwins, SliceStartMatchesItsCppTwin) {
                                     [&](std::size_t i) { return "k " + std::to_string(int(cases[i].a.x)); }));
     }
   EXPECT_GE(total, 10000u);
+}
+
+TEST(GlslTwins, SliceOfWithANearSliceMatchesItsCppTwin) {
+  // The same with a near slice at 3 m: t = log(d / near) / log(zfar / near), slice
+  // 1 + floor(t (S - 1)); the same operations, so the same band with S - 1 slices and L of
+  // zfar / near.
+  GridRig rig;
+  rig.grid.near_slice = 3.f;
+  ASSERT_TRUE(rig.grid.has_near_slice());
+  expect_slice_index_matches(rig, rig.twin("float(slice_of(a.x)), 0.0, 0.0, 0.0"), 97, rig.grid.near_slice, 1,
+                             "slice_of with a near slice");
 }
 
 TEST(GlslTwins, DepthBinMatchesItsCppTwin) {
@@ -459,7 +476,7 @@ TEST(GlslTwins, ZbinOfMatchesItsCppTwin) {
   for (const int bins : {1, 24, 1024, 16384}) {
     GridRig rig;
     rig.grid = grid_of_tiles(kW, kH, 16, bins, kNear, kFar);
-    expect_slice_index_matches(rig, zbin_twin(rig, bins, "float(zbin_of(a.x)), 0.0, 0.0, 0.0"), 97 + std::uint64_t(bins), "zbin_of");
+    expect_slice_index_matches(rig, zbin_twin(rig, bins, "float(zbin_of(a.x)), 0.0, 0.0, 0.0"), 97 + std::uint64_t(bins), kNear, 0, "zbin_of");
   }
 }
 

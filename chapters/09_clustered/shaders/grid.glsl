@@ -10,7 +10,18 @@ const float kDepthPad = 1e-4;
 
 float view_depth(vec3 world) { return -(u_view * vec4(world, 1.0)).z; }
 
+#ifdef NEAR_SLICE
+// A near slice (cluster_grid.h): slice 0 spans znear .. u_near_slice, the others are
+// exponential from there to zfar.
+uniform float u_near_slice;
+#endif
+
 float slice_start(int k) {
+#ifdef NEAR_SLICE
+  if (k <= 0) return u_depth_range.x;
+  if (k >= u_tiles.z) return u_depth_range.y;
+  return u_near_slice * pow(u_depth_range.y / u_near_slice, float(k - 1) / float(u_tiles.z - 1));
+#endif
   if (k <= 0) return u_depth_range.x;
   if (k >= u_tiles.z) return u_depth_range.y;
   return u_depth_range.x * pow(u_depth_range.y / u_depth_range.x, float(k) / float(u_tiles.z));
@@ -22,6 +33,11 @@ float slice_start(int k) {
 #include EXERCISE_SLICE_OF
 #else
 int slice_of(float d) {
+#ifdef NEAR_SLICE
+  if (d < u_near_slice) return 0;
+  float n = log(d / u_near_slice) / log(u_depth_range.y / u_near_slice);
+  return clamp(1 + int(floor(n * float(u_tiles.z - 1))), 1, u_tiles.z - 1);
+#endif
   float t = log(max(d, u_depth_range.x) / u_depth_range.x) / log(u_depth_range.y / u_depth_range.x);
   return clamp(int(floor(t * float(u_tiles.z))), 0, u_tiles.z - 1);
 }

@@ -1,4 +1,13 @@
 #version 450
+// The subgroup operations of shade.glsl's shared-list loop, where ClusteredLights found them.
+#if defined(SUBGROUP_KHR)
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_vote : require
+#extension GL_KHR_shader_subgroup_ballot : require
+#elif defined(SUBGROUP_ARB)
+#extension GL_ARB_shader_group_vote : require
+#extension GL_ARB_shader_ballot : require
+#endif
 // Pass 3 in compute: one invocation per pixel adds its cell's lights into the light buffer
 // (read, add, write: each pixel is one invocation's alone).
 layout(local_size_x = 8, local_size_y = 8) in;

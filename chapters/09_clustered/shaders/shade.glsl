@@ -13,7 +13,7 @@
 #endif
 #ifdef COUNT_FRAGMENTS
 #include "03_light_volumes/shaders/fragment_counters.glsl"
-const uint kCountEvaluated = 0u, kCountLit = 1u, kCountSurface = 2u;
+const uint kCountEvaluated = 0u, kCountLit = 1u, kCountSurface = 2u, kCountShared = 3u;
 // fragment_counters.glsl's count_fragment() adds 1; a pixel adds its whole count at once.
 void count_add(uint counter, uint n) {
   if (n == 0u) return;
@@ -141,6 +141,27 @@ void count_pixel(uint evaluated, uint lit) {
 #endif
 }
 
+// The subgroup operations the shading uses where the driver has them (ClusteredLights picks
+// one at compile time, shade.comp enables its extensions): the first active invocation's
+// value, and whether a condition holds in every active invocation.
+#if defined(SUBGROUP_KHR)
+uint subgroup_first(uint v) { return subgroupBroadcastFirst(v); }
+bool subgroup_all(bool b) { return subgroupAll(b); }
+#elif defined(SUBGROUP_ARB)
+uint subgroup_first(uint v) { return readFirstInvocationARB(v); }
+bool subgroup_all(bool b) { return allInvocationsARB(b); }
+#endif
+#ifdef SUBGROUP_LISTS
+// The k-th light of a list every active invocation shares: its index made subgroup-uniform, so
+// that the index and the light's record are read once for the subgroup (a scalar load), not
+// once per invocation. Each invocation adds the same lights in the same order as add_light.
+void add_shared_light(Surface s, vec3 to_eye, uvec2 list, uint k, inout vec3 diffuse, inout vec3 specular,
+                      inout uint lit) {
+  int i = int(subgroup_first(light_of(list, k)));
+  add_lamp(s, to_eye, i, cluster_lights[i], cone_of(i), diffuse, specular, lit);
+}
+#endif
+
 // [shade-pixel]
 // diffuse goes to L1, specular (already tinted by the surface's specular colour) to L2;
 // `evaluated` lights were looked at, `lit` of them added anything. `pixel` names the cell's
@@ -182,6 +203,30 @@ void shade_surface(Surface s, ivec2 pixel, out vec3 diffuse, out vec3 specular, 
   uint listed = list.y;
   while (list.y > 0u && int(light_of(list, list.y - 1u)) >= u_first_tube) --list.y;
   // [/tube-split]
+#ifdef SUBGROUP_LISTS
+  // [subgroup-loop]
+  // Where every active invocation of the subgroup shades from one list (a tile's, a cluster's),
+  // the loop runs on the first one's list: the same lights in the same order, read once.
+  uvec2 first = uvec2(subgroup_first(list.x), subgroup_first(list.y));
+  uint first_listed = subgroup_first(listed);
+  if (subgroup_all(list == first && listed == first_listed)) {
+    for (uint k = 0u; k < first.y; k += 4u) {
+      add_shared_light(s, to_eye, first, k, diffuse, specular, lit);
+      if (k + 1u < first.y) add_shared_light(s, to_eye, first, k + 1u, diffuse, specular, lit);
+      if (k + 2u < first.y) add_shared_light(s, to_eye, first, k + 2u, diffuse, specular, lit);
+      if (k + 3u < first.y) add_shared_light(s, to_eye, first, k + 3u, diffuse, specular, lit);
+    }
+    for (uint k = first.y; k < first_listed; ++k)
+      add_tube(s, to_eye, cluster_lights[subgroup_first(light_of(first, k))], diffuse, specular, lit);
+    evaluated = first_listed;
+    count_pixel(evaluated, lit);
+#ifdef COUNT_FRAGMENTS
+    count_add(kCountShared, 1u);
+#endif
+    return;
+  }
+  // [/subgroup-loop]
+#endif
   // [shade-loop]
   // Four lights an iteration: llvmpipe ends a shader's loops after 65 535 iterations in all
   // (gallivm's loop limiter), and a tile's list can hold 100 000 lights (262 140 at most here).
