@@ -215,8 +215,9 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
         if (!support_known_) support_ = subgroup_support();  // the context's, asked once
         support_known_ = true;
         const std::string& support = support_;
-        subgroup_path_ = !settings_.subgroups ? "off" : support.empty() ? "none (fallback)" : support;
-        if (settings_.subgroups && !support.empty()) {
+        const bool usable = support == "KHR_shader_subgroup" || (!support.empty() && settings_.subgroups == SubgroupUse::Any);
+        subgroup_path_ = settings_.subgroups == SubgroupUse::Off ? "off" : usable ? support : "none (fallback)";
+        if (settings_.subgroups != SubgroupUse::Off && usable) {
           d.push_back("SUBGROUP_LISTS 1");
           d.push_back(support == "KHR_shader_subgroup" ? "SUBGROUP_KHR 1" : "SUBGROUP_ARB 1");
         }

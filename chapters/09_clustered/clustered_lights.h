@@ -31,6 +31,8 @@ namespace lp::ch09 {
 // light per tile (shaders/zbin.glsl).
 enum class CullKind { Tiled, Clustered, ZBin };
 enum class ShadeIn { Compute, Fragment, Staged };  // Staged: compute, the tile's lights in shared memory (tiled)
+enum class SubgroupUse { Off, Native, Any };
+
 struct ClusterSettings {
   CullKind kind = CullKind::Clustered;
   ShadeIn shade = ShadeIn::Compute;
@@ -54,9 +56,12 @@ struct ClusterSettings {
   // the G-buffer's surfaces occupy, so that any fragment a forward pass draws finds its lights.
   bool all_cells = false;
   // The compute shading (shade.comp) reads a list that every invocation of a subgroup shares
-  // once for the subgroup, where the driver has subgroup operations (subgroup_support());
-  // false: today's per-invocation loop everywhere (the fallback). The same image either way.
-  bool subgroups = true;
+  // once for the subgroup (subgroup_support()). Native: where the driver has
+  // GL_KHR_shader_subgroup; Any: also through GL_ARB_shader_ballot and GL_ARB_shader_group_vote
+  // (all that Mesa's llvmpipe has, and there the shared read is slower than the loop: tests and
+  // the sweep ask for it); Off: the per-invocation loop everywhere (the fallback). The same
+  // image either way.
+  SubgroupUse subgroups = SubgroupUse::Native;
 };
 // The seven ways of the program's --mode, beside chapter 03's: "tiled", "tiled-2.5d" (with the
 // depth mask), "tiled-fragment", "tiled-staged" (the tile's lights staged in shared memory,

@@ -128,9 +128,11 @@ std::vector<Method> subgroup_methods(const ch09::ClusterSettings& base) {
   std::vector<Method> m;
   for (const std::string mode : {"tiled", "clustered"}) {
     Method fallback{mode, "fallback", ch09::settings_for_mode(mode, base)};
-    fallback.settings.subgroups = false;
+    fallback.settings.subgroups = ch09::SubgroupUse::Off;
     m.push_back(fallback);
-    m.push_back({mode, "subgroups", ch09::settings_for_mode(mode, base)});
+    Method shared{mode, "subgroups", ch09::settings_for_mode(mode, base)};
+    shared.settings.subgroups = ch09::SubgroupUse::Any;  // ARB's ballot too, where that is all there is
+    m.push_back(shared);
   }
   return m;
 }
