@@ -1130,21 +1130,11 @@ TEST(ShadowsGlSpot, MarkedSpotLightMatchesItsRayTracedShadowsOutsideTheBand) {
     // other face (a texel holds one depth), as on the edge of a column's base; and then the band
     // on the receiver (light_edge_band.h [receiver-probe]), probed only where the map and the
     // truth still differ.
+    const auto texel_at = [&](float d) { return w.stage.spot_frustum().texel_world(d, s.map_size); };
     int widest = 0;
-    std::vector<bool> probed_band = light_edge_band(
-        hits, truth, spot, cam, s, r, kW, kH, [&](float d) { return w.stage.spot_frustum().texel_world(d, s.map_size); },
-        &widest);
+    std::vector<bool> probed_band = light_edge_band(hits, truth, spot, cam, s, r, kW, kH, texel_at, &widest);
     for (std::size_t i = 0; i < probed_band.size(); ++i) probed_band[i] = probed_band[i] || edges[i];
-    std::size_t excused = 0;
-    for (int y = 0; y < kH; ++y)
-      for (int x = 0; x < kW; ++x) {
-        const std::size_t i = std::size_t(y) * kW + std::size_t(x);
-        if (probed_band[i] || truth.at(x, y, 2) < 0.5f || v.at(x, y, 0) == truth.at(x, y, 0)) continue;
-        const Hit& h = *hits[i];
-        const float texel = w.stage.spot_frustum().texel_world(glm::distance(h.position, spot.position), s.map_size);
-        if (boundary_on_receiver(w.rays, h, spot, reach_texels(h, spot, s, r) * texel, texel, truth.at(x, y, 0) > 0.5f))
-          probed_band[i] = true, ++excused;
-      }
+    const std::size_t excused = probe_receivers(w.rays, hits, truth, v, spot, s, r, kW, kH, texel_at, probed_band).excused;
     const VisibilityError probed = visibility_error(v, truth, 0, &probed_band);
     std::printf("  each pixel's own band (up to %d px) and the probe on the receiver (%zu pixels) leave %zu pixels, "
                 "mean |error| %.6f\n", widest, excused, probed.pixels, probed.mean_abs);

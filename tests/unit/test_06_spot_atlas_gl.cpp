@@ -145,17 +145,10 @@ TEST(SpotAtlasGl, EverySpotInItsTileMatchesItsRayTracedShadowsOutsideTheBand) {
       exclude_raster_mask(v, band);
       // The band on the receiver (light_edge_band.h [receiver-probe]), probed only where the map
       // and the truth differ outside the image's band.
-      std::size_t excused = 0;
-      for (int y = 0; y < kH; ++y)
-        for (int x = 0; x < kW; ++x) {
-          const std::size_t i = std::size_t(y) * kW + std::size_t(x);
-          if (band[i] || truth.at(x, y, 2) < 0.5f || v.at(x, y, 0) == truth.at(x, y, 0)) continue;
-          const Hit& h = *hits[i];
-          const float texel =
-              w.stage.spot_frustums()[std::size_t(k)].texel_world(glm::distance(h.position, spot.position), tile.size);
-          if (boundary_on_receiver(w.rays, h, spot, reach_texels(h, spot, s, r) * texel, texel, truth.at(x, y, 0) > 0.5f))
-            band[i] = true, ++excused;
-        }
+      const std::size_t excused =
+          probe_receivers(w.rays, hits, truth, v, spot, s, r, kW, kH,
+                          [&](float d) { return w.stage.spot_frustums()[std::size_t(k)].texel_world(d, tile.size); }, band)
+              .excused;
       const VisibilityError e = visibility_error(v, truth, 0, &band);
       std::size_t shadowed_compared = 0;
       for (int y = 0; y < kH; ++y)
