@@ -173,8 +173,9 @@ def budget_csv(out: Path, jsons):
         # cpu_ms: the CPU's time per frame (submission, and any read-back that waits), beside the GPU's
         # tubes: where the tubes' light is shaded, in the clusters' pass (--tubes clusters, the default)
         # or as chapter 04's capsule volumes (--tubes volumes, and every run over the stencil volumes)
-        w.writerow(["scene", "culling", "gi", "order", "pass", "ms", "total_ms", "cpu_ms", "tubes", "renderer", "width",
-                    "height", "frames"])
+        # sun_cascades: the sun's maps (--sun-cascades; 1 in every JSON from before the knob, its default then)
+        w.writerow(["scene", "culling", "gi", "order", "pass", "ms", "total_ms", "cpu_ms", "tubes", "sun_cascades", "renderer",
+                    "width", "height", "frames"])
         for path in jsons:
             b = json.load(open(path))
             scene = Path(b["scene"]).stem
@@ -186,10 +187,11 @@ def budget_csv(out: Path, jsons):
             # chapter 08's pass as the whole frame runs it: AO and one bounce (SSGI), AO alone (SSAO), or neither
             ao, indirect = float(knobs.get("ao", 1)), float(knobs.get("indirect", 1))
             gi = "ao+indirect" if indirect else "ao" if ao else "none"
+            cascades = int(float(knobs.get("sun-cascades", 1)))
             for i, p in enumerate(b["passes"]):
                 cpu = f"{b['cpu_ms']:.6g}" if "cpu_ms" in b else ""  # JSONs from before it was measured
                 w.writerow([scene, culling, gi, i, p["name"], f"{p['mean_ms']:.6g}", f"{b['total_ms']:.6g}", cpu, tubes,
-                            b["renderer"], b["width"], b["height"], b["frames"]])
+                            cascades, b["renderer"], b["width"], b["height"], b["frames"]])
 
 
 def budget_plot(d: Path, csv_path: Path, out: Path):

@@ -49,8 +49,8 @@ const CliSpec kCli{
                           {"image", "accumulation", "revealage", "error"}),
               // --mode whole: every stage of the book (whole_frame.h); each can be switched off.
               {"shadows", "whole: the sun's shadow map (chapter 06)", 1, 0, 1, true},
-              {"sun-cascades", "whole: chapter 06's cascades for the sun (1: one map fitted to the view; 2 to 4, "
-                               "snapped)", 1, 1, ch06::kMaxCascades, true},
+              {"sun-cascades", "whole: chapter 06's cascades for the sun, snapped (1: one map fitted to the view)",
+               double(WholeFrameSettings{}.sun_cascades), 1, ch06::kMaxCascades, true},
               {"clustered", "whole: the local lights by chapter 09's clusters (off: chapter 03's stencil volumes)", 1, 0, 1, true},
               {"ao", "whole: ambient occlusion (chapters 07, 08)", 1, 0, 1, true},
               {"indirect", "whole: one bounce of indirect light (chapter 08)", 1, 0, 1, true},

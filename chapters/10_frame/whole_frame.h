@@ -54,7 +54,9 @@ struct WholeFrameSettings {
   bool indirect = true;    // chapter 08: one bounce of diffuse indirect light (the wide disk)
   bool neon = true;        // chapter 04's tubes, when the scene has any
   TubeLight tubes = TubeLight::Clusters;  // their light; volumes when the local lights are
-  int sun_cascades = 1;    // chapter 06's cascades for the sun (1: one map fitted to the view; up to 4)
+  // Chapter 06's cascades for the sun: four snapped maps, the count chapter 06 measures against
+  // one map (up to ch06::kMaxCascades; 1: one map fitted to the view).
+  int sun_cascades = 4;
   Method transparency = Method::Sorted;  // chapter 10's glass, when the scene has any
   float sun = 1.f, glow = 8.f;           // chapter 05's scales of the sun and the emissive surfaces
   ch05::HdrSettings hdr;                 // chapter 05: its defaults (Reinhard, key 0.18, no bloom)

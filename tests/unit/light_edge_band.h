@@ -95,4 +95,29 @@ inline bool boundary_on_receiver(const RayScene& rays, const Hit& h, const Light
 }
 // [/receiver-probe]
 
+// The probe where it matters: at each pixel outside `band` that the light reaches (the truth's
+// blue channel) and where the map's visibility `v` and the truth differ, the band on the
+// receiver added to `band` (elsewhere it would change nothing but the count compared, which is
+// then an upper bound). texel_at(d) as light_edge_band's. Returns the pixels probed and those
+// it excused.
+struct ProbeCount {
+  std::size_t probed = 0, excused = 0;
+};
+inline ProbeCount probe_receivers(const RayScene& rays, const std::vector<std::optional<Hit>>& hits, const ImageF& truth,
+                                  const ImageF& v, const Light& l, const ShadowSettings& s, int r, int width,
+                                  int height, const std::function<float(float)>& texel_at, std::vector<bool>& band) {
+  ProbeCount n;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const std::size_t i = std::size_t(y) * std::size_t(width) + std::size_t(x);
+      if (band[i] || truth.at(x, y, 2) < 0.5f || v.at(x, y, 0) == truth.at(x, y, 0)) continue;
+      const Hit& h = *hits[i];
+      const float texel = texel_at(glm::distance(h.position, l.position));
+      ++n.probed;
+      if (boundary_on_receiver(rays, h, l, reach_texels(h, l, s, r) * texel, texel, truth.at(x, y, 0) > 0.5f))
+        band[i] = true, ++n.excused;
+    }
+  return n;
+}
+
 }  // namespace lp::ch06

@@ -112,20 +112,9 @@ TEST_F(PointShadowsGl, CubeMapsMatchTheRayTracedShadowsOutsideTheBand) {
       int widest = 0;
       auto band = point_band(hits, truth, l, cam, s, r, &widest);
       exclude_raster_mask(v, band);
-      // The band on the receiver (light_edge_band.h [receiver-probe]), probed only where the map
-      // and the truth differ outside the image's band: elsewhere it would change nothing but the
-      // count compared, which is then an upper bound.
-      std::size_t probed = 0, excused = 0;
-      for (int y = 0; y < kH; ++y)
-        for (int x = 0; x < kW; ++x) {
-          const std::size_t i = std::size_t(y) * kW + std::size_t(x);
-          if (band[i] || truth.at(x, y, 2) < 0.5f || v.at(x, y, 0) == truth.at(x, y, 0)) continue;
-          const Hit& h = *hits[i];
-          const float w = cube_texel_world(glm::distance(h.position, l.position), s.cube_size);
-          ++probed;
-          if (boundary_on_receiver(atrium->rays, h, l, reach_texels(h, l, s, r) * w, w, truth.at(x, y, 0) > 0.5f))
-            band[i] = true, ++excused;
-        }
+      // The band on the receiver (light_edge_band.h [receiver-probe], probe_receivers).
+      const auto [probed, excused] = probe_receivers(atrium->rays, hits, truth, v, l, s, r, kW, kH,
+                                                     [&](float d) { return cube_texel_world(d, s.cube_size); }, band);
       const VisibilityError e = visibility_error(v, truth, 0, &band);
       std::size_t reached = 0, dark = 0;
       for (int y = 0; y < kH; ++y)

@@ -219,6 +219,7 @@ TEST(WholeFrameStagesGl, AoAndIndirectLightAreChapter08s) {
 
     auto chapter = chapters_frame(whole, s);
     ch06::ShadowStage shadows(chapter->scene_gpu(), scene.lights[std::size_t(ch06::shadowed_sun(scene))]);
+    shadows.set({.cascades = s.sun_cascades});  // the whole frame's sun: its cascades
     ch04::NeonTubes tubes;
     tubes.upload(ch04::neon_lights(scene));
     ch04::NeonStage neon(chapter->scene_gpu(), tubes);

@@ -135,15 +135,16 @@ TEST(WholeFrameGl, TheGlassSeesTheSunsMapWithIndirectLightOnOrOff) {
   EXPECT_GT(shaded, floor / 20) << "the sun's map darkens at least 5 % of the glass floor by half";
 }
 
-// Chapter 06's cascades for the sun in the whole frame (--sun-cascades): the setting reaches the
-// shadow stage (the street's image changes where the moon's shadows are drawn from four maps
-// instead of one), and the image with cascades still has the moon's shadows (it is not the frame
-// without them).
+// Chapter 06's cascades for the sun in the whole frame (--sun-cascades, four by default): the
+// default is four, the setting reaches the shadow stage (the street's image changes where the
+// moon's shadows are drawn from four maps instead of one), and the image with cascades still has
+// the moon's shadows (it is not the frame without them).
 TEST(WholeFrameGl, SunCascadesReachTheShadowStage) {
   const Scene scene = shop_street();
   WholeFrame frame(scene);
   WholeFrameSettings one, four, none;
-  four.sun_cascades = 4;
+  EXPECT_EQ(four.sun_cascades, 4) << "the whole frame's sun: chapter 06's four cascades by default";
+  one.sun_cascades = 1;
   none.shadows = false;
   const ImageRGBA8 a = draw(frame, scene, 160, 90, one), b = draw(frame, scene, 160, 90, four);
   const ImageRGBA8 c = draw(frame, scene, 160, 90, none);
