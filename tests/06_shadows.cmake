@@ -45,6 +45,18 @@ set(P06_OUT ${CMAKE_BINARY_DIR}/out/06_scenes)
 file(MAKE_DIRECTORY ${P06_OUT})
 lightpass_program_test(06_shadows.default_rig_is_not_washed_out 0 "within bounds"
   sh -c "'${P06}' --headless --size 160x90 --scene tests/data/no_camera_no_lights.gltf --out '${P06_OUT}/rig.png' && '$<TARGET_FILE:png_coverage>' '${P06_OUT}/rig.png' --covered 0.05 0.6 --bright-share 0 0.01")
+# A reader's model on a floor, without lights or a camera (tests/data/box_on_floor.gltf: a red
+# 1 m box on a 6 m floor of grey 0.6): the default rig's key, from the left of and above the
+# automatic view, casts a shadow the image shows beside the box (issue 29). Against the same view
+# with no shadows (chapter 03's frame: chapter 06's with no stage, bit for bit), the floor pixels
+# darkened by a quarter or more (a plain step: the eye notices about 2 %; the key gives most of
+# the floor's light, so the umbra drops by more than half) number at least 0.09 times the box's
+# pixels: half of the hard shadow's visible area, 96 px beside the box's 534 at 320x180 (0.18,
+# ray cast from the rig's key, 50 degrees up, in the automatic view; both counts are the render's
+# to the pixel), the other half left to PCF's penumbra at its edges. With the key above the camera
+# the shadow lies behind the box: 0 px. No floor pixel reaches 250 of 255: grey 0.6 is not clipped.
+lightpass_program_test(06_shadows.default_rig_shadow_shows_beside_a_readers_model 0 "within bounds"
+  sh -c "'$<TARGET_FILE:03_light_volumes>' --headless --size 320x180 --scene tests/data/box_on_floor.gltf --out '${P06_OUT}/box_plain.png' && '${P06}' --headless --size 320x180 --scene tests/data/box_on_floor.gltf --out '${P06_OUT}/box.png' && '$<TARGET_FILE:png_coverage>' '${P06_OUT}/box.png' --shadow '${P06_OUT}/box_plain.png' 0.09 0.25 --floor-below 250")
 lightpass_program_test(06_shadows.atrium_asks_for_its_sun_scale 0 "directional lights x4, as atrium.gltf asks"
   ${P06} --headless --size 64x36 --out ${P06_OUT}/atrium.png)
 lightpass_program_test(06_shadows.scene_without_sun 1 "no directional light" ${P06} --headless --size 16x16 --scene tests/data/minimal.gltf)

@@ -28,6 +28,13 @@ lightpass_image_test(11_temporal.opening_shows_taa_nearer_the_truth_than_no_aa "
   --nearer-than 0 14 ${CMAKE_BINARY_DIR}/out/11_opening_truth.png 0.9
   RUN ${P11} --headless --size 320x180 --out ${CMAKE_BINARY_DIR}/out/11_opening.png)
 set_tests_properties(11_temporal.opening_shows_taa_nearer_the_truth_than_no_aa PROPERTIES FIXTURES_REQUIRED opening11)
+# --show rejected carries its key (issue 29): in the bottom-left corner, on a box of grey 24, a
+# red swatch (6x6 px at this size: pure red, mean 85 steps) beside the text saying what red is,
+# whose white strokes light 10-60 % of its rows (17 % drawn), and the box's top row above them.
+lightpass_image_test(11_temporal.rejected_has_its_key "wrote" ${CMAKE_BINARY_DIR}/out/11_rejected.png
+  --background 24,24,24 --region 2 161 6 6 --mean 85 85 --lit 1 1 --region 0 158 200 2 --mean 24 24
+  --region 11 161 200 15 --lit 0.1 0.6
+  RUN ${P11} --headless --size 320x180 --path walk --at 1 --ao 0 --indirect 0 --show rejected --out ${CMAKE_BINARY_DIR}/out/11_rejected.png)
 # The sweep's options (the sweep itself is long on llvmpipe: 16 truth frames per path frame).
 lightpass_program_test(11_temporal.sweep_unknown_option 2 "unknown option '--fast'" $<TARGET_FILE:11_temporal_sweep> --fast)
 lightpass_program_test(11_temporal.sweep_bad_frames 2 "--frames must be at least 1" $<TARGET_FILE:11_temporal_sweep> --frames 0)

@@ -184,6 +184,7 @@ say what each must give). Files without their own `.bin` use `minimal.bin`.
 | file | what it is |
 | --- | --- |
 | `no_camera_no_lights.gltf` (+ `.bin`) | a 1 m box (with normals) and nothing else: no camera, no lights |
+| `box_on_floor.gltf` (+ `.bin`) | a red 1 m box standing on a 6 x 6 m floor of grey 0.6, no camera, no lights: the default rig's shadow |
 | `indexed_nonormals.gltf` (+ `.bin`) | cube of 8 shared corners, 36 indices, POSITION only: must be flat shaded |
 | `strip_fan.gltf` (+ `.bin`) | a quad as TRIANGLE_STRIP (4 vertices) and one as TRIANGLE_FAN (6), camera, light |
 | `points_only.gltf` (+ `.bin`) | one POINTS primitive: nothing to draw |
@@ -242,6 +243,18 @@ void write_real_model_cases(const fs::path& dir) {
   {
     GltfBuilder b("no_camera_no_lights");
     b.add_mesh_node("box", b.add_mesh("box", make_box(glm::vec3(1.0f)), b.add_material(plain("grey"))), glm::vec3(0.0f));
+    b.write(dir);
+  }
+  {
+    // A reader's model as it often comes: an object standing on a floor, no camera, no lights
+    // (the default rig's shadow, issue 29). The box is red so that a test tells it from the
+    // mid-grey floor.
+    GltfBuilder b("box_on_floor");
+    Material floor = plain("floor"), box = plain("red");
+    floor.base_color = {0.6f, 0.6f, 0.6f, 1.0f};
+    box.base_color = {0.8f, 0.15f, 0.15f, 1.0f};
+    b.add_mesh_node("floor", b.add_mesh("floor", make_rect(6.0f, 6.0f), b.add_material(floor)), glm::vec3(0.0f));
+    b.add_mesh_node("box", b.add_mesh("box", make_box(glm::vec3(1.0f)), b.add_material(box)), glm::vec3(0.0f, 0.5f, 0.0f));
     b.write(dir);
   }
   {
