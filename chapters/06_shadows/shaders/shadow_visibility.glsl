@@ -198,8 +198,7 @@ float sun_map_visibility(Surface s, vec3 to_light) {
   vec2 g = receiver_plane_gradient(s);
   mat2 turn = poisson_turn();
   int taps = int(sh.poisson_taps);
-  // A part of the disk (chapter 11 accumulates the parts over frames): every parts-th tap from
-  // tap `part` on, the disk turned pcss_turn further. One part of one: every tap, as before.
+  // A part of the disk a frame (chapter 11): every parts-th tap from `part`, turned further.
   int part = int(sh.pcss_part), parts = int(sh.pcss_parts);
   turn = turn * mat2(cos(sh.pcss_turn), sin(sh.pcss_turn), -sin(sh.pcss_turn), cos(sh.pcss_turn));
   // 1. The blocker search: whatever can hide part of the sun lies within d_r tan(theta).
