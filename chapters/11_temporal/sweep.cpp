@@ -157,6 +157,39 @@ void sweep_path(const Settings& s, const SceneGpu& gpu, const std::string& rende
   std::cout << "wrote " << file << " and " << conv_file << '\n';
 }
 
+// The errors of a path's frames pooled by frames since a disocclusion (the frames' since_error
+// and since_pixels), one CSV row per k for `name`.
+template <class PathFrames>
+void write_convergence(std::ostream& conv, const char* name, const PathFrames& frames) {
+  for (std::size_t k = 0; !frames.empty() && k < frames[0].since_error.size(); ++k) {
+    double e = 0;
+    std::size_t n = 0;
+    for (const auto& f : frames) {
+      e += f.since_error[k] * double(f.since_pixels[k]);
+      n += f.since_pixels[k];
+    }
+    conv << csv_quoted(name) << ',' << k << ',' << (n ? e / double(n) : 0.0) << ',' << n << '\n';
+  }
+}
+
+// The whole frame with `t` (no TAA) played along the path at --size, each pass's time as a CSV
+// row for `name`.
+void write_path_cost(std::ostream& cost, const char* name, const Settings& s, const SceneGpu& gpu, const CameraPath& path,
+                     const TemporalSettings& t, const std::string& renderer) {
+  TemporalFrame frame(gpu);
+  OutputTarget target(s.width, s.height);
+  PassMetrics metrics;
+  int i = 0;
+  const Measurement measured = measure(metrics, [&] {
+    const int k = i++ % path.frames();
+    frame.render(frame_camera(path.camera(gpu.scene(), k), float(s.width) / float(s.height)),
+                 {target.framebuffer(), s.width, s.height}, t, 1.f / path.fps, path.cut_at(k), &metrics);
+  }, {.frames = s.frames});
+  for (const PassMeasurement& p : measured.passes)
+    cost << csv_quoted(name) << ',' << csv_quoted(p.name) << ',' << p.mean_ms << ',' << p.min_ms << ','
+         << csv_measure_values(renderer, s.width, s.height, measured.frames) << '\n';
+}
+
 // [ao-sweep]
 // Chapter 07's classic AO along the path against its ray-traced truth: 4 points a frame alone,
 // the same 4 points a frame accumulated (temporal_ao.h: a part of a 32-point kernel a frame),
@@ -192,15 +225,7 @@ void sweep_ao(const Settings& s, const SceneGpu& gpu, const std::string& rendere
       csv << csv_quoted(m.name) << ',' << f.frame << ',' << f.error << ',' << csv_measure_values(renderer, w, h, 1) << '\n';
       sum += f.error;
     }
-    for (std::size_t k = 0; !frames.empty() && k < frames[0].since_error.size(); ++k) {
-      double e = 0;
-      std::size_t n = 0;
-      for (const AoPathFrame& f : frames) {
-        e += f.since_error[k] * double(f.since_pixels[k]);
-        n += f.since_pixels[k];
-      }
-      conv << csv_quoted(m.name) << ',' << k << ',' << (n ? e / double(n) : 0.0) << ',' << n << '\n';
-    }
+    write_convergence(conv, m.name, frames);
     std::cout << m.name << ": mean AO error " << (frames.empty() ? 0.0 : sum / double(frames.size())) << " over "
               << frames.size() << " frames\n";
   }
@@ -253,15 +278,7 @@ void sweep_gi(const Settings& s, const SceneGpu& gpu, const std::string& rendere
           << frames[k].ao_error << ',' << csv_measure_values(renderer, w, h, 1) << '\n';
       sum += screen[k].error;
     }
-    for (std::size_t k = 0; !screen.empty() && k < screen[0].since_error.size(); ++k) {
-      double e = 0;
-      std::size_t n = 0;
-      for (const GiPathFrame& f : screen) {
-        e += f.since_error[k] * double(f.since_pixels[k]);
-        n += f.since_pixels[k];
-      }
-      conv << csv_quoted(m.name) << ',' << k << ',' << (n ? e / double(n) : 0.0) << ',' << n << '\n';
-    }
+    write_convergence(conv, m.name, screen);
     if (!s.dump.empty() && !frames.empty()) {
       // The last frame's AO (its occlusion 1 - A times 4, as grey from white) beside its indirect
       // light (times 16, clamped), for the book.
@@ -286,18 +303,7 @@ void sweep_gi(const Settings& s, const SceneGpu& gpu, const std::string& rendere
     t.whole.gi = m.gi;
     t.gi = m.temporal;
     t.gi.samples = m.gi.samples;
-    TemporalFrame frame(gpu);
-    OutputTarget target(s.width, s.height);
-    PassMetrics metrics;
-    int i = 0;
-    const Measurement measured = measure(metrics, [&] {
-      const int k = i++ % path.frames();
-      frame.render(frame_camera(path.camera(gpu.scene(), k), float(s.width) / float(s.height)),
-                   {target.framebuffer(), s.width, s.height}, t, 1.f / path.fps, path.cut_at(k), &metrics);
-    }, {.frames = s.frames});
-    for (const PassMeasurement& p : measured.passes)
-      cost << csv_quoted(m.name) << ',' << csv_quoted(p.name) << ',' << p.mean_ms << ',' << p.min_ms << ','
-           << csv_measure_values(renderer, s.width, s.height, measured.frames) << '\n';
+    write_path_cost(cost, m.name, s, gpu, path, t, renderer);
   }
   std::cout << "wrote " << s.out << "/11_gi_" << tail << ", " << s.out << "/11_gi_convergence_" << tail << " and " << s.out
             << "/11_gi_cost_" << tail << '\n';
@@ -371,36 +377,18 @@ void sweep_shadows(const Settings& s, const SceneGpu& gpu, const std::string& re
       csv << csv_quoted(m.name) << ',' << f.frame << ',' << f.error << ',' << csv_measure_values(renderer, w, h, 1) << '\n';
       sum += f.error;
     }
-    for (std::size_t k = 0; !frames.empty() && k < frames[0].since_error.size(); ++k) {
-      double e = 0;
-      std::size_t n = 0;
-      for (const ShadowPathFrame& f : frames) {
-        e += f.since_error[k] * double(f.since_pixels[k]);
-        n += f.since_pixels[k];
-      }
-      conv << csv_quoted(m.name) << ',' << k << ',' << (n ? e / double(n) : 0.0) << ',' << n << '\n';
-    }
+    write_convergence(conv, m.name, frames);
     if (!frames.empty()) last.push_back(frames.back().visibility);
     std::cout << m.name << ": mean visibility error " << (frames.empty() ? 0.0 : sum / double(frames.size())) << " over "
               << frames.size() << " frames\n";
+    if (s.no_cost) continue;
     // The cost: the whole frame (no TAA) with this PCSS, along the path.
     TemporalSettings t;
     t.taa.enabled = false;
     t.pcss = true;
     t.pcss_taps = m.shadows.poisson_taps;
     t.shadows = m.temporal;
-    TemporalFrame frame(gpu);
-    OutputTarget target(s.width, s.height);
-    PassMetrics metrics;
-    int i = 0;
-    const Measurement measured = measure(metrics, [&] {
-      const int k = i++ % path.frames();
-      frame.render(frame_camera(path.camera(gpu.scene(), k), float(s.width) / float(s.height)),
-                   {target.framebuffer(), s.width, s.height}, t, 1.f / path.fps, path.cut_at(k), &metrics);
-    }, {.frames = s.frames});
-    for (const PassMeasurement& p : measured.passes)
-      cost << csv_quoted(m.name) << ',' << csv_quoted(p.name) << ',' << p.mean_ms << ',' << p.min_ms << ','
-           << csv_measure_values(renderer, s.width, s.height, measured.frames) << '\n';
+    write_path_cost(cost, m.name, s, gpu, path, t, renderer);
   }
   if (!s.dump.empty() && last.size() == 3) {
     // The last frame's visibility of each method beside the truth, as grey, labelled.
@@ -417,10 +405,10 @@ void sweep_shadows(const Settings& s, const SceneGpu& gpu, const std::string& re
           picture.at(3 * w + x, y, c) = truth.at(x, y, 2) > 0.5f ? truth.at(x, y, 1) : 1.f;
         }
     ImageRGBA8 out = to_srgb8(picture);
-    const char* labels[] = {"4 taps", "4 taps accumulated", "32 taps", "ray-traced"};
+    const char* labels[] = {"4 taps", "4 accumulated", "32 taps", "ray-traced"};
     for (int k = 0; k < 4; ++k) draw_label(out, k * w + 4, 4, labels[k]);
-    save_png(s.dump + "shadows.png", out);
-    std::cout << "wrote " << s.dump << "shadows.png\n";
+    save_png(s.dump + "shadows_" + s.path + ".png", out);
+    std::cout << "wrote " << s.dump << "shadows_" << s.path << ".png\n";
   }
   std::cout << "wrote " << s.out << "/11_shadows_" << tail << ", " << s.out << "/11_shadows_convergence_" << tail << " and "
             << s.out << "/11_shadows_cost_" << tail << '\n';
