@@ -24,7 +24,8 @@ static_assert(offsetof(ShadowParameters, view) == 112 && offsetof(ShadowParamete
               offsetof(ShadowParameters, point_light) == 1040 && offsetof(ShadowParameters, point_count) == 1168 &&
               offsetof(ShadowParameters, spot_count) == 1180 && offsetof(ShadowParameters, spot) == 1184 &&
               sizeof(glsl::SpotTile) == 176 && offsetof(glsl::SpotTile, tile) == 160 &&
-              sizeof(ShadowParameters) == 1184 + 176 * SHADOW_MAX_SPOTS,
+              offsetof(ShadowParameters, pcss_part) == 1184 + 176 * SHADOW_MAX_SPOTS &&
+              sizeof(ShadowParameters) == 1184 + 176 * SHADOW_MAX_SPOTS + 16,
               "std140: vec4 and mat4 members on 16 bytes, the spots' records 176 bytes apart");
 static_assert(SHADOW_MAX_CASCADES == kMaxCascades);
 static_assert(SHADOW_MAX_POINT_LIGHTS == kMaxPointShadows);
@@ -34,7 +35,7 @@ namespace {
 // The stage's texture units, from the first the frame gave it (shadow_visibility.glsl reads
 // SHADOW_UNIT + these), and its one uniform block.
 enum Unit : int { kDepthUnit, kCompareUnit, kMomentsUnit, kFilterInputUnit, kVolumeUnit, kSpotUnit, kPointUnit, kCsmUnit,
-                  kUnitCount };
+                  kSunVisibilityUnit, kUnitCount };
 }  // namespace
 
 ShadowMethod method_from_name(const std::string& name) {
@@ -177,6 +178,7 @@ ch03::ShaderHooks ShadowStage::shader_hooks() const {
                                       "SHADOW_SUN_INDEX " + std::to_string(sun_index_)};
   // The sun's maps as an array (only then: one map keeps the program it always had).
   if (settings_.cascades > 1) defines.push_back("SHADOW_CASCADES " + std::to_string(settings_.cascades));
+  if (settings_.sun_visibility_given && settings_.method != ShadowMethod::Volumes) defines.push_back("SHADOW_SUN_VISIBILITY 1");
   return {"06_shadows/shaders/shadow_visibility.glsl", "", defines};
 }
 
@@ -205,6 +207,10 @@ void ShadowStage::bind_hook_resources() const {
   glBindSampler(at.unit(kPointUnit), nearest_.id());
   glBindTextureUnit(at.unit(kCsmUnit), csm_maps_.id());
   glBindSampler(at.unit(kCsmUnit), linear_.id());
+  if (settings_.sun_visibility_given) {
+    glBindTextureUnit(at.unit(kSunVisibilityUnit), sun_visibility_);
+    glBindSampler(at.unit(kSunVisibilityUnit), nearest_.id());
+  }
 }
 // [/bind-hook]
 
@@ -353,6 +359,11 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
   if (pcss && !(settings_.sun_angular_radius >= 0.f && settings_.sun_angular_radius < 1.f))
     throw Error("shadow stage: sun_angular_radius must be in [0, 1) radians (got " +
                 std::to_string(settings_.sun_angular_radius) + ")");
+  if (pcss && (settings_.pcss_parts < 1 || taps % settings_.pcss_parts != 0 || settings_.pcss_part < 0 ||
+               settings_.pcss_part >= settings_.pcss_parts))
+    throw Error("shadow stage: PCSS's part " + std::to_string(settings_.pcss_part) + " of " +
+                std::to_string(settings_.pcss_parts) + " parts: the parts must divide its " + std::to_string(taps) +
+                " taps, and the part be one of them");
   if (taps != poisson_taps_) {
     poisson_ = taps > 0 ? poisson_disk(taps, 0x504fu) : std::vector<glm::vec2>{};
     poisson_taps_ = taps;
@@ -377,6 +388,9 @@ void ShadowStage::before_lights(ch03::DeferredFrame& frame, PassMetrics* metrics
   block.view = frustum_.view;
   block.extent = glm::vec2(frustum_.box_max - frustum_.box_min);
   block.tan_sun_radius = std::tan(settings_.sun_angular_radius);
+  block.pcss_part = pcss ? float(settings_.pcss_part) : 0.f;
+  block.pcss_parts = pcss ? float(settings_.pcss_parts) : 1.f;
+  block.pcss_turn = pcss ? settings_.pcss_turn : 0.f;
   for (std::size_t i = 0; i < poisson_.size(); ++i) {
     glm::vec4& slot = block.poisson[i / 2];
     slot[int(i % 2) * 2] = poisson_[i].x;

@@ -44,6 +44,15 @@ struct ShadowSettings {
                                 // across, rotated per pixel (shadow_math.h [poisson]); <= kMaxPoissonTaps.
                                 // PCSS: the taps of its search and of its filter (0: kPcssDefaultTaps)
   float sun_angular_radius = kSunAngularRadius;  // PCSS: the sun's disk, radians (the soft truth's)
+  // PCSS a part at a time (chapter 11 accumulates the parts over frames): its search and its
+  // filter read every pcss_parts-th tap of the disk from tap pcss_part on, the disk turned
+  // pcss_turn radians more. pcss_parts divides the taps.
+  int pcss_parts = 1;
+  int pcss_part = 0;
+  float pcss_turn = 0.f;
+  // The sun's visibility read from set_sun_visibility()'s texture (chapter 11's accumulation
+  // computes it before the lights) instead of looked up in the hook.
+  bool sun_visibility_given = false;
   float constant_bias = 0.5f;   // texels (shadow_math.h [bias])
   float slope_bias = 1.f;       // texels per unit tan(theta)
   float normal_offset = 1.f;    // texels
@@ -126,6 +135,13 @@ class ShadowStage : public ch03::FrameStage {
   std::size_t allocated_bytes() const;
   const VolumeStats& volume_stats() const { return volume_stats_; }
 
+  // With ShadowSettings::sun_visibility_given, the sun's visibility computed elsewhere, one R32F
+  // texel a pixel of the output (chapter 11's accumulation), set before the lights: the hook
+  // reads it for the G-buffer's surface at the pixel (SHADOW_SUN_VISIBILITY; a forward pass's
+  // surface in front of it, the glass, still looks up the map).
+  void set_sun_visibility(GLuint texture) { sun_visibility_ = texture; }
+  const Light& sun() const { return sun_; }
+
   ch03::StageNeeds needs() const override;
   ch03::ShaderHooks shader_hooks() const override;
   void bind_hook_resources() const override;
@@ -145,6 +161,7 @@ class ShadowStage : public ch03::FrameStage {
   const SceneGpu& scene_;
   Light sun_;
   int sun_index_;  // shadowed_sun_index(): the directional light the hook shadows
+  GLuint sun_visibility_ = 0;
   ShadowSettings settings_;
   ShadowPicture picture_ = ShadowPicture::None;
   LightFrustum frustum_;

@@ -146,7 +146,7 @@ void WholeFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outp
                         neon_ ? neon_->how() : ch04::NeonDraw{});
   // [/tubes]
   frame.set_strategy(ch03::Strategy::Stencil);
-  if (shadows_) shadows_->set(ch06::ShadowSettings{.cascades = s.sun_cascades});
+  if (shadows_) shadows_->set(s.sun_shadow ? *s.sun_shadow : ch06::ShadowSettings{.cascades = s.sun_cascades});
   if (gi_) {
     ch08::GiSettings g = s.gi;
     g.ao = p[kAo].runs;

@@ -26,6 +26,7 @@
 //   WholeFrame frame(scene_gpu);
 //   frame.render(camera, {target, w, h}, settings, dt, new_shot, &metrics);
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,9 @@ struct WholeFrameSettings {
   // Chapter 06's cascades for the sun: four snapped maps, the count chapter 06 measures against
   // one map (up to ch06::kMaxCascades; 1: one map fitted to the view).
   int sun_cascades = 4;
+  // Chapter 06's settings for the sun's map in full (a later chapter's: chapter 11's PCSS); empty:
+  // PCF 3x3 with sun_cascades.
+  std::optional<ch06::ShadowSettings> sun_shadow;
   Method transparency = Method::Sorted;  // chapter 10's glass, when the scene has any
   float sun = 1.f, glow = 8.f;           // chapter 05's scales of the sun and the emissive surfaces
   ch05::HdrSettings hdr;                 // chapter 05: its defaults (Reinhard, key 0.18, no bloom)
@@ -109,6 +113,7 @@ class WholeFrame {
   // The stages the last render() ran (nullptr when its plan left one out): the tests compare
   // each stage's own output with its chapter's (test_10_stages_gl.cpp).
   const ch06::ShadowStage* shadow_stage() const { return shadows_.get(); }
+  ch06::ShadowStage* shadow_stage() { return shadows_.get(); }  // for a later chapter's stage (11) in the frame
   const ch08::GiStage* gi_stage() const { return gi_.get(); }
   const ch09::ClusteredLights* clustered_lights() const { return clustered_.get(); }
   const MsaaFrame* msaa() const { return msaa_.get(); }  // after a render() with msaa > 1

@@ -7,8 +7,9 @@
 // `--at F` starts at the path's frame F after drawing the frames before it, `--strip K` writes
 // every K-th frame into a strip PNG). `--show motion` draws the motion vectors, `--show
 // rejected` where the history was dropped, `--show truth` the supersampled truth TAA tends to.
-// `--accumulate 1` (the default) accumulates chapter 08's AO and indirect light over frames too
-// (temporal_gi.h). The program opens on `--view shop_window --show split`: the middle magnified
+// `--accumulate gi` (the default) accumulates chapter 08's AO and indirect light over frames too
+// (temporal_gi.h), `--accumulate all` chapter 06's PCSS for the sun as well (temporal_shadows.h;
+// `--pcss 1` alone: PCSS with every tap each frame). The program opens on `--view shop_window --show split`: the middle magnified
 // (--zoom), without AA beside TAA, settled (headless, the frames before the still are drawn first).
 #include <algorithm>
 #include <cmath>
@@ -64,8 +65,13 @@ const CliSpec kCli{
               {"shadows", "the sun's shadow map (chapter 06)", 1, 0, 1, true},
               {"ao", "ambient occlusion (chapters 07, 08)", 1, 0, 1, true},
               {"indirect", "one bounce of indirect light (chapter 08)", 1, 0, 1, true},
-              {"accumulate", "chapter 08's AO and indirect light accumulated over frames: 4 samples a frame, a part of "
-                             "a 32-point pattern, turned (off: its 32 samples every frame)", 1, 0, 1, true},
+              choice_knob("accumulate", "accumulated over frames: nothing; chapter 08's AO and indirect light (4 "
+                                        "samples a frame, a part of a 32-point pattern, turned; off: its 32 every "
+                                        "frame); those and the sun's soft shadow (chapter 06's PCSS, 4 taps of its "
+                                        "32-tap disk a frame for the search and the filter, turned; sets --pcss 1)",
+                          {"off", "gi", "all"}, 1),
+              {"pcss", "the sun's shadow soft: chapter 06's PCSS, its 32 taps every frame (off: chapter 10's PCF 3x3)",
+               0, 0, 1, true},
               {"neon", "chapter 04's tubes", 1, 0, 1, true},
               {"glow", "multiplies emissive surfaces (chapter 05)", 8, 0, 10000},
               choice_knob("bloom", "chapter 05's bloom: off, after tonemapping, or before", {"off", "after", "before"}, 2)},
@@ -120,7 +126,9 @@ TemporalSettings settings_of(const Frame& f) {
   s.whole = {.shadows = f.knob_int("shadows") != 0, .ao = f.knob_int("ao") != 0, .indirect = f.knob_int("indirect") != 0,
              .neon = f.knob_int("neon") != 0, .glow = float(f.knob("glow"))};
   s.whole.hdr.bloom = static_cast<ch05::BloomMode>(f.knob_int("bloom"));
-  s.gi.enabled = f.knob_int("accumulate") != 0;
+  s.gi.enabled = f.knob_int("accumulate") >= 1;
+  s.shadows.enabled = f.knob_int("accumulate") == 2;
+  s.pcss = f.knob_int("pcss") != 0 || s.shadows.enabled;
   s.taa = {.enabled = f.knob_int("taa") != 0,
            .alpha = float(f.knob("alpha")),
            .filter = static_cast<HistoryFilter>(f.knob_int("filter")),

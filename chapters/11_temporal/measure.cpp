@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "chapters/07_ssao/ao_truth.h"
+#include "chapters/06_shadows/shadow_truth.h"
 #include "chapters/08_ssgi/gi_truth.h"
 #include "common/error.h"
 #include "common/target.h"
@@ -339,5 +340,55 @@ std::vector<GiPathFrame> measure_gi_path(const SceneGpu& scene, const CameraPath
   return out;
 }
 // [/measure-gi-path]
+
+// [measure-shadow-path]
+std::vector<ShadowPathFrame> measure_shadow_path(const SceneGpu& scene, const CameraPath& path,
+                                                 const ch06::ShadowSettings& settings,
+                                                 const TemporalShadowSettings& temporal, const ShadowPathOptions& o) {
+  const int w = o.width, h = o.height;
+  if (w < 1 || h < 1 || w > 4096 || h > 4096)
+    throw Error("measure_shadow_path: a size of " + std::to_string(w) + "x" + std::to_string(h));
+  if (o.bins < 1 || o.bins > 1024) throw Error("measure_shadow_path: bins must be 1 to 1024");
+  const int sun = ch06::shadowed_sun(scene.scene());
+  if (sun < 0) throw Error("measure_shadow_path: the scene has no sun that casts shadows");
+  const int end = o.count < 0 ? path.frames() : std::min(path.frames(), o.first + o.count);
+  ch03::DeferredFrame frame(scene);
+  ch03::use_lights(frame, scene.scene(), scene.scene().lights, false);
+  ch06::ShadowStage shadows(scene, scene.scene().lights[std::size_t(sun)]);
+  MotionStage motion(scene);
+  TemporalShadowStage accumulated([&] { return &shadows; }, motion);
+  frame.add_stage(shadows);
+  frame.add_stage(motion);
+  frame.add_stage(accumulated);
+  accumulated.set(temporal);
+  std::unique_ptr<RayScene> rays;
+  std::vector<ShadowPathFrame> out;
+  auto before = [&](int, const FrameCamera&, bool cut, unsigned k) {
+    shadows.set(frame_shadows(settings, temporal, k));
+    if (cut) accumulated.reset();
+  };
+  auto after = [&](int i, const FrameCamera& camera, const std::vector<int>& since) {
+    ShadowPathFrame f{.frame = i, .visibility = ImageF::blank(w, h, 1), .radius = ImageF::blank(w, h, 1)};
+    for (auto [texture, image] : {std::pair{accumulated.visibility(), &f.visibility}, {accumulated.radius(), &f.radius}}) {
+      glGetTextureImage(texture, 0, GL_RED, GL_FLOAT, GLsizei(image->data.size() * sizeof(float)), image->data.data());
+      flip_vertically(*image);
+    }
+    if (o.truth_samples <= 0) {
+      out.push_back(f);
+      return;
+    }
+    if (!rays) rays = std::make_unique<RayScene>(scene.scene());
+    const ImageF truth = ch06::cached_shadow_truth(scene.scene(), *rays, camera, w, h, shadows.sun().direction,
+                                                   {.angular_radius = settings.sun_angular_radius, .samples = o.truth_samples});
+    f.error = ch06::visibility_error(f.visibility, truth, 1).mean_abs;
+    bin_by_since(since, w, h, o.bins, [&](int x, int y) {
+      return truth.at(x, y, 2) < 0.5f ? -1.0 : std::abs(double(f.visibility.at(x, y, 0)) - truth.at(x, y, 1));
+    }, f.since_error, f.since_pixels);
+    out.push_back(f);
+  };
+  play_path(scene, path, frame, motion, w, h, o.first, end, temporal.depth_tolerance, temporal.depth_slope, before, after);
+  return out;
+}
+// [/measure-shadow-path]
 
 }  // namespace lp::ch11

@@ -12,6 +12,7 @@
 #include "chapters/11_temporal/camera_path.h"
 #include "chapters/11_temporal/temporal_ao.h"
 #include "chapters/11_temporal/temporal_gi.h"
+#include "chapters/11_temporal/temporal_shadows.h"
 #include "chapters/11_temporal/temporal_frame.h"
 #include "common/image.h"
 
@@ -128,5 +129,29 @@ struct GiPathOptions {
 std::vector<GiPathFrame> measure_gi_path(const SceneGpu& scene, const CameraPath& path, const ch08::GiSettings& gi,
                                          const TemporalGiSettings& temporal, const GiPathOptions& options);
 // [/gi-path]
+
+// [shadow-path]
+// Chapter 06's sun visibility along a path, frame by frame, on chapter 03's frame: `shadows`
+// each frame (frame_shadows: with temporal.enabled, a part of PCSS's disk, accumulated; without,
+// the frame's own taps), computed by the TemporalShadowStage, against chapter 06's ray-traced
+// soft visibility (cached).
+struct ShadowPathFrame {
+  int frame = 0;
+  double error = 0;   // mean |V - truth| over the pixels the sun reaches (the truth's mask)
+  ImageF visibility;  // V, one channel, rows top first
+  ImageF radius;      // this frame's PCSS penumbra radius (0: its search found no blocker)
+  std::vector<double> since_error;  // on the pixels disoccluded exactly k frames ago
+  std::vector<std::size_t> since_pixels;
+};
+struct ShadowPathOptions {
+  int width = 160, height = 90;
+  int first = 0, count = -1;  // the path's frames measured, as PathRunOptions'
+  int truth_samples = 64;     // rays a pixel of the truth (0: no truth, the results alone)
+  int bins = 8;
+};
+std::vector<ShadowPathFrame> measure_shadow_path(const SceneGpu& scene, const CameraPath& path,
+                                                 const ch06::ShadowSettings& shadows,
+                                                 const TemporalShadowSettings& temporal, const ShadowPathOptions& options);
+// [/shadow-path]
 
 }  // namespace lp::ch11

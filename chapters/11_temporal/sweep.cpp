@@ -7,7 +7,8 @@
 // first view. Writes <out>/11_path_<scene>_<path>[_llvmpipe].csv and
 // <out>/11_cost[_llvmpipe].csv; llvmpipe's times are CPU times and the file says so. `--ao`
 // and `--gi` add chapter 07's AO and chapter 08's AO and indirect light along the path, per
-// frame and accumulated (sweep_ao, sweep_gi); `--no-path` leaves out the TAA variants. The
+// frame and accumulated (sweep_ao, sweep_gi), `--shadows` chapter 06's PCSS for the sun
+// (sweep_shadows); `--no-path` leaves out the TAA variants. The
 // error over the path's frames as a plot:
 //   tools/plot.py --csv out/11_temporal/11_path_street_shop_walk_llvmpipe.csv --x frame
 //                 --y edge_error --group method --title "Edge error along the walk" --out walk.svg
@@ -16,6 +17,7 @@
 #include <fstream>
 #include <iostream>
 
+#include "chapters/06_shadows/shadow_truth.h"
 #include "chapters/11_temporal/camera_path.h"
 #include "chapters/11_temporal/measure.h"
 #include "chapters/11_temporal/temporal_frame.h"
@@ -46,6 +48,8 @@ struct Settings {
   bool ao = false;            // also chapter 07's AO along the path, per frame and accumulated
   int ao_width = 0, ao_height = 0;  // its size (0: --size)
   bool gi = false;            // also chapter 08's AO and indirect light along the path, per frame and accumulated
+  bool shadows = false;       // also chapter 06's PCSS for the sun along the path, per frame and accumulated
+  int shadows_width = 0, shadows_height = 0;  // --shadows' error measured at this size (0: --size)
   int gi_width = 0, gi_height = 0;  // its size (0: --size)
 };
 
@@ -153,6 +157,39 @@ void sweep_path(const Settings& s, const SceneGpu& gpu, const std::string& rende
   std::cout << "wrote " << file << " and " << conv_file << '\n';
 }
 
+// The errors of a path's frames pooled by frames since a disocclusion (the frames' since_error
+// and since_pixels), one CSV row per k for `name`.
+template <class PathFrames>
+void write_convergence(std::ostream& conv, const char* name, const PathFrames& frames) {
+  for (std::size_t k = 0; !frames.empty() && k < frames[0].since_error.size(); ++k) {
+    double e = 0;
+    std::size_t n = 0;
+    for (const auto& f : frames) {
+      e += f.since_error[k] * double(f.since_pixels[k]);
+      n += f.since_pixels[k];
+    }
+    conv << csv_quoted(name) << ',' << k << ',' << (n ? e / double(n) : 0.0) << ',' << n << '\n';
+  }
+}
+
+// The whole frame with `t` (no TAA) played along the path at --size, each pass's time as a CSV
+// row for `name`.
+void write_path_cost(std::ostream& cost, const char* name, const Settings& s, const SceneGpu& gpu, const CameraPath& path,
+                     const TemporalSettings& t, const std::string& renderer) {
+  TemporalFrame frame(gpu);
+  OutputTarget target(s.width, s.height);
+  PassMetrics metrics;
+  int i = 0;
+  const Measurement measured = measure(metrics, [&] {
+    const int k = i++ % path.frames();
+    frame.render(frame_camera(path.camera(gpu.scene(), k), float(s.width) / float(s.height)),
+                 {target.framebuffer(), s.width, s.height}, t, 1.f / path.fps, path.cut_at(k), &metrics);
+  }, {.frames = s.frames});
+  for (const PassMeasurement& p : measured.passes)
+    cost << csv_quoted(name) << ',' << csv_quoted(p.name) << ',' << p.mean_ms << ',' << p.min_ms << ','
+         << csv_measure_values(renderer, s.width, s.height, measured.frames) << '\n';
+}
+
 // [ao-sweep]
 // Chapter 07's classic AO along the path against its ray-traced truth: 4 points a frame alone,
 // the same 4 points a frame accumulated (temporal_ao.h: a part of a 32-point kernel a frame),
@@ -188,15 +225,7 @@ void sweep_ao(const Settings& s, const SceneGpu& gpu, const std::string& rendere
       csv << csv_quoted(m.name) << ',' << f.frame << ',' << f.error << ',' << csv_measure_values(renderer, w, h, 1) << '\n';
       sum += f.error;
     }
-    for (std::size_t k = 0; !frames.empty() && k < frames[0].since_error.size(); ++k) {
-      double e = 0;
-      std::size_t n = 0;
-      for (const AoPathFrame& f : frames) {
-        e += f.since_error[k] * double(f.since_pixels[k]);
-        n += f.since_pixels[k];
-      }
-      conv << csv_quoted(m.name) << ',' << k << ',' << (n ? e / double(n) : 0.0) << ',' << n << '\n';
-    }
+    write_convergence(conv, m.name, frames);
     std::cout << m.name << ": mean AO error " << (frames.empty() ? 0.0 : sum / double(frames.size())) << " over "
               << frames.size() << " frames\n";
   }
@@ -249,15 +278,7 @@ void sweep_gi(const Settings& s, const SceneGpu& gpu, const std::string& rendere
           << frames[k].ao_error << ',' << csv_measure_values(renderer, w, h, 1) << '\n';
       sum += screen[k].error;
     }
-    for (std::size_t k = 0; !screen.empty() && k < screen[0].since_error.size(); ++k) {
-      double e = 0;
-      std::size_t n = 0;
-      for (const GiPathFrame& f : screen) {
-        e += f.since_error[k] * double(f.since_pixels[k]);
-        n += f.since_pixels[k];
-      }
-      conv << csv_quoted(m.name) << ',' << k << ',' << (n ? e / double(n) : 0.0) << ',' << n << '\n';
-    }
+    write_convergence(conv, m.name, screen);
     if (!s.dump.empty() && !frames.empty()) {
       // The last frame's AO (its occlusion 1 - A times 4, as grey from white) beside its indirect
       // light (times 16, clamped), for the book.
@@ -282,18 +303,7 @@ void sweep_gi(const Settings& s, const SceneGpu& gpu, const std::string& rendere
     t.whole.gi = m.gi;
     t.gi = m.temporal;
     t.gi.samples = m.gi.samples;
-    TemporalFrame frame(gpu);
-    OutputTarget target(s.width, s.height);
-    PassMetrics metrics;
-    int i = 0;
-    const Measurement measured = measure(metrics, [&] {
-      const int k = i++ % path.frames();
-      frame.render(frame_camera(path.camera(gpu.scene(), k), float(s.width) / float(s.height)),
-                   {target.framebuffer(), s.width, s.height}, t, 1.f / path.fps, path.cut_at(k), &metrics);
-    }, {.frames = s.frames});
-    for (const PassMeasurement& p : measured.passes)
-      cost << csv_quoted(m.name) << ',' << csv_quoted(p.name) << ',' << p.mean_ms << ',' << p.min_ms << ','
-           << csv_measure_values(renderer, s.width, s.height, measured.frames) << '\n';
+    write_path_cost(cost, m.name, s, gpu, path, t, renderer);
   }
   std::cout << "wrote " << s.out << "/11_gi_" << tail << ", " << s.out << "/11_gi_convergence_" << tail << " and " << s.out
             << "/11_gi_cost_" << tail << '\n';
@@ -325,6 +335,86 @@ void sweep_cost(const Settings& s, const SceneGpu& gpu, const std::string& rende
   std::cout << "wrote " << file << '\n';
 }
 
+// [shadows-sweep]
+// Chapter 06's PCSS for the sun along the path against its ray-traced soft visibility (64 rays a
+// pixel): a 4-tap disk a frame alone, 4 taps of the 32-tap disk accumulated (temporal_shadows.h:
+// a part a frame, turned), and the 32 a frame alone. Writes 11_shadows_<scene>_<path>[_llvmpipe].csv
+// (per frame: mean |V - truth| where the sun reaches), 11_shadows_convergence_... (against frames
+// since a disocclusion) and 11_shadows_cost_... (each pass's time in the whole frame at --size,
+// along the path); with --dump, the last frame's visibility of each beside the truth.
+void sweep_shadows(const Settings& s, const SceneGpu& gpu, const std::string& renderer, bool software) {
+  const CameraPath& path = path_named(s.scene, s.path);
+  const int w = s.shadows_width > 0 ? s.shadows_width : s.width, h = s.shadows_height > 0 ? s.shadows_height : s.height;
+  const std::string stem = std::filesystem::path(s.scene).stem().string(), tail = stem + "_" + s.path + (software ? "_llvmpipe" : "") + ".csv";
+  std::ofstream csv(s.out + "/11_shadows_" + tail), conv(s.out + "/11_shadows_convergence_" + tail),
+      cost(s.out + "/11_shadows_cost_" + tail);
+  csv << "# " << renderer << ", " << w << "x" << h << ", path " << s.path << " of " << stem
+      << "; chapter 06's PCSS for the sun against its ray-traced soft visibility (64 rays a pixel): mean |V - truth| where "
+         "the sun reaches\n"
+      << "method,frame,error," << csv_measure_columns() << '\n';
+  conv << "# " << renderer << ", " << w << "x" << h << ", path " << s.path << " of " << stem
+       << "; the visibility's error on the pixels disoccluded exactly k frames ago, pooled over the path's frames\n"
+       << "method,frames_since,error,pixels\n";
+  cost << "# " << (software ? "llvmpipe CPU time (glFinish around each pass): " : "GPU time: ") << renderer << ", " << s.width
+       << "x" << s.height << ", the whole frame with PCSS along path " << s.path << "; each pass's mean and fastest ms\n"
+       << "method,pass,ms,min_ms," << csv_measure_columns() << '\n';
+  const ch06::ShadowSettings many{.method = ch06::ShadowMethod::Pcss};
+  ch06::ShadowSettings four = many;
+  four.poisson_taps = 4;
+  TemporalShadowSettings on, off;
+  off.enabled = false;
+  const struct {
+    const char* name;
+    ch06::ShadowSettings shadows;
+    TemporalShadowSettings temporal;
+  } methods[] = {{"4 taps a frame", four, off}, {"4 taps accumulated", many, on}, {"32 taps a frame", many, off}};
+  std::vector<ImageF> last;
+  for (const auto& m : methods) {
+    const std::vector<ShadowPathFrame> frames =
+        measure_shadow_path(gpu, path, m.shadows, m.temporal, {.width = w, .height = h, .first = s.first, .count = s.count});
+    double sum = 0;
+    for (const ShadowPathFrame& f : frames) {
+      csv << csv_quoted(m.name) << ',' << f.frame << ',' << f.error << ',' << csv_measure_values(renderer, w, h, 1) << '\n';
+      sum += f.error;
+    }
+    write_convergence(conv, m.name, frames);
+    if (!frames.empty()) last.push_back(frames.back().visibility);
+    std::cout << m.name << ": mean visibility error " << (frames.empty() ? 0.0 : sum / double(frames.size())) << " over "
+              << frames.size() << " frames\n";
+    if (s.no_cost) continue;
+    // The cost: the whole frame (no TAA) with this PCSS, along the path.
+    TemporalSettings t;
+    t.taa.enabled = false;
+    t.pcss = true;
+    t.pcss_taps = m.shadows.poisson_taps;
+    t.shadows = m.temporal;
+    write_path_cost(cost, m.name, s, gpu, path, t, renderer);
+  }
+  if (!s.dump.empty() && last.size() == 3) {
+    // The last frame's visibility of each method beside the truth, as grey, labelled.
+    const int end = s.count < 0 ? path.frames() : std::min(path.frames(), s.first + s.count);
+    const FrameCamera camera = frame_camera(path.camera(gpu.scene(), end - 1), float(w) / float(h));
+    const RayScene rays(gpu.scene());
+    const ImageF truth = ch06::cached_shadow_truth(gpu.scene(), rays, camera, w, h,
+                                                   gpu.scene().lights[std::size_t(ch06::shadowed_sun(gpu.scene()))].direction);
+    ImageF picture = ImageF::blank(4 * w, h, 3);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < 3; ++c) {
+          for (int k = 0; k < 3; ++k) picture.at(k * w + x, y, c) = last[std::size_t(k)].at(x, y, 0);
+          picture.at(3 * w + x, y, c) = truth.at(x, y, 2) > 0.5f ? truth.at(x, y, 1) : 1.f;
+        }
+    ImageRGBA8 out = to_srgb8(picture);
+    const char* labels[] = {"4 taps", "4 accumulated", "32 taps", "ray-traced"};
+    for (int k = 0; k < 4; ++k) draw_label(out, k * w + 4, 4, labels[k]);
+    save_png(s.dump + "shadows_" + s.path + ".png", out);
+    std::cout << "wrote " << s.dump << "shadows_" << s.path << ".png\n";
+  }
+  std::cout << "wrote " << s.out << "/11_shadows_" << tail << ", " << s.out << "/11_shadows_convergence_" << tail << " and "
+            << s.out << "/11_shadows_cost_" << tail << '\n';
+}
+// [/shadows-sweep]
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -334,7 +424,8 @@ int main(int argc, char** argv) {
         .integer("--first", s.first).integer("--count", s.count).integer("--frames", s.frames)
         .text("--methods", s.methods).text("--dump", s.dump).flag("--no-cost", s.no_cost)
         .text("--truth-dir", s.truth_dir).flag("--ao", s.ao).size("--ao-size", s.ao_width, s.ao_height)
-        .flag("--gi", s.gi).size("--gi-size", s.gi_width, s.gi_height).flag("--no-path", s.no_path);
+        .flag("--gi", s.gi).size("--gi-size", s.gi_width, s.gi_height).flag("--no-path", s.no_path)
+        .flag("--shadows", s.shadows).size("--shadows-size", s.shadows_width, s.shadows_height);
   }, [&] {
     if (s.frames < 1) throw UsageError("--frames must be at least 1");
     if (s.first < 0 || s.first > 100000) throw UsageError("--first must be between 0 and 100000");
@@ -361,6 +452,7 @@ int main(int argc, char** argv) {
     if (!s.no_path) sweep_path(s, gpu, context->renderer(), context->is_software());
     if (s.gi) sweep_gi(s, gpu, context->renderer(), context->is_software());
     if (s.ao) sweep_ao(s, gpu, context->renderer(), context->is_software());
+    if (s.shadows) sweep_shadows(s, gpu, context->renderer(), context->is_software());
     if (!s.no_cost) sweep_cost(s, gpu, context->renderer(), context->is_software());
   });
 }

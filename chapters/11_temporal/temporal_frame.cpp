@@ -5,10 +5,13 @@
 
 namespace lp::ch11 {
 
-TemporalFrame::TemporalFrame(const SceneGpu& scene) : whole_(scene), motion_(scene), taa_(motion_), gi_(motion_) {
-  // After chapter 10's own stages: the motion before the lights, TAA after the glass; the
-  // accumulation inside chapter 08's stage, before its result is added to the light.
+TemporalFrame::TemporalFrame(const SceneGpu& scene)
+    : whole_(scene), motion_(scene), taa_(motion_), gi_(motion_), shadows_([this] { return whole_.shadow_stage(); }, motion_) {
+  // After chapter 10's own stages: the motion before the lights, the sun's accumulated visibility
+  // after it, TAA after the glass; the accumulation of AO and indirect light inside chapter 08's
+  // stage, before its result is added to the light.
   whole_.add_stage(motion_);
+  whole_.add_stage(shadows_);
   whole_.add_stage(taa_);
   whole_.set_gi_filter(&gi_);
 }
@@ -18,6 +21,7 @@ void TemporalFrame::reload_shaders() {
   motion_.reload_shaders();
   taa_.reload_shaders();
   gi_.reload_shaders();
+  shadows_.reload_shaders();
 }
 
 // [temporal-render]
@@ -26,17 +30,22 @@ void TemporalFrame::render(const FrameCamera& camera, const ch03::FrameOutput& o
   const bool new_shot = cut || !sequence_;
   const bool taa = s.taa.enabled;
   jitter_ = taa || s.jitter_alone ? jitter_offset(index_, s.jitter_period) : glm::vec2(0);
-  motion_.set_enabled(taa || s.motion_alone || s.gi.enabled);
+  motion_.set_enabled(taa || s.motion_alone || s.gi.enabled || (s.pcss && s.shadows.enabled));
   motion_.set_cameras(camera, new_shot ? camera : previous_);
   if (new_shot) {
     taa_.reset();
     gi_.reset();
+    shadows_.reset();
     gi_index_ = 0;
   }
-  // Chapter 08's pass: this frame's part of the pattern, accumulated (temporal_gi.h).
+  // Chapter 08's pass: this frame's part of the pattern, accumulated (temporal_gi.h); with PCSS,
+  // chapter 06's disk the same way (temporal_shadows.h).
   ch10::WholeFrameSettings whole = s.whole;
-  whole.gi = frame_gi(s.whole.gi, s.gi, gi_index_++);
+  whole.gi = frame_gi(s.whole.gi, s.gi, gi_index_);
+  if (s.pcss) whole.sun_shadow = frame_shadows(pcss_settings(s), s.shadows, gi_index_);
+  ++gi_index_;
   gi_.set(s.gi);
+  shadows_.set(s.shadows);
   // The blend's weights use the exposure chapter 05's eye last tonemapped with.
   taa_.set(s.taa, whole_.radiance() ? whole_.hdr().adaptation().state_buffer() : 0);
   taa_.set_jitter(jitter_);
@@ -54,9 +63,14 @@ void TemporalFrame::render_still(const FrameCamera& camera, glm::vec2 offset, co
   motion_.set_enabled(false);
   taa_.set(still.taa, 0);
   gi_.set({});  // chapter 08's pass with its own samples, nothing accumulated
+  if (still.pcss) still.whole.sun_shadow = pcss_settings(s);  // PCSS with every tap, in the hook
   jitter_ = offset;
   whole_.render(jittered(camera, offset, output.width, output.height), output, still.whole, 1.f / 30.f, true);
   sequence_ = false;
+}
+
+ch06::ShadowSettings pcss_settings(const TemporalSettings& s) {
+  return {.method = ch06::ShadowMethod::Pcss, .poisson_taps = s.pcss_taps, .cascades = s.whole.sun_cascades};
 }
 
 ImageF read_linear(GLuint framebuffer, int width, int height) {

@@ -10,6 +10,7 @@
 #include "chapters/11_temporal/motion.h"
 #include "chapters/11_temporal/taa.h"
 #include "chapters/11_temporal/temporal_gi.h"
+#include "chapters/11_temporal/temporal_shadows.h"
 #include "common/image.h"
 
 namespace lp::ch11 {
@@ -22,6 +23,11 @@ struct TemporalSettings {
   bool jitter_alone = false;       // jitter without TAA too (tests: the frames TAA would blend)
   bool motion_alone = false;       // the motion pass without TAA too (measure.h: disocclusion for every variant)
   TemporalGiSettings gi;           // chapter 08's AO and indirect light accumulated (temporal_gi.h)
+  // The sun's shadow soft: chapter 06's PCSS (its 32 taps a frame) instead of chapter 10's PCF
+  // 3x3, and with shadows.enabled a part of them a frame, accumulated (temporal_shadows.h).
+  bool pcss = false;
+  int pcss_taps = 0;  // its disk's taps (0: chapter 06's 32)
+  TemporalShadowSettings shadows{.enabled = false};
 };
 // [/temporal-settings]
 
@@ -42,8 +48,10 @@ class TemporalFrame {
   const MotionStage& motion() const { return motion_; }
   const TaaStage& taa() const { return taa_; }
   const TemporalGiStage& gi() const { return gi_; }
+  const TemporalShadowStage& shadows() const { return shadows_; }
   std::size_t allocated_bytes() const {
-    return whole_.allocated_bytes() + motion_.allocated_bytes() + taa_.allocated_bytes() + gi_.allocated_bytes();
+    return whole_.allocated_bytes() + motion_.allocated_bytes() + taa_.allocated_bytes() + gi_.allocated_bytes() +
+           shadows_.allocated_bytes();
   }
 
  private:
@@ -51,6 +59,7 @@ class TemporalFrame {
   MotionStage motion_;
   TaaStage taa_;
   TemporalGiStage gi_;
+  TemporalShadowStage shadows_;
   FrameCamera previous_;
   bool sequence_ = false;
   unsigned index_ = 0, gi_index_ = 0;  // gi_index_: frames since the last new shot
@@ -65,6 +74,9 @@ class TemporalFrame {
 ImageF supersampled(TemporalFrame& frame, const FrameCamera& camera, int width, int height, const TemporalSettings& s,
                     int grid = 4);
 // [/truth-grid]
+
+// Chapter 06's PCSS for the whole frame's sun (TemporalSettings::pcss): pcss_taps, the frame's cascades.
+ch06::ShadowSettings pcss_settings(const TemporalSettings& s);
 
 // The output read back as linear RGB floats (sRGB decoded), rows top to bottom.
 ImageF read_linear(GLuint framebuffer, int width, int height);

@@ -64,4 +64,13 @@ struct ShadowParameters {
   // The marked spot lights, each in its tile of the one spot atlas (shadow_math.h [spot-atlas]).
   SpotTile spot[SHADOW_MAX_SPOTS];
 // [/shadow-block-spots]
+// [shadow-block-pcss-part]
+  // PCSS a part at a time (chapter 11's accumulation): of the Poisson disk's taps, the search and
+  // the filter read taps part, part + parts, part + 2 parts, ..., the disk turned by turn radians
+  // more. Parts 1, part 0, turn 0: every tap, PCSS as it always was.
+  float pcss_part;
+  float pcss_parts;
+  float pcss_turn;
+  float unused3;
+// [/shadow-block-pcss-part]
 };

@@ -192,10 +192,13 @@ float sun_map_visibility(Surface s, vec3 to_light) {
   vec2 g = receiver_plane_gradient(s);
   mat2 turn = poisson_turn();
   int taps = int(sh.poisson_taps);
+  // A part of the disk a frame (chapter 11): every parts-th tap from `part`, turned further.
+  int part = int(sh.pcss_part), parts = int(sh.pcss_parts);
+  turn = turn * mat2(cos(sh.pcss_turn), sin(sh.pcss_turn), -sin(sh.pcss_turn), cos(sh.pcss_turn));
   // 1. The blocker search: whatever can hide part of the sun lies within d_r tan(theta).
   vec2 search = max(q.z * sh.depth_range * tan_size, sh_map.texel_metres) / sh_map.extent;
   float blockers = 0.0, sum = 0.0;
-  for (int i = 0; i < taps; ++i) {
+  for (int i = part; i < taps; i += parts) {
     vec2 o = turn * poisson_tap(i) * search;
     float z = SHADOW_DEPTH(q.xy + o).r;
     if (z < q.z + dot(g, o)) sum += z, blockers += 1.0;
@@ -207,11 +210,11 @@ float sun_map_visibility(Surface s, vec3 to_light) {
   sh_pcss_radius = radius;
   // 3. PCF over that disk.
   float lit = 0.0;
-  for (int i = 0; i < taps; ++i) {
+  for (int i = part; i < taps; i += parts) {
     vec2 o = turn * poisson_tap(i) * (radius / sh_map.extent);
     lit += q.z + dot(g, o) <= SHADOW_DEPTH(q.xy + o).r ? 1.0 : 0.0;
   }
-  return lit / float(taps);
+  return lit / float(taps / parts);
   // [/pcss-glsl]
 #elif SHADOW_METHOD == SHADOW_MSM
   // the moments (back from the optimised 16-bit map) and the Hamburger reconstruction:
@@ -242,10 +245,23 @@ float cascade_visibility(int i, Surface s, vec3 to_light) {
 }
 #endif
 
+#ifdef SHADOW_SUN_VISIBILITY
+layout(binding = SHADOW_UNIT + 8) uniform sampler2D sh_sun_visibility;
+#endif
+
 float directional_visibility(int index, GpuLight light, Surface s) {
   if (index != SHADOW_SUN_INDEX) return 1.0;
   vec3 to_light = -light.direction_range.xyz;
   if (dot(s.normal, to_light) <= 0.0) return 1.0;  // faces away: the light adds nothing anyway
+#ifdef SHADOW_SUN_VISIBILITY
+  // [sun-visibility-glsl]
+  // The sun's visibility computed before the lights (chapter 11's accumulation), read for the
+  // G-buffer's surface at this pixel; a surface in front of it (the glass) looks up the map.
+  ivec2 pixel = ivec2(frame_pixel());
+  if (distance(s.position, gbuffer_point(pixel)) <= 1e-4 * distance(s.position, gb_eye.xyz))
+    return texelFetch(sh_sun_visibility, pixel, 0).r;
+  // [/sun-visibility-glsl]
+#endif
   // [geometric-surface-glsl]
   // The lookups below bias and tilt by the surface's geometry, not by its normal map's bumps.
   s.normal = geometric_normal(s);
