@@ -2,7 +2,7 @@
 // choose_cascade and of spot_atlas.h's spot_atlas_uv, whose comments derive them; included by
 // the lookup (shadow_visibility.glsl), which passes them its block's fields, and held to the C++
 // by 06_shadows.gl.GlslTwins.ReceiverPlaneGradientMatchesItsCppTwin, CascadeChoiceMatchesItsCppTwin
-// and SpotAtlasUvMatchesItsCppTwin.
+// and SpotAtlasUvMatchesItsCppTwin; cube_texel_world (cube_math.h's) by CubeTexelWorldMatchesItsCppTwin.
 
 // [receiver-plane-glsl]
 // How the receiver's window depth changes per unit of the map's (u, v), from its normal in the
@@ -46,3 +46,7 @@ vec2 spot_atlas_uv(vec3 tile, float texels, vec2 uv) {
   return tile.xy + clamp(uv, vec2(half_texel), vec2(1.0 - half_texel)) * tile.z;
 }
 // [/atlas-glsl]
+
+// cube_math.h's cube_texel_world: a cube map texel's width at `distance` from the light on a face
+// of `size` texels, 2 d / N (a face spans tan 45 = 1 each side of its centre).
+float cube_texel_world(float distance, float size) { return 2.0 * distance / size; }

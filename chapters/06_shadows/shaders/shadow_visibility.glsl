@@ -352,7 +352,7 @@ float point_visibility(int i, Surface s) {
   cos_theta = clamp(dot(s.normal, to_light / max(d, 1e-6)), 1e-4, 1.0);
   float sin_theta = sqrt(1.0 - cos_theta * cos_theta);
   float tan_theta = min(sin_theta / cos_theta, 10.0);
-  float texel = 2.0 * d / sh.point_map_size;
+  float texel = cube_texel_world(d, sh.point_map_size);  // lookup_math.glsl
   vec3 p = s.position + s.normal * (sh.normal_offset * texel * sin_theta);
   vec3 from_light = p - light.xyz;
   float receiver = length(from_light);
