@@ -635,6 +635,71 @@ TEST(GlslTwins, SpotAtlasUvMatchesItsCppTwin) {
                                 [&](std::size_t i) { return describe4(cases, i); }));
 }
 
+// The sun's biases (slope_scaled_bias and normal_offset against shadow_math.h's). The clamp is
+// exact; s2 = 1 - c c rounds twice in C++ and once if GLSL fuses it, each side within u (c^2 +
+// s2) = u of the exact value, so 2 u apart; near c = 1 that is large against s2 itself, and
+// sin = sqrt(s2) moves by at most min(sqrt(2 u), u / sin) from it. GLSL's sqrt is inherited from
+// 1 / inversesqrt (2 + 2.5 ulp), C++'s correctly rounded (half an ulp): 5 ulp of sin more. tan =
+// sin / c: that over c, plus the division's 2.5 + 0.5 ulp of tan; the cap at 10 moves nothing
+// apart. The bias w (C + S tan): S tan, the sum and the product round once each on each side
+// (fused or not), 6 u of w (C + S tan) apart, plus w S times tan's difference. The offset
+// p + n (T w sin): T w rounds the same, (T w) sin half an ulp each side, so k = T w sin differs
+// by T w dsin + 2 u k; each component p + n k rounds twice on each side (fused or not): |n| dk +
+// 2 u |n k| + 2 u |result|. Cases: cosines over [-0.2, 1.2] (both clamps), near 1 (the
+// ill-conditioned s2), at and around 1e-4 and 0, and where the cap begins (tan = 10, c =
+// 1 / sqrt(101)); biases 0 to 2 texels, slopes 0 to 3, texels 0.1 mm to 10 m, positions within
+// 100 m, unit normals.
+TEST(GlslTwins, SlopeScaledBiasAndNormalOffsetMatchTheirCppTwins) {
+  test::TwinRandom r(73);
+  std::vector<float> cosines = {0.f, 1.f, -0.1f, 1.1f, 1e-4f, std::nextafter(1e-4f, 0.f), std::nextafter(1e-4f, 1.f), 5e-5f,
+                                std::nextafter(1.f, 0.f), 1.f - 1e-6f, 1.f - 1e-4f, 0.5f, 0.70710677f};
+  const float cap = 1.f / std::sqrt(101.f);
+  for (float c : {cap, std::nextafter(cap, 0.f), std::nextafter(cap, 1.f), 0.0995f, 0.0996f}) cosines.push_back(c);
+  std::vector<TwinCase> cases;
+  for (float c : cosines)
+    for (int k = 0; k < 20; ++k) {
+      const glm::vec3 p(r.uniform(-100, 100), r.uniform(-100, 100), r.uniform(-100, 100));
+      cases.push_back({glm::vec4(p, c), glm::vec4(r.unit(), r.log_uniform(1e-4f, 10)),
+                       glm::vec4(k % 4 == 0 ? 0.f : r.uniform(0, 2), k % 5 == 0 ? 0.f : r.uniform(0, 3), r.uniform(0, 3), 0)});
+    }
+  while (cases.size() < 12000) {
+    const float u = r.uniform(0, 1);
+    const float c = u < 0.1f ? 1.f - r.log_uniform(1e-7f, 1e-2f) : u < 0.2f ? r.log_uniform(1e-6f, 0.2f) : r.uniform(-0.2f, 1.2f);
+    const glm::vec3 p(r.uniform(-100, 100), r.uniform(-100, 100), r.uniform(-100, 100));
+    cases.push_back({glm::vec4(p, c), glm::vec4(r.unit(), r.log_uniform(1e-4f, 10)), glm::vec4(r.uniform(0, 2), r.uniform(0, 3), r.uniform(0, 3), 0)});
+  }
+  const std::vector<std::string> kLookup = {"06_shadows/shaders/lookup_math.glsl"};
+  const auto gpu_bias = test::run_glsl_twin({kLookup, "slope_scaled_bias(c.x, c.y, a.w, b.w), 0.0, 0.0, 0.0"}, cases);
+  const auto gpu_offset = test::run_glsl_twin({kLookup, "normal_offset(a.xyz, b.xyz, a.w, c.z, b.w), 0.0"}, cases);
+  std::vector<glm::vec4> cpu_bias, cpu_offset;
+  std::vector<double> bias_tolerance, offset_tolerance;
+  for (const TwinCase& t : cases) {
+    const float w = t.b.w, constant = t.c.x, slope = t.c.y, texels = t.c.z;
+    const float bias = slope_scaled_bias(constant, slope, t.a.w, w);
+    const glm::vec3 offset = normal_offset(glm::vec3(t.a), glm::vec3(t.b), t.a.w, texels, w);
+    cpu_bias.push_back(glm::vec4(bias, 0, 0, 0));
+    cpu_offset.push_back(glm::vec4(offset, 0));
+    const auto dsin_at = [](double c) {
+      const double sin = std::sqrt(std::max(1 - c * c, 0.0));
+      return std::min(std::sqrt(2 * kU), sin > 0 ? kU / sin : 1.0) + test::ulps(5) * sin;
+    };
+    const double cb = std::clamp(double(t.a.w), 1e-4, 1.0), tan = std::sqrt(1 - cb * cb) / cb;
+    const double dtan = tan < 10 * (1 + 1e-6) ? dsin_at(cb) / cb + test::ulps(3) * tan : 0.0;  // past the cap both are 10
+    bias_tolerance.push_back(6 * kU * w * (constant + slope * std::min(tan, 10.0)) + w * slope * dtan);
+    const double co = std::clamp(double(t.a.w), 0.0, 1.0), k = double(texels) * w * std::sqrt(1 - co * co);
+    const double dk = double(texels) * w * dsin_at(co) + 2 * kU * k;
+    double o = 0;
+    for (int i = 0; i < 3; ++i)
+      o = std::max(o, std::abs(double(t.b[i])) * dk + 2 * kU * std::abs(t.b[i] * k) + 2 * kU * std::abs(double(offset[i])));
+    offset_tolerance.push_back(o);
+  }
+  const auto describe = [&](std::size_t i) { return describe4(cases, i); };
+  EXPECT_TRUE(test::twins_agree(gpu_bias, cpu_bias, 1, [&](std::size_t i) { return test::TwinTolerance{bias_tolerance[i], 0}; }, describe))
+      << "slope_scaled_bias";
+  EXPECT_TRUE(test::twins_agree(gpu_offset, cpu_offset, 3, [&](std::size_t i) { return test::TwinTolerance{offset_tolerance[i], 0}; }, describe))
+      << "normal_offset";
+}
+
 // A cube map texel's width (lookup_math.glsl's cube_texel_world against cube_math.h's, which
 // point_visibility() scales its biases and normal offset by): 2 d is exact on both sides, the
 // division by N is 2.5 ulp in GLSL and half an ulp in C++, so 3 ulp of the result apart. Cases:

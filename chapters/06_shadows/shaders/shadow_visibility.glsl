@@ -82,16 +82,14 @@ SunMap sh_map;
 #include EXERCISE_SHADOW_LOOKUP
 #else
 // [bias-glsl]
-// shadow_math.h's slope_scaled_bias and normal_offset; the bias in window-depth units
-// (the light's projection is orthographic: depth is linear in metres).
+// lookup_math.glsl's normal_offset and slope_scaled_bias in the map's texels; the bias in
+// window-depth units (the light's projection is orthographic: depth is linear in metres).
 vec3 shadow_lookup(Surface s, vec3 to_light) {
-  float cos_theta = clamp(dot(s.normal, to_light), 1e-4, 1.0);
-  float sin_theta = sqrt(1.0 - cos_theta * cos_theta);
-  float tan_theta = min(sin_theta / cos_theta, 10.0);
-  vec3 p = s.position + s.normal * (sh.normal_offset * sh_map.texel_metres * sin_theta);
+  float cos_theta = dot(s.normal, to_light);
+  vec3 p = normal_offset(s.position, s.normal, cos_theta, sh.normal_offset, sh_map.texel_metres);
   vec4 clip = sh_map.matrix * vec4(p, 1.0);
   vec3 window = clip.xyz / clip.w * 0.5 + 0.5;
-  float bias = sh_map.texel_metres * (sh.constant_bias + sh.slope_bias * tan_theta) / sh.depth_range;
+  float bias = slope_scaled_bias(sh.constant_bias, sh.slope_bias, cos_theta, sh_map.texel_metres) / sh.depth_range;
   return vec3(window.xy, window.z - bias);
 }
 // [/bias-glsl]
