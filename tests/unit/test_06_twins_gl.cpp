@@ -1,7 +1,9 @@
 // Chapter 06's GLSL against its C++ twins (glsl_twin.h): convolution shadow maps' basis and
 // reconstruction (csm_math.glsl against csm_math.h), moment shadow maps' Hamburger reconstruction
-// (msm_math.glsl against shadow_math.h), and the cube map's face table (cube_math.h) against the
-// lookup point_visibility() makes, a samplerCubeArray read with a direction.
+// and the pre-filter's moments (msm_math.glsl against shadow_math.h), ESM's log-space pre-filter
+// and VSM's and ESM's lookups (filtered_math.glsl), the lookups' geometry (lookup_math.glsl),
+// and the cube map's face table (cube_math.h) against the lookup point_visibility() makes, a
+// samplerCubeArray read with a direction.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -27,6 +29,8 @@ const std::vector<std::string> kCsm = {"06_shadows/shaders/csm_math.glsl"};
 // and NVIDIA's range reduction keep it), not the specification's. The C++ sinf adds at most an
 // ulp of 1 (2^-24).
 constexpr double kTrig = 0x1p-20 + 0x1p-24;
+// u: float's unit roundoff, 2^-24 = ulps(0.5).
+constexpr double kU = 0x1p-24;
 
 std::string describe4(const std::vector<TwinCase>& cases, std::size_t i) {
   return test::str(cases[i].a) + " " + test::str(cases[i].b) + " " + test::str(cases[i].c) + " " + test::str(cases[i].d);
@@ -228,6 +232,149 @@ TEST(GlslTwins, EsmLookupMatchesItsCppTwin) {
                                 [&](std::size_t i) { return describe4(cases, i); }));
 }
 
+// The pre-filter's moments and the 16-bit map's optimised form (msm_math.glsl's msm_moments and
+// msm_optimize against shadow_math.h's). The moments: z^2 = z z, z^3 = z^2 z, z^4 = z^2 z^2 are
+// each one product, correctly rounded on both sides (GLSL 4.50's * is), of the same floats: equal,
+// except that a GPU may flush a denormal result to 0 (2^-126 absolutely). The optimised map: each
+// component sum_j M_kj b_j (+ the offset for x) is four products and three or four additions, in
+// any order and fused or not on either side: at most 5 u sum_j |M_kj b_j| (+ |offset|) from the
+// exact value on each side (the sum's classic bound, gamma_n <= n u + O(u^2)), so 10 u of that
+// apart. Cases: depths over [0, 1] (their moments), the ends, tiny and denormal depths, and
+// moments of 2 to 8 depths mixed by random weights (what the map's filtered texels hold).
+TEST(GlslTwins, MsmMomentsAndOptimizeMatchTheirCppTwins) {
+  test::TwinRandom r(70);
+  std::vector<TwinCase> depths;
+  for (float z : {0.f, 1.f, 0.5f, std::nextafter(1.f, 0.f), 1e-10f, 1e-20f, 1e-30f, 0x1p-126f, 1e-3f, 0.999f})
+    depths.push_back({glm::vec4(z, 0, 0, 0)});
+  while (depths.size() < 12000) depths.push_back({glm::vec4(depths.size() % 3 == 0 ? r.log_uniform(1e-6f, 1) : r.uniform(0, 1), 0, 0, 0)});
+  const std::vector<std::string> kMsm = {"06_shadows/shaders/msm_math.glsl"};
+  const auto gpu_moments = test::run_glsl_twin({kMsm, "msm_moments(a.x)"}, depths);
+  std::vector<glm::vec4> cpu_moments;
+  for (const TwinCase& c : depths) cpu_moments.push_back(msm_moments(c.a.x));
+  EXPECT_TRUE(test::twins_agree(gpu_moments, cpu_moments, 4, test::TwinTolerance{0x1p-126, 0},
+                                [&](std::size_t i) { return describe4(depths, i); }))
+      << "the moments";
+
+  std::vector<TwinCase> moments;
+  for (const TwinCase& c : depths) {
+    if (moments.size() % 2 == 0) {
+      moments.push_back({msm_moments(c.a.x)});
+      continue;
+    }
+    const int n = 2 + int(r.uniform(0, 7)) % 7;
+    std::vector<float> w(static_cast<std::size_t>(n));
+    float total = 0;
+    for (float& x : w) x = r.uniform(0.05f, 1), total += x;
+    glm::vec4 b(0);
+    for (float x : w) b += x / total * msm_moments(r.uniform(0, 1));
+    moments.push_back({b});
+  }
+  const auto gpu = test::run_glsl_twin({kMsm, "msm_optimize(a)"}, moments);
+  // glm's mat4 takes columns: row k of the map is (m[0][k], m[1][k], m[2][k], m[3][k]).
+  const glm::vec4 zero_in = msm_optimize(glm::vec4(0));
+  const float offset = zero_in.x;
+  glm::mat4 m(0);
+  for (int j = 0; j < 4; ++j) {
+    glm::vec4 e(0);
+    e[j] = 1;
+    m[j] = msm_optimize(e) - zero_in;  // column j, within 2 u of 0.036 (the offset's rounding)
+  }
+  std::vector<glm::vec4> cpu;
+  std::vector<double> tolerance;
+  for (const TwinCase& c : moments) {
+    cpu.push_back(msm_optimize(c.a));
+    double t = 0;
+    for (int k = 0; k < 4; ++k) {
+      double sum = k == 0 ? std::abs(double(offset)) : 0;
+      for (int j = 0; j < 4; ++j) sum += std::abs(double(m[j][k]) * c.a[j]);
+      t = std::max(t, 10 * kU * 1.01 * sum);  // 1.01: the columns' entries (>= 0.1) within 1 % of the map's
+    }
+    tolerance.push_back(t + 0x1p-126);
+  }
+  EXPECT_TRUE(test::twins_agree(gpu, cpu, 4, [&](std::size_t i) { return test::TwinTolerance{tolerance[i], 0}; },
+                                [&](std::size_t i) { return describe4(moments, i); }))
+      << "the optimised map";
+}
+
+// ESM's pre-filter, log-sum-exp about the largest value (filtered_math.glsl's esm_log_sum_term
+// and esm_log_sum, in shadow_filter.frag's two passes over the taps, against esm_filter_log):
+// L = l_max + log(S), S = sum_i w_i exp(l_i - l_max). l_max is exact on both sides, l_i - l_max
+// rounds the same (correctly rounded, same floats). Each term t_i differs by exp's allowance
+// (GLSL (3 + 2 |x|) ulp, x = l_i - l_max; the C++ expf an ulp) and the product's rounding (half
+// an ulp each side, or none if fused); the sum of up to 8 terms rounds 7 times on each side (7 u S
+// each). So |dS| / S <= max_i ((4 + 2 |x_i|) ulp + 2 u) + 14 u, plus 2^-126 per term for flushed
+// denormals, over S. log turns that into an absolute error of |dS| / S; GLSL's log adds 2^-21
+// absolutely for S in [0.5, 2] and 3 ulp of |log S| outside it, the C++ logf an ulp; the final
+// addition rounds each side (half an ulp of |L| each). Cases: 1 to 8 taps (unused taps weigh 0),
+// box weights 1 / n as the pre-filter's half of the time and random normalised ones otherwise, c 1
+// to 300 (log-uniform) times depths in [0, 1]; taps all equal (S = 1, log S = 0), one tap, and
+// taps c apart (the exponent's underflow).
+TEST(GlslTwins, EsmFilterLogMatchesItsCppTwin) {
+  test::TwinRandom r(71);
+  std::vector<TwinCase> cases;
+  const auto add = [&](const std::vector<float>& l, std::vector<float> w) {
+    TwinCase c{};
+    for (std::size_t i = 0; i < 8; ++i) {
+      const float v = i < l.size() ? l[i] : l[0], weight = i < w.size() ? w[i] : 0.f;
+      (i < 4 ? c.a : c.b)[int(i % 4)] = v;
+      (i < 4 ? c.c : c.d)[int(i % 4)] = weight;
+    }
+    cases.push_back(c);
+  };
+  for (float c : {1.f, 10.f, 80.f, 88.f, 89.f, 300.f})
+    for (int n = 1; n <= 8; ++n) {
+      add(std::vector<float>(std::size_t(n), 0.5f * c), std::vector<float>(std::size_t(n), 1.f / float(n)));  // all equal
+      std::vector<float> apart(std::size_t(n), 0.f);
+      apart[0] = c;  // one tap at z = 1, the others at z = 0
+      add(apart, std::vector<float>(std::size_t(n), 1.f / float(n)));
+      add({c}, {1.f});
+      add({0.f}, {1.f});
+    }
+  while (cases.size() < 12000) {
+    const int n = 1 + int(r.uniform(0, 8)) % 8;
+    const float c = r.log_uniform(1, 300);
+    std::vector<float> l(static_cast<std::size_t>(n)), w(static_cast<std::size_t>(n));
+    const float centre = r.uniform(0, 1), spread = r.uniform(0, 1) < 0.5f ? 0.02f : 1.f;
+    float total = 0;
+    for (int i = 0; i < n; ++i) {
+      l[std::size_t(i)] = c * std::clamp(centre + r.uniform(-spread, spread), 0.f, 1.f);
+      w[std::size_t(i)] = cases.size() % 2 == 0 ? 1.f / float(n) : r.uniform(0.05f, 1);
+      total += w[std::size_t(i)];
+    }
+    if (cases.size() % 2 == 1)
+      for (float& x : w) x /= total;
+    add(l, w);
+  }
+  const std::string helper =
+      "float twin_esm_filter(vec4 a, vec4 b, vec4 c, vec4 d) { float l_max = -3.4e38; "
+      "for (int i = 0; i < 4; ++i) l_max = max(l_max, a[i]); for (int i = 0; i < 4; ++i) l_max = max(l_max, b[i]); "
+      "float sum = 0.0; for (int i = 0; i < 4; ++i) sum += esm_log_sum_term(a[i], l_max, c[i]); "
+      "for (int i = 0; i < 4; ++i) sum += esm_log_sum_term(b[i], l_max, d[i]); return esm_log_sum(l_max, sum); }";
+  const auto gpu = test::run_glsl_twin(
+      {{"06_shadows/shaders/filtered_math.glsl"}, "twin_esm_filter(a, b, c, d), 0.0, 0.0, 0.0", {}, helper}, cases);
+  std::vector<glm::vec4> cpu;
+  std::vector<double> tolerance;
+  for (const TwinCase& c : cases) {
+    std::vector<float> l, w;
+    for (int i = 0; i < 8; ++i) l.push_back((i < 4 ? c.a : c.b)[i % 4]), w.push_back((i < 4 ? c.c : c.d)[i % 4]);
+    const float filtered = esm_filter_log(l, w);
+    cpu.push_back(glm::vec4(filtered, 0, 0, 0));
+    const double l_max = *std::max_element(l.begin(), l.end());
+    double s = 0, ds = 0;
+    for (std::size_t i = 0; i < 8; ++i) {
+      const double x = double(l[i]) - l_max, t = w[i] * std::exp(x);
+      s += t;
+      ds += t * (test::ulps(4 + 2 * std::abs(x)) + 2 * kU) + 0x1p-126;
+    }
+    ds += 14 * kU * s;
+    const double log_s = std::log(s);
+    const double log_error = (s >= 0.5 && s <= 2 ? 0x1p-21 : test::ulps(3) * std::abs(log_s)) + test::ulps(1) * std::abs(log_s);
+    tolerance.push_back(ds / s + log_error + 2 * kU * std::abs(double(filtered)));
+  }
+  EXPECT_TRUE(test::twins_agree(gpu, cpu, 1, [&](std::size_t i) { return test::TwinTolerance{tolerance[i], 0}; },
+                                [&](std::size_t i) { return describe4(cases, i); }));
+}
+
 // cube_face_coords is OpenGL's cube map table, which the depth pass's face matrices follow
 // (CubeMath.TheDepthPassDrawsEachDirectionWhereTheLookupReadsIt); here it is held to the sampler
 // itself: point_visibility()'s lookup, a samplerCubeArray read with a direction, on a map whose
@@ -299,8 +446,7 @@ TEST(GlslTwins, CubeFaceCoordsNameTheTexelTheSamplerReads) {
   EXPECT_EQ(failed, 0u);
 }
 
-// lookup_math.glsl: where a lookup reads. u below is float's unit roundoff 2^-24 = ulps(0.5).
-constexpr double kU = 0x1p-24;
+// lookup_math.glsl: where a lookup reads.
 
 // PCF's receiver plane (receiver_plane_gradient against shadow_math.h's). The light's view is a
 // rotation (random directions, as fit_light_frustum's lookAt makes them); n = M w, each
@@ -487,6 +633,90 @@ TEST(GlslTwins, SpotAtlasUvMatchesItsCppTwin) {
   }
   EXPECT_TRUE(test::twins_agree(gpu, cpu, 2, [&](std::size_t i) { return test::TwinTolerance{tolerance[i], 0}; },
                                 [&](std::size_t i) { return describe4(cases, i); }));
+}
+
+// The sun's biases (slope_scaled_bias and normal_offset against shadow_math.h's). The clamp is
+// exact; s2 = 1 - c c rounds twice in C++ and once if GLSL fuses it, each side within u (c^2 +
+// s2) = u of the exact value, so 2 u apart; near c = 1 that is large against s2 itself, and
+// sin = sqrt(s2) moves by at most min(sqrt(2 u), u / sin) from it. GLSL's sqrt is inherited from
+// 1 / inversesqrt (2 + 2.5 ulp), C++'s correctly rounded (half an ulp): 5 ulp of sin more. tan =
+// sin / c: that over c, plus the division's 2.5 + 0.5 ulp of tan; the cap at 10 moves nothing
+// apart. The bias w (C + S tan): S tan, the sum and the product round once each on each side
+// (fused or not), 6 u of w (C + S tan) apart, plus w S times tan's difference. The offset
+// p + n (T w sin): T w rounds the same, (T w) sin half an ulp each side, so k = T w sin differs
+// by T w dsin + 2 u k; each component p + n k rounds twice on each side (fused or not): |n| dk +
+// 2 u |n k| + 2 u |result|. Cases: cosines over [-0.2, 1.2] (both clamps), near 1 (the
+// ill-conditioned s2), at and around 1e-4 and 0, and where the cap begins (tan = 10, c =
+// 1 / sqrt(101)); biases 0 to 2 texels, slopes 0 to 3, texels 0.1 mm to 10 m, positions within
+// 100 m, unit normals.
+TEST(GlslTwins, SlopeScaledBiasAndNormalOffsetMatchTheirCppTwins) {
+  test::TwinRandom r(73);
+  std::vector<float> cosines = {0.f, 1.f, -0.1f, 1.1f, 1e-4f, std::nextafter(1e-4f, 0.f), std::nextafter(1e-4f, 1.f), 5e-5f,
+                                std::nextafter(1.f, 0.f), 1.f - 1e-6f, 1.f - 1e-4f, 0.5f, 0.70710677f};
+  const float cap = 1.f / std::sqrt(101.f);
+  for (float c : {cap, std::nextafter(cap, 0.f), std::nextafter(cap, 1.f), 0.0995f, 0.0996f}) cosines.push_back(c);
+  std::vector<TwinCase> cases;
+  for (float c : cosines)
+    for (int k = 0; k < 20; ++k) {
+      const glm::vec3 p(r.uniform(-100, 100), r.uniform(-100, 100), r.uniform(-100, 100));
+      cases.push_back({glm::vec4(p, c), glm::vec4(r.unit(), r.log_uniform(1e-4f, 10)),
+                       glm::vec4(k % 4 == 0 ? 0.f : r.uniform(0, 2), k % 5 == 0 ? 0.f : r.uniform(0, 3), r.uniform(0, 3), 0)});
+    }
+  while (cases.size() < 12000) {
+    const float u = r.uniform(0, 1);
+    const float c = u < 0.1f ? 1.f - r.log_uniform(1e-7f, 1e-2f) : u < 0.2f ? r.log_uniform(1e-6f, 0.2f) : r.uniform(-0.2f, 1.2f);
+    const glm::vec3 p(r.uniform(-100, 100), r.uniform(-100, 100), r.uniform(-100, 100));
+    cases.push_back({glm::vec4(p, c), glm::vec4(r.unit(), r.log_uniform(1e-4f, 10)), glm::vec4(r.uniform(0, 2), r.uniform(0, 3), r.uniform(0, 3), 0)});
+  }
+  const std::vector<std::string> kLookup = {"06_shadows/shaders/lookup_math.glsl"};
+  const auto gpu_bias = test::run_glsl_twin({kLookup, "slope_scaled_bias(c.x, c.y, a.w, b.w), 0.0, 0.0, 0.0"}, cases);
+  const auto gpu_offset = test::run_glsl_twin({kLookup, "normal_offset(a.xyz, b.xyz, a.w, c.z, b.w), 0.0"}, cases);
+  std::vector<glm::vec4> cpu_bias, cpu_offset;
+  std::vector<double> bias_tolerance, offset_tolerance;
+  for (const TwinCase& t : cases) {
+    const float w = t.b.w, constant = t.c.x, slope = t.c.y, texels = t.c.z;
+    const float bias = slope_scaled_bias(constant, slope, t.a.w, w);
+    const glm::vec3 offset = normal_offset(glm::vec3(t.a), glm::vec3(t.b), t.a.w, texels, w);
+    cpu_bias.push_back(glm::vec4(bias, 0, 0, 0));
+    cpu_offset.push_back(glm::vec4(offset, 0));
+    const auto dsin_at = [](double c) {
+      const double sin = std::sqrt(std::max(1 - c * c, 0.0));
+      return std::min(std::sqrt(2 * kU), sin > 0 ? kU / sin : 1.0) + test::ulps(5) * sin;
+    };
+    const double cb = std::clamp(double(t.a.w), 1e-4, 1.0), tan = std::sqrt(1 - cb * cb) / cb;
+    const double dtan = tan < 10 * (1 + 1e-6) ? dsin_at(cb) / cb + test::ulps(3) * tan : 0.0;  // past the cap both are 10
+    bias_tolerance.push_back(6 * kU * w * (constant + slope * std::min(tan, 10.0)) + w * slope * dtan);
+    const double co = std::clamp(double(t.a.w), 0.0, 1.0), k = double(texels) * w * std::sqrt(1 - co * co);
+    const double dk = double(texels) * w * dsin_at(co) + 2 * kU * k;
+    double o = 0;
+    for (int i = 0; i < 3; ++i)
+      o = std::max(o, std::abs(double(t.b[i])) * dk + 2 * kU * std::abs(t.b[i] * k) + 2 * kU * std::abs(double(offset[i])));
+    offset_tolerance.push_back(o);
+  }
+  const auto describe = [&](std::size_t i) { return describe4(cases, i); };
+  EXPECT_TRUE(test::twins_agree(gpu_bias, cpu_bias, 1, [&](std::size_t i) { return test::TwinTolerance{bias_tolerance[i], 0}; }, describe))
+      << "slope_scaled_bias";
+  EXPECT_TRUE(test::twins_agree(gpu_offset, cpu_offset, 3, [&](std::size_t i) { return test::TwinTolerance{offset_tolerance[i], 0}; }, describe))
+      << "normal_offset";
+}
+
+// A cube map texel's width (lookup_math.glsl's cube_texel_world against cube_math.h's, which
+// point_visibility() scales its biases and normal offset by): 2 d is exact on both sides, the
+// division by N is 2.5 ulp in GLSL and half an ulp in C++, so 3 ulp of the result apart. Cases:
+// distances 1 mm to 10 km (log-uniform) and 0, faces of 1 to 8192 texels (powers of two and not).
+TEST(GlslTwins, CubeTexelWorldMatchesItsCppTwin) {
+  test::TwinRandom r(72);
+  std::vector<TwinCase> cases;
+  for (float d : {0.f, 1.f, 1e-3f, 1e4f, 0.5f})
+    for (int n : {1, 2, 3, 16, 100, 512, 1000, 1024, 4096, 8192}) cases.push_back({glm::vec4(d, float(n), 0, 0)});
+  while (cases.size() < 12000) {
+    const int n = cases.size() % 2 == 0 ? 1 << (int(r.uniform(0, 14)) % 14) : 1 + int(r.uniform(0, 8192));
+    cases.push_back({glm::vec4(r.log_uniform(1e-3f, 1e4f), float(n), 0, 0)});
+  }
+  const auto gpu = test::run_glsl_twin({{"06_shadows/shaders/lookup_math.glsl"}, "cube_texel_world(a.x, a.y), 0.0, 0.0, 0.0"}, cases);
+  std::vector<glm::vec4> cpu;
+  for (const TwinCase& c : cases) cpu.push_back(glm::vec4(cube_texel_world(c.a.x, int(c.a.y)), 0, 0, 0));
+  EXPECT_TRUE(test::twins_agree(gpu, cpu, 1, test::TwinTolerance{0, test::ulps(3)}, [&](std::size_t i) { return describe4(cases, i); }));
 }
 
 }  // namespace

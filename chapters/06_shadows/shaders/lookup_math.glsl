@@ -2,7 +2,26 @@
 // choose_cascade and of spot_atlas.h's spot_atlas_uv, whose comments derive them; included by
 // the lookup (shadow_visibility.glsl), which passes them its block's fields, and held to the C++
 // by 06_shadows.gl.GlslTwins.ReceiverPlaneGradientMatchesItsCppTwin, CascadeChoiceMatchesItsCppTwin
-// and SpotAtlasUvMatchesItsCppTwin.
+// and SpotAtlasUvMatchesItsCppTwin; the sun's biases (shadow_math.h's slope_scaled_bias and
+// normal_offset) by SlopeScaledBiasAndNormalOffsetMatchTheirCppTwins; cube_texel_world
+// (cube_math.h's) by CubeTexelWorldMatchesItsCppTwin.
+
+// [bias-math-glsl]
+// shadow_math.h's slope_scaled_bias: the depth a tilted receiver may lie behind the map, a
+// constant part and one that grows with tan(theta) (capped at 10), in texels of texel_world
+// metres; cos_theta: the cosine between the receiver's normal and the way to the light.
+float slope_scaled_bias(float constant_texels, float slope_texels, float cos_theta, float texel_world) {
+  float c = clamp(cos_theta, 1e-4, 1.0);
+  float tan_theta = min(sqrt(1.0 - c * c) / c, 10.0);
+  return texel_world * (constant_texels + slope_texels * tan_theta);
+}
+// shadow_math.h's normal_offset: the lookup moved off the surface along its normal by `texels`
+// texels, times sin(theta): nothing facing the light, most at grazing angles.
+vec3 normal_offset(vec3 position, vec3 normal, float cos_theta, float texels, float texel_world) {
+  float c = clamp(cos_theta, 0.0, 1.0);
+  return position + normal * (texels * texel_world * sqrt(1.0 - c * c));
+}
+// [/bias-math-glsl]
 
 // [receiver-plane-glsl]
 // How the receiver's window depth changes per unit of the map's (u, v), from its normal in the
@@ -46,3 +65,7 @@ vec2 spot_atlas_uv(vec3 tile, float texels, vec2 uv) {
   return tile.xy + clamp(uv, vec2(half_texel), vec2(1.0 - half_texel)) * tile.z;
 }
 // [/atlas-glsl]
+
+// cube_math.h's cube_texel_world: a cube map texel's width at `distance` from the light on a face
+// of `size` texels, 2 d / N (a face spans tan 45 = 1 each side of its centre).
+float cube_texel_world(float distance, float size) { return 2.0 * distance / size; }

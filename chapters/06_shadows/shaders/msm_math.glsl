@@ -1,6 +1,25 @@
-// Moment shadow maps in GLSL: the twin of shadow_math.h's msm_unoptimize and msm_hamburger (its
-// comments derive them), included by the lookup (shadow_visibility.glsl) and held to the C++ by
-// 06_shadows.gl.GlslTwins.MsmHamburgerMatchesItsCppTwin.
+// Moment shadow maps in GLSL: the twins of shadow_math.h's msm_moments, msm_optimize,
+// msm_unoptimize and msm_hamburger (its comments derive them), included by the pre-filter
+// (shadow_filter.frag: the moments a depth writes) and the lookup (shadow_visibility.glsl), and
+// held to the C++ by 06_shadows.gl.GlslTwins.MsmMomentsAndOptimizeMatchTheirCppTwins and
+// MsmHamburgerMatchesItsCppTwin.
+
+// shadow_math.h's msm_moments: the four moments (z, z^2, z^3, z^4) of one depth.
+vec4 msm_moments(float z) {
+  float z2 = z * z;
+  return vec4(z, z2, z2 * z, z2 * z2);
+}
+
+// shadow_math.h's msm_optimize: the moments through the paper's optimised affine map, stored so
+// in a 16-bit map (filtering commutes with it: it is affine, the filter's weights sum to 1).
+vec4 msm_optimize(vec4 b) {
+  b = mat4(-2.07224649, 13.7948857237, 0.105877704, 9.7924062118,
+           32.23703778, -59.4683975703, -1.9077466311, -33.7652110555,
+           -68.571074599, 82.0359750338, 9.3496555107, 47.9456096605,
+           39.3703274134, -35.364903257, -6.6543490743, -23.9728048165) * b;
+  b.x += 0.035955884801;
+  return b;
+}
 
 // [msm-glsl]
 // shadow_math.h's msm_unoptimize: the moments back from the optimised 16-bit map.

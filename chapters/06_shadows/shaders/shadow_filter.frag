@@ -13,20 +13,16 @@ uniform bool u_from_depth;
 layout(location = 0) out vec4 out_value;
 
 #ifdef SHADOW_MSM
+#include "06_shadows/shaders/msm_math.glsl"
 // MSM: the four moments (z, z^2, z^3, z^4), through the optimised map when the target is 16-bit
 // (MSM_OPTIMIZED; shadow_math.h [msm]: the map is affine, so filtering commutes with it).
 vec4 moments_at(ivec2 p) {
   ivec2 size = textureSize(u_input, 0);
   vec4 t = texelFetch(u_input, clamp(p, ivec2(0), size - 1), 0);
   if (!u_from_depth) return t;
-  float z = t.x, z2 = z * z;
-  vec4 b = vec4(z, z2, z2 * z, z2 * z2);
+  vec4 b = msm_moments(t.x);
 #ifdef MSM_OPTIMIZED
-  b = mat4(-2.07224649, 13.7948857237, 0.105877704, 9.7924062118,
-           32.23703778, -59.4683975703, -1.9077466311, -33.7652110555,
-           -68.571074599, 82.0359750338, 9.3496555107, 47.9456096605,
-           39.3703274134, -35.364903257, -6.6543490743, -23.9728048165) * b;
-  b.x += 0.035955884801;
+  b = msm_optimize(b);
 #endif
   return b;
 }
@@ -38,6 +34,7 @@ void main() {
   out_value = sum;
 }
 #else
+#include "06_shadows/shaders/filtered_math.glsl"
 
 vec2 value_at(ivec2 p) {
   ivec2 size = textureSize(u_input, 0);
@@ -60,11 +57,12 @@ void main() {
   for (int i = -u_radius; i <= u_radius; ++i) sum += w * value_at(p + i * u_step);
   out_value = vec4(sum, 0.0, 1.0);
 #else
+  // log-sum-exp about the largest value (filtered_math.glsl, shadow_math.h's esm_filter_log)
   float l_max = -3.4e38;
   for (int i = -u_radius; i <= u_radius; ++i) l_max = max(l_max, value_at(p + i * u_step).x);
   float sum = 0.0;
-  for (int i = -u_radius; i <= u_radius; ++i) sum += w * exp(value_at(p + i * u_step).x - l_max);
-  out_value = vec4(l_max + log(sum), 0.0, 0.0, 1.0);
+  for (int i = -u_radius; i <= u_radius; ++i) sum += esm_log_sum_term(value_at(p + i * u_step).x, l_max, w);
+  out_value = vec4(esm_log_sum(l_max, sum), 0.0, 0.0, 1.0);
 #endif
 }
 // [/filter-glsl]

@@ -82,16 +82,14 @@ SunMap sh_map;
 #include EXERCISE_SHADOW_LOOKUP
 #else
 // [bias-glsl]
-// shadow_math.h's slope_scaled_bias and normal_offset; the bias in window-depth units
-// (the light's projection is orthographic: depth is linear in metres).
+// lookup_math.glsl's normal_offset and slope_scaled_bias in the map's texels; the bias in
+// window-depth units (the light's projection is orthographic: depth is linear in metres).
 vec3 shadow_lookup(Surface s, vec3 to_light) {
-  float cos_theta = clamp(dot(s.normal, to_light), 1e-4, 1.0);
-  float sin_theta = sqrt(1.0 - cos_theta * cos_theta);
-  float tan_theta = min(sin_theta / cos_theta, 10.0);
-  vec3 p = s.position + s.normal * (sh.normal_offset * sh_map.texel_metres * sin_theta);
+  float cos_theta = dot(s.normal, to_light);
+  vec3 p = normal_offset(s.position, s.normal, cos_theta, sh.normal_offset, sh_map.texel_metres);
   vec4 clip = sh_map.matrix * vec4(p, 1.0);
   vec3 window = clip.xyz / clip.w * 0.5 + 0.5;
-  float bias = sh_map.texel_metres * (sh.constant_bias + sh.slope_bias * tan_theta) / sh.depth_range;
+  float bias = slope_scaled_bias(sh.constant_bias, sh.slope_bias, cos_theta, sh_map.texel_metres) / sh.depth_range;
   return vec3(window.xy, window.z - bias);
 }
 // [/bias-glsl]
@@ -316,13 +314,12 @@ float spot_visibility(int i, Surface s) {
   float cos_theta = dot(s.normal, to_light);
   if (cos_theta <= 0.0) return 1.0;  // faces away: the light adds nothing anyway
   s.normal = geometric_normal(s);  // the spot's biases and taps, as the sun's
-  cos_theta = clamp(dot(s.normal, to_light), 1e-4, 1.0);
-  float sin_theta = sqrt(1.0 - cos_theta * cos_theta);
-  float tan_theta = min(sin_theta / cos_theta, 10.0);
+  cos_theta = dot(s.normal, to_light);
   float d = (t.matrix * vec4(s.position, 1.0)).w;
   float size = t.frustum.w, tan_cone = t.frustum.z;
   float texel = 2.0 * d * tan_cone / size;
-  vec4 clip = t.matrix * vec4(s.position + s.normal * (sh.normal_offset * texel * sin_theta), 1.0);
+  vec3 offset = normal_offset(s.position, s.normal, cos_theta, sh.normal_offset, texel);  // lookup_math.glsl
+  vec4 clip = t.matrix * vec4(offset, 1.0);
   if (clip.w <= t.frustum.x) return 1.0;
   vec3 window = clip.xyz / clip.w * 0.5 + 0.5;
   if (any(lessThan(window.xy, vec2(0.0))) || any(greaterThan(window.xy, vec2(1.0))) || window.z > 1.0) return 1.0;
@@ -331,8 +328,8 @@ float spot_visibility(int i, Surface s) {
 #else
   int r = int(sh.pcf_radius);
 #endif
-  float bias = texel * (sh.constant_bias + sh.slope_bias * tan_theta);
-  vec3 p_view = (t.view * vec4(s.position + s.normal * (sh.normal_offset * texel * sin_theta), 1.0)).xyz;
+  float bias = slope_scaled_bias(sh.constant_bias, sh.slope_bias, cos_theta, texel);
+  vec3 p_view = (t.view * vec4(offset, 1.0)).xyz;
   vec3 n_view = mat3(t.view) * s.normal;
   float n = t.frustum.x, f = t.frustum.y, lit = 0.0;
   for (int y = -r; y <= r; ++y)
@@ -365,15 +362,13 @@ float point_visibility(int i, Surface s) {
   float cos_theta = dot(s.normal, to_light / max(d, 1e-6));
   if (cos_theta <= 0.0) return 1.0;  // faces away: the light adds nothing anyway
   s.normal = geometric_normal(s);  // the cube map's biases and taps, as the sun's
-  cos_theta = clamp(dot(s.normal, to_light / max(d, 1e-6)), 1e-4, 1.0);
-  float sin_theta = sqrt(1.0 - cos_theta * cos_theta);
-  float tan_theta = min(sin_theta / cos_theta, 10.0);
-  float texel = 2.0 * d / sh.point_map_size;
-  vec3 p = s.position + s.normal * (sh.normal_offset * texel * sin_theta);
+  cos_theta = dot(s.normal, to_light / max(d, 1e-6));
+  float texel = cube_texel_world(d, sh.point_map_size);  // lookup_math.glsl, as the two below
+  vec3 p = normal_offset(s.position, s.normal, cos_theta, sh.normal_offset, texel);
   vec3 from_light = p - light.xyz;
   float receiver = length(from_light);
   if (receiver >= light.w) return 1.0;  // beyond the far plane: nothing drawn there casts
-  float bias = texel * (sh.constant_bias + sh.slope_bias * tan_theta);
+  float bias = slope_scaled_bias(sh.constant_bias, sh.slope_bias, cos_theta, texel);
 #if SHADOW_METHOD == SHADOW_HARD
   return receiver - bias <= texture(sh_point_maps, vec4(from_light, float(i))).r * light.w ? 1.0 : 0.0;
 #else
