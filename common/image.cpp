@@ -444,23 +444,49 @@ ImageRGBA8 diff_heatmap(const ImageRGBA8& actual, const ImageRGBA8& expected, in
 
 // ---- keys -------------------------------------------------------------------------------
 
+namespace {
+// stb_easy_font's 'w' has its middle stroke only in the bottom two of five rows, so at scale 1
+// "forward" reads "foruard". Drawn instead: the middle stroke three rows tall, in the same
+// 5-pixel box and rows (x-height, baseline) as stb's glyph, with stb's advance.
+constexpr int kWRows = 5, kWTop = 2;
+constexpr const char* kW[kWRows] = {"#...#", "#.#.#", "#.#.#", "#.#.#", ".#.#."};
+
+void fill_cell(ImageRGBA8& image, int x0, int y0, int scale, const std::uint8_t rgb[3]) {
+  for (int py = std::max(y0, 0); py < std::min(y0 + scale, image.height); ++py)
+    for (int px = std::max(x0, 0); px < std::min(x0 + scale, image.width); ++px) {
+      std::uint8_t* p = image.at(px, py);
+      p[0] = rgb[0], p[1] = rgb[1], p[2] = rgb[2], p[3] = 255;
+    }
+}
+}  // namespace
+
 int draw_text(ImageRGBA8& image, int x, int y, const std::string& text, const std::uint8_t rgb[3], int scale) {
   require_valid(image, "draw_text");
   scale = std::clamp(scale, 1, 16);
-  std::vector<char> chars(text.begin(), text.end());
-  chars.push_back('\0');
-  // stb_easy_font writes quads (4 vertices of x, y, z and a colour: 16 bytes), axis aligned.
-  std::vector<float> vertices(text.size() * 270 * 4 + 64);  // far more than its worst case per character
-  const int quads = stb_easy_font_print(0, 0, chars.data(), nullptr, vertices.data(), int(vertices.size() * sizeof(float)));
-  for (int q = 0; q < quads; ++q) {
-    const float* v = vertices.data() + q * 16;  // 4 vertices of 4 floats
-    const int x0 = x + int(v[0]) * scale, y0 = y + int(v[1]) * scale;
-    const int x1 = x + int(v[8]) * scale, y1 = y + int(v[9]) * scale;
-    for (int py = std::max(y0, 0); py < std::min(y1, image.height); ++py)
-      for (int px = std::max(x0, 0); px < std::min(x1, image.width); ++px) {
-        std::uint8_t* p = image.at(px, py);
-        p[0] = rgb[0], p[1] = rgb[1], p[2] = rgb[2], p[3] = 255;
-      }
+  // Character by character, each at stb's advance of the text before it, so that 'w' can be
+  // drawn from kW.
+  std::vector<float> vertices(270 * 4 + 64);  // far more than stb's worst case for one character
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const int cx = x + text_width(text.substr(0, i), scale);
+    if (text[i] == 'w') {
+      for (int r = 0; r < kWRows; ++r)
+        for (int c = 0; kW[r][c]; ++c)
+          if (kW[r][c] == '#') fill_cell(image, cx + c * scale, y + (kWTop + r) * scale, scale, rgb);
+      continue;
+    }
+    char one[2] = {text[i], '\0'};
+    // stb_easy_font writes quads (4 vertices of x, y, z and a colour: 16 bytes), axis aligned.
+    const int quads = stb_easy_font_print(0, 0, one, nullptr, vertices.data(), int(vertices.size() * sizeof(float)));
+    for (int q = 0; q < quads; ++q) {
+      const float* v = vertices.data() + q * 16;  // 4 vertices of 4 floats
+      const int x0 = cx + int(v[0]) * scale, y0 = y + int(v[1]) * scale;
+      const int x1 = cx + int(v[8]) * scale, y1 = y + int(v[9]) * scale;
+      for (int py = std::max(y0, 0); py < std::min(y1, image.height); ++py)
+        for (int px = std::max(x0, 0); px < std::min(x1, image.width); ++px) {
+          std::uint8_t* p = image.at(px, py);
+          p[0] = rgb[0], p[1] = rgb[1], p[2] = rgb[2], p[3] = 255;
+        }
+    }
   }
   return text_width(text, scale);
 }
