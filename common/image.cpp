@@ -619,6 +619,32 @@ int draw_label(ImageRGBA8& image, int x, int y, const std::string& text) {
   return w;
 }
 
+std::array<std::uint8_t, 3> srgb_colour(float r, float g, float b) {
+  auto c = [](float v) { return std::uint8_t(std::lround(255.f * linear_to_srgb(std::clamp(v, 0.f, 1.f)))); };
+  return {c(r), c(g), c(b)};
+}
+
+LegendPlace draw_legend(ImageRGBA8& image, const std::vector<LegendEntry>& entries) {
+  require_valid(image, "draw_legend");
+  const int s = label_scale(image.width), pad = 2 * s, line = 9 * s, swatch = 6 * s, indent = swatch + 3 * s;
+  const std::uint8_t dark[3] = {24, 24, 24}, white[3] = {255, 255, 255};
+  int text_w = 0;
+  for (const LegendEntry& e : entries) text_w = std::max(text_w, text_width(e.text, s));
+  LegendPlace place{.width = std::min(image.width, pad + indent + text_w + pad),
+                    .height = std::min(image.height, pad + int(entries.size()) * line + pad)};
+  place.y = image.height - place.height;
+  // A key that would hide more than a quarter of the picture (a 160x90 exercise shot) hides what
+  // it explains: none.
+  if (4 * place.width * place.height > image.width * image.height) return {};
+  fill(image, 0, place.y, place.width, image.height, dark);
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    const int y = image.height - (pad + int(entries.size()) * line + pad) + pad + int(k) * line + s;
+    if (entries[k].colour) fill(image, pad, y, pad + swatch, y + swatch, entries[k].colour->data());
+    draw_text(image, pad + indent, y, entries[k].text, white, s);
+  }
+  return place;
+}
+
 DirectionKeyPlace draw_direction_key(ImageRGBA8& image, const DirectionKey& key) {
   require_valid(image, "draw_direction_key");
   if (!(key.full_scale > 0.0f) || !std::isfinite(key.full_scale))
