@@ -22,7 +22,7 @@ lightpass_program_test(03_light_volumes.bench_prints_json 0 "\"passes\":\\[\\{\"
 # them out to white, leaves the band.
 lightpass_image_test(03_light_volumes.hundred_thousand_lights "100000 local lights, back-faces: frame took [0-9.]+ ms.*fragments shaded [1-9][0-9]*, lit [1-9][0-9]*.*, 0 lights skipped"
   ${CMAKE_BINARY_DIR}/out/03_100k.png --background ${BACKGROUND_SRGB8} --mean 50 62 --lit 0.07 0.2
-  RUN ${P03} --headless --size 64x36 --view overview --lights 100000 --mode back-faces --out ${CMAKE_BINARY_DIR}/out/03_100k.png)
+  RUN ${P03} --headless --size 64x36 --view overview --show result --lights 100000 --mode back-faces --out ${CMAKE_BINARY_DIR}/out/03_100k.png)
 # Zero intensity (left out here), a negative intensity and a negative range (left out by the
 # loader, the same in every chapter), a 109-degree spot (drawn with a sphere).
 add_test(NAME 03_light_volumes.bad_lights_warn_and_render COMMAND ${EXPECT} 0
@@ -45,7 +45,7 @@ lightpass_image_test(03_light_volumes.opening_shows_the_fragments_the_volumes_sh
   --lit 0 0.95 --mean 0 128
   RUN ${P03} --headless --size 320x180 --out ${CMAKE_BINARY_DIR}/out/03_opening.png)
 lightpass_program_test(03_light_volumes.bad_mode 2 "unknown mode 'tiled'" ${P03} --mode tiled)
-lightpass_program_test(03_light_volumes.bad_show 2 "--show must be one of: result diffuse specular volumes stencil-mask heat-shaded heat-lit. got 'heat'" ${P03} --show heat)
+lightpass_program_test(03_light_volumes.bad_show 2 "--show must be one of: result diffuse specular volumes stencil-mask heat-shaded heat-lit split. got 'heat'" ${P03} --show heat)
 lightpass_program_test(03_light_volumes.no_such_light_to_show 1 "there is no light 5000 to show the stencil mask of \\(312 local lights\\)"
   ${P03} --headless --size 64x36 --show stencil-mask --light 5000 --out ${CMAKE_BINARY_DIR}/out/03_nolight.png)
 
