@@ -444,23 +444,49 @@ ImageRGBA8 diff_heatmap(const ImageRGBA8& actual, const ImageRGBA8& expected, in
 
 // ---- keys -------------------------------------------------------------------------------
 
+namespace {
+// stb_easy_font's 'w' has its middle stroke only in the bottom two of five rows, so at scale 1
+// "forward" reads "foruard". Drawn instead: the middle stroke three rows tall, in the same
+// 5-pixel box and rows (x-height, baseline) as stb's glyph, with stb's advance.
+constexpr int kWRows = 5, kWTop = 2;
+constexpr const char* kW[kWRows] = {"#...#", "#.#.#", "#.#.#", "#.#.#", ".#.#."};
+
+void fill_cell(ImageRGBA8& image, int x0, int y0, int scale, const std::uint8_t rgb[3]) {
+  for (int py = std::max(y0, 0); py < std::min(y0 + scale, image.height); ++py)
+    for (int px = std::max(x0, 0); px < std::min(x0 + scale, image.width); ++px) {
+      std::uint8_t* p = image.at(px, py);
+      p[0] = rgb[0], p[1] = rgb[1], p[2] = rgb[2], p[3] = 255;
+    }
+}
+}  // namespace
+
 int draw_text(ImageRGBA8& image, int x, int y, const std::string& text, const std::uint8_t rgb[3], int scale) {
   require_valid(image, "draw_text");
   scale = std::clamp(scale, 1, 16);
-  std::vector<char> chars(text.begin(), text.end());
-  chars.push_back('\0');
-  // stb_easy_font writes quads (4 vertices of x, y, z and a colour: 16 bytes), axis aligned.
-  std::vector<float> vertices(text.size() * 270 * 4 + 64);  // far more than its worst case per character
-  const int quads = stb_easy_font_print(0, 0, chars.data(), nullptr, vertices.data(), int(vertices.size() * sizeof(float)));
-  for (int q = 0; q < quads; ++q) {
-    const float* v = vertices.data() + q * 16;  // 4 vertices of 4 floats
-    const int x0 = x + int(v[0]) * scale, y0 = y + int(v[1]) * scale;
-    const int x1 = x + int(v[8]) * scale, y1 = y + int(v[9]) * scale;
-    for (int py = std::max(y0, 0); py < std::min(y1, image.height); ++py)
-      for (int px = std::max(x0, 0); px < std::min(x1, image.width); ++px) {
-        std::uint8_t* p = image.at(px, py);
-        p[0] = rgb[0], p[1] = rgb[1], p[2] = rgb[2], p[3] = 255;
-      }
+  // Character by character, each at stb's advance of the text before it, so that 'w' can be
+  // drawn from kW.
+  std::vector<float> vertices(270 * 4 + 64);  // far more than stb's worst case for one character
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const int cx = x + text_width(text.substr(0, i), scale);
+    if (text[i] == 'w') {
+      for (int r = 0; r < kWRows; ++r)
+        for (int c = 0; kW[r][c]; ++c)
+          if (kW[r][c] == '#') fill_cell(image, cx + c * scale, y + (kWTop + r) * scale, scale, rgb);
+      continue;
+    }
+    char one[2] = {text[i], '\0'};
+    // stb_easy_font writes quads (4 vertices of x, y, z and a colour: 16 bytes), axis aligned.
+    const int quads = stb_easy_font_print(0, 0, one, nullptr, vertices.data(), int(vertices.size() * sizeof(float)));
+    for (int q = 0; q < quads; ++q) {
+      const float* v = vertices.data() + q * 16;  // 4 vertices of 4 floats
+      const int x0 = cx + int(v[0]) * scale, y0 = y + int(v[1]) * scale;
+      const int x1 = cx + int(v[8]) * scale, y1 = y + int(v[9]) * scale;
+      for (int py = std::max(y0, 0); py < std::min(y1, image.height); ++py)
+        for (int px = std::max(x0, 0); px < std::min(x1, image.width); ++px) {
+          std::uint8_t* p = image.at(px, py);
+          p[0] = rgb[0], p[1] = rgb[1], p[2] = rgb[2], p[3] = 255;
+        }
+    }
   }
   return text_width(text, scale);
 }
@@ -591,6 +617,32 @@ int draw_label(ImageRGBA8& image, int x, int y, const std::string& text) {
   fill(image, x, y, x + w, y + h, box);
   draw_text(image, x + pad, y + pad + scale, text, white, scale);
   return w;
+}
+
+std::array<std::uint8_t, 3> srgb_colour(float r, float g, float b) {
+  auto c = [](float v) { return std::uint8_t(std::lround(255.f * linear_to_srgb(std::clamp(v, 0.f, 1.f)))); };
+  return {c(r), c(g), c(b)};
+}
+
+LegendPlace draw_legend(ImageRGBA8& image, const std::vector<LegendEntry>& entries) {
+  require_valid(image, "draw_legend");
+  const int s = label_scale(image.width), pad = 2 * s, line = 9 * s, swatch = 6 * s, indent = swatch + 3 * s;
+  const std::uint8_t dark[3] = {24, 24, 24}, white[3] = {255, 255, 255};
+  int text_w = 0;
+  for (const LegendEntry& e : entries) text_w = std::max(text_w, text_width(e.text, s));
+  LegendPlace place{.width = std::min(image.width, pad + indent + text_w + pad),
+                    .height = std::min(image.height, pad + int(entries.size()) * line + pad)};
+  place.y = image.height - place.height;
+  // A key that would hide more than a quarter of the picture (a 160x90 exercise shot) hides what
+  // it explains: none.
+  if (4 * place.width * place.height > image.width * image.height) return {};
+  fill(image, 0, place.y, place.width, image.height, dark);
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    const int y = image.height - (pad + int(entries.size()) * line + pad) + pad + int(k) * line + s;
+    if (entries[k].colour) fill(image, pad, y, pad + swatch, y + swatch, entries[k].colour->data());
+    draw_text(image, pad + indent, y, entries[k].text, white, s);
+  }
+  return place;
 }
 
 DirectionKeyPlace draw_direction_key(ImageRGBA8& image, const DirectionKey& key) {

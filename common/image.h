@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -128,6 +129,22 @@ struct DirectionKeyPlace {  // where the key went: its box, and its disc's centr
   int centre_x = 0, centre_y = 0, radius = 0;
 };
 DirectionKeyPlace draw_direction_key(ImageRGBA8& image, const DirectionKey& key);
+// The key of a picture whose colours are categories (chapter 11's dropped history, chapter 06's
+// cascades, chapter 04's waste): on a dark box in the bottom-left corner, a line per entry, each
+// a swatch of its colour (display RGB; none: text alone) and what the colour means. Returns the
+// box (x, y, width, height); none (all 0) when the box would cover more than a quarter of the
+// picture, which is then left as it is.
+struct LegendEntry {
+  std::optional<std::array<std::uint8_t, 3>> colour;
+  std::string text;
+};
+struct LegendPlace {
+  int x = 0, y = 0, width = 0, height = 0;
+};
+LegendPlace draw_legend(ImageRGBA8& image, const std::vector<LegendEntry>& entries);
+// A linear colour (a shader's, written to an sRGB target) as the display colour a legend shows:
+// clamped to [0, 1], encoded, rounded.
+std::array<std::uint8_t, 3> srgb_colour(float r, float g, float b);
 // A caption over a picture: white text on a dark box, the box's top-left at (x, y); the text
 // scaled with the picture as the key's is. Returns the box's width.
 int draw_label(ImageRGBA8& image, int x, int y, const std::string& text);

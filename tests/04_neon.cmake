@@ -32,6 +32,15 @@ lightpass_program_test(04_neon.bench_prints_json 0 "\"name\":\"neon: capsule vol
   ${P04} --bench --frames 2 --size 160x90 --count 0)
 lightpass_program_test(04_neon.bad_mode 2 "unknown mode 'laser'" ${P04} --mode laser)
 lightpass_program_test(04_neon.bad_knob 2 "--samples must be between" ${P04} --samples 0)
+# --show waste carries its key (issue 29): in the bottom-left corner, on a box of grey 24, a swatch
+# per colour neon_volume.frag's SHOW_WASTE writes, through the sRGB target (6x6 px at this size):
+# green 0.2 -> (0, 124, 0), mean 41.3 steps; red 0.7 -> (218, 0, 0), 72.7; blue (0, 0.1, 0.7) ->
+# (0, 89, 218), 102.3; beside them the text saying what each means, whose white strokes light
+# 10-60 % of its rows, and the box's top row above them.
+lightpass_image_test(04_neon.waste_has_its_key "wrote" ${CMAKE_BINARY_DIR}/out/04_waste.png
+  --background 24,24,24 --region 2 143 6 6 --mean 41 42 --lit 1 1 --region 2 152 6 6 --mean 72 73
+  --region 2 161 6 6 --mean 102 103 --region 0 140 200 2 --mean 24 24 --region 11 143 200 33 --lit 0.1 0.6
+  RUN ${P04} --headless --size 320x180 --show waste --out ${CMAKE_BINARY_DIR}/out/04_waste.png)
 # Any scene loads; one without neon lights is lit by its ordinary lights alone: chapter 01's
 # scene renders as chapter 01 renders it (its per-pixel reference; the deferred path's G-buffer
 # rounding leaves 3 pixels beyond 3 steps on llvmpipe, --check allows 57).

@@ -70,4 +70,21 @@ lightpass_program_test(06_shadows.error_view_reports_pcf_near_the_soft_truth 0
 # The chapter's exercises (main.cpp's list; the book's "Exercises"): solutions pass, stubs fail,
 # and a plausible wrong answer to each (tests/exercises/wrong/06_shadows/) fails. Exercise 4's
 # answer is a number.
+# --show visibility and --show cascades carry their keys (issue 29): in the bottom-left corner, on a
+# box of grey 24, a swatch per colour show_visibility.frag writes, through the sRGB target (6x6 px
+# at this size), beside the text saying what it means (white strokes on 10-60 % of its rows; the
+# cascades' short lines 5-60 %), and the box's top row above them. Visibility: 1 -> white 255, 0.5 -> 188, 0 -> black, the sky's
+# blue (0.1, 0.15, 0.4) -> (89, 108, 170), mean 122.3. Cascades (four): the tints at full light,
+# (1, 0.3, 0.3) -> (255, 149, 149), mean 184.3; (0.3, 1, 0.3) the same mean, green; (0.35, 0.45, 1)
+# -> (160, 179, 255), 198; (1, 0.9, 0.2) -> (255, 243, 124), 207.3; then grey 0.5 -> 188.
+lightpass_image_test(06_shadows.visibility_has_its_key "wrote" ${CMAKE_BINARY_DIR}/out/06_visibility.png
+  --background 24,24,24 --region 2 143 6 6 --mean 255 255 --region 2 152 6 6 --mean 188 188
+  --region 2 161 6 6 --mean 0 0 --region 2 170 6 6 --mean 122 123 --region 0 140 180 2 --mean 24 24
+  --region 11 143 180 33 --lit 0.1 0.6
+  RUN ${P06} --headless --size 320x180 --view corner --mode pcf --show visibility --out ${CMAKE_BINARY_DIR}/out/06_visibility.png)
+lightpass_image_test(06_shadows.cascades_have_their_key "wrote" ${CMAKE_BINARY_DIR}/out/06_cascades_key.png
+  --background 24,24,24 --region 2 116 6 6 --mean 184 185 --region 2 125 6 6 --mean 184 185
+  --region 2 134 6 6 --mean 198 198 --region 2 143 6 6 --mean 207 208 --region 2 152 6 6 --mean 188 188
+  --region 0 113 180 2 --mean 24 24 --region 11 116 180 60 --lit 0.05 0.6
+  RUN ${P06} --headless --size 320x180 --mode pcf --cascades 4 --show cascades --out ${CMAKE_BINARY_DIR}/out/06_cascades_key.png)
 lightpass_exercise_tests(06_shadows 4 NUMBERS 4 WRONG 1 2 3 4)

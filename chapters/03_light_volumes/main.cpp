@@ -25,7 +25,7 @@ namespace {
 using namespace lp;
 using namespace lp::ch03;
 
-enum Show { kResult, kDiffuse, kSpecular, kVolumes, kStencilMask, kHeatShaded, kHeatLit };  // --show's order
+enum Show { kResult, kDiffuse, kSpecular, kVolumes, kStencilMask, kHeatShaded, kHeatLit, kSplit };  // --show's order
 constexpr float kHeatFullScale = 40.f;  // fragments per pixel shown white
 
 std::vector<std::string> modes() {
@@ -49,6 +49,8 @@ std::vector<Shot> references() {
   for (int show : {kDiffuse, kSpecular, kVolumes, kStencilMask, kHeatShaded, kHeatLit})
     shots.push_back({"overview", "stencil", {{"show", show}}});
   shots.push_back({"overview", "back-faces", {{"show", kHeatShaded}}});
+  shots.push_back({"street_level", "stencil", {{"show", kHeatShaded}}});
+  shots.push_back({"street_level", "stencil", {{"show", kSplit}}});  // the opening, the README's picture
   return shots;
 }
 
@@ -60,15 +62,17 @@ const lp::Chapter kChapter{
             .modes = modes(),
             .knobs = {{"lights", "local lights (0: the scene's own; more adds lights like them)", 0, 0, 100000, true},
                       choice_knob("show", "result, the L1 diffuse or L2 specular light, the volumes, one light's stencil "
-                                          "mask (--light), fragments shaded or lit per pixel",
-                                  {"result", "diffuse", "specular", "volumes", "stencil-mask", "heat-shaded", "heat-lit"}),
+                                          "mask (--light), fragments shaded or lit per pixel, or the image's left half "
+                                          "beside the fragments the volumes shaded",
+                                  {"result", "diffuse", "specular", "volumes", "stencil-mask", "heat-shaded", "heat-lit", "split"}),
                       {"light", "the light whose stencil mask --show stencil-mask draws (light order)", 0, 0, 100000, true},
                       {"far", "far plane in metres (0: the camera's own); small values cut volumes", 0, 0, 10000, false},
                       {"exposure", "the exposure the light cut is relative to", 1, 0.01, 100, false},
                       {"cut", "cut each light where it is one sRGB step at black on the brightest material (off: at 1/256 of the source)", 1, 0, 1, true},
                       {"count", "count fragments shaded and lit (atomic counters, costs a little time)", 1, 0, 1, true}},
-            // Down the street among its lamps' pools of light: the overview is mostly sky.
-            .opening = {"--view", "street_level"}},
+            // Down the street among its lamps' pools of light (the overview is mostly sky), the
+            // image beside the fragments the lights' volumes shaded: each pool a volume's cover.
+            .opening = {"--view", "street_level", "--show", "split"}},
     .references = references(),
     // [exercises]
     .exercises = {{.title = "the window that ends a light at its range",
@@ -117,6 +121,7 @@ int main(int argc, char** argv) {
     LightVolumes& volumes = frame.volumes();
     LightPrePass prepass(app.scene_gpu());
     std::unique_ptr<LightBuffer> prepass_light;
+    std::unique_ptr<OutputTarget> heat;  // --show split: the heat map's half
     std::vector<double> lights_key;
     const glm::vec3 background = ch01::kBackground, ambient = app.scene().ambient;
 
@@ -160,11 +165,29 @@ int main(int argc, char** argv) {
           else volumes.draw_stencil_mask(frame.view(), f.knob_int("light"));
         }
         // [/frame]
-        if (show == kHeatShaded || show == kHeatLit) {  // the heat map's key, in the picture
+        // The split: the heat map of fragments shaded rendered too, its right half over the image's.
+        if (show == kSplit) {
+          if (!heat || heat->width() != f.width || heat->height() != f.height)
+            heat = std::make_unique<OutputTarget>(f.width, f.height);
+          frame.render(camera, {heat->framebuffer(), f.width, f.height}, nullptr,
+                       {.show = FrameShow::HeatShaded, .heat_full_scale = kHeatFullScale});
+          glDisable(GL_FRAMEBUFFER_SRGB);  // a copy of the bytes
+          glBlitNamedFramebuffer(heat->framebuffer(), f.target, f.width / 2, 0, f.width, f.height, f.width / 2, 0,
+                                 f.width, f.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+          glEnable(GL_FRAMEBUFFER_SRGB);
+        }
+        if (show == kHeatShaded || show == kHeatLit || show == kSplit) {  // the heat map's key, in the picture
           ImageRGBA8 img = read_framebuffer(f.target, f.width, f.height);
+          const int from = show == kSplit ? f.width / 2 : 0;
+          if (show == kSplit) {
+            draw_label(img, 2, 2, "image");
+            draw_label(img, from + 2, 2, "volumes: fragments shaded");
+          }
           draw_heat_key(img, {.full_scale = kHeatFullScale,
-                              .what = show == kHeatShaded ? "fragments shaded per pixel" : "fragments lit per pixel",
-                              .stops = kHeatRamp});
+                              .what = show == kSplit     ? "fragments per pixel"  // half the width: the caption says shaded
+                                     : show == kHeatLit ? "fragments lit per pixel"
+                                                        : "fragments shaded per pixel",
+                              .stops = kHeatRamp}, from);
           put_picture(img, f.target);
         }
         app.metrics().set_allocation("G-buffer (chapter 02) + light buffer L1 + L2 RGBA16F + depth-stencil",

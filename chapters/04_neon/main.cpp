@@ -5,7 +5,9 @@
 // point, or the exact diffuse alone) into chapter 03's light buffer, where the scene's other
 // lights arrive through chapter 03's own volumes. `--forward 1` lights every fragment with
 // every tube in one forward pass instead: the same image, the yardstick of the tests.
+#include <array>
 #include <chrono>
+#include <cmath>
 #include <iostream>
 #include <memory>
 
@@ -21,6 +23,8 @@
 #include "chapters/04_neon/neon_stage.h"
 #include "common/app.h"
 #include "common/error.h"
+#include "common/image.h"
+#include "common/target.h"
 
 namespace {
 
@@ -102,6 +106,16 @@ const Chapter kChapter{.cli = kCli,
                        .scene_references = {{"assets/street_neon/street_neon.gltf", street_shots()}},
                        .exercises = exercises()};
 
+// --show waste's key: each capsule adds its colour (neon_volume.frag's SHOW_WASTE, through the
+// sRGB target), so a pixel under several capsules shows their sum.
+void draw_waste_key(ImageRGBA8& picture) {
+  const auto srgb = srgb_colour;
+  draw_legend(picture, {{srgb(0.f, 0.2f, 0.f), "a capsule whose tube lights the pixel"},
+                        {srgb(0.7f, 0.f, 0.f), "a capsule that shades it for nothing"},
+                        {srgb(0.f, 0.1f, 0.7f), "a capsule whose barn doors keep it dark"},
+                        {std::nullopt, "overlapping capsules add their colours"}});
+}
+
 NeonPicture picture_for(int show) {
   return show == kVolumes ? NeonPicture::Capsules
        : show == kMasks   ? NeonPicture::Masks
@@ -156,6 +170,11 @@ int main(int argc, char** argv) {
         forward.draw(f.camera, how, lights, tubes);
       }
       // [/frame]
+      if (deferred && f.knob_int("show") == kWaste) {
+        ImageRGBA8 picture = read_framebuffer(f.target, f.width, f.height);
+        draw_waste_key(picture);
+        put_picture(picture, f.target);
+      }
       if (deferred) app.metrics().set_allocation("G-buffer (chapter 02) + light buffer (chapter 03)", frame.allocated_bytes());
 
       const NeonCounts& c = neon.counts();

@@ -11,10 +11,13 @@
 // every point light); the other local lights keep chapter 03's path (visibility 1). The ray-traced truth that the tests
 // and the sweep measure against is shadow_truth.h.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <memory>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include <imgui.h>
 
@@ -24,6 +27,7 @@
 #include "common/target.h"
 #include "common/app.h"
 #include "common/error.h"
+#include "common/image.h"
 
 namespace {
 
@@ -154,6 +158,30 @@ std::vector<Exercise> exercises() {
 
 const Chapter kChapter{.cli = kCli, .references = atrium_shots(), .exercises = exercises()};
 
+// --show cascades' key: the tints of show_visibility.frag's SHOW_CASCADES (lit; through the sRGB
+// target), grey beyond the last cascade, the blue of the sky and of faces turned from the sun.
+void draw_cascades_key(ImageRGBA8& picture, int cascades) {
+  const auto srgb = srgb_colour;
+  const std::array<std::uint8_t, 3> tints[4] = {srgb(1.f, 0.3f, 0.3f), srgb(0.3f, 1.f, 0.3f), srgb(0.35f, 0.45f, 1.f),
+                                                srgb(1.f, 0.9f, 0.2f)};
+  std::vector<LegendEntry> key;
+  for (int i = 0; i < std::min(cascades, 4); ++i) key.push_back({tints[i], "cascade " + std::to_string(i)});
+  if (cascades > 1) key.push_back({srgb(0.5f, 0.5f, 0.5f), "beyond the last cascade"});
+  key.push_back({srgb(0.1f, 0.15f, 0.4f), "sky, or facing away from the sun"});
+  key.push_back({std::nullopt, "darker: in shadow (30 % in full)"});
+  draw_legend(picture, key);
+}
+
+// --show visibility's key: show_visibility.frag writes the sun's visibility as grey (through the
+// sRGB target) and the blue of the sky and of faces turned from the sun.
+void draw_visibility_key(ImageRGBA8& picture) {
+  const auto srgb = srgb_colour;
+  draw_legend(picture, {{srgb(1.f, 1.f, 1.f), "lit by the sun (visibility 1)"},
+                        {srgb(0.5f, 0.5f, 0.5f), "half lit (0.5: a penumbra)"},
+                        {srgb(0.f, 0.f, 0.f), "black: in the sun's shadow (0)"},
+                        {srgb(0.1f, 0.15f, 0.4f), "sky, or facing away from the sun"}});
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -246,6 +274,12 @@ int main(int argc, char** argv) {
                                                 : ShadowPicture::None);
       frame.render(f.camera, {f.target, f.width, f.height}, &app.metrics());
       // [/settings]
+      if (show == kCascades || show == kVisibility) {
+        ImageRGBA8 picture = read_framebuffer(f.target, f.width, f.height);
+        if (show == kCascades) draw_cascades_key(picture, settings.cascades);
+        else draw_visibility_key(picture);
+        put_picture(picture, f.target);
+      }
       // [truth-view]
       if (show >= kTruth && show <= kError) {
         // The truth for this camera and size: traced once per view (cached on disk headless).

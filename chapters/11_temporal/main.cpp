@@ -146,21 +146,10 @@ ImageRGBA8 read_motion_picture(GLuint motion, int w, int h) {
   return out;
 }
 
-// --show rejected's key, in the bottom-left corner: on a dark box, a red swatch and what red
-// means, and under it what the rest of the picture is.
+// --show rejected's key: what red is, and what the rest of the picture is.
 void draw_rejected_key(ImageRGBA8& image) {
-  const int s = label_scale(image.width), pad = 2 * s, line = 9 * s, swatch = 6 * s, indent = swatch + 3 * s;
-  const std::string dropped = "history dropped (off screen or disoccluded)", kept = "elsewhere: the image at a third";
-  const std::uint8_t red[3] = {255, 0, 0}, dark[3] = {24, 24, 24}, white[3] = {255, 255, 255};
-  const int w = pad + indent + std::max(text_width(dropped, s), text_width(kept, s)) + pad;
-  const int y0 = image.height - (pad + 2 * line + pad);
-  for (int y = std::max(0, y0); y < image.height; ++y)
-    for (int x = 0; x < std::min(w, image.width); ++x) {
-      const bool in_swatch = y >= y0 + pad + s && y < y0 + pad + s + swatch && x >= pad && x < pad + swatch;
-      std::copy_n(in_swatch ? red : dark, 3, image.at(x, y));
-    }
-  draw_text(image, pad + indent, y0 + pad + s, dropped, white, s);
-  draw_text(image, pad + indent, y0 + pad + line + s, kept, white, s);
+  draw_legend(image, {{std::array<std::uint8_t, 3>{255, 0, 0}, "history dropped (off screen or disoccluded)"},
+                      {std::nullopt, "elsewhere: the image at a third"}});
 }
 
 // --show rejected: the image darkened, the pixels whose history was dropped red, and its key.

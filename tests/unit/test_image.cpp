@@ -570,6 +570,51 @@ TEST(HeatKey, TextIsDrawnAndClipped) {
   EXPECT_THROW(lp::draw_heat_key(image, {.full_scale = 0}), lp::Error);
 }
 
+// stb_easy_font's own 'w' joins its middle stroke only in the bottom two rows, so at scale 1 a
+// 'w' reads as a 'u' (chapter 02's "forward" caption read "foruard"). A 'w' reads as one when its
+// middle stroke rises at least three of the five rows of the x-height, apart from the sides.
+TEST(HeatKey, TheLetterWHasAMiddleStrokeAUDoesNot) {
+  const std::uint8_t white[3] = {255, 255, 255};
+  auto middle_rows = [&](const std::string& letter) {
+    lp::ImageRGBA8 image = lp::ImageRGBA8::blank(16, 12);
+    lp::draw_text(image, 0, 0, letter, white);
+    int left = 16, right = -1;  // the glyph's columns
+    for (int y = 0; y < 12; ++y)
+      for (int x = 0; x < 16; ++x)
+        if (image.at(x, y)[0] == 255) left = std::min(left, x), right = std::max(right, x);
+    const int middle = (left + right) / 2;
+    int rows = 0;  // rows lit in the middle column with a dark pixel either side of it
+    for (int y = 0; y < 12; ++y)
+      rows += image.at(middle, y)[0] == 255 && image.at(middle - 1, y)[0] == 0 && image.at(middle + 1, y)[0] == 0;
+    return rows;
+  };
+  EXPECT_GE(middle_rows("w"), 3) << "the 'w' reads as a 'u'";
+  EXPECT_EQ(middle_rows("u"), 0);
+  EXPECT_EQ(lp::text_width("forward"), lp::text_width("for") + lp::text_width("w") + lp::text_width("ard"));
+}
+
+// A legend: a dark box in the bottom-left corner with a swatch per entry; on a picture where the
+// box would hide more than a quarter of it, nothing.
+TEST(Legend, DrawnInTheCornerOrNotAtAllOnASmallPicture) {
+  const std::vector<lp::LegendEntry> key = {{std::array<std::uint8_t, 3>{255, 0, 0}, "history dropped (off screen)"},
+                                            {std::nullopt, "elsewhere: the image at a third"}};
+  lp::ImageRGBA8 large = lp::ImageRGBA8::blank(320, 180);
+  const lp::LegendPlace p = lp::draw_legend(large, key);
+  EXPECT_EQ(p.x, 0);
+  EXPECT_EQ(p.y + p.height, 180);
+  EXPECT_GT(p.width, lp::text_width("elsewhere: the image at a third"));
+  EXPECT_EQ(large.at(p.x + 1, p.y)[0], 24) << "no dark box";
+  EXPECT_EQ(large.at(4, p.y + 4)[0], 255) << "no red swatch";
+  EXPECT_EQ(large.at(4, p.y + 4)[1], 0);
+  EXPECT_EQ(large.at(p.width, p.y)[3], 0) << "drawn outside its box";
+  lp::ImageRGBA8 small = lp::ImageRGBA8::blank(160, 90);  // four lines: 160x40 of 160x90
+  std::vector<lp::LegendEntry> longer = key;
+  longer.insert(longer.end(), key.begin(), key.end());
+  const lp::LegendPlace none = lp::draw_legend(small, longer);
+  EXPECT_EQ(none.width * none.height, 0);
+  EXPECT_TRUE(std::all_of(small.pixels.begin(), small.pixels.end(), [](std::uint8_t v) { return v == 0; }));
+}
+
 // The direction key: a disc in the bottom-right corner whose points have the picture's colour of
 // the vector from its centre (x right, y down; the rim at full scale), the rim's length written
 // beside it (another scale, another number), and nothing else of the picture touched.
