@@ -51,6 +51,13 @@ TemporalSettings defaults() {
   return s;
 }
 
+// The first frame after frame 0 at which the path cuts (path.frames() when it never does).
+int first_cut(const CameraPath& path) {
+  int cut = 1;
+  while (cut < path.frames() && !path.cut_at(cut)) ++cut;
+  return cut;
+}
+
 int max_step(const ImageRGBA8& a, const ImageRGBA8& b) {
   int m = 0;
   for (std::size_t i = 0; i < a.pixels.size(); ++i) m = std::max(m, std::abs(int(a.pixels[i]) - int(b.pixels[i])));
@@ -149,8 +156,7 @@ TEST(TemporalGl, ReprojectionOfAStillCameraIsTheIdentity) {
 // trip in float).
 TEST(TemporalGl, ACutStartsTheHistoryAgain) {
   const CameraPath& path = path_named("assets/street_shop/street_shop.gltf", "cut");
-  int cut = 1;
-  while (cut < path.frames() && !path.cut_at(cut)) ++cut;
+  const int cut = first_cut(path);
   ASSERT_LT(cut, path.frames());
   TemporalSettings s = defaults();
   s.taa.reject_disocclusion = false;
@@ -560,8 +566,7 @@ std::pair<float, float> history_frames(const TemporalFrame& frame) {
 // light buffer, which the whole frame's other stages change).
 TEST(TemporalGl, TheWholeFramesAccumulatedAoIsTheTemporalStagesOwn) {
   const CameraPath& path = path_named("assets/street_shop/street_shop.gltf", "cut");
-  int cut = 1;
-  while (cut < path.frames() && !path.cut_at(cut)) ++cut;
+  const int cut = first_cut(path);
   ASSERT_LT(cut + 2, path.frames());
   TemporalSettings s = defaults();
   s.taa.enabled = false;
@@ -593,8 +598,7 @@ TEST(TemporalGl, TheWholeFramesAccumulatedAoIsTheTemporalStagesOwn) {
 // nothing accumulated; chapter 05's eye and light cut start again at a cut in both), bit for bit.
 TEST(TemporalGl, ACutStartsTheAccumulatedAoAndIndirectLightAgain) {
   const CameraPath& path = path_named("assets/street_shop/street_shop.gltf", "cut");
-  int cut = 1;
-  while (cut < path.frames() && !path.cut_at(cut)) ++cut;
+  const int cut = first_cut(path);
   ASSERT_LT(cut, path.frames());
   ASSERT_GE(cut, 4);
   TemporalSettings s = defaults();
@@ -1012,8 +1016,7 @@ TEST(TemporalGl, StillAccumulatedPcssOfEightPartsIsTheWholeDiskWhereTheRadiiAgre
 // bit for bit; before the cut the history held the frames since the path's start.
 TEST(TemporalGl, ACutStartsTheAccumulatedShadowAgain) {
   const CameraPath& path = path_named("assets/street_shop/street_shop.gltf", "cut");
-  int cut = 1;
-  while (cut < path.frames() && !path.cut_at(cut)) ++cut;
+  const int cut = first_cut(path);
   ASSERT_LT(cut, path.frames());
   ASSERT_GE(cut, 4);
   TemporalSettings s = defaults();
