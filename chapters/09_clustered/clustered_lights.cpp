@@ -220,6 +220,7 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
         if (settings_.subgroups != SubgroupUse::Off && usable) {
           d.push_back("SUBGROUP_LISTS 1");
           d.push_back(support == "KHR_shader_subgroup" ? "SUBGROUP_KHR 1" : "SUBGROUP_ARB 1");
+          if (settings_.subgroup_merge) d.push_back("SUBGROUP_MERGE 1");
         }
       }
       const ShaderProgram& p = program(GL_COMPUTE_SHADER, staged ? "09_clustered/shaders/shade_staged.comp"
@@ -521,7 +522,7 @@ void ClusteredLights::bind_for_forward(const ShaderProgram& program, const Frame
 
 EvalCounts ClusteredLights::counts() const {
   const std::vector<std::uint64_t> c = counters_.read();
-  return {c[0], c[1], c[2], c[3]};
+  return {c[0], c[1], c[2], c[3], c[4]};
 }
 
 std::vector<glm::uvec2> ClusteredLights::cell_lists() const {

@@ -62,6 +62,11 @@ struct ClusterSettings {
   // the sweep ask for it); Off: the per-invocation loop everywhere (the fallback). The same
   // image either way.
   SubgroupUse subgroups = SubgroupUse::Native;
+  // With the subgroup path: where a subgroup's invocations have different lists (clusters of
+  // different depths), walk them together, a light at a time, each light's record read once for
+  // the invocations that list it (scalarised; shade.glsl's subgroup-merge). Off: those
+  // subgroups take the per-invocation loop. The same image either way.
+  bool subgroup_merge = false;
 };
 // The seven ways of the program's --mode, beside chapter 03's: "tiled", "tiled-2.5d" (with the
 // depth mask), "tiled-fragment", "tiled-staged" (the tile's lights staged in shared memory,
@@ -103,6 +108,7 @@ struct EvalCounts {
   std::uint64_t lit = 0;        // of those, the ones where the light added anything
   std::uint64_t surface = 0;    // pixels shaded (not sky): lit / surface is the density
   std::uint64_t shared = 0;     // of those, shaded from a list their whole subgroup shared (read once)
+  std::uint64_t merged = 0;     // of those, shaded by the walk over their subgroup's different lists
   double density() const { return surface ? double(lit) / double(surface) : 0.0; }
   double evaluated_per_lit() const { return lit ? double(evaluated) / double(lit) : 0.0; }
 };
@@ -240,7 +246,7 @@ class ClusteredLights : public ch03::LocalLightPass {
   };
   std::array<PendingState, 4> pending_;
   std::uint64_t frame_ = 0;
-  ch03::FragmentCounters counters_{4};
+  ch03::FragmentCounters counters_{5};
   std::string subgroup_path_, support_;
   bool support_known_ = false;
   ch02::FullScreenPass full_screen_;

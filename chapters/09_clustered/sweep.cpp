@@ -133,6 +133,11 @@ std::vector<Method> subgroup_methods(const ch09::ClusterSettings& base) {
     Method shared{mode, "subgroups", ch09::settings_for_mode(mode, base)};
     shared.settings.subgroups = ch09::SubgroupUse::Any;  // ARB's ballot too, where that is all there is
     m.push_back(shared);
+    if (mode == "clustered") {  // a cluster's subgroups may hold different lists: walked together
+      Method merged{mode, "subgroups+merge", shared.settings};
+      merged.settings.subgroup_merge = true;
+      m.push_back(merged);
+    }
   }
   return m;
 }
@@ -269,7 +274,7 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
           options.warmup = {.block_frames = 2, .block_seconds = 0.05, .min_seconds = 0.1, .tolerance = 0.03, .max_seconds = 2};
           const Measurement t = measure(metrics, [&] { render(view, pass, &metrics); }, options);
           if (s.subgroups) {  // the path taken, and the last timed frame's buffers against the fallback's
-            grid = methods[mi].grid == "fallback" ? "fallback" : "subgroups " + pass.subgroup_path();
+            grid = methods[mi].grid == "fallback" ? "fallback" : methods[mi].grid + " " + pass.subgroup_path();
             std::vector<std::uint16_t> buffers = light_buffers(frame, s.width, s.height);
             const std::string key = method + "|" + view.name;
             if (methods[mi].grid == "fallback") {
@@ -285,7 +290,7 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
               std::cout << "  " << method << ", " << view.name << ": " << grid << " against the fallback: "
                         << (same ? "identical" : "DIFFERENT") << " (" << differ << " half floats differ, lit " << c.lit
                         << " / " << f.lit << ", evaluated " << c.evaluated << " / " << f.evaluated << "; " << c.shared
-                        << " of " << c.surface << " pixels from a shared list)" << std::endl;
+                        << " of " << c.surface << " pixels from a shared list, " << c.merged << " by the merged walk)" << std::endl;
               if (!same) differences.push_back(method + " at " + std::to_string(n) + " lights, " + view.name);
             }
           }

@@ -379,6 +379,40 @@ TEST_F(ClusteredGl, ASharedListReadOnceForTheSubgroupChangesNoPixel) {
   }
 }
 
+// Clusters of different depths in one subgroup (an edge, a step in depth) have different lists:
+// with the merged walk (shade.glsl's subgroup-merge) the subgroup walks them together, a light at
+// a time, and each invocation still adds its own lights in its list's order, so the light
+// buffers equal the fallback's bit for bit and the counts exactly. Every pixel is shaded either
+// from a shared list or by the walk, and some by the walk (the street at 160 x 90 has clusters
+// of several depths in many 8 x 8 groups).
+TEST_F(ClusteredGl, ListsThatDifferWalkedTogetherChangeNoPixel) {
+  const std::string support = subgroup_support();
+  if (support.empty()) GTEST_SKIP() << "no subgroup operations on this driver";
+  World& w = street();
+  set_lights(w, 2000);
+  const int width = 160, height = 90;
+  const FrameCamera cam = camera(w, "street_level", width, height);
+  ClusterSettings off = settings_for_mode("clustered");
+  off.subgroups = SubgroupUse::Off;
+  ClusteredLights fallback(w.frame_.volumes(), off);
+  const Render a = render(w, cam, width, height, &fallback, false);
+  ASSERT_GT(a.counts.lit, 1000u);
+  ClusterSettings merge = settings_for_mode("clustered");
+  merge.subgroups = SubgroupUse::Any;
+  merge.subgroup_merge = true;
+  ClusteredLights walked(w.frame_.volumes(), merge);
+  const Render c = render(w, cam, width, height, &walked, false);
+  EXPECT_EQ(walked.subgroup_path(), support);
+  EXPECT_EQ(c.counts.lit, a.counts.lit);
+  EXPECT_EQ(c.counts.evaluated, a.counts.evaluated);
+  EXPECT_EQ(c.counts.surface, a.counts.surface);
+  EXPECT_TRUE(c.l1 == a.l1 && c.l2 == a.l2) << "the light buffers differ";
+  EXPECT_GT(c.counts.merged, 0u) << "no subgroup walked different lists";
+  EXPECT_EQ(c.counts.shared + c.counts.merged, c.counts.surface) << "a pixel neither shared a list nor walked";
+  std::printf("%llu of %llu pixels from a shared list, %llu by the merged walk\n", (unsigned long long)c.counts.shared,
+              (unsigned long long)c.counts.surface, (unsigned long long)c.counts.merged);
+}
+
 // The index list is compacted: the cells' lists tile [0, total) without gap or overlap, each
 // in ascending light order (the order chapter 03 adds them in), and every entry names a light.
 TEST_F(ClusteredGl, ListsAreCompactedAndInLightOrder) {

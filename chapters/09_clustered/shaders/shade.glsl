@@ -13,7 +13,7 @@
 #endif
 #ifdef COUNT_FRAGMENTS
 #include "03_light_volumes/shaders/fragment_counters.glsl"
-const uint kCountEvaluated = 0u, kCountLit = 1u, kCountSurface = 2u, kCountShared = 3u;
+const uint kCountEvaluated = 0u, kCountLit = 1u, kCountSurface = 2u, kCountShared = 3u, kCountMerged = 4u;
 // fragment_counters.glsl's count_fragment() adds 1; a pixel adds its whole count at once.
 void count_add(uint counter, uint n) {
   if (n == 0u) return;
@@ -160,6 +160,20 @@ void add_shared_light(Surface s, vec3 to_eye, uvec2 list, uint k, inout vec3 dif
   int i = int(subgroup_first(light_of(list, k)));
   add_lamp(s, to_eye, i, cluster_lights[i], cone_of(i), diffuse, specular, lit);
 }
+#ifdef SUBGROUP_MERGE
+// One round of the walk over lists that differ (below): the invocations still walking agree on
+// the light the first of them is at; those at it add it and step on (the first always does).
+void merge_round(Surface s, vec3 to_eye, uvec2 list, inout uint at, inout vec3 diffuse, inout vec3 specular,
+                 inout uint lit) {
+  if (at >= list.y) return;
+  uint mine = light_of(list, at);
+  uint taken = subgroup_first(mine);
+  if (mine != taken) return;
+  int i = int(taken);
+  add_lamp(s, to_eye, i, cluster_lights[i], cone_of(i), diffuse, specular, lit);
+  ++at;
+}
+#endif
 #endif
 
 // [shade-pixel]
@@ -226,6 +240,29 @@ void shade_surface(Surface s, ivec2 pixel, out vec3 diffuse, out vec3 specular, 
     return;
   }
   // [/subgroup-loop]
+#ifdef SUBGROUP_MERGE
+  // [subgroup-merge]
+  // Lists that differ within the subgroup, walked together (scalarised): each round takes the
+  // light that the first invocation still walking is at; the invocations whose list holds it
+  // add it (its index and record one value for them all) and step on. Each invocation still
+  // adds its own lights in its list's order, so its sums are the loop's below, bit for bit.
+  // Four rounds an iteration, for llvmpipe's loop limit.
+  uint at = 0u;
+  while (at < list.y) {
+    merge_round(s, to_eye, list, at, diffuse, specular, lit);
+    merge_round(s, to_eye, list, at, diffuse, specular, lit);
+    merge_round(s, to_eye, list, at, diffuse, specular, lit);
+    merge_round(s, to_eye, list, at, diffuse, specular, lit);
+  }
+  for (; at < listed; ++at) add_tube(s, to_eye, cluster_lights[light_of(list, at)], diffuse, specular, lit);  // then the tubes
+  evaluated = listed;
+  count_pixel(evaluated, lit);
+#ifdef COUNT_FRAGMENTS
+  count_add(kCountMerged, 1u);
+#endif
+  return;
+  // [/subgroup-merge]
+#endif
 #endif
   // [shade-loop]
   // Four lights an iteration: llvmpipe ends a shader's loops after 65 535 iterations in all
