@@ -64,6 +64,14 @@ ImageRGBA8 to_srgb8(const ImageF& linear);
 struct CompareOptions {
   int threshold = 3;
   double max_failing_fraction = 0.001;
+  // A rasterised edge that another implementation put one pixel over: OpenGL leaves the
+  // sub-pixel precision and the rule for a pixel centre exactly on an edge to the
+  // implementation, so on another renderer an edge may land on the neighbouring pixel (a whole
+  // row of them along an edge parallel to the pixel grid). With edge_radius > 0 a failing pixel
+  // is excused when the expected image holds its colour (within threshold) at most edge_radius
+  // pixels away: one for an image at its own size, the magnification for a magnified one.
+  // Excused pixels are counted apart (moved_edge_pixels). 0: every difference counts.
+  int edge_radius = 0;
 };
 
 struct CompareResult {
@@ -75,6 +83,7 @@ struct CompareResult {
   double psnr_db = 0;  // over the RGB values, peak 255; +infinity when identical
   double failing_fraction = 0;
   std::size_t failing_pixels = 0;
+  std::size_t moved_edge_pixels = 0;  // over the threshold but excused by edge_radius (not in failing_*)
   bool passed = false;
   CompareOptions options;  // what the verdict was judged against, for summary()
 

@@ -46,11 +46,13 @@ std::vector<Shot> references() {
   shots.push_back({"overview", "stencil"});
   shots.push_back({"street_level", "light-prepass"});
   shots.push_back({"street_level", "light-prepass-chroma"});
-  for (int show : {kDiffuse, kSpecular, kVolumes, kStencilMask, kHeatShaded, kHeatLit})
+  // The heat maps count fragments per pixel: on another renderer a volume's edge may move.
+  for (int show : {kDiffuse, kSpecular, kVolumes, kStencilMask})
     shots.push_back({"overview", "stencil", {{"show", show}}});
-  shots.push_back({"overview", "back-faces", {{"show", kHeatShaded}}});
-  shots.push_back({"street_level", "stencil", {{"show", kHeatShaded}}});
-  shots.push_back({"street_level", "stencil", {{"show", kSplit}}});  // the opening, the README's picture
+  for (int show : {kHeatShaded, kHeatLit}) shots.push_back({"overview", "stencil", {{"show", show}}, {}, kMovedEdgeAllowance});
+  shots.push_back({"overview", "back-faces", {{"show", kHeatShaded}}, {}, kMovedEdgeAllowance});
+  shots.push_back({"street_level", "stencil", {{"show", kHeatShaded}}, {}, kMovedEdgeAllowance});
+  shots.push_back({"street_level", "stencil", {{"show", kSplit}}, {}, kMovedEdgeAllowance});  // the opening, the README's picture
   return shots;
 }
 

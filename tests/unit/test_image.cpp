@@ -119,6 +119,35 @@ TEST(Compare, ChangeWithinThresholdDoesNotFail) {
   EXPECT_TRUE(std::isfinite(r.psnr_db));
 }
 
+// An edge one pixel over (a dark half-plane whose boundary moved by a row) is excused with
+// edge_radius 1, counted apart; a colour the expected image has nowhere near is not, nor is a
+// row moved by two with radius 1.
+TEST(Compare, AnEdgeMovedByOnePixelIsExcusedWithinTheRadiusAlone) {
+  auto edge_at = [](int row) {
+    auto image = grey_image(40, 40, 200);
+    for (int y = row; y < 40; ++y)
+      for (int x = 0; x < 40; ++x) image.at(x, y)[0] = image.at(x, y)[1] = image.at(x, y)[2] = 20;
+    return image;
+  };
+  const auto expected = edge_at(20);
+  const lp::CompareOptions strict{.threshold = 3, .max_failing_fraction = 0}, moved{.threshold = 3, .max_failing_fraction = 0, .edge_radius = 1};
+  const auto plain = lp::compare(edge_at(19), expected, strict);
+  EXPECT_EQ(plain.failing_pixels, 40u);
+  const auto one = lp::compare(edge_at(19), expected, moved);
+  EXPECT_EQ(one.failing_pixels, 0u);
+  EXPECT_EQ(one.moved_edge_pixels, 40u);
+  EXPECT_TRUE(one.passed);
+  EXPECT_NE(one.summary().find("40 px excused as an edge moved by at most 1 px"), std::string::npos) << one.summary();
+  const auto two = lp::compare(edge_at(18), expected, moved);
+  EXPECT_EQ(two.failing_pixels, 40u) << "the row two pixels away from the edge is not a moved edge";
+  EXPECT_EQ(two.moved_edge_pixels, 40u);
+  auto foreign = expected;
+  foreign.at(5, 5)[0] = 90;  // a colour found nowhere in the expected image
+  const auto f = lp::compare(foreign, expected, moved);
+  EXPECT_EQ(f.failing_pixels, 1u);
+  EXPECT_EQ(f.moved_edge_pixels, 0u);
+}
+
 TEST(Compare, AlphaIsIgnored) {
   const auto expected = grey_image(8, 8, 50);
   auto actual = expected;
