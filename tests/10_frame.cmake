@@ -26,6 +26,7 @@ lightpass_image_test(10_frame.error_map_has_its_key "wboit against the exact ord
 lightpass_program_test(10_frame.bench_prints_the_wboit_passes 0 "\"name\":\"transparency: WBOIT composite\""
   ${P10} --bench --mode frame --scene ${GLASS} --frames 2 --size 160x90 --transparency wboit)
 lightpass_program_test(10_frame.bad_transparency 2 "transparency" ${P10} --transparency painter)
+lightpass_program_test(10_frame.bad_global 2 "global" ${P10} --global vertex)
 # A scene without glass is chapter 03's frame, bit for bit up to its reference's tolerance: the
 # stage draws nothing (chapter 03's stencil reference of the street).
 lightpass_image_test(10_frame.scene_without_glass_renders_as_chapter_03 "0 transparent surfaces" ${CMAKE_BINARY_DIR}/out/10_street.png
@@ -95,7 +96,7 @@ lightpass_image_test(10_frame.window_keeps_its_scene_when_the_new_one_fails
 # map (not the knob's above it; at one frame a second, the cursor gone before the next frame)
 # turns the stage off. AO and indirect light are off to keep llvmpipe's frames short.
 add_test(NAME 10_frame.window_plan_box_switches_its_stage
-  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_click.sh ${P10} 1280x720 27 537 "^panel: --shadows 0$" --ao 0 --indirect 0)
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/window_click.sh ${P10} 1280x720 27 560 "^panel: --shadows 0$" --ao 0 --indirect 0)
 set_tests_properties(10_frame.window_plan_box_switches_its_stage PROPERTIES TIMEOUT 600)
 # MSAA with deferred shading (chapters/10_frame/msaa.h): the cross-checks, the edges of a scene
 # known to the pixel, the exact fragment count and the tonemap order at a bright edge.

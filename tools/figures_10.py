@@ -9,7 +9,7 @@ and the whole frame's figures.
                                                                  JSON (one per scene and culling) as a CSV
 
 The budget's JSONs come from the GPU machine (`10_frame --bench --mode whole --size 1920x1080
---scene ... --clustered 0|1 --tubes volumes|clusters`); the CSV names the renderer and size of each.
+--scene ... --clustered 0|1 --tubes volumes|clusters --global compute|fragment`); the CSV names the renderer and size of each.
 """
 import csv
 import json
@@ -174,8 +174,10 @@ def budget_csv(out: Path, jsons):
         # tubes: where the tubes' light is shaded, in the clusters' pass (--tubes clusters, the default)
         # or as chapter 04's capsule volumes (--tubes volumes, and every run over the stencil volumes)
         # sun_cascades: the sun's maps (--sun-cascades; 1 in every JSON from before the knob, its default then)
-        w.writerow(["scene", "culling", "gi", "order", "pass", "ms", "total_ms", "cpu_ms", "tubes", "sun_cascades", "renderer",
-                    "width", "height", "frames"])
+        # global: chapter 03's global pass in compute (--global compute, the default) or as its fragment pass
+        # (--global fragment, and every JSON from before the knob)
+        w.writerow(["scene", "culling", "gi", "order", "pass", "ms", "total_ms", "cpu_ms", "tubes", "sun_cascades", "global",
+                    "renderer", "width", "height", "frames"])
         for path in jsons:
             b = json.load(open(path))
             scene = Path(b["scene"]).stem
@@ -188,10 +190,11 @@ def budget_csv(out: Path, jsons):
             ao, indirect = float(knobs.get("ao", 1)), float(knobs.get("indirect", 1))
             gi = "ao+indirect" if indirect else "ao" if ao else "none"
             cascades = int(float(knobs.get("sun-cascades", 1)))
+            global_pass = "compute" if "global" in knobs and float(knobs["global"]) == 0 else "fragment"
             for i, p in enumerate(b["passes"]):
                 cpu = f"{b['cpu_ms']:.6g}" if "cpu_ms" in b else ""  # JSONs from before it was measured
                 w.writerow([scene, culling, gi, i, p["name"], f"{p['mean_ms']:.6g}", f"{b['total_ms']:.6g}", cpu, tubes,
-                            cascades, b["renderer"], b["width"], b["height"], b["frames"]])
+                            cascades, global_pass, b["renderer"], b["width"], b["height"], b["frames"]])
 
 
 def budget_plot(d: Path, csv_path: Path, out: Path):
@@ -200,7 +203,7 @@ def budget_plot(d: Path, csv_path: Path, out: Path):
     note = open(csv_path).readline().lstrip("# ").strip()
     bars = []
     for r in rows:
-        key = (r["scene"], r["culling"], r.get("gi", ""))
+        key = (r["scene"], r["culling"], r.get("gi", ""), r.get("global", "fragment"))
         if not bars or bars[-1][0] != key:
             bars.append((key, [], r.get("cpu_ms") or ""))
         bars[-1][1].append((r["pass"], float(r["ms"])))
@@ -213,15 +216,19 @@ def budget_plot(d: Path, csv_path: Path, out: Path):
     colours = ["#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f", "#edc948", "#b07aa1", "#ff9da7", "#9c755f",
                "#bab0ac", "#1f77b4", "#8c564b"]
     width, left, top, bar_h, gap = 960, 260, 50, 26, 14
+    if any(key[3] == "compute" for key, _, _ in bars):
+        left = 380  # room for the longer labels
     longest = max(sum(ms for _, ms in parts) for _, parts, _ in bars)
     scale = (width - left - 80) / longest
     height = top + len(bars) * (bar_h + gap) + 30 + 18 * ((len(names) + 3) // 4)
     svg = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" font-family="sans-serif" font-size="12">',
            f'<text x="10" y="20" font-size="15">The frame budget: GPU time per pass</text>',
            f'<text x="10" y="38" fill="#555">{esc(note)}</text>']
-    for i, ((scene, culling, gi), parts, cpu) in enumerate(bars):
+    for i, ((scene, culling, gi, global_pass), parts, cpu) in enumerate(bars):
         y = top + i * (bar_h + gap)
-        svg.append(f'<text x="{left - 6}" y="{y + bar_h * 0.65}" text-anchor="end">{esc(scene)}, {esc(culling)}, {esc(gi)}</text>')
+        # the global pass's way is named only where a bar ran it in compute (the fragment pass: chapter 03's own)
+        way = ", global in compute" if global_pass == "compute" else ""
+        svg.append(f'<text x="{left - 6}" y="{y + bar_h * 0.65}" text-anchor="end">{esc(scene)}, {esc(culling)}, {esc(gi)}{way}</text>')
         x = left
         for n, ms in parts:
             w = ms * scale

@@ -118,7 +118,7 @@ void DeferredFrame::render(const FrameCamera& camera, const FrameOutput& output,
     light_->clear();
   } else {
     auto pass = timed(metrics, "global: ambient + directional (chapter 03)");
-    volumes_.draw_global(*light_, view_, ambient_);
+    volumes_.draw_global(*light_, view_, ambient_, global_);
   }
   if (settings.scene_lights) {
     const LightVolumes::Output out = settings.show == FrameShow::HeatShaded ? LightVolumes::Output::HeatShaded

@@ -162,6 +162,10 @@ class DeferredFrame {
   const LightVolumes& volumes() const { return volumes_; }
   void set_strategy(Strategy strategy);             // which of chapter 03's culling strategies
   void set_local_lights(LocalLightPass* pass);      // another chapter's; nullptr: chapter 03's again
+  // The global pass as a fragment pass (chapter 03's default) or in compute: the same light
+  // buffer bit for bit (GlobalPass, light_volumes.h); chapter 10's whole frame runs compute.
+  void set_global_pass(GlobalPass how) { global_ = how; }
+  GlobalPass global_pass() const { return global_; }
   // Called in the order added; gives the stage its texture units and blocks (StageSlots).
   void add_stage(FrameStage& stage);
   // Binds every stage's hook resources: for a pass outside render() that includes the hooks
@@ -204,6 +208,7 @@ class DeferredFrame {
   LightVolumes volumes_;
   VolumeLights volume_lights_;
   LocalLightPass* local_ = &volume_lights_;
+  GlobalPass global_ = GlobalPass::Fragment;
   std::vector<FrameStage*> stages_;
   StageSlots next_slots_{kFirstStageUnit, kFirstStageBlock};
   std::unique_ptr<ch02::GBuffer> gbuffer_;

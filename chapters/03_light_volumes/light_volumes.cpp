@@ -129,6 +129,12 @@ Strategy strategy_named(const std::string& name) {
   throw Error("unknown light-volume strategy '" + name + "'");
 }
 
+GlobalPass global_pass_named(const std::string& name) {
+  for (std::size_t i = 0; i < kGlobalPasses.size(); ++i)
+    if (kGlobalPasses[i] == name) return static_cast<GlobalPass>(i);
+  throw Error("unknown global pass '" + name + "' (fragment or compute)");
+}
+
 std::vector<std::string> ShaderHooks::glsl_defines() const {
   std::vector<std::string> all = {"FRAME_VISIBILITY \"" + visibility + "\"", "FRAME_AMBIENT \"" + ambient + "\""};
   all.insert(all.end(), defines.begin(), defines.end());
@@ -189,6 +195,13 @@ void LightBuffer::bind_textures() const {
 }
 
 std::vector<std::string> LightBuffer::shader_defines() { return {"LIGHT_BUFFER_UNIT " + std::to_string(kFirstUnit)}; }
+
+void LightBuffer::bind_images(GLenum access) const {
+  glBindImageTexture(kFirstImage + 0, diffuse_.id(), 0, GL_FALSE, 0, access, GL_RGBA16F);
+  if (kind_ == Kind::DiffuseAndSpecular) glBindImageTexture(kFirstImage + 1, specular_.id(), 0, GL_FALSE, 0, access, GL_RGBA16F);
+}
+
+std::vector<std::string> LightBuffer::image_defines() { return {"LIGHT_BUFFER_IMAGE " + std::to_string(kFirstImage)}; }
 
 void LightBuffer::clear() const {
   const float zero[4] = {0, 0, 0, 0};
@@ -278,6 +291,15 @@ const ShaderProgram& LightVolumes::program(const std::string& fragment, const Su
   return programs_.get({{GL_VERTEX_SHADER, vertex}, {GL_FRAGMENT_SHADER, fragment}}, defines);
 }
 
+const ShaderProgram& LightVolumes::compute_program(const std::string& compute, const SurfaceView& view,
+                                                   std::vector<std::string> extra) {
+  std::vector<std::string> defines = view.defines;
+  const std::vector<std::string> hooks = view.hooks.glsl_defines();
+  defines.insert(defines.end(), hooks.begin(), hooks.end());
+  defines.insert(defines.end(), extra.begin(), extra.end());
+  return programs_.get({{GL_COMPUTE_SHADER, compute}}, defines);
+}
+
 void LightVolumes::set_lights(LightSet lights) {
   lights_ = std::move(lights);
   points_ = gl::make_buffer(lights_.points.data(), lights_.points.size() * sizeof(PointInstance));
@@ -343,10 +365,10 @@ bool LightVolumes::camera_inside(const Group& g, int i, const glm::vec3& eye) co
   return g.mesh->contains(local, 0.01f);  // (near the surface counts as inside: always safe)
 }
 
-void LightVolumes::draw_global(const LightBuffer& target, const SurfaceView& view, const glm::vec3& ambient) {
+void LightVolumes::draw_global(const LightBuffer& target, const SurfaceView& view, const glm::vec3& ambient, GlobalPass how) {
   std::vector<std::string> extra = {};
   if (target.kind() == LightBuffer::Kind::PrePass) extra.push_back("LIGHT_PREPASS 1");
-  const ShaderProgram& p = program("03_light_volumes/shaders/global.frag", view, extra, false);
+  // Both leave the same state behind: the light buffer bound, no depth test, no blending.
   target.bind();
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
@@ -355,11 +377,27 @@ void LightVolumes::draw_global(const LightBuffer& target, const SurfaceView& vie
   glDisable(GL_CULL_FACE);
   glDepthMask(GL_FALSE);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, directional_.id());
+  if (how == GlobalPass::Fragment) {
+    const ShaderProgram& p = program("03_light_volumes/shaders/global.frag", view, extra, false);
+    p.use();
+    p.set("u_ambient", ambient);
+    p.set("u_light_count", int(lights_.directional.size()));
+    full_screen_.draw();
+    restore_state();
+    return;
+  }
+  // One invocation per pixel, 8 x 8 a group (global.comp leaves out the groups' overhang),
+  // writing the light buffer as images: the passes after it (the local lights' blending or
+  // image loads, the composite's texture reads) must wait for those writes.
+  const std::vector<std::string> images = LightBuffer::image_defines();
+  extra.insert(extra.end(), images.begin(), images.end());
+  const ShaderProgram& p = compute_program("03_light_volumes/shaders/global.comp", view, extra);
   p.use();
   p.set("u_ambient", ambient);
   p.set("u_light_count", int(lights_.directional.size()));
-  full_screen_.draw();
-  restore_state();
+  target.bind_images(GL_WRITE_ONLY);
+  glDispatchCompute(GLuint((target.width() + 7) / 8), GLuint((target.height() + 7) / 8), 1);
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
 }
 
 // What every strategy draws with.

@@ -50,6 +50,15 @@ inline const std::vector<std::string> kStrategies = {"full-screen", "scissor", "
 bool is_strategy(const std::string& name);
 Strategy strategy_named(const std::string& name);  // throws Error for an unknown name
 
+// How the global pass (ambient + directional, every pixel) runs: one fragment per pixel of a
+// full-screen triangle (chapter 03's own), or one compute invocation per pixel writing the light
+// buffer as images. One body (shaders/global_light.glsl): the same light buffer, bit for bit
+// on llvmpipe (the tests). Which is faster depends on the GPU: one whose fragment shaders run on
+// a few of its cores only (chapter 10's budget) wants compute.
+enum class GlobalPass { Fragment, Compute };
+inline const std::vector<std::string> kGlobalPasses = {"fragment", "compute"};
+GlobalPass global_pass_named(const std::string& name);  // throws Error for an unknown name
+
 // [shader-hooks]
 // The GLSL that chapter 03's light shaders include for the terms later chapters add, each a
 // file named by a define (`#include FRAME_VISIBILITY`), and the defines those files need (a
@@ -100,6 +109,13 @@ class LightBuffer {
   // Binds L1 and L2 to kFirstUnit.. for a pass that reads them; shader_defines() says where.
   void bind_textures() const;
   static std::vector<std::string> shader_defines();  // {"LIGHT_BUFFER_UNIT 5"}
+  // Where a compute pass that writes the light buffer finds it as images: L1 on image unit
+  // kFirstImage, L2 on the next (RGBA16F). Image units are apart from texture units, and no
+  // hook reads an image: a pass binds them just before its dispatch. GLSL:
+  // `layout(binding = LIGHT_BUFFER_IMAGE + 0, rgba16f)`.
+  static constexpr GLuint kFirstImage = 0;
+  void bind_images(GLenum access) const;               // L1 (and L2, not for the pre-pass kind)
+  static std::vector<std::string> image_defines();     // {"LIGHT_BUFFER_IMAGE 0"}
 
   GLuint framebuffer() const { return fbo_.id(); }
   GLuint diffuse() const { return diffuse_.id(); }
@@ -173,8 +189,10 @@ class LightVolumes {
   GLuint directional_buffer() const { return directional_.id(); }
   const VolumeShapes& shapes() const { return shapes_; }
 
-  // Ambient and the directional lights for every pixel; writes the light buffer (no blending).
-  void draw_global(const LightBuffer& target, const SurfaceView& view, const glm::vec3& ambient);
+  // Ambient and the directional lights for every pixel; writes the light buffer (no blending),
+  // by a fragment pass or a compute pass (`how`, the same values).
+  void draw_global(const LightBuffer& target, const SurfaceView& view, const glm::vec3& ambient,
+                   GlobalPass how = GlobalPass::Fragment);
   // Every local light, added into the light buffer, the pixels chosen by `strategy`.
   void draw_local(const LightBuffer& target, const SurfaceView& view, Strategy strategy, Output output = Output::Light);
   // F = albedo * L1 + L2 + emissive into the bound framebuffer (sky pixels: background).
@@ -215,6 +233,8 @@ class LightVolumes {
   // triangle, compiled once for each set of defines.
   const ShaderProgram& program(const std::string& fragment, const SurfaceView& view, std::vector<std::string> extra = {},
                                bool volumes = true);
+  // A compute shader's, with the same defines (the G-buffer's layout, the hooks, `extra`).
+  const ShaderProgram& compute_program(const std::string& compute, const SurfaceView& view, std::vector<std::string> extra);
   std::vector<Group> groups() const;
   void draw_group(const Group& g, const ShaderProgram& p, int first, int count, bool full_screen) const;
   // The strategies, one function each, called by draw_local() between its common set-up

@@ -138,6 +138,7 @@ void WholeFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outp
   // 2. The stages' settings: each chapter's defaults.
   ch03::DeferredFrame& frame = source_->frame();
   frame.set_local_lights(s.clustered ? clustered_.get() : nullptr);
+  frame.set_global_pass(s.global);  // (MSAA's frame lights its samples with its own passes)
   // [tubes]
   // The tubes' light: binned and shaded with the clustered lights, or chapter 04's volumes.
   const bool tubes_in_clusters = neon_ && s.clustered && s.msaa <= 1 && s.tubes == TubeLight::Clusters;

@@ -705,3 +705,81 @@ TEST_F(LightVolumesGl, SamplesPassedAreShadedPlusMarking) {
     }
   }
 }
+
+// --- The global pass in compute (GlobalPass, light_volumes.h) --------------------------------
+
+namespace {
+// A light-buffer target's half floats as stored, for a comparison bit for bit.
+std::vector<std::uint16_t> half_bits(GLuint texture, int width, int height) {
+  std::vector<std::uint16_t> bits(std::size_t(width) * std::size_t(height) * 4);
+  glGetTextureImage(texture, 0, GL_RGBA, GL_HALF_FLOAT, GLsizei(bits.size() * sizeof(std::uint16_t)), bits.data());
+  return bits;
+}
+// How many of two targets' values differ, and where the first does.
+std::string differing(const std::vector<std::uint16_t>& a, const std::vector<std::uint16_t>& b, int width) {
+  std::size_t n = 0, first = 0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i] != b[i] && n++ == 0) first = i;
+  if (n == 0) return "";
+  return std::to_string(n) + " values differ, the first at pixel (" + std::to_string(first / 4 % std::size_t(width)) +
+         ", " + std::to_string(first / 4 / std::size_t(width)) + ")";
+}
+}  // namespace
+
+TEST_F(LightVolumesGl, TheGlobalPassInComputeWritesTheFragmentPassesLightBuffer) {
+  // global.frag and global.comp run one body (global_light.glsl) on the same G-buffer texels, the
+  // same light records and hooks, and store the same float values into the same RGBA16F targets:
+  // the light buffers must be equal bit for bit (the bound is 0). With an ambient hook that
+  // depends on its pixel, so the pixel the pass hands it must be the one it writes; at 320x180
+  // the 8x8 groups overhang the image's last row of groups, which must write nothing outside.
+  // The local lights are left out: what the light buffer holds is the global pass's alone.
+  const FrameCamera cam = camera("street_level");
+  DeferredFrame frame(*gpu_);
+  frame.volumes().set_lights(without_local(light_set(scene_->lights)));
+  ASSERT_FALSE(frame.volumes().lights().directional.empty()) << "the street needs a directional light to test";
+  HookStage pattern;
+  pattern.hooks.ambient = test_hook("ambient_by_pixel.glsl");
+  frame.add_stage(pattern);
+  struct LightBits {
+    std::vector<std::uint16_t> diffuse, specular;
+    std::uint64_t samples = 0;  // GL_SAMPLES_PASSED over the global pass
+  };
+  auto light_with = [&](GlobalPass how) {
+    frame.set_global_pass(how);
+    PassMetrics metrics;
+    frame.render(cam, {target_->framebuffer(), kW, kH}, &metrics);
+    metrics.end_frame();
+    metrics.wait_all();
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+    return LightBits{half_bits(frame.light().diffuse(), kW, kH), half_bits(frame.light().specular(), kW, kH),
+                 metrics.find("global: ambient + directional (chapter 03)")->samples};
+  };
+  // Compute first, into a new light buffer: a value it failed to write is not the fragment pass's.
+  const LightBits compute = light_with(GlobalPass::Compute), fragment = light_with(GlobalPass::Fragment);
+  EXPECT_EQ(fragment.samples, std::uint64_t(kW) * kH) << "the fragment pass shades every pixel once";
+  EXPECT_EQ(compute.samples, 0u) << "the compute pass draws no fragment: the frame must have run it";
+  EXPECT_EQ(differing(compute.diffuse, fragment.diffuse, kW), "") << "L1 (diffuse)";
+  EXPECT_EQ(differing(compute.specular, fragment.specular, kW), "") << "L2 (specular)";
+  // Not vacuous: the pattern and the specular light are in the buffers.
+  frame.set_global_pass(GlobalPass::Fragment);
+  DeferredFrame constant(*gpu_);
+  constant.volumes().set_lights(without_local(light_set(scene_->lights)));
+  constant.render(cam, {target_->framebuffer(), kW, kH});
+  EXPECT_NE(differing(half_bits(constant.light().diffuse(), kW, kH), fragment.diffuse, kW), "") << "the hook's pattern shows";
+  EXPECT_NE(differing(fragment.specular, std::vector<std::uint16_t>(fragment.specular.size(), 0), kW), "")
+      << "the directional lights leave specular light";
+
+  // Deferred lighting's one target (LIGHT_PREPASS): diffuse, and the specular luminance in alpha.
+  frame.render(cam, {target_->framebuffer(), kW, kH});
+  std::vector<std::uint16_t> prepass[2];
+  for (GlobalPass how : {GlobalPass::Compute, GlobalPass::Fragment}) {
+    LightBuffer light(kW, kH, ch02::depth_format(frame.gbuffer().layout().depth), LightBuffer::Kind::PrePass);
+    frame.gbuffer().bind_textures(0);
+    frame.bind_hooks();
+    light.begin(frame.gbuffer().framebuffer());
+    frame.volumes().draw_global(light, frame.view(), scene_->ambient, how);
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+    prepass[int(how)] = half_bits(light.diffuse(), kW, kH);
+  }
+  EXPECT_EQ(differing(prepass[1], prepass[0], kW), "") << "the pre-pass's target";
+}

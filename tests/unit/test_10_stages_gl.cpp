@@ -260,6 +260,50 @@ TEST(WholeFrameStagesGl, AoAndIndirectLightAreChapter08s) {
   }
 }
 
+// Chapter 03's global pass in compute, the whole frame's default (whole_frame.h), against its
+// fragment pass, in the whole frame with the sun's four cascades, the clusters, AO and one bounce
+// on: its hooks (chapter 06's visibility, chapter 08's ambient, both reading the pixel) run in
+// compute, the clusters read its images, chapter 08's pass reads its L1 as a texture. The same
+// body on the same inputs stores the same values: the light buffer and the float radiance equal
+// bit for bit (the bound is 0). At 160x90 the 8x8 groups overhang the last row of groups.
+TEST(WholeFrameStagesGl, TheGlobalPassInComputeIsItsFragmentPassBitForBit) {
+  const Scene scene = shop_street();
+  const FrameCamera camera = shops(scene);
+  WholeFrame whole(scene);
+  WholeFrameSettings s;
+  ASSERT_EQ(s.global, ch03::GlobalPass::Compute) << "the whole frame's default";
+  s.neon = false;  // (the tubes and the glass read the light buffer as the others do: left out for time)
+  s.transparency = Method::Off;
+  struct Frame {
+    LightImages light;
+    ImageF radiance;
+    std::uint64_t samples = 0;  // GL_SAMPLES_PASSED over the global pass
+  };
+  auto frame_with = [&](ch03::GlobalPass how) {
+    s.global = how;
+    OutputTarget target(kW, kH);
+    PassMetrics metrics;
+    whole.render(camera, {target.framebuffer(), kW, kH}, s, 1.f / 60.f, true, &metrics);
+    metrics.end_frame();
+    metrics.wait_all();
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+    return Frame{light_of(whole.source().frame()), read_texture(whole.radiance()->texture(), kW, kH),
+                 metrics.find("global: ambient + directional (chapter 03)")->samples};
+  };
+  // Compute first, into new targets: a value it failed to write is not the fragment pass's.
+  const Frame compute = frame_with(ch03::GlobalPass::Compute), fragment = frame_with(ch03::GlobalPass::Fragment);
+  ASSERT_NE(whole.shadow_stage(), nullptr);
+  ASSERT_NE(whole.gi_stage(), nullptr);
+  ASSERT_NE(whole.clustered_lights(), nullptr);
+  EXPECT_EQ(whole.shadow_stage()->cascades().size(), std::size_t(s.sun_cascades));
+  EXPECT_EQ(fragment.samples, std::uint64_t(kW) * kH) << "the fragment pass shades every pixel once";
+  EXPECT_EQ(compute.samples, 0u) << "the compute pass draws no fragment: the frame must have run it";
+  expect_same_light(compute.light, fragment.light, "the global pass in compute against its fragment pass");
+  const Difference d = differ(compute.radiance, fragment.radiance);
+  EXPECT_EQ(d.values, 0u) << "the radiance differs in " << d.values << " values, by up to " << d.largest << "; first at "
+                          << d.first;
+}
+
 // The HDR chain (chapter 05): the whole frame's sRGB output is chapter 05's HdrPipeline run on
 // the whole frame's own float radiance (every stage on, the glass drawn), with the same settings
 // (bloom before tonemapping, so that every pass of the chain runs) and the same frame time, as a
