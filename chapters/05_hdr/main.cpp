@@ -32,6 +32,8 @@ const lp::CliSpec kCli{
     .knobs = {{"sun", "multiplies directional lights (the atrium's sun)", 1, 0, 1000},
               {"glow", "multiplies emissive surfaces (lamps, windows)", 8, 0, 10000},
               {"key", "exposed value of the log-average luminance (middle grey)", 0.18, 0.001, 100},
+              {"adapt-floor", "darkest log-average the eye adapts to: a darker scene is shown darker "
+                              "(0: the fixed key, every scene middle grey)", 0.18, 0, 1e6},
               {"white", "reinhard-extended: exposed value shown as white", 4, 0.01, 1e6},
               {"tau", "eye adaptation time constant, seconds (0: instant)", 0.5, 0, 600},
               {"adapt-start", "first frame: eye adapted to this times its average", 1, 1e-4, 1e6},
@@ -50,14 +52,17 @@ const lp::CliSpec kCli{
 // The reference images, per scene (a Shot names a view, not a scene): `--check` renders
 // the street's, `--check --scene assets/atrium/atrium.gltf` the atrium's (kChapter below).
 const std::vector<lp::Shot> kStreetShots = {
-    // Each operator, 8-bit light accumulation, a night key, both bloom placements, bloom stages.
+    // Each operator, 8-bit light accumulation, the fixed key's grey night (the eye adapted all
+    // the way into the dark) and a night key, both bloom placements, bloom stages.
     {"street_level", "reinhard"}, {"street_level", "reinhard-extended"}, {"street_level", "aces"},
-    {"street_level", "clamp"}, {"street_level", "8bit"}, {"street_level", "aces", {{"key", 0.045}}},
+    {"street_level", "clamp"}, {"street_level", "8bit"}, {"street_level", "aces", {{"adapt-floor", 0}}},
+    {"street_level", "aces", {{"key", 0.045}, {"adapt-floor", 0}}},
     {"street_level", "aces", {{"bloom", 1}}}, {"street_level", "aces", {{"bloom", 2}}},
     {"street_level", "bright-pass", {{"bloom", 1}}}, {"street_level", "bloom-only", {{"bloom", 1}}},
     // ACES at Reinhard's brightness: key 0.108 is Narkowicz's usual 0.6 pre-scale of the fit's
-    // input at key 0.18 (mean 114 steps, Reinhard's 115; at the same key ACES's is 140).
-    {"street_level", "aces", {{"key", 0.108}}},
+    // input at key 0.18 (mean 114 steps, Reinhard's 115; at the same key ACES's is 140), both
+    // at the fixed key.
+    {"street_level", "aces", {{"key", 0.108}, {"adapt-floor", 0}}},
 };
 // The atrium's tiled floor is minified far into the distance: kMinifiedTextureAllowance.
 const lp::CompareOptions kTexturedFloor = lp::kMinifiedTextureAllowance;
@@ -86,7 +91,7 @@ const std::vector<lp::Exercise> kExercises = {
     {.title = "the ACES filmic curve (Narkowicz's fit)",
      .file = "aces_fit.glsl",
      .define = "EXERCISE_ACES_FIT",
-     .shots = {{"street_level", "aces"}, {"street_level", "aces", {{"key", 0.045}}}},
+     .shots = {{"street_level", "aces"}, {"street_level", "aces", {{"key", 0.045}, {"adapt-floor", 0}}}},
      .look_at = "the dark street (the curve's toe) and the lamps (its shoulder)"},
     {.title = "the bloom's bright pass",
      .file = "bright_pass.glsl",
@@ -105,7 +110,7 @@ const lp::Chapter kChapter{.cli = kCli,
 HdrSettings settings_for(const lp::Frame& f, float dt) {
   HdrSettings s;
   s.average = static_cast<AverageMethod>(f.knob_int("average"));
-  s.adaptation = {.key = float(f.knob("key")), .tau = float(f.knob("tau")), .dt = dt};
+  s.adaptation = {.key = float(f.knob("key")), .adapt_floor = float(f.knob("adapt-floor")), .tau = float(f.knob("tau")), .dt = dt};
   s.tonemap.white = float(f.knob("white"));
   s.tonemap.op = f.mode == "reinhard-extended" ? Operator::ReinhardExtended
                : f.mode == "aces"              ? Operator::Aces

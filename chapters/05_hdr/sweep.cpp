@@ -79,7 +79,7 @@ struct SceneSource {
   Scene scene;
   DeferredRadiance source;
   explicit SceneSource(const std::string& path) : scene(load_scene(from_root(path))), source(scene) {
-    source.set_cut_exposure(exposure_limit(0.18f, 1e-4f, 1.f));
+    source.set_cut_exposure(exposure_limit({.key = 0.18f, .adapt_floor = 0.f}, 1e-4f, 1.f));  // the fixed key: the largest
   }
   RadianceTarget render(const std::string& view, int w, int h, float sun, float glow, GLenum format = GL_RGBA16F) {
     source.set_scales(sun, glow);
