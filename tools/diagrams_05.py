@@ -265,11 +265,11 @@ def adapt_floor_figure(out: Path):
     s.line((L, B), (L, T), INK, 1)
     for e in range(int(xlo), int(xhi) + 1, 2):
         s.line((X(2.0 ** e), B), (X(2.0 ** e), B + 4), INK, 1)
-        s.text((X(2.0 ** e), B + 16), f"{2.0 ** e:g}", INK, 10, "middle")
+        s.text((X(2.0 ** e), B + 16), f"1/{2.0 ** -e:g}" if e < 0 else f"{2.0 ** e:g}", INK, 10, "middle")
     s.text(((L + R) / 2, B + 34), "the scene's log-average luminance L̄ (log scale, scene units)", INK, 11, "middle")
     for e in range(int(ylo), int(yhi) + 1):
         s.line((L - 4, Y(2.0 ** e)), (L, Y(2.0 ** e)), INK, 1)
-        s.text((L - 8, Y(2.0 ** e) + 4), f"{2.0 ** e:.3g}", INK, 10, "end")
+        s.text((L - 8, Y(2.0 ** e) + 4), f"1/{2.0 ** -e:g}" if e < 0 else f"{2.0 ** e:g}", INK, 10, "end")
     s.text((L - 70, T - 12), "shown at key (exposure × L̄), log scale", INK, 11)
     n = 200
     xs = [2.0 ** (xlo + (xhi - xlo) * i / n) for i in range(n + 1)]
@@ -283,9 +283,9 @@ def adapt_floor_figure(out: Path):
         s.dot((X(l), Y(KEY * min(1.0, l / floor))), colour, 4.5)
         s.text((X(l) + 7, Y(KEY * min(1.0, l / floor)) + (14 if k < 2 else -10)), name, colour, 10)
     y = 80
-    for text, colour, dash in (("fixed key a = 0.18: every scene middle grey", GREY, "6 4"),
-                               ("adaptation floor: a · min(1, L̄ / floor)", INK, None),
-                               ("Krawczyk's key, L̄ read as cd/m²", ACES, "2 3")):
+    for text, colour, dash in (("fixed key 0.18: all middle grey", GREY, "6 4"),
+                               ("floor: a · min(1, L̄ / floor)", INK, None),
+                               ("Krawczyk's key, L̄ as cd/m²", ACES, "2 3")):
         s.line((545, y), (570, y), colour, 2.5, dash)
         s.text((576, y + 4), text, colour, 10)
         y += 24
