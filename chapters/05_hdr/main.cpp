@@ -4,6 +4,7 @@
 // tonemapping curve brings it into the display's range. The lights' volumes are cut for the
 // exposure, read back from earlier frames without waiting. The modes switch the curve, show
 // what an 8-bit light accumulation loses, and show the bloom's intermediate images.
+#include <cmath>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -213,6 +214,9 @@ int main(int argc, char** argv) {
         if (const ExposureState* e = feedback.latest()) {  // read back late: the panel does not wait either
           ImGui::Text("log-average %.4g, adapted %.4g (%d frames ago)", e->target, e->adapted, feedback.latest_age());
           ImGui::Text("exposure %.4g (%.0f pixels averaged)", e->exposure, e->count);
+          if (const float floor = settings.adaptation.adapt_floor; e->adapted < floor)
+            ImGui::Text("darker than the adaptation floor %.3g: shown %.1f stops under the key", floor,
+                        std::log2(floor / e->adapted));
         }
         if (cut.age < 0) ImGui::Text("lights cut for exposure %.4g (no reading yet: the stage's limit)", source.cut_exposure());
         else ImGui::Text("lights cut for exposure %.4g (read %d frames ago: %.4g)", source.cut_exposure(), cut.age, cut.read);
