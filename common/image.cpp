@@ -648,19 +648,27 @@ LegendPlace draw_legend(ImageRGBA8& image, const std::vector<LegendEntry>& entri
   require_valid(image, "draw_legend");
   const int s = label_scale(image.width), pad = 2 * s, line = 9 * s, swatch = 6 * s, indent = swatch + 3 * s;
   const std::uint8_t dark[3] = {24, 24, 24}, white[3] = {255, 255, 255};
-  int text_w = 0;
-  for (const LegendEntry& e : entries) text_w = std::max(text_w, text_width(e.text, s));
-  LegendPlace place{.width = std::min(image.width, pad + indent + text_w + pad),
-                    .height = std::min(image.height, pad + int(entries.size()) * line + pad)};
+  auto text_of = [](const LegendEntry& e, bool brief) -> const std::string& {
+    return brief && !e.short_text.empty() ? e.short_text : e.text;
+  };
+  auto width_of = [&](bool brief) {
+    int text_w = 0;
+    for (const LegendEntry& e : entries) text_w = std::max(text_w, text_width(text_of(e, brief), s));
+    return pad + indent + text_w + pad;
+  };
+  const bool brief = width_of(false) > image.width;
+  LegendPlace place{.width = width_of(brief), .height = pad + int(entries.size()) * line + pad};
   place.y = image.height - place.height;
-  // A key that would hide more than a quarter of the picture (a 160x90 exercise shot) hides what
-  // it explains: none.
-  if (4 * place.width * place.height > image.width * image.height) return {};
+  // A key whose text would run past the picture's edge, or that would hide more than a quarter
+  // of it (a 160x90 exercise shot), hides what it explains: none.
+  if (place.width > image.width || place.height > image.height ||
+      4 * place.width * place.height > image.width * image.height)
+    return {};
   fill(image, 0, place.y, place.width, image.height, dark);
   for (std::size_t k = 0; k < entries.size(); ++k) {
-    const int y = image.height - (pad + int(entries.size()) * line + pad) + pad + int(k) * line + s;
+    const int y = place.y + pad + int(k) * line + s;
     if (entries[k].colour) fill(image, pad, y, pad + swatch, y + swatch, entries[k].colour->data());
-    draw_text(image, pad + indent, y, entries[k].text, white, s);
+    draw_text(image, pad + indent, y, text_of(entries[k], brief), white, s);
   }
   return place;
 }

@@ -140,12 +140,14 @@ struct DirectionKeyPlace {  // where the key went: its box, and its disc's centr
 DirectionKeyPlace draw_direction_key(ImageRGBA8& image, const DirectionKey& key);
 // The key of a picture whose colours are categories (chapter 11's dropped history, chapter 06's
 // cascades, chapter 04's waste): on a dark box in the bottom-left corner, a line per entry, each
-// a swatch of its colour (display RGB; none: text alone) and what the colour means. Returns the
-// box (x, y, width, height); none (all 0) when the box would cover more than a quarter of the
-// picture, which is then left as it is.
+// a swatch of its colour (display RGB; none: text alone) and what the colour means. On a picture
+// too narrow for the texts, every entry says its short text instead (where it has one). Returns
+// the box (x, y, width, height), inside the picture; none (all 0) when the texts would still run
+// past its edge or the box would cover more than a quarter of it, which is then left as it is.
 struct LegendEntry {
   std::optional<std::array<std::uint8_t, 3>> colour;
   std::string text;
+  std::string short_text = {};  // for a narrow picture (a 160x90 exercise shot); empty: text
 };
 struct LegendPlace {
   int x = 0, y = 0, width = 0, height = 0;

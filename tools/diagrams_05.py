@@ -12,7 +12,13 @@
                       shows (in 8-bit sRGB steps): clamp, Reinhard, extended Reinhard (W = 4), ACES
 05_bloom_order.svg    one row of pixels across a lamp: bloom added after the curve (the source)
                       against moved before it, x + s (blur(B) - B), which keeps the row's light
+05_adapt_floor.svg    the key a scene's log-average is shown at, against that log-average: the
+                      fixed key (every scene middle grey), the adaptation floor (exposure_for:
+                      below the floor the exposure stops rising, a darker scene is shown darker)
+                      and Krawczyk's key read in scene units; the scenes placed where the book's
+                      CSVs measured them (05_clipping.csv, 05_sun_cut.csv)
 """
+import csv
 import math
 import sys
 from pathlib import Path
@@ -230,11 +236,76 @@ def bloom_figure(out: Path):
     s.save(out, "05_bloom_order.svg")
 
 
+def csv_rows(name):
+    path = Path(__file__).resolve().parent.parent / "book" / "figures" / name
+    with open(path) as f:
+        return list(csv.DictReader(line for line in f if not line.startswith("#")))
+
+
+def krawczyk(l):
+    """Krawczyk, Myszkowski & Seidel (2005): the key at adaptation luminance l, in cd/m^2."""
+    return 1.03 - 2.0 / (2.0 + math.log10(l + 1.0))
+
+
+def adapt_floor_figure(out: Path):
+    floor = KEY  # chapter 05's default --adapt-floor: key / 1, the exposure never above 1
+    clipping = {r["scene"]: float(r["log_average"]) for r in csv_rows("05_clipping.csv")}
+    sun_cut = {r["sun"]: KEY / float(r["exposure"]) for r in csv_rows("05_sun_cut.csv")}  # at the fixed key
+    scenes = [("night street", clipping["street"], BAD), ("atrium, sun ×1", sun_cut["1"], GOOD),
+              ("atrium, sun ×25", clipping["atrium"], RAY)]
+    s = Svg(760, 420)
+    L, R, T, B = 80, 520, 50, 320
+    xlo, xhi = -7.0, 3.0  # log2 of the scene's log-average
+    ylo, yhi = -7.0, 1.0  # log2 of the key it is shown at
+    X = lambda v: L + (R - L) * (math.log2(v) - xlo) / (xhi - xlo)  # noqa: E731
+    Y = lambda v: B - (B - T) * (math.log2(v) - ylo) / (yhi - ylo)  # noqa: E731
+    s.text((380, 22), "The key a scene's average is shown at: fixed, or falling below the adaptation floor",
+           INK, 13, "middle", bold=True)
+    s.line((L, B), (R, B), INK, 1)
+    s.line((L, B), (L, T), INK, 1)
+    for e in range(int(xlo), int(xhi) + 1, 2):
+        s.line((X(2.0 ** e), B), (X(2.0 ** e), B + 4), INK, 1)
+        s.text((X(2.0 ** e), B + 16), f"1/{2.0 ** -e:g}" if e < 0 else f"{2.0 ** e:g}", INK, 10, "middle")
+    s.text(((L + R) / 2, B + 34), "the scene's log-average luminance L̄ (log scale, scene units)", INK, 11, "middle")
+    for e in range(int(ylo), int(yhi) + 1):
+        s.line((L - 4, Y(2.0 ** e)), (L, Y(2.0 ** e)), INK, 1)
+        s.text((L - 8, Y(2.0 ** e) + 4), f"1/{2.0 ** -e:g}" if e < 0 else f"{2.0 ** e:g}", INK, 10, "end")
+    s.text((L - 70, T - 12), "shown at key (exposure × L̄), log scale", INK, 11)
+    n = 200
+    xs = [2.0 ** (xlo + (xhi - xlo) * i / n) for i in range(n + 1)]
+    s.poly([(X(x), Y(KEY)) for x in xs], GREY, 2, dash="6 4", closed=False)
+    s.poly([(X(x), Y(KEY * min(1.0, x / floor))) for x in xs], INK, 2.5, closed=False)
+    s.poly([(X(x), Y(krawczyk(x))) for x in xs], ACES, 1.5, dash="2 3", closed=False)
+    s.line((X(floor), T + 10), (X(floor), B), LIGHT, 1, "3 3")
+    s.text((X(floor) + 4, T + 20), f"floor {floor:g}", LIGHT, 10)
+    for k, (name, l, colour) in enumerate(scenes):
+        s.dot((X(l), Y(KEY)), GREY, 3)
+        s.dot((X(l), Y(KEY * min(1.0, l / floor))), colour, 4.5)
+        s.text((X(l) + 7, Y(KEY * min(1.0, l / floor)) + (14 if k < 2 else -10)), name, colour, 10)
+    y = 80
+    for text, colour, dash in (("fixed key 0.18: all middle grey", GREY, "6 4"),
+                               ("floor: a · min(1, L̄ / floor)", INK, None),
+                               ("Krawczyk's key, L̄ as cd/m²", ACES, "2 3")):
+        s.line((545, y), (570, y), colour, 2.5, dash)
+        s.text((576, y + 4), text, colour, 10)
+        y += 24
+    s.text((545, y + 14), "exposure = a / max(L̄, floor)", INK, 11, bold=True)
+    s.text((545, y + 32), "below the floor the exposure stops", INK, 10)
+    s.text((545, y + 46), "rising: a scene twice as dark is", INK, 10)
+    s.text((545, y + 60), "shown a stop darker", INK, 10)
+    s.text((20, 380), "Grey dots: where the fixed key shows each scene (all on middle grey). Coloured: with the floor. "
+           "The night street drops", GREY, 11)
+    s.text((20, 396), "about two stops below middle grey; the sunlit atrium keeps the fixed key's exposure.",
+           GREY, 11)
+    s.save(out, "05_adapt_floor.svg")
+
+
 def main(out: Path):
     out.mkdir(parents=True, exist_ok=True)
     mip_figure(out)
     exposure_figure(out)
     bloom_figure(out)
+    adapt_floor_figure(out)
 
 
 if __name__ == "__main__":

@@ -69,12 +69,12 @@ ExposureEstimate ExposureFeedback::begin_frame(const AdaptationSettings& s, floa
   else last_instant_ = frame_;
   poll();
   limit_frames_in_flight();
-  ExposureEstimate e{.exposure = exposure_limit(s.key, delta, start_scale)};
+  ExposureEstimate e{.exposure = exposure_limit(s, delta, start_scale)};
   // [use-reading]
   // A reading bounds this frame if the eye was not reset since, and every frame after it
   // adapted with a time constant (tau > 0).
   if (last_.valid && last_.generation == generation_ && last_instant_ <= last_.frame && last_.state.adapted > 0.f) {
-    float bound = exposure_bound_after(s.key, last_.state.adapted, decay_ - last_.decay, frame_ - last_.frame);
+    float bound = exposure_bound_after(s, last_.state.adapted, decay_ - last_.decay, frame_ - last_.frame);
     if (bound < e.exposure) e = {.exposure = bound, .age = int(frame_ - last_.frame), .read = last_.state.exposure};
   }
   // [/use-reading]

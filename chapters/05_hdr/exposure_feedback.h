@@ -26,21 +26,24 @@ namespace lp::ch05 {
 // adapt() moves the adapted luminance by (target - adapted)(1 - e), e = exp(-dt / tau), and
 // the target (a log-average) is never negative, so one frame can shrink it at most to
 // e x adapted. After the frames m+1 .. n:
-//     adapted_n >= adapted_m exp(-sum dt/tau),   exposure_n = key / adapted_n
-//                                                <= key / adapted_m x exp(sum dt/tau).
+//     adapted_n >= adapted_m exp(-sum dt/tau),   exposure_n = key / max(adapted_n, floor)
+//                                                <= key / max(adapted_m exp(-sum dt/tau), floor).
 // `decay` is that sum. The GPU's float arithmetic (its exp() is allowed 3 + 2|x| ulp, a few
 // roundings more) stays below 10^-6 of the value a frame: that much is added per frame.
 // With tau = 0 the eye follows the frame at once and nothing bounds the next exposure.
-inline float exposure_bound_after(float key, float adapted_then, double decay, std::uint64_t frames) {
-  return float(double(key) / adapted_then * std::exp(decay) * (1.0 + 1e-6 * double(frames)));
+inline float exposure_bound_after(const AdaptationSettings& s, float adapted_then, double decay, std::uint64_t frames) {
+  const double lowest = std::max(double(adapted_then) * std::exp(-decay), double(s.adapt_floor));
+  return float(double(s.key) / lowest * (1.0 + 1e-6 * double(frames)));
 }
 
 // With nothing known: the log-average exp(mean log(delta + L)) is at least delta, the eye
 // starts at start_scale x a log-average and only ever moves between that and later ones,
-// so adapted >= delta x min(1, start_scale) and the exposure is at most key over that.
-// (Plus 10^-3 for the GPU's float reduction, which is within 10^-4 of the exact mean log.)
-inline float exposure_limit(float key, float delta, float start_scale) {
-  return float(double(key) / (double(delta) * std::min(1.0, double(start_scale))) * (1.0 + 1e-3));
+// so adapted >= delta x min(1, start_scale) and the exposure is at most key over that (or
+// over the floor, if higher). (Plus 10^-3 for the GPU's float reduction, which is within
+// 10^-4 of the exact mean log.)
+inline float exposure_limit(const AdaptationSettings& s, float delta, float start_scale) {
+  const double lowest = std::max(double(delta) * std::min(1.0, double(start_scale)), double(s.adapt_floor));
+  return float(double(s.key) / lowest * (1.0 + 1e-3));
 }
 // [/exposure-bound]
 

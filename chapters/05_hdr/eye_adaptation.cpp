@@ -13,6 +13,7 @@ void EyeAdaptation::update(GLuint log_average_buffer, const AdaptationSettings& 
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kExposureBinding, state_.id());
   update_.use();
   update_.set("u_key", s.key);
+  update_.set("u_adapt_floor", s.adapt_floor);
   update_.set("u_tau", s.tau);
   update_.set("u_dt", s.dt);
   update_.set("u_reset", int(reset_));

@@ -141,6 +141,16 @@ inline float adapt(float adapted, float target, float dt, float tau) {
 }
 // [/adapt]
 
+// [exposure]
+// The exposure that shows the eye's adapted luminance at `key` (middle grey): key / adapted.
+// Alone, that makes every scene average grey, the night street a grey day. An eye (or a
+// camera) adapts only so far into the dark: below `adapt_floor` it stops, the exposure stays
+// key / adapt_floor, and a darker scene is shown darker. As a key that falls with the scene's
+// luminance: the log-average is shown at key x min(1, adapted / adapt_floor).
+// adapt_floor = 0 is the fixed key at any light.
+inline float exposure_for(float key, float adapted, float adapt_floor) { return key / std::max(adapted, adapt_floor); }
+// [/exposure]
+
 // [bright-pass]
 // What of an exposed pixel x blooms: the part of its luminance above `threshold`, with
 // x's colour, limited to `limit` so that a single extreme pixel (a firefly, an overflowed

@@ -4,6 +4,7 @@
 // tonemapping curve brings it into the display's range. The lights' volumes are cut for the
 // exposure, read back from earlier frames without waiting. The modes switch the curve, show
 // what an 8-bit light accumulation loses, and show the bloom's intermediate images.
+#include <cmath>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -32,6 +33,8 @@ const lp::CliSpec kCli{
     .knobs = {{"sun", "multiplies directional lights (the atrium's sun)", 1, 0, 1000},
               {"glow", "multiplies emissive surfaces (lamps, windows)", 8, 0, 10000},
               {"key", "exposed value of the log-average luminance (middle grey)", 0.18, 0.001, 100},
+              {"adapt-floor", "darkest log-average the eye adapts to: a darker scene is shown darker "
+                              "(0: the fixed key, every scene middle grey)", 0.18, 0, 1e6},
               {"white", "reinhard-extended: exposed value shown as white", 4, 0.01, 1e6},
               {"tau", "eye adaptation time constant, seconds (0: instant)", 0.5, 0, 600},
               {"adapt-start", "first frame: eye adapted to this times its average", 1, 1e-4, 1e6},
@@ -50,14 +53,17 @@ const lp::CliSpec kCli{
 // The reference images, per scene (a Shot names a view, not a scene): `--check` renders
 // the street's, `--check --scene assets/atrium/atrium.gltf` the atrium's (kChapter below).
 const std::vector<lp::Shot> kStreetShots = {
-    // Each operator, 8-bit light accumulation, a night key, both bloom placements, bloom stages.
+    // Each operator, 8-bit light accumulation, the fixed key's grey night (the eye adapted all
+    // the way into the dark) and a night key, both bloom placements, bloom stages.
     {"street_level", "reinhard"}, {"street_level", "reinhard-extended"}, {"street_level", "aces"},
-    {"street_level", "clamp"}, {"street_level", "8bit"}, {"street_level", "aces", {{"key", 0.045}}},
+    {"street_level", "clamp"}, {"street_level", "8bit"}, {"street_level", "aces", {{"adapt-floor", 0}}},
+    {"street_level", "aces", {{"key", 0.045}, {"adapt-floor", 0}}},
     {"street_level", "aces", {{"bloom", 1}}}, {"street_level", "aces", {{"bloom", 2}}},
     {"street_level", "bright-pass", {{"bloom", 1}}}, {"street_level", "bloom-only", {{"bloom", 1}}},
     // ACES at Reinhard's brightness: key 0.108 is Narkowicz's usual 0.6 pre-scale of the fit's
-    // input at key 0.18 (mean 114 steps, Reinhard's 115; at the same key ACES's is 140).
-    {"street_level", "aces", {{"key", 0.108}}},
+    // input at key 0.18 (mean 114 steps, Reinhard's 115; at the same key ACES's is 140), both
+    // at the fixed key.
+    {"street_level", "aces", {{"key", 0.108}, {"adapt-floor", 0}}},
 };
 // The atrium's tiled floor is minified far into the distance: kMinifiedTextureAllowance.
 const lp::CompareOptions kTexturedFloor = lp::kMinifiedTextureAllowance;
@@ -86,7 +92,7 @@ const std::vector<lp::Exercise> kExercises = {
     {.title = "the ACES filmic curve (Narkowicz's fit)",
      .file = "aces_fit.glsl",
      .define = "EXERCISE_ACES_FIT",
-     .shots = {{"street_level", "aces"}, {"street_level", "aces", {{"key", 0.045}}}},
+     .shots = {{"street_level", "aces"}, {"street_level", "aces", {{"key", 0.045}, {"adapt-floor", 0}}}},
      .look_at = "the dark street (the curve's toe) and the lamps (its shoulder)"},
     {.title = "the bloom's bright pass",
      .file = "bright_pass.glsl",
@@ -105,7 +111,7 @@ const lp::Chapter kChapter{.cli = kCli,
 HdrSettings settings_for(const lp::Frame& f, float dt) {
   HdrSettings s;
   s.average = static_cast<AverageMethod>(f.knob_int("average"));
-  s.adaptation = {.key = float(f.knob("key")), .tau = float(f.knob("tau")), .dt = dt};
+  s.adaptation = {.key = float(f.knob("key")), .adapt_floor = float(f.knob("adapt-floor")), .tau = float(f.knob("tau")), .dt = dt};
   s.tonemap.white = float(f.knob("white"));
   s.tonemap.op = f.mode == "reinhard-extended" ? Operator::ReinhardExtended
                : f.mode == "aces"              ? Operator::Aces
@@ -208,6 +214,9 @@ int main(int argc, char** argv) {
         if (const ExposureState* e = feedback.latest()) {  // read back late: the panel does not wait either
           ImGui::Text("log-average %.4g, adapted %.4g (%d frames ago)", e->target, e->adapted, feedback.latest_age());
           ImGui::Text("exposure %.4g (%.0f pixels averaged)", e->exposure, e->count);
+          if (const float floor = settings.adaptation.adapt_floor; e->adapted < floor)
+            ImGui::Text("darker than the adaptation floor %.3g: shown %.1f stops under the key", floor,
+                        std::log2(floor / e->adapted));
         }
         if (cut.age < 0) ImGui::Text("lights cut for exposure %.4g (no reading yet: the stage's limit)", source.cut_exposure());
         else ImGui::Text("lights cut for exposure %.4g (read %d frames ago: %.4g)", source.cut_exposure(), cut.age, cut.read);

@@ -79,7 +79,7 @@ struct SceneSource {
   Scene scene;
   DeferredRadiance source;
   explicit SceneSource(const std::string& path) : scene(load_scene(from_root(path))), source(scene) {
-    source.set_cut_exposure(exposure_limit(0.18f, 1e-4f, 1.f));
+    source.set_cut_exposure(exposure_limit({.key = 0.18f, .adapt_floor = 0.f}, 1e-4f, 1.f));  // the fixed key: the largest
   }
   RadianceTarget render(const std::string& view, int w, int h, float sun, float glow, GLenum format = GL_RGBA16F) {
     source.set_scales(sun, glow);
@@ -143,6 +143,7 @@ void bloom_sweep(const Settings& s, SceneSource& street, const std::string& time
     for (int level = 0; level <= 5; ++level) {
       HdrSettings hs;
       hs.adaptation.tau = 0;
+      hs.adaptation.adapt_floor = 0.f;  // the fixed key: the street at its brightest, the most above the threshold
       hs.bloom = BloomMode::AfterTonemap;
       hs.bloom_chain = {.level = level, .radius = radius, .threshold = 1.f, .limit = 64.f};
       ImageF term = bloom_term(hdr, radiance.texture(), w, h, hs);
@@ -257,6 +258,7 @@ void figures(const Settings& s, SceneSource& street, SceneSource& atrium) {
            << exact_log_average(radiance, 1e-4f).luminance << ',' << csv_measure_values(s.renderer, w, h, 1) << '\n';
     }
     HdrSettings hs;
+    hs.adaptation.adapt_floor = 0.f;  // the operators side by side at the fixed key (the floor: the references)
     shoot(ldr8.texture(), hs, std::string("05_") + name + "_8bit");
     for (int op = 0; op < 4; ++op) {
       hs.tonemap.op = static_cast<Operator>(op);

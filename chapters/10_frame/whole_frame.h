@@ -67,7 +67,7 @@ struct WholeFrameSettings {
   std::optional<ch06::ShadowSettings> sun_shadow;
   Method transparency = Method::Sorted;  // chapter 10's glass, when the scene has any
   float sun = 1.f, glow = 8.f;           // chapter 05's scales of the sun and the emissive surfaces
-  ch05::HdrSettings hdr;                 // chapter 05: its defaults (Reinhard, key 0.18, no bloom)
+  ch05::HdrSettings hdr;                 // chapter 05: its defaults (Reinhard, key 0.18, floor 0.18, no bloom)
   // MSAA's samples per pixel (1, 2, 4 or 8; 1: no MSAA, the frame above), the order of its
   // resolve, and the marked edges drawn red.
   int msaa = 1;

@@ -147,10 +147,7 @@ ImageRGBA8 read_motion_picture(GLuint motion, int w, int h) {
 }
 
 // --show rejected's key: what red is, and what the rest of the picture is.
-void draw_rejected_key(ImageRGBA8& image) {
-  draw_legend(image, {{std::array<std::uint8_t, 3>{255, 0, 0}, "history dropped (off screen or disoccluded)"},
-                      {std::nullopt, "elsewhere: the image at a third"}});
-}
+void draw_rejected_key(ImageRGBA8& image) { draw_legend(image, ch11::rejected_key()); }
 
 // --show rejected: the image darkened, the pixels whose history was dropped red, and its key.
 void mark_rejected(GLuint rejected, GLuint target, int w, int h) {

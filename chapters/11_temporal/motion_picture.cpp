@@ -41,4 +41,9 @@ DirectionKey motion_key(float full_scale) {
           .colour = [full_scale](float x, float y) { return motion_colour(x, -y, full_scale); }};
 }
 
+std::vector<LegendEntry> rejected_key() {
+  return {{std::array<std::uint8_t, 3>{255, 0, 0}, "history dropped (off screen or disoccluded)", "history dropped"},
+          {std::nullopt, "elsewhere: the image at a third", "the rest: a third"}};
+}
+
 }  // namespace lp::ch11

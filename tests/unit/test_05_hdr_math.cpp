@@ -163,15 +163,25 @@ TEST(OutputSlope, IsTheSteepestPointOfCurveAndEncoding) {
     }
 }
 
+TEST(Exposure, TheFloorStopsTheEyeInTheDark) {
+  // Above the floor the exposure is the fixed key's, key / adapted; below it, key / floor:
+  // the exposed log-average (exposure x adapted) falls with the scene, key x adapted / floor.
+  EXPECT_FLOAT_EQ(exposure_for(0.18f, 2.f, 0.18f), 0.18f / 2.f);
+  EXPECT_FLOAT_EQ(exposure_for(0.18f, 0.045f, 0.18f), 1.f);
+  EXPECT_FLOAT_EQ(exposure_for(0.18f, 0.045f, 0.f), 4.f) << "no floor: the fixed key at any light";
+  EXPECT_FLOAT_EQ(exposure_for(0.18f, 0.045f, 0.09f) * 0.045f, 0.09f) << "half the floor: shown a stop below the key";
+}
+
 TEST(ExposureBound, HoldsForAnySequenceOfFrames) {
   // Eyes adapting to random frames (black ones included), at random frame times and time
   // constants: the exposure of every later frame is within the bound from every earlier one,
-  // and never above the stage's limit.
+  // and never above the stage's limit; every other run with an adaptation floor.
   std::uint32_t seed = 12345;
   auto uniform = [&] { seed = seed * 1664525u + 1013904223u; return float(seed >> 8) / 16777216.f; };
   const float key = 0.18f, delta = 1e-4f;
   for (int run = 0; run < 50; ++run) {
     const float start = std::pow(10.f, -2.f + 4.f * uniform());
+    const AdaptationSettings s{.key = key, .adapt_floor = run % 2 ? std::pow(10.f, -3.f + 3.f * uniform()) : 0.f};
     std::vector<float> adapted, decay;
     float a = 0, sum = 0;
     for (int n = 0; n < 200; ++n) {
@@ -181,9 +191,10 @@ TEST(ExposureBound, HoldsForAnySequenceOfFrames) {
       sum += n == 0 ? 0.f : dt / tau;
       adapted.push_back(a);
       decay.push_back(sum);
-      ASSERT_LE(key / a, exposure_limit(key, delta, start)) << "run " << run << " frame " << n;
+      const float exposure = exposure_for(key, a, s.adapt_floor);
+      ASSERT_LE(exposure, exposure_limit(s, delta, start)) << "run " << run << " frame " << n;
       for (int m = std::max(0, n - 8); m < n; ++m)
-        ASSERT_LE(key / a, exposure_bound_after(key, adapted[m], double(decay[n]) - decay[m], std::uint64_t(n - m)))
+        ASSERT_LE(exposure, exposure_bound_after(s, adapted[m], double(decay[n]) - decay[m], std::uint64_t(n - m)))
             << "run " << run << " frame " << n << " from " << m;
     }
   }

@@ -47,10 +47,20 @@ double half_ulp_bound(double v) { return 0x1p-10 * v + 0x1p-24; }
 
 glm::vec3 rgb(const ImageF& img, int x, int y) { return {img.at(x, y, 0), img.at(x, y, 1), img.at(x, y, 2)}; }
 
-// The exposure the stage gives one frame of `radiance` (an eye adapted to it: tau = 0).
+// The fixed key (no adaptation floor): the largest exposure the stage gives a dark scene (the
+// night street's 3.8 against the floor's 1), so the cross-checks and cuts below, measured at
+// it, are the strictest; and under it two scenes' exposures differ by their log-averages alone.
+HdrSettings fixed_key() {
+  HdrSettings s;
+  s.adaptation.adapt_floor = 0.f;
+  return s;
+}
+
+// The exposure the stage gives one frame of `radiance` (an eye adapted to it: tau = 0), at the
+// fixed key.
 float stage_exposure(GLuint radiance, int w, int h) {
   HdrPipeline hdr;
-  HdrSettings s;
+  HdrSettings s = fixed_key();
   s.adaptation.tau = 0;
   OutputTarget out(w, h);
   hdr.process(radiance, w, h, s, out.framebuffer());
@@ -530,10 +540,10 @@ TEST_F(HdrRadianceGl, TheSunShortensTheLampsThroughTheEye) {
   double radius[2], exposure[2];
   for (int i = 0; i < 2; ++i) {
     ChapterLoop loop(scene, i == 0 ? 1.f : 25.f, 1.f);
-    ExposureEstimate e = loop.frame(camera, {});
+    ExposureEstimate e = loop.frame(camera, fixed_key());
     EXPECT_EQ(e.age, -1) << "the first frame has no reading: the stage's limit";
     const double first = mean_radius(loop.source.volumes().lights());
-    for (int frame = 0; frame < 6; ++frame) e = loop.frame(camera, {});
+    for (int frame = 0; frame < 6; ++frame) e = loop.frame(camera, fixed_key());
     EXPECT_GE(e.age, 1);
     exposure[i] = loop.hdr.adaptation().read().exposure;
     radius[i] = mean_radius(loop.source.volumes().lights());
@@ -589,7 +599,7 @@ TEST_F(HdrRadianceGl, TheEstimateBoundsTheExposureEveryFrame) {
     ASSERT_GE(e.exposure, got[i].exposure) << "frame " << i << " (estimate from " << e.age << " frames back)";
     if (i == 0 || i == 60 || (i >= 100 && i < 105)) {
       EXPECT_EQ(e.age, -1) << "frame " << i << ": nothing bounds it but the stage's limit";
-      EXPECT_FLOAT_EQ(e.exposure, exposure_limit(0.18f, 1e-4f, i >= 60 ? 0.1f : 1.f)) << "frame " << i;
+      EXPECT_FLOAT_EQ(e.exposure, exposure_limit(HdrSettings{}.adaptation, 1e-4f, i >= 60 ? 0.1f : 1.f)) << "frame " << i;
     }
     if (e.age > 0) {
       ++with_reading;
@@ -627,4 +637,68 @@ TEST_F(HdrRadianceGl, TheEightBitTargetHoldsTheSameCompositeClipped) {
     clipped += above;
   }
   EXPECT_GT(clipped, std::size_t(kW * kH / 50)) << "more than 2% of the street is brighter than 1: lost in 8 bits";
+}
+
+// --- Night stays night ------------------------------------------------------------------------
+
+TEST_F(HdrRadianceGl, TheNightStreetStaysDarkAndTheSunlitAtriumMidGrey) {
+  // The eye adapts no further into the dark than the floor (exposure_for): a scene whose
+  // log-average L is below it is exposed at key / floor, its middle shown at key x L / floor.
+  // The night street's L is a quarter of the floor (0.047 against 0.18 at 64x36); the test
+  // holds it to below half. Then, Reinhard (T(x) = x / (1 + x)) per channel, no bloom:
+  //  - a pixel's displayed luminance is at most T(its exposed luminance): the weights of the
+  //    luminance sum to 1 and T is concave (Jensen);
+  //  - the geometric mean of T(e L_i) is at most T(e G), G the geometric mean of the L_i:
+  //    log T(e^u) = u - log(1 + e^u) is concave in u (Jensen again);
+  // so over the pixels with light (L_i > 0), the displayed geometric mean is at most
+  // T(key x G / floor) <= T(key / 2) = 0.0826, a stop below middle grey: the night stays a
+  // night. With the fixed key (the eye adapted all the way: every scene grey) the street's
+  // middle is shown at key itself, and its displayed mean measures above that bound.
+  // The sunlit atrium (sun 25: L = 0.83, above the floor) keeps the fixed key's exposure:
+  // its log-average shown at middle grey, key / L x L = key within a division's rounding.
+  constexpr int w = 64, h = 36;
+  const HdrSettings night;  // the stage's defaults: key 0.18, floor 0.18, Reinhard, no bloom
+  ASSERT_EQ(night.tonemap.op, Operator::Reinhard);
+  ASSERT_EQ(night.bloom, BloomMode::Off);
+  const float key = night.adaptation.key, floor = night.adaptation.adapt_floor;
+  for (const View& v : {kStreet, kAtrium}) {
+    Scene scene = load_scene(from_root(v.file));
+    DeferredRadiance source(scene);
+    source.set_scales(v.sun, v.glow);
+    source.set_cut_exposure(exposure_limit(fixed_key().adaptation, night.delta, 1.f));  // nothing cut
+    RadianceTarget radiance(w, h, GL_RGBA16F, false);
+    source.render(frame_camera(scene.camera(v.camera), float(w) / h), radiance);
+    HdrPipeline hdr;
+    HdrSettings s = night;
+    s.adaptation.tau = 0;  // one frame: adapted = its log-average
+    gl::Texture colour = gl::make_texture_2d(GL_RGBA32F, w, h);
+    gl::Framebuffer fbo;
+    glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, colour.id(), 0);
+    hdr.process(radiance.texture(), w, h, s, fbo.id());
+    const ExposureState e = hdr.adaptation().read();
+    const ImageF in = radiance.read(), out = read_texture(colour.id(), w, h);
+    // The geometric means over the pixels with light, in double.
+    double sum_in = 0, sum_out = 0;
+    int lit = 0;
+    for (int i = 0; i < w * h; ++i) {
+      const double l = luminance(sanitize(rgb(in, i % w, i / w)).rgb);
+      const double d = luminance(rgb(out, i % w, i / w));
+      if (l <= 0 || d <= 0) continue;
+      sum_in += std::log(l), sum_out += std::log(d), ++lit;
+    }
+    ASSERT_GT(lit, w * h / 2) << v.name;
+    const double g = std::exp(sum_in / lit), shown = std::exp(sum_out / lit);
+    std::cout << v.name << ": log-average " << e.target << ", exposure " << e.exposure << ", exposed log-average "
+              << e.exposure * e.target << ", displayed geometric mean " << shown << '\n';
+    if (std::string(v.name) == "street") {
+      ASSERT_LT(e.target, floor / 2) << "the premise: the night street's log-average is below half the floor";
+      ASSERT_LT(g, floor / 2) << "... and so is the geometric mean of its lit pixels";
+      EXPECT_LE(e.exposure * e.target, key / 2) << "the night's middle is shown a stop or more below middle grey";
+      // The float target keeps the curve's output to a few ulp; the exposure's rounding 3e-7.
+      EXPECT_LE(shown, tonemap_reinhard(key / 2) * (1 + 1e-5)) << "the displayed night is darker than T(key / 2)";
+    } else {
+      ASSERT_GT(e.target, floor) << "the premise: the sunlit atrium is brighter than the floor";
+      EXPECT_NEAR(e.exposure * e.target, key, key * 6e-7) << "the day's middle is shown at middle grey";
+    }
+  }
 }

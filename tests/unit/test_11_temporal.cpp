@@ -117,3 +117,23 @@ TEST(MotionPicture, TheKeysWheelHasThePicturesColourForEachDirectionAndLength) {
   EXPECT_EQ(still.at(5, 5)[0] + still.at(5, 5)[1] + still.at(5, 5)[2], 0);
   EXPECT_THROW(motion_picture(std::vector<float>(10), w, h, full), lp::Error);
 }
+
+// --show rejected's key lies inside the picture at the exercises' 160x90 (its short words) and at
+// the references' 320x180 (its full ones): its box, and every pixel it draws.
+TEST(RejectedKey, ItsTextLiesInsideThePictureAt160x90) {
+  for (auto [w, h] : {std::pair{160, 90}, std::pair{320, 180}}) {
+    ImageRGBA8 image = ImageRGBA8::blank(w, h);
+    const LegendPlace p = draw_legend(image, ch11::rejected_key());
+    ASSERT_GT(p.width * p.height, 0) << w << 'x' << h << ": the key is drawn";
+    EXPECT_GE(p.x, 0);
+    EXPECT_LE(p.x + p.width, w) << w << 'x' << h;
+    EXPECT_LE(p.y + p.height, h) << w << 'x' << h;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        if (x >= p.x + p.width || y < p.y) {
+          ASSERT_EQ(image.at(x, y)[3], 0) << w << 'x' << h << ": drawn at " << x << ',' << y;
+        }
+    // The words end inside the box (its right margin is only box): none cut at the picture's edge.
+    for (int y = p.y; y < p.y + p.height; ++y) ASSERT_EQ(image.at(p.x + p.width - 1, y)[0], 24) << w << 'x' << h << ": text at the box's edge, row " << y;
+  }
+}

@@ -636,12 +636,39 @@ TEST(Legend, DrawnInTheCornerOrNotAtAllOnASmallPicture) {
   EXPECT_EQ(large.at(4, p.y + 4)[0], 255) << "no red swatch";
   EXPECT_EQ(large.at(4, p.y + 4)[1], 0);
   EXPECT_EQ(large.at(p.width, p.y)[3], 0) << "drawn outside its box";
-  lp::ImageRGBA8 small = lp::ImageRGBA8::blank(160, 90);  // four lines: 160x40 of 160x90
-  std::vector<lp::LegendEntry> longer = key;
-  longer.insert(longer.end(), key.begin(), key.end());
+  // Six short lines: each fits the width (about 90 of 160 pixels) and the height (58 of 90), but
+  // the box would hide more than a quarter of the picture.
+  lp::ImageRGBA8 small = lp::ImageRGBA8::blank(160, 90);
+  const std::vector<lp::LegendEntry> longer(6, {std::array<std::uint8_t, 3>{255, 0, 0}, "history dropped"});
+  ASSERT_LT(lp::text_width("history dropped") + 20, 160) << "the premise: the text fits the width";
   const lp::LegendPlace none = lp::draw_legend(small, longer);
   EXPECT_EQ(none.width * none.height, 0);
   EXPECT_TRUE(std::all_of(small.pixels.begin(), small.pixels.end(), [](std::uint8_t v) { return v == 0; }));
+}
+
+// Text that would run past the picture's edge: the entries' short texts where they have them,
+// the box and every drawn pixel inside the picture; without short texts that fit, nothing.
+TEST(Legend, TooWideATextSaysItsShortTextOrNothing) {
+  const std::string wide = "a key text wider than a hundred and sixty pixels";
+  ASSERT_GT(lp::text_width(wide) + 20, 160) << "the premise: it does not fit";
+  auto drawn_right_of = [](const lp::ImageRGBA8& image, int x0) {
+    for (int y = 0; y < image.height; ++y)
+      for (int x = x0; x < image.width; ++x)
+        if (image.at(x, y)[3] != 0) return true;
+    return false;
+  };
+  lp::ImageRGBA8 small = lp::ImageRGBA8::blank(160, 90);
+  const lp::LegendPlace p = lp::draw_legend(small, {{std::array<std::uint8_t, 3>{255, 0, 0}, wide, "short"}});
+  ASSERT_GT(p.width * p.height, 0) << "the short text fits: drawn";
+  EXPECT_LE(p.x + p.width, 160);
+  EXPECT_LT(p.width, lp::text_width(wide)) << "the short text, not the long one";
+  EXPECT_FALSE(drawn_right_of(small, p.x + p.width)) << "drawn outside its box";
+  for (int y = p.y; y < p.y + p.height; ++y) ASSERT_EQ(small.at(p.x + p.width - 1, y)[0], 24) << "text at the box's edge, row " << y;
+  lp::ImageRGBA8 large = lp::ImageRGBA8::blank(640, 360);
+  EXPECT_GT(lp::draw_legend(large, {{std::nullopt, wide, "short"}}).width, lp::text_width(wide)) << "room: the long text";
+  lp::ImageRGBA8 bare = lp::ImageRGBA8::blank(160, 90);
+  EXPECT_EQ(lp::draw_legend(bare, {{std::nullopt, wide}}).width, 0) << "no short text: nothing rather than cut words";
+  EXPECT_TRUE(std::all_of(bare.pixels.begin(), bare.pixels.end(), [](std::uint8_t v) { return v == 0; }));
 }
 
 // The direction key: a disc in the bottom-right corner whose points have the picture's colour of

@@ -58,6 +58,9 @@ float adapt(float adapted, float target, float dt, float tau) {
   return adapted + (target - adapted) * (1.0 - exp(-dt / tau));
 }
 
+// key / adapted, with the eye adapted no further into the dark than adapt_floor (hdr_math.h).
+float exposure_for(float key, float adapted, float adapt_floor) { return key / max(adapted, adapt_floor); }
+
 #ifdef EXERCISE_BRIGHT_PASS
 #include EXERCISE_BRIGHT_PASS
 #else
