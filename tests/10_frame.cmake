@@ -27,6 +27,14 @@ lightpass_program_test(10_frame.bench_prints_the_wboit_passes 0 "\"name\":\"tran
   ${P10} --bench --mode frame --scene ${GLASS} --frames 2 --size 160x90 --transparency wboit)
 lightpass_program_test(10_frame.bad_transparency 2 "transparency" ${P10} --transparency painter)
 lightpass_program_test(10_frame.bad_global 2 "global" ${P10} --global vertex)
+# --global picks the whole frame's global pass: as a fragment pass it shades one fragment per
+# pixel (64 x 36 = 2304), in compute none (the bench's GL_SAMPLES_PASSED of the pass).
+lightpass_program_test(10_frame.global_fragment_shades_a_fragment_per_pixel 0
+  "\"name\":\"global: ambient \\+ directional \\(chapter 03\\)\",[^}]*\"fragments\":2304,"
+  ${P10} --bench --mode whole --size 64x36 --frames 1 --global fragment)
+lightpass_program_test(10_frame.global_compute_shades_no_fragment 0
+  "\"name\":\"global: ambient \\+ directional \\(chapter 03\\)\",[^}]*\"fragments\":0,"
+  ${P10} --bench --mode whole --size 64x36 --frames 1 --global compute)
 # A scene without glass is chapter 03's frame, bit for bit up to its reference's tolerance: the
 # stage draws nothing (chapter 03's stencil reference of the street).
 lightpass_image_test(10_frame.scene_without_glass_renders_as_chapter_03 "0 transparent surfaces" ${CMAKE_BINARY_DIR}/out/10_street.png

@@ -155,6 +155,7 @@ const Chapter kChapter{.cli = kCli,
 void draw_whole(App& app, const Frame& f, WholeFrame& whole) {
   const std::string& which = f.choice("transparency");
   WholeFrameSettings s{.shadows = f.knob_int("shadows") != 0, .clustered = f.knob_int("clustered") != 0,
+                       .global = ch03::global_pass_named(f.choice("global")),
                        .ao = f.knob_int("ao") != 0, .indirect = f.knob_int("indirect") != 0,
                        .neon = f.knob_int("neon") != 0,
                        .tubes = f.choice("tubes") == "volumes" ? TubeLight::Volumes : TubeLight::Clusters,
