@@ -6,6 +6,7 @@ void GiStage::reload_shaders() {
   ssgi_.reload_shaders();
   back_.reload_shaders();
   add_program_.reset();
+  add_compute_.reset();
   show_program_.reset();
 }
 
@@ -49,16 +50,31 @@ void GiStage::add_light(ch03::DeferredFrame& frame, PassMetrics* metrics) {
   if (ran_ && filter_) filter_->filter(frame, ssgi_, metrics);
   // A x ambient + L1_ind into the light buffer (bound by the frame), added to the direct light
   auto pass = timed(metrics, "ssgi: add to the light buffer");
+  frame.light().bind();
+  glViewport(0, 0, frame.light().width(), frame.light().height());
+  glBindTextureUnit(slots().unit(0), ran_ ? ssgi_.texture() : 0);
+  if (add_in_compute_) {  // the same sum read and written as an image, one invocation per pixel
+    if (!add_compute_) {
+      std::vector<std::string> defines = unit_defines();
+      for (const std::string& d : ch03::LightBuffer::image_defines()) defines.push_back(d);
+      add_compute_ = std::make_unique<ShaderProgram>(
+          std::vector<ShaderStage>{{GL_COMPUTE_SHADER, "08_ssgi/shaders/add_indirect.comp"}}, defines);
+    }
+    add_compute_->use();
+    add_compute_->set("u_ambient", ambient_);
+    add_compute_->set("u_gi_on", ran_ ? 1 : 0);
+    frame.light().bind_images(GL_READ_WRITE);
+    glDispatchCompute(GLuint((frame.light().width() + 7) / 8), GLuint((frame.light().height() + 7) / 8), 1);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+    return;
+  }
   if (!add_program_)
     add_program_ = std::make_unique<ShaderProgram>(std::vector<ShaderStage>{
         {GL_VERTEX_SHADER, "02_gbuffer/shaders/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "08_ssgi/shaders/add_indirect.frag"}},
         unit_defines());
-  frame.light().bind();
-  glViewport(0, 0, frame.light().width(), frame.light().height());
   add_program_->use();
   add_program_->set("u_ambient", ambient_);
   add_program_->set("u_gi_on", ran_ ? 1 : 0);
-  glBindTextureUnit(slots().unit(0), ran_ ? ssgi_.texture() : 0);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_STENCIL_TEST);
   glEnable(GL_BLEND);

@@ -54,6 +54,9 @@ class GiStage : public ch03::FrameStage {
   const BackFaceLayer& back_faces() const { return back_; }
   bool drew_back_faces() const { return drew_back_; }
   void set_filter(GiFilter* filter) { filter_ = filter; }  // nullptr: none
+  // Its addition into the light buffer as a full-screen fragment pass blended one plus one (the
+  // chapter's), or in compute (chapter 10's frame, with its global pass): the same sum.
+  void set_add_in_compute(bool on) { add_in_compute_ = on; }
   bool ran() const { return ran_; }
   const Ssgi& ssgi() const { return ssgi_; }
   const GiSettings& settings() const { return settings_; }
@@ -78,10 +81,10 @@ class GiStage : public ch03::FrameStage {
   GiShow show_ = GiShow::Image;
   glm::vec3 ambient_{0};
   float exposure_ = 1.f, heat_ = 0.f;
-  bool ran_ = false;
+  bool ran_ = false, add_in_compute_ = false;
   GiFilter* filter_ = nullptr;
   PictureTexture picture_{4};  // set_picture()'s, rgb
-  std::unique_ptr<ShaderProgram> add_program_, show_program_;
+  std::unique_ptr<ShaderProgram> add_program_, add_compute_, show_program_;
   gl::VertexArray vao_;
 };
 

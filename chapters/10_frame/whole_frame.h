@@ -51,9 +51,10 @@ enum class TubeLight { Volumes, Clusters };
 struct WholeFrameSettings {
   bool shadows = true;     // chapter 06: the sun's shadow map (PCF 3x3), when the scene has a sun
   bool clustered = true;   // chapter 09's clusters for the local lights; false: chapter 03's stencil volumes
-  // Chapter 03's global pass (ambient + directional) in compute or as its fragment pass: the same
-  // body and light buffer (ch03::GlobalPass). Compute, because a GPU may run fragment shaders on a
-  // few of its cores only and compute on all (the H200: the book's budget); elsewhere the same work.
+  // The full-screen passes into the light buffer, chapter 03's global pass (ambient + directional)
+  // and chapter 08's add of the indirect light, in compute or as their fragment passes: the same
+  // bodies and light buffer (ch03::GlobalPass). Compute, because a GPU may run fragment shaders on
+  // a few of its cores only and compute on all (the H200: the book's budget); elsewhere the same work.
   ch03::GlobalPass global = ch03::GlobalPass::Compute;
   bool ao = true;          // chapters 07/08: AO on the ambient light (the narrow disk)
   bool indirect = true;    // chapter 08: one bounce of diffuse indirect light (the wide disk)
