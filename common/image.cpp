@@ -471,10 +471,11 @@ namespace {
 constexpr int kWRows = 5, kWTop = 2;
 constexpr const char* kW[kWRows] = {"#...#", "#.#.#", "#.#.#", "#.#.#", ".#.#."};
 
-void fill_cell(ImageRGBA8& image, int x0, int y0, int scale, const std::uint8_t rgb[3]) {
-  for (int py = std::max(y0, 0); py < std::min(y0 + scale, image.height); ++py)
-    for (int px = std::max(x0, 0); px < std::min(x0 + scale, image.width); ++px) {
-      std::uint8_t* p = image.at(px, py);
+// The pixels [x0, x1) x [y0, y1) inside the image, opaque rgb (glyphs, keys' grounds and swatches).
+void fill(ImageRGBA8& image, int x0, int y0, int x1, int y1, const std::uint8_t rgb[3]) {
+  for (int y = std::max(y0, 0); y < std::min(y1, image.height); ++y)
+    for (int x = std::max(x0, 0); x < std::min(x1, image.width); ++x) {
+      std::uint8_t* p = image.at(x, y);
       p[0] = rgb[0], p[1] = rgb[1], p[2] = rgb[2], p[3] = 255;
     }
 }
@@ -483,30 +484,28 @@ void fill_cell(ImageRGBA8& image, int x0, int y0, int scale, const std::uint8_t 
 int draw_text(ImageRGBA8& image, int x, int y, const std::string& text, const std::uint8_t rgb[3], int scale) {
   require_valid(image, "draw_text");
   scale = std::clamp(scale, 1, 16);
-  // Character by character, each at stb's advance of the text before it, so that 'w' can be
-  // drawn from kW.
+  // Character by character, each at stb's advance of the text before it (the sum of the
+  // characters' advances: one line), so that 'w' can be drawn from kW.
   std::vector<float> vertices(270 * 4 + 64);  // far more than stb's worst case for one character
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const int cx = x + text_width(text.substr(0, i), scale);
-    if (text[i] == 'w') {
+  int cx = x;
+  for (const char ch : text) {
+    char one[2] = {ch, '\0'};
+    if (ch == 'w') {
       for (int r = 0; r < kWRows; ++r)
         for (int c = 0; kW[r][c]; ++c)
-          if (kW[r][c] == '#') fill_cell(image, cx + c * scale, y + (kWTop + r) * scale, scale, rgb);
-      continue;
+          if (kW[r][c] == '#') {
+            const int x0 = cx + c * scale, y0 = y + (kWTop + r) * scale;
+            fill(image, x0, y0, x0 + scale, y0 + scale, rgb);
+          }
+    } else {
+      // stb_easy_font writes quads (4 vertices of x, y, z and a colour: 16 bytes), axis aligned.
+      const int quads = stb_easy_font_print(0, 0, one, nullptr, vertices.data(), int(vertices.size() * sizeof(float)));
+      for (int q = 0; q < quads; ++q) {
+        const float* v = vertices.data() + q * 16;  // 4 vertices of 4 floats
+        fill(image, cx + int(v[0]) * scale, y + int(v[1]) * scale, cx + int(v[8]) * scale, y + int(v[9]) * scale, rgb);
+      }
     }
-    char one[2] = {text[i], '\0'};
-    // stb_easy_font writes quads (4 vertices of x, y, z and a colour: 16 bytes), axis aligned.
-    const int quads = stb_easy_font_print(0, 0, one, nullptr, vertices.data(), int(vertices.size() * sizeof(float)));
-    for (int q = 0; q < quads; ++q) {
-      const float* v = vertices.data() + q * 16;  // 4 vertices of 4 floats
-      const int x0 = cx + int(v[0]) * scale, y0 = y + int(v[1]) * scale;
-      const int x1 = cx + int(v[8]) * scale, y1 = y + int(v[9]) * scale;
-      for (int py = std::max(y0, 0); py < std::min(y1, image.height); ++py)
-        for (int px = std::max(x0, 0); px < std::min(x1, image.width); ++px) {
-          std::uint8_t* p = image.at(px, py);
-          p[0] = rgb[0], p[1] = rgb[1], p[2] = rgb[2], p[3] = 255;
-        }
-    }
+    cx += text_width(one, scale);
   }
   return text_width(text, scale);
 }
@@ -543,14 +542,6 @@ void key_colour(const HeatKey& key, float t, std::uint8_t* rgba) {
     rgba[c] = std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
   }
   rgba[3] = 255;
-}
-
-void fill(ImageRGBA8& image, int x0, int y0, int x1, int y1, const std::uint8_t rgb[3]) {
-  for (int y = std::max(y0, 0); y < std::min(y1, image.height); ++y)
-    for (int x = std::max(x0, 0); x < std::min(x1, image.width); ++x) {
-      std::uint8_t* p = image.at(x, y);
-      p[0] = rgb[0], p[1] = rgb[1], p[2] = rgb[2], p[3] = 255;
-    }
 }
 
 // The strip from row `top` down, between columns x_begin and x_end: a grey ground, the bar,
