@@ -163,7 +163,8 @@ class DeferredFrame {
   void set_strategy(Strategy strategy);             // which of chapter 03's culling strategies
   void set_local_lights(LocalLightPass* pass);      // another chapter's; nullptr: chapter 03's again
   // The global pass as a fragment pass (chapter 03's default) or in compute: the same light
-  // buffer bit for bit (GlobalPass, light_volumes.h); chapter 10's whole frame runs compute.
+  // buffer bit for bit (GlobalPass, light_volumes.h); chapter 10's whole frame runs compute. A
+  // stage's own full-screen pass into the light buffer follows it (chapter 08's add).
   void set_global_pass(GlobalPass how) { global_ = how; }
   GlobalPass global_pass() const { return global_; }
   // Called in the order added; gives the stage its texture units and blocks (StageSlots).

@@ -203,6 +203,11 @@ void LightBuffer::bind_images(GLenum access) const {
 
 std::vector<std::string> LightBuffer::image_defines() { return {"LIGHT_BUFFER_IMAGE " + std::to_string(kFirstImage)}; }
 
+void LightBuffer::dispatch_per_pixel() const {
+  glDispatchCompute(GLuint((width_ + 7) / 8), GLuint((height_ + 7) / 8), 1);
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+}
+
 void LightBuffer::clear() const {
   const float zero[4] = {0, 0, 0, 0};
   glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 0, zero);
@@ -386,9 +391,7 @@ void LightVolumes::draw_global(const LightBuffer& target, const SurfaceView& vie
     restore_state();
     return;
   }
-  // One invocation per pixel, 8 x 8 a group (global.comp leaves out the groups' overhang),
-  // writing the light buffer as images: the passes after it (the local lights' blending or
-  // image loads, the composite's texture reads) must wait for those writes.
+  // One invocation per pixel, writing the light buffer as images.
   const std::vector<std::string> images = LightBuffer::image_defines();
   extra.insert(extra.end(), images.begin(), images.end());
   const ShaderProgram& p = compute_program("03_light_volumes/shaders/global.comp", view, extra);
@@ -396,8 +399,7 @@ void LightVolumes::draw_global(const LightBuffer& target, const SurfaceView& vie
   p.set("u_ambient", ambient);
   p.set("u_light_count", int(lights_.directional.size()));
   target.bind_images(GL_WRITE_ONLY);
-  glDispatchCompute(GLuint((target.width() + 7) / 8), GLuint((target.height() + 7) / 8), 1);
-  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+  target.dispatch_per_pixel();
 }
 
 // What every strategy draws with.

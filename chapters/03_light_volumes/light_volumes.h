@@ -116,6 +116,10 @@ class LightBuffer {
   static constexpr GLuint kFirstImage = 0;
   void bind_images(GLenum access) const;               // L1 (and L2, not for the pre-pass kind)
   static std::vector<std::string> image_defines();     // {"LIGHT_BUFFER_IMAGE 0"}
+  // Runs the bound compute program, 8 x 8 invocations a group, one a pixel, over the buffer
+  // (its shader leaves out the groups' overhang), and makes its image writes visible to what
+  // reads the light buffer next: image loads, blending, texture reads.
+  void dispatch_per_pixel() const;
 
   GLuint framebuffer() const { return fbo_.id(); }
   GLuint diffuse() const { return diffuse_.id(); }

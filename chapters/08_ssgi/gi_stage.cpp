@@ -53,7 +53,9 @@ void GiStage::add_light(ch03::DeferredFrame& frame, PassMetrics* metrics) {
   frame.light().bind();
   glViewport(0, 0, frame.light().width(), frame.light().height());
   glBindTextureUnit(slots().unit(0), ran_ ? ssgi_.texture() : 0);
-  if (add_in_compute_) {  // the same sum read and written as an image, one invocation per pixel
+  // With the frame's global pass in compute (chapter 10's), the same sum read and written as an
+  // image, one invocation per pixel; else the chapter's fragment pass, blended one plus one.
+  if (frame.global_pass() == ch03::GlobalPass::Compute) {
     if (!add_compute_) {
       std::vector<std::string> defines = unit_defines();
       for (const std::string& d : ch03::LightBuffer::image_defines()) defines.push_back(d);
@@ -64,8 +66,7 @@ void GiStage::add_light(ch03::DeferredFrame& frame, PassMetrics* metrics) {
     add_compute_->set("u_ambient", ambient_);
     add_compute_->set("u_gi_on", ran_ ? 1 : 0);
     frame.light().bind_images(GL_READ_WRITE);
-    glDispatchCompute(GLuint((frame.light().width() + 7) / 8), GLuint((frame.light().height() + 7) / 8), 1);
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+    frame.light().dispatch_per_pixel();
     return;
   }
   if (!add_program_)

@@ -54,9 +54,6 @@ class GiStage : public ch03::FrameStage {
   const BackFaceLayer& back_faces() const { return back_; }
   bool drew_back_faces() const { return drew_back_; }
   void set_filter(GiFilter* filter) { filter_ = filter; }  // nullptr: none
-  // Its addition into the light buffer as a full-screen fragment pass blended one plus one (the
-  // chapter's), or in compute (chapter 10's frame, with its global pass): the same sum.
-  void set_add_in_compute(bool on) { add_in_compute_ = on; }
   bool ran() const { return ran_; }
   const Ssgi& ssgi() const { return ssgi_; }
   const GiSettings& settings() const { return settings_; }
@@ -66,6 +63,8 @@ class GiStage : public ch03::FrameStage {
   // albedo and light); its ambient hook reads none.
   ch03::StageNeeds needs() const override { return {.units = 3}; }
   ch03::ShaderHooks shader_hooks() const override { return {"", "08_ssgi/shaders/no_ambient.glsl"}; }
+  // Adds A x ambient + L1_ind into the light buffer: as a fragment pass, or in compute where the
+  // frame runs its global pass in compute (DeferredFrame::global_pass): the same sum.
   void add_light(ch03::DeferredFrame& frame, PassMetrics* metrics) override;
   bool composite(ch03::DeferredFrame& frame, PassMetrics* metrics) override;
 
@@ -81,7 +80,7 @@ class GiStage : public ch03::FrameStage {
   GiShow show_ = GiShow::Image;
   glm::vec3 ambient_{0};
   float exposure_ = 1.f, heat_ = 0.f;
-  bool ran_ = false, add_in_compute_ = false;
+  bool ran_ = false;
   GiFilter* filter_ = nullptr;
   PictureTexture picture_{4};  // set_picture()'s, rgb
   std::unique_ptr<ShaderProgram> add_program_, add_compute_, show_program_;

@@ -153,7 +153,6 @@ void WholeFrame::render(const FrameCamera& camera, const ch03::FrameOutput& outp
     g.ao = p[kAo].runs;
     g.indirect = p[kIndirect].runs;
     gi_->set(g.indirect ? ch08::GiMode::Ssgi : ch08::GiMode::Ssao, g, ch08::GiShow::Image, source_->scene().ambient);
-    gi_->set_add_in_compute(s.global == ch03::GlobalPass::Compute);  // with the global pass
   }
   if (glass_) {
     glass_->set({.method = s.transparency});
