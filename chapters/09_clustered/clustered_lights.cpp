@@ -437,15 +437,25 @@ void ClusteredLights::assign_zbin(const std::vector<std::string>& defines, const
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   }
   // [/zbin-clear-words]
-  // Keys, scan, scatter (the sort), bins, tiles: one invocation per light except the scan's one group.
+  // Keys, scan, scatter (the sort), bins, tiles: one invocation per light except the scan's
+  // one group and the wide lights' step, whose groups stride over the lights step 5 passed on
+  // (their count is on the GPU; a group with none ends at once).
+  constexpr GLuint kWideGroups = 1024;
   auto steps = [&](const std::string& what, int first, int last) {
     if (light_count_ == 0) return;
     auto pass = timed(metrics_, part + what);
-    for (int step = first; step <= last; ++step) dispatch(step, step == 2 ? 1 : groups);
+    for (int step = first; step <= last; ++step) {
+      if (step == 5) {  // the wide lights' count, in the sort's scratch (zbin.comp's ZWide)
+        const std::uint32_t zero = 0;
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        glClearNamedBufferSubData(sort_.id(), GL_R32UI, 0, 4, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      }
+      dispatch(step, step == 2 ? 1 : step == 6 ? kWideGroups : groups);
+    }
   };
   steps("sort", 1, 3);
   steps("bins", 4, 4);
-  steps("tiles", 5, 5);
+  steps("tiles", 5, 6);
   if (floor) {  // each pixel's exact list, into the index list (bound where the sort's scratch was)
     auto floor_pass = timed(metrics_, part + "floor lists");
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, indices_.id());

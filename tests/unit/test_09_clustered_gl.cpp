@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <map>
+#include <utility>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -691,14 +692,28 @@ TEST_F(ClusteredGl, ZBinRangesAndTileBitsHoldExactlyTheLightsThatReach) {
   World& w = street();
   const int width = 160, height = 90;
   const FrameCamera cam = camera(w, "street_level", width, height);
-  for (const float scale : {1.f, 1.f / 4.f}) {
-    SCOPED_TRACE("range x " + std::to_string(scale));
+  // The bins' step has two paths (zbin.comp): a work group's bins in shared memory when they
+  // span at most 1 024 bins (always with the default 1 024), one atomic per light and bin when
+  // wider (16 384 bins: the groups of lights nearest the eye span thousands). The tiles' too: a
+  // light's own invocation walks a rectangle of at most 16 tiles, a work group a larger one,
+  // its 256 invocations striding when there are more tiles than that (4-pixel tiles: 920).
+  struct Case {
+    float scale;
+    int bins, tile_px;
+  };
+  for (const Case& k : {Case{1.f, 1024, 16}, Case{1.f / 4.f, 1024, 16}, Case{1.f, 16384, 16}, Case{1.f, 1024, 4}}) {
+    const float scale = k.scale;
+    SCOPED_TRACE("range x " + std::to_string(scale) + ", " + std::to_string(k.bins) + " bins, tiles of " +
+                 std::to_string(k.tile_px) + " px");
     std::vector<Light> lights = ch03::lights_for_count(w.scene_, 2000);
     for (Light& l : lights)
       if (l.type != LightType::Directional) l.range *= scale;
     set_light_list(w, lights);
-    ClusteredLights tiled(w.frame_.volumes(), settings_for_mode("tiled"));
-    ClusteredLights zbin(w.frame_.volumes(), settings_for_mode("zbin"));
+    ClusterSettings tiles = settings_for_mode("tiled"), binned = settings_for_mode("zbin");
+    tiles.tile_px = binned.tile_px = k.tile_px;
+    binned.zbins = k.bins;
+    ClusteredLights tiled(w.frame_.volumes(), tiles);
+    ClusteredLights zbin(w.frame_.volumes(), binned);
     const Render t = render(w, cam, width, height, &tiled, false);
     const Render z = render(w, cam, width, height, &zbin, false);
     EXPECT_EQ(z.counts.lit, t.counts.lit);
@@ -727,7 +742,7 @@ TEST_F(ClusteredGl, ZBinRangesAndTileBitsHoldExactlyTheLightsThatReach) {
     // The bins: the C++ twin of zbin_of is slice_of on a grid of that many slices.
     const int bins = zbin.settings().zbins;
     ASSERT_EQ(lists.ranges.size(), std::size_t(bins));
-    const Grid g = grid_of_tiles(width, height, 16, bins, cam.znear, cam.zfar);
+    const Grid g = grid_of_tiles(width, height, k.tile_px, bins, cam.znear, cam.zfar);
     std::size_t missing = 0, loose = 0, used = 0;
     for (std::size_t i = 0; i < n; ++i) {
       const float d = depth(i), r = spheres[i].w;

@@ -1,12 +1,15 @@
 #version 450
-// Z-binning's assignment (zbin.glsl), six dispatches of this file, one STEP each:
+// Z-binning's assignment (zbin.glsl), seven dispatches of this file, one STEP each:
 //   0 CLEAR:   the last frame's set words of the tiles' masks zeroed, found from tile_words;
 //   1 KEYS:    each light's key, its centre's view depth in 16 384 exponential buckets, counted;
 //   2 SCAN:    one work group turns the counts into each bucket's first sorted position;
 //   3 SCATTER: each light takes a place in its bucket: light_indices is the sorted order;
-//   4 BINS:    each sorted light widens the range of every depth bin its extent reaches;
+//   4 BINS:    each sorted light widens the range of every depth bin its extent reaches
+//              (a work group's lights together, in shared memory, then once a bin);
 //   5 TILES:   each sorted light sets its bit in the tiles its screen rectangle covers
-//              whose boxes (the tile's own depth bounds) its sphere reaches.
+//              whose boxes (the tile's own depth bounds) its sphere reaches; a light whose
+//              rectangle is large (near the eye) is passed on to
+//   6 WIDE:    a work group a light, its invocations sharing the rectangle's tiles.
 // Every step costs what its lights cover (bins, tiles), never lights x tiles. The order
 // inside a bucket is the atomics' (it may differ from frame to frame): the lights a pixel
 // adds are the same, their float sum may differ by rounding.
@@ -15,10 +18,21 @@
 
 layout(local_size_x = 256) in;
 const uint kSortKeys = 16384u;
+#if STEP < 5
 layout(std430, binding = 8) buffer ZSort {
   uint sort_hist[kSortKeys];  // per bucket: lights, then (SCAN) its next free sorted position
   uint sort_key[];            // per light
 };
+#else
+// The sort's scratch, free once the lights are sorted: the lights whose screen rectangles
+// cover more than kOwnTiles tiles (their sorted positions), which step 6 takes a group each.
+const int kOwnTiles = 16;
+layout(std430, binding = 8) buffer ZWide {
+  uint wide_count;  // (zeroed before step 5)
+  uint wide_unused[kSortKeys - 1u];
+  uint wide_lights[];
+};
+#endif
 layout(std430, binding = 2) readonly buffer Bounds { uint bounds[]; };
 layout(std430, binding = 5) buffer ListState {
   uint head, capacity, cells_over, over_lo, over_hi, needed_lo, needed_hi, max_count;
@@ -28,6 +42,48 @@ uint lights() { return uint(u_tiles.w); }
 
 #if STEP == 2
 shared uint s_sum[256];
+#elif STEP == 4
+const uint kGroupBins = 1024u;  // 8 KiB of shared memory: the default bins (ClusterSettings::zbins) fit
+shared uint s_span[2], s_lo[kGroupBins], s_hi[kGroupBins];
+#endif
+
+#if STEP == 4
+// Sorted light g's depth bins, first and last (empty, first > last, when no surface is that
+// near or far, or past the last light).
+ivec2 bins_reached(uint g) {
+  if (g >= lights()) return ivec2(0, -1);
+  vec4 l = cluster_lights[light_indices[g]].position_radius;
+  vec2 e = zbin_extent(view_depth(l.xyz), l.w);
+  if (e.y < u_depth_range.x || e.x > u_depth_range.y) return ivec2(0, -1);
+  return ivec2(zbin_of(e.x), zbin_of(e.y));
+}
+#endif
+
+#if STEP >= 5
+// [zbin-tile]
+// Sorted light g's bit in one tile, set when its sphere (view-space centre c, radius r) meets
+// the tile's box (the tile's own depth bounds, as tiled tests); a word's first bit also marks
+// the word in tile_words. entries counts the bits set.
+void zbin_tile(uint g, vec3 c, float r, ivec2 tile, inout uint entries) {
+  int ti = tile.y * u_tiles.x + tile.x;
+  if (bounds[2 * ti] > bounds[2 * ti + 1]) return;  // no surface in the tile
+  ivec2 p0 = tile * u_grid.zw, p1 = min(p0 + u_grid.zw, u_grid.xy);
+  Box box = cell_box(p0, p1, uintBitsToFloat(bounds[2 * ti]), uintBitsToFloat(bounds[2 * ti + 1]));
+  if (!sphere_meets_box(c, r, box)) return;
+  uint word = g / 32u, bit = 1u << (g % 32u);
+  if (atomicOr(tile_masks[uint(ti) * zbin_words() + word], bit) == 0u)  // the word's first bit
+    atomicOr(tile_words[uint(ti) * zbin_word_words() + word / 32u], 1u << (word % 32u));
+  ++entries;
+}
+// [/zbin-tile]
+
+// The list entries, as the other modes count theirs: (tile, light) pairs. (The floor counts
+// its own lists' entries.)
+void count_entries(uint entries) {
+#ifndef FLOOR
+  if (entries > 0u && atomicAdd(state.needed_lo, entries) > 0xFFFFFFFFu - entries) atomicAdd(state.needed_hi, 1u);
+#endif
+}
 #endif
 
 void main() {
@@ -83,16 +139,39 @@ void main() {
   if (g >= lights()) return;
   light_indices[atomicAdd(sort_hist[sort_key[g]], 1u)] = g;
 #elif STEP == 4
+  // The group's lights are neighbours in depth (nearly the same bins): their minima and maxima
+  // are taken in shared memory, then written once a bin. A group whose bins are more than
+  // kGroupBins apart writes from each light.
   // [zbin-bins]
-  if (g >= lights()) return;
-  vec4 l = cluster_lights[light_indices[g]].position_radius;
-  vec2 e = zbin_extent(view_depth(l.xyz), l.w);
-  if (e.y < u_depth_range.x || e.x > u_depth_range.y) return;  // no surface is that near or far
-  int b1 = zbin_of(e.y);
-  for (int b = zbin_of(e.x); b <= b1; ++b) {
-    atomicMin(zbins[2 * b], g);
-    atomicMax(zbins[2 * b + 1], g);
+  uint t = gl_LocalInvocationIndex;
+  ivec2 reach = bins_reached(g);
+  if (t == 0u) { s_span[0] = 0xFFFFFFFFu; s_span[1] = 0u; }
+  barrier();
+  if (reach.x <= reach.y) {
+    atomicMin(s_span[0], uint(reach.x));
+    atomicMax(s_span[1], uint(reach.y));
   }
+  barrier();
+  uint first = s_span[0], count = s_span[0] <= s_span[1] ? s_span[1] - s_span[0] + 1u : 0u;
+  if (count > kGroupBins) {  // the same for the whole group: it reads one shared value
+    for (int b = reach.x; b <= reach.y; ++b) {
+      atomicMin(zbins[2 * b], g);
+      atomicMax(zbins[2 * b + 1], g);
+    }
+    return;
+  }
+  for (uint i = t; i < count; i += gl_WorkGroupSize.x) { s_lo[i] = 0xFFFFFFFFu; s_hi[i] = 0u; }
+  barrier();
+  for (int b = reach.x; b <= reach.y; ++b) {
+    atomicMin(s_lo[uint(b) - first], g);
+    atomicMax(s_hi[uint(b) - first], g);
+  }
+  barrier();
+  for (uint i = t; i < count; i += gl_WorkGroupSize.x)
+    if (s_lo[i] <= s_hi[i]) {
+      atomicMin(zbins[2u * (first + i)], s_lo[i]);
+      atomicMax(zbins[2u * (first + i) + 1u], s_hi[i]);
+    }
   // [/zbin-bins]
 #elif STEP == 5
   // [zbin-tiles]
@@ -100,23 +179,30 @@ void main() {
   vec4 l = cluster_lights[light_indices[g]].position_radius;
   vec3 c = (u_view * vec4(l.xyz, 1.0)).xyz;
   ivec4 rect = sphere_tiles(c, l.w);  // zbin.glsl: the tiles it can cover, empty when nearer than the near plane
-  ivec2 t0 = rect.xy, t1 = rect.zw;
-  uint word = g / 32u, bit = 1u << (g % 32u), entries = 0u;
-  for (int ty = t0.y; ty <= t1.y; ++ty)
-    for (int tx = t0.x; tx <= t1.x; ++tx) {
-      int ti = ty * u_tiles.x + tx;
-      if (bounds[2 * ti] > bounds[2 * ti + 1]) continue;  // no surface in the tile
-      ivec2 p0 = ivec2(tx, ty) * u_grid.zw, p1 = min(p0 + u_grid.zw, u_grid.xy);
-      Box box = cell_box(p0, p1, uintBitsToFloat(bounds[2 * ti]), uintBitsToFloat(bounds[2 * ti + 1]));
-      if (!sphere_meets_box(c, l.w, box)) continue;
-      if (atomicOr(tile_masks[uint(ti) * zbin_words() + word], bit) == 0u)  // the word's first bit
-        atomicOr(tile_words[uint(ti) * zbin_word_words() + word / 32u], 1u << (word % 32u));
-      ++entries;
-    }
+  ivec2 size = max(rect.zw - rect.xy + 1, ivec2(0));
+  if (size.x * size.y > kOwnTiles) {  // a light near the eye: step 6's work groups share its tiles
+    wide_lights[atomicAdd(wide_count, 1u)] = g;
+    return;
+  }
+  uint entries = 0u;
+  for (int k = 0; k < size.x * size.y; ++k) zbin_tile(g, c, l.w, rect.xy + ivec2(k % size.x, k / size.x), entries);
   // [/zbin-tiles]
-#ifndef FLOOR  // (the floor counts its own lists' entries)
-  // The list entries, as the other modes count theirs: (tile, light) pairs.
-  if (entries > 0u && atomicAdd(state.needed_lo, entries) > 0xFFFFFFFFu - entries) atomicAdd(state.needed_hi, 1u);
-#endif
+  count_entries(entries);
+#elif STEP == 6
+  // [zbin-wide]
+  // The lights step 5 passed on, a work group each (as many as the dispatch has, striding):
+  // its invocations take the rectangle's tiles in turn, so that no invocation walks thousands.
+  uint entries = 0u;
+  for (uint w = gl_WorkGroupID.x; w < wide_count; w += gl_NumWorkGroups.x) {
+    uint light = wide_lights[w];
+    vec4 l = cluster_lights[light_indices[light]].position_radius;
+    vec3 c = (u_view * vec4(l.xyz, 1.0)).xyz;
+    ivec4 rect = sphere_tiles(c, l.w);
+    ivec2 size = max(rect.zw - rect.xy + 1, ivec2(0));
+    for (int k = int(gl_LocalInvocationIndex); k < size.x * size.y; k += int(gl_WorkGroupSize.x))
+      zbin_tile(light, c, l.w, rect.xy + ivec2(k % size.x, k / size.x), entries);
+  }
+  // [/zbin-wide]
+  count_entries(entries);
 #endif
 }
