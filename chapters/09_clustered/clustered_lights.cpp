@@ -210,6 +210,7 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
                   std::to_string(grid_.tile_w) + " x " + std::to_string(grid_.tile_h));
     subgroup_path_.clear();
     if (settings_.shade != ShadeIn::Fragment) {
+      for (const std::string& image : ch03::LightBuffer::image_defines()) d.push_back(image);
       if (staged) d.push_back("STAGE_TILE " + std::to_string(grid_.tile_w));
       if (!staged && settings_.kind != CullKind::ZBin) {  // a tile's or cluster's list, read once where shared
         if (!support_known_) support_ = subgroup_support();  // the context's, asked once
@@ -227,13 +228,13 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
                                                                  : "09_clustered/shaders/shade.comp", d);
       set_grid_uniforms(p, camera);
       p.use();
-      glBindImageTexture(0, light.diffuse(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
-      glBindImageTexture(1, light.specular(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
-      if (staged)
+      light.bind_images(GL_READ_WRITE);  // on the units LightBuffer::image_defines() names
+      if (staged) {  // a group a tile
         glDispatchCompute(GLuint(grid_.tiles_x), GLuint(grid_.tiles_y), 1);
-      else
-        glDispatchCompute(GLuint((w + 7) / 8), GLuint((h + 7) / 8), 1);
-      glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+      } else {
+        light.dispatch_per_pixel();
+      }
     } else {
       const ShaderProgram& p = program(GL_FRAGMENT_SHADER, "09_clustered/shaders/shade.frag", d);
       set_grid_uniforms(p, camera);

@@ -14,8 +14,8 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #define FRAME_PIXEL_COMPUTE 1  // the frame's hooks read this invocation's pixel
 #include "09_clustered/shaders/shade.glsl"
 
-layout(binding = 0, rgba16f) uniform image2D u_l1;
-layout(binding = 1, rgba16f) uniform image2D u_l2;
+layout(binding = LIGHT_BUFFER_IMAGE + 0, rgba16f) uniform image2D u_l1;  // LightBuffer::image_defines()
+layout(binding = LIGHT_BUFFER_IMAGE + 1, rgba16f) uniform image2D u_l2;
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);

@@ -8,8 +8,8 @@ layout(local_size_x = STAGE_TILE, local_size_y = STAGE_TILE) in;
 #define FRAME_PIXEL_COMPUTE 1  // the frame's hooks read this invocation's pixel
 #include "09_clustered/shaders/shade.glsl"
 
-layout(binding = 0, rgba16f) uniform image2D u_l1;
-layout(binding = 1, rgba16f) uniform image2D u_l2;
+layout(binding = LIGHT_BUFFER_IMAGE + 0, rgba16f) uniform image2D u_l1;  // LightBuffer::image_defines()
+layout(binding = LIGHT_BUFFER_IMAGE + 1, rgba16f) uniform image2D u_l2;
 
 const uint kChunk = uint(STAGE_TILE * STAGE_TILE);
 shared ClusterLight s_light[kChunk];
