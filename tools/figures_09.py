@@ -81,7 +81,8 @@ def density_plots(d: Path, csv: Path, tag: str, where: str):
 
     def by(col):
         return [Series(f"{m}, {float(t):g} per pixel", [(float(r["lights"]), float(r[col])) for r in rows
-                                                         if r["method"] == m and r["target_density"] == t],
+                                                         if r["method"] == m and r["target_density"] == t
+                                                         and r.get("grid", "default") == "default"],
                        dashed=(m not in ("clustered", "zbin"))) for t in densities for m in methods]
     plot(d / f"09_density_{tag}.svg", f"Local lights at a stated density ({where}, median over the views)", note,
          by("local_median_ms"), "local lights (log)", f"ms of the local lights ({unit}, log)", xlog=True, ylog=True)

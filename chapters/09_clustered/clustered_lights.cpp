@@ -97,6 +97,7 @@ void set4i(const ShaderProgram& p, const char* name, int a, int b, int c, int d)
 constexpr std::size_t kMaxLights = std::size_t(1) << 22;
 constexpr GLuint kTubeBinding = 10;  // shade.glsl's Tubes buffer (CLUSTER_TUBES); 9 holds the spots' cones
 constexpr GLuint kTileWordsBinding = 11;  // zbin.glsl's TileWords
+constexpr GLuint kSortedBinding = 12;     // zbin.glsl's SortedRecords (ClusterSettings::sorted_records)
 }  // namespace
 
 // [pack]
@@ -282,6 +283,7 @@ std::vector<std::string> ClusteredLights::build_lists(int w, int h, const ch03::
   }
   const bool floor = zbin && settings_.floor;
   if (zbin) defines.push_back("ZBIN 1");
+  if (zbin && settings_.sorted_records) defines.push_back("SORTED_RECORDS " + std::to_string(kSortedBinding));
   if (floor) defines.push_back("FLOOR 1");
   const bool mask = settings_.kind == CullKind::Tiled && settings_.depth_mask;
   if (mask) defines.push_back("DEPTH_MASK 1");
@@ -394,6 +396,10 @@ void ClusteredLights::assign_zbin(const std::vector<std::string>& defines, const
   size(masks_, masks_bytes_, std::size_t(mask_bytes));
   size(touched_, touched_bytes_, std::size_t(std::max<std::uint64_t>(tiles * word_words * 4, 4)));
   size(sort_, sort_bytes_, (kSortKeys + std::size_t(light_count_)) * 4);
+  if (settings_.sorted_records) {  // a light and a cone at each sorted position (zbin.glsl)
+    size(sorted_, sorted_bytes_, std::max<std::size_t>(std::size_t(light_count_), 1) * (sizeof(GpuClusterLight) + sizeof(GpuClusterSpot)));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSortedBinding, sorted_.id());
+  }
   // Each step timed apart, so that a sweep can say where the assignment's time goes: the
   // clears, the sort, the bins' ranges, the tiles' bits.
   const std::string part = pass_names(name())[1] + ": ";
@@ -469,6 +475,7 @@ void ClusteredLights::assign_zbin(const std::vector<std::string>& defines, const
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   fence_state();
   stats_.bytes = order_bytes_ + zbins_bytes_ + masks_bytes_ + touched_bytes_ + sort_bytes_ + bounds_bytes_ + lights_bytes_ +
+                 (settings_.sorted_records ? sorted_bytes_ : 0) +
                  (floor ? std::size_t(capacity_) * 4 + cells_bytes_ : 0);
 }
 // [/assign-zbin]
@@ -563,6 +570,7 @@ ClusteredLights::ZBinLists ClusteredLights::zbin_lists() const {
   read(masks_, masks_bytes_, z.masks);
   read(touched_, touched_bytes_, z.touched);
   z.words = (std::size_t(light_count_) + 31) / 32;
+  if (settings_.sorted_records) read(sorted_, std::size_t(light_count_) * 48, z.records);
   return z;
 }
 

@@ -45,6 +45,9 @@ struct ClusterSettings {
   // whose cut reaches its surface) in the assignment, so that the shading pass is the per-pair
   // arithmetic alone: the floor the other modes' shading is measured against.
   bool floor = false;
+  // zbin: each light's record (and a spot's cone) copied into the sorted order by the sort, so
+  // that the shading reads a light at its sorted position beside its index, not through it.
+  bool sorted_records = true;
   // The index list starts this large (indices) and grows to what a frame needs, up to
   // max_indices. Growth is found a frame late, never by waiting for the GPU: a cell that does
   // not fit is shaded from every light that frame (slower, the same image) and counted, and
@@ -180,6 +183,9 @@ class ClusteredLights : public ch03::LocalLightPass {
     std::vector<glm::uvec2> ranges;
     std::vector<std::uint32_t> masks, touched;
     std::size_t words = 0;
+    // With sorted_records: the light and cone at each sorted position (xyzw of each: position
+    // and radius, radiance and 1 / range^2, the cone).
+    std::vector<glm::vec4> records;
   };
   ZBinLists zbin_lists() const;
   void reload_shaders() { programs_.clear(); }
@@ -222,8 +228,8 @@ class ClusteredLights : public ch03::LocalLightPass {
   std::size_t lights_bytes_ = 0, cells_bytes_ = 0, bounds_bytes_ = 0;
   // Z-binning's: the sorted order, each bin's range, each tile's bits and which of its words
   // have bits (the last frame's, cleared word by word), the sort's scratch.
-  gl::Buffer order_, zbins_, masks_, touched_, sort_;
-  std::size_t order_bytes_ = 0, zbins_bytes_ = 0, masks_bytes_ = 0, touched_bytes_ = 0, sort_bytes_ = 0;
+  gl::Buffer order_, zbins_, masks_, touched_, sort_, sorted_;
+  std::size_t order_bytes_ = 0, zbins_bytes_ = 0, masks_bytes_ = 0, touched_bytes_ = 0, sort_bytes_ = 0, sorted_bytes_ = 0;
   glm::uvec2 mask_layout_{0, 0};  // (tiles, words a tile) the masks hold now; (0, 0): not cleared yet
   std::uint32_t capacity_ = 0;
   // Each draw's list state, copied when its assignment ends and read once the GPU has passed

@@ -84,6 +84,9 @@ std::vector<Method> density_methods(const ch09::ClusterSettings& base) {
   // The floor first: every other method's shading is stated as a multiple of its.
   for (const std::string mode : {"zbin-floor", "tiled", "tiled-2.5d", "tiled-staged", "clustered", "zbin"})
     m.push_back({mode, "default", ch09::settings_for_mode(mode, base)});
+  Method indexed{"zbin", "records by index", ch09::settings_for_mode("zbin", base)};
+  indexed.settings.sorted_records = false;  // each light's record read through the sorted order's index
+  m.push_back(indexed);
   return m;
 }
 

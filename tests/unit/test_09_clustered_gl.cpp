@@ -798,6 +798,49 @@ TEST_F(ClusteredGl, ZBinRangesAndTileBitsHoldExactlyTheLightsThatReach) {
   }
 }
 
+// ClusterSettings::sorted_records: the sort copies each light's record and cone to its sorted
+// position, and the shading reads them there. Every copy must be the record of the light the
+// order names there (a spot with its cone, a point with none), and the image the unsorted
+// pass's: the same lit pairs, and where both sorted alike (the order inside a sort bucket is
+// the atomics'), the same light buffers to the bit.
+TEST_F(ClusteredGl, ZBinningsSortedRecordsAreTheLightsItsOrderNames) {
+  World& w = street();
+  set_lights(w, 2000);
+  const int width = 160, height = 90;
+  const FrameCamera cam = camera(w, "street_level", width, height);
+  ClusterSettings indexed = settings_for_mode("zbin"), copied = settings_for_mode("zbin");
+  indexed.sorted_records = false;
+  copied.sorted_records = true;
+  ClusteredLights plain(w.frame_.volumes(), indexed);
+  ClusteredLights sorted(w.frame_.volumes(), copied);
+  const Render a = render(w, cam, width, height, &plain, false);
+  const Render b = render(w, cam, width, height, &sorted, false);
+  ASSERT_GT(a.counts.lit, 1000u);
+  EXPECT_EQ(b.counts.lit, a.counts.lit);
+  const ClusterRecords packed = pack_cluster_lights(w.frame_.volumes().lights());
+  ASSERT_GT(packed.first_spot, 0);
+  ASSERT_LT(packed.first_spot, int(packed.lights.size())) << "no spot: the cones go untested";
+  const ClusteredLights::ZBinLists z = sorted.zbin_lists();
+  ASSERT_EQ(z.order.size(), packed.lights.size());
+  ASSERT_EQ(z.records.size(), 3 * packed.lights.size());
+  std::size_t wrong = 0;
+  for (std::size_t p = 0; p < z.order.size(); ++p) {
+    const std::uint32_t i = z.order[p];
+    ASSERT_LT(i, packed.lights.size());
+    const glm::vec4 cone = int(i) >= packed.first_spot ? packed.spots[i - std::size_t(packed.first_spot)].axis_offset : glm::vec4(0.f);
+    if (z.records[3 * p] != packed.lights[i].position_radius || z.records[3 * p + 1] != packed.lights[i].radiance_inv_range2 ||
+        z.records[3 * p + 2] != cone)
+      ++wrong;
+  }
+  EXPECT_EQ(wrong, 0u) << "sorted positions whose record is not the light the order names";
+  const bool alike = z.order == plain.zbin_lists().order;
+  std::printf("the two passes sorted %s\n", alike ? "alike: their light buffers compared" : "differently");
+  if (alike) {
+    EXPECT_EQ(b.counts.evaluated, a.counts.evaluated);
+    EXPECT_TRUE(b.l1 == a.l1 && b.l2 == a.l2) << "the light buffers differ";
+  }
+}
+
 // Z-binning clears only the mask words the last frame set (tile_words names them; the whole
 // masks only when their layout changes). The hard case is a pass kept from frame to frame: its
 // lists must be a fresh pass's, tile by tile (as sets of lights: the order inside a sort bucket

@@ -83,14 +83,20 @@ layout(std430, binding = 8) buffer FloorLists { uint floor_lights[]; };  // the 
 void zbin_take(Surface s, vec3 to_eye, uint w, int op, inout uint m, inout uint at, inout vec3 diffuse,
                inout vec3 specular, inout uint lit) {
   if (m == 0u) return;
-  int i = int(light_indices[w * 32u + uint(findLSB(m))]);
+  uint p = w * 32u + uint(findLSB(m));
+  int i = int(light_indices[p]);
   m &= m - 1u;
+#ifdef SORTED_RECORDS
+  SortedRecord r = sorted_records[p];  // read beside its index, not after it
+#else
+  SortedRecord r = SortedRecord(cluster_lights[i], cone_of(i));
+#endif
   if (op == kZShade) {
-    add_lamp(s, to_eye, i, cluster_lights[i], cone_of(i), diffuse, specular, lit);
+    add_lamp(s, to_eye, i, r.light, r.cone, diffuse, specular, lit);
     return;
   }
   // The floor's lists: the lights local_light() would not end at their cut, exactly.
-  vec4 l = cluster_lights[i].position_radius;
+  vec4 l = r.light.position_radius;
   if (distance(l.xyz, s.position) > l.w) return;
 #ifdef FLOOR
   if (op == kZWrite) floor_lights[at] = uint(i);

@@ -137,7 +137,15 @@ void main() {
   }
 #elif STEP == 3
   if (g >= lights()) return;
-  light_indices[atomicAdd(sort_hist[sort_key[g]], 1u)] = g;
+  // [zbin-scatter]
+  uint p = atomicAdd(sort_hist[sort_key[g]], 1u);
+  light_indices[p] = g;
+#ifdef SORTED_RECORDS
+  int i = int(g);
+  vec4 cone = i >= u_first_spot && i < u_first_tube ? cluster_spots[i - u_first_spot].axis_offset : vec4(0.0);
+  sorted_records[p] = SortedRecord(cluster_lights[g], cone);
+#endif
+  // [/zbin-scatter]
 #elif STEP == 4
   // The group's lights are neighbours in depth (nearly the same bins): their minima and maxima
   // are taken in shared memory, then written once a bin. A group whose bins are more than

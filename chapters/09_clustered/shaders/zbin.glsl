@@ -20,6 +20,17 @@ layout(std430, binding = 7) buffer TileMasks { uint tile_masks[]; };
 // and the shading skips a tile's empty words 32 at a time.
 layout(std430, binding = 11) buffer TileWords { uint tile_words[]; };  // (3 is the fragment counters')
 
+// A light and its cone (zero for a point) as the shading reads them.
+struct SortedRecord {
+  ClusterLight light;
+  vec4 cone;
+};
+#ifdef SORTED_RECORDS
+// ClusterSettings::sorted_records: the record at sorted position p, written by the sort
+// (zbin.comp's step 3), read by the shading in place of cluster_lights[light_indices[p]].
+layout(std430, binding = SORTED_RECORDS) buffer SortedRecords { SortedRecord sorted_records[]; };
+#endif
+
 uint zbin_words() { return (uint(u_tiles.w) + 31u) / 32u; }
 uint zbin_word_words() { return (zbin_words() + 31u) / 32u; }
 
