@@ -76,6 +76,8 @@ namespace {
 // The GPU's records of a light and of a spot's cone (cluster_light.h).
 using GpuClusterLight = glsl::ClusterLight;
 using GpuClusterSpot = glsl::ClusterSpot;
+// zbin.glsl's SortedRecord: a light and its cone at each sorted position (sorted_records).
+constexpr std::size_t kSortedRecordBytes = sizeof(GpuClusterLight) + sizeof(GpuClusterSpot);
 static_assert(sizeof(GpuClusterLight) == 32 && offsetof(GpuClusterLight, radiance_inv_range2) == 16);
 static_assert(sizeof(GpuClusterSpot) == 16);
 static_assert(sizeof(ClusterRecords::Light) == sizeof(GpuClusterLight) && sizeof(ClusterRecords::Spot) == sizeof(GpuClusterSpot));
@@ -397,7 +399,7 @@ void ClusteredLights::assign_zbin(const std::vector<std::string>& defines, const
   size(touched_, touched_bytes_, std::size_t(std::max<std::uint64_t>(tiles * word_words * 4, 4)));
   size(sort_, sort_bytes_, (kSortKeys + std::size_t(light_count_)) * 4);
   if (settings_.sorted_records) {  // a light and a cone at each sorted position (zbin.glsl)
-    size(sorted_, sorted_bytes_, std::max<std::size_t>(std::size_t(light_count_), 1) * (sizeof(GpuClusterLight) + sizeof(GpuClusterSpot)));
+    size(sorted_, sorted_bytes_, std::max<std::size_t>(std::size_t(light_count_), 1) * kSortedRecordBytes);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSortedBinding, sorted_.id());
   }
   // Each step timed apart, so that a sweep can say where the assignment's time goes: the
@@ -570,7 +572,7 @@ ClusteredLights::ZBinLists ClusteredLights::zbin_lists() const {
   read(masks_, masks_bytes_, z.masks);
   read(touched_, touched_bytes_, z.touched);
   z.words = (std::size_t(light_count_) + 31) / 32;
-  if (settings_.sorted_records) read(sorted_, std::size_t(light_count_) * 48, z.records);
+  if (settings_.sorted_records) read(sorted_, std::size_t(light_count_) * kSortedRecordBytes, z.records);
   return z;
 }
 

@@ -702,12 +702,11 @@ TEST_F(ClusteredGl, ZBinRangesAndTileBitsHoldExactlyTheLightsThatReach) {
     int bins, tile_px;
   };
   for (const Case& k : {Case{1.f, 1024, 16}, Case{1.f / 4.f, 1024, 16}, Case{1.f, 16384, 16}, Case{1.f, 1024, 4}}) {
-    const float scale = k.scale;
-    SCOPED_TRACE("range x " + std::to_string(scale) + ", " + std::to_string(k.bins) + " bins, tiles of " +
+    SCOPED_TRACE("range x " + std::to_string(k.scale) + ", " + std::to_string(k.bins) + " bins, tiles of " +
                  std::to_string(k.tile_px) + " px");
     std::vector<Light> lights = ch03::lights_for_count(w.scene_, 2000);
     for (Light& l : lights)
-      if (l.type != LightType::Directional) l.range *= scale;
+      if (l.type != LightType::Directional) l.range *= k.scale;
     set_light_list(w, lights);
     ClusterSettings tiles = settings_for_mode("tiled"), binned = settings_for_mode("zbin");
     tiles.tile_px = binned.tile_px = k.tile_px;

@@ -134,6 +134,10 @@ layout(std430, binding = 0) readonly buffer Lights { ClusterLight cluster_lights
 layout(std430, binding = 9) readonly buffer Spots { ClusterSpot cluster_spots[]; };
 uniform int u_first_spot;  // the first spot of the light order (the lights before it are points)
 uniform int u_first_tube;  // the first tube (the lights' count when there are none)
+// Light i's cone: a spot's, zero for a point (and a tube, which has none).
+vec4 cone_of(int i) {
+  return i >= u_first_spot && i < u_first_tube ? cluster_spots[i - u_first_spot].axis_offset : vec4(0.0);
+}
 // Each cell's list: where it starts in the index list and how many lights it holds.
 layout(std430, binding = 1) buffer Cells { uvec2 cells[]; };
 layout(std430, binding = 4) buffer Indices { uint light_indices[]; };

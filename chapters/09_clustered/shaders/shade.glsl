@@ -44,10 +44,7 @@ void add_tube(Surface s, vec3 to_eye, ClusterLight c, inout vec3 diffuse, inout 
 // [/tube-shade]
 
 // Light i of the light order, a point or a spot (record c, and its cone when it is a spot:
-// cluster_light.h), added to the pixel's sums. A tube has no cone.
-vec4 cone_of(int i) {
-  return i >= u_first_spot && i < u_first_tube ? cluster_spots[i - u_first_spot].axis_offset : vec4(0.0);
-}
+// grid.glsl's cone_of), added to the pixel's sums. A tube has no cone.
 void add_lamp(Surface s, vec3 to_eye, int i, ClusterLight c, vec4 cone, inout vec3 diffuse, inout vec3 specular,
               inout uint lit) {
   light_pair(c, i >= u_first_spot, cone, i, s, to_eye, diffuse, specular, lit);

@@ -77,6 +77,20 @@ void zbin_tile(uint g, vec3 c, float r, ivec2 tile, inout uint entries) {
 }
 // [/zbin-tile]
 
+// Sorted light g's view-space centre and radius, and its screen rectangle (zbin.glsl's
+// sphere_tiles) as its first tile and size in tiles (0 x 0 when empty).
+struct LightRect {
+  vec3 c;
+  float r;
+  ivec2 first, size;
+};
+LightRect light_rect(uint g) {
+  vec4 l = cluster_lights[light_indices[g]].position_radius;
+  vec3 c = (u_view * vec4(l.xyz, 1.0)).xyz;
+  ivec4 rect = sphere_tiles(c, l.w);  // empty when nearer than the near plane
+  return LightRect(c, l.w, rect.xy, max(rect.zw - rect.xy + 1, ivec2(0)));
+}
+
 // The list entries, as the other modes count theirs: (tile, light) pairs. (The floor counts
 // its own lists' entries.)
 void count_entries(uint entries) {
@@ -141,9 +155,7 @@ void main() {
   uint p = atomicAdd(sort_hist[sort_key[g]], 1u);
   light_indices[p] = g;
 #ifdef SORTED_RECORDS
-  int i = int(g);
-  vec4 cone = i >= u_first_spot && i < u_first_tube ? cluster_spots[i - u_first_spot].axis_offset : vec4(0.0);
-  sorted_records[p] = SortedRecord(cluster_lights[g], cone);
+  sorted_records[p] = SortedRecord(cluster_lights[g], cone_of(int(g)));
 #endif
   // [/zbin-scatter]
 #elif STEP == 4
@@ -184,16 +196,14 @@ void main() {
 #elif STEP == 5
   // [zbin-tiles]
   if (g >= lights()) return;
-  vec4 l = cluster_lights[light_indices[g]].position_radius;
-  vec3 c = (u_view * vec4(l.xyz, 1.0)).xyz;
-  ivec4 rect = sphere_tiles(c, l.w);  // zbin.glsl: the tiles it can cover, empty when nearer than the near plane
-  ivec2 size = max(rect.zw - rect.xy + 1, ivec2(0));
-  if (size.x * size.y > kOwnTiles) {  // a light near the eye: step 6's work groups share its tiles
+  LightRect l = light_rect(g);  // the tiles its sphere can cover
+  int tiles = l.size.x * l.size.y;
+  if (tiles > kOwnTiles) {  // a light near the eye: step 6's work groups share its tiles
     wide_lights[atomicAdd(wide_count, 1u)] = g;
     return;
   }
   uint entries = 0u;
-  for (int k = 0; k < size.x * size.y; ++k) zbin_tile(g, c, l.w, rect.xy + ivec2(k % size.x, k / size.x), entries);
+  for (int k = 0; k < tiles; ++k) zbin_tile(g, l.c, l.r, l.first + ivec2(k % l.size.x, k / l.size.x), entries);
   // [/zbin-tiles]
   count_entries(entries);
 #elif STEP == 6
@@ -203,12 +213,9 @@ void main() {
   uint entries = 0u;
   for (uint w = gl_WorkGroupID.x; w < wide_count; w += gl_NumWorkGroups.x) {
     uint light = wide_lights[w];
-    vec4 l = cluster_lights[light_indices[light]].position_radius;
-    vec3 c = (u_view * vec4(l.xyz, 1.0)).xyz;
-    ivec4 rect = sphere_tiles(c, l.w);
-    ivec2 size = max(rect.zw - rect.xy + 1, ivec2(0));
-    for (int k = int(gl_LocalInvocationIndex); k < size.x * size.y; k += int(gl_WorkGroupSize.x))
-      zbin_tile(light, c, l.w, rect.xy + ivec2(k % size.x, k / size.x), entries);
+    LightRect l = light_rect(light);
+    for (int k = int(gl_LocalInvocationIndex); k < l.size.x * l.size.y; k += int(gl_WorkGroupSize.x))
+      zbin_tile(light, l.c, l.r, l.first + ivec2(k % l.size.x, k / l.size.x), entries);
   }
   // [/zbin-wide]
   count_entries(entries);
