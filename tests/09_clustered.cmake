@@ -5,7 +5,7 @@ lightpass_gtests(09_clustered gl lightpass_09_clustered unit/test_09_clustered_g
 
 # The program: reference images (every mode, inside a light, the heat maps and the grid).
 set(P09 $<TARGET_FILE:09_clustered>)
-foreach(mode clustered tiled clustered-fragment tiled-fragment tiled-staged zbin stencil)
+foreach(mode clustered tiled clustered-fragment tiled-fragment tiled-staged zbin zbin-staged stencil)
   lightpass_program_test(09_clustered.reference.${mode} 0 "references match" ${P09} --check --mode ${mode} --out ${CHECK_OUT}/09_clustered)
 endforeach()
 # A headless run reports what it did: the street's 312 lights, lit pairs equal to the stencil

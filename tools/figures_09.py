@@ -76,14 +76,14 @@ def density_plots(d: Path, csv: Path, tag: str, where: str):
     note = notes[0] if notes else ""
     unit = "GPU" if tag != "llvmpipe" else "llvmpipe CPU time"
     densities = sorted({r["target_density"] for r in rows}, key=float)
-    methods = [m for m in ("tiled", "tiled-2.5d", "tiled-staged", "clustered", "zbin", "zbin-floor")
+    methods = [m for m in ("tiled", "tiled-2.5d", "tiled-staged", "clustered", "zbin", "zbin-staged", "zbin-floor")
                if any(r["method"] == m for r in rows)]
 
     def by(col):
         return [Series(f"{m}, {float(t):g} per pixel", [(float(r["lights"]), float(r[col])) for r in rows
                                                          if r["method"] == m and r["target_density"] == t
                                                          and r.get("grid", "default") == "default"],
-                       dashed=(m not in ("clustered", "zbin"))) for t in densities for m in methods]
+                       dashed=(m not in ("clustered", "zbin", "zbin-staged"))) for t in densities for m in methods]
     plot(d / f"09_density_{tag}.svg", f"Local lights at a stated density ({where}, median over the views)", note,
          by("local_median_ms"), "local lights (log)", f"ms of the local lights ({unit}, log)", xlog=True, ylog=True)
     plot(d / f"09_density_evaluated_{tag}.svg", f"Lights evaluated per lit one, at a stated density ({where})",

@@ -30,7 +30,7 @@ ClusterSettings settings_for_mode(const std::string& name, ClusterSettings s) {
 
 std::string mode_name(const ClusterSettings& s) {
   const bool mask = s.kind == CullKind::Tiled && s.depth_mask;
-  const bool staged = s.kind == CullKind::Tiled && s.shade == ShadeIn::Staged;
+  const bool staged = s.kind != CullKind::Clustered && !s.floor && s.shade == ShadeIn::Staged;
   const char* kind = s.kind == CullKind::Tiled ? "tiled" : s.kind == CullKind::ZBin ? "zbin" : "clustered";
   return std::string(kind) + (mask ? "-2.5d" : "") +
          (s.kind == CullKind::ZBin && s.floor ? "-floor" : "") + (s.shade == ShadeIn::Fragment ? "-fragment" : "") +
@@ -205,11 +205,11 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
     }
     if (output == ch03::LightVolumes::Output::HeatShaded) d.push_back("HEAT_SHADED 1");
     if (output == ch03::LightVolumes::Output::HeatLit) d.push_back("HEAT_LIT 1");
-    // Staged: one work group per tile, so tiled with square tiles of at most 32 pixels
-    // (1 024 invocations, GL's guaranteed minimum); clusters shade per pixel (shade.comp).
-    const bool staged = settings_.shade == ShadeIn::Staged && settings_.kind == CullKind::Tiled;
+    // Staged: one work group per tile, so tiled or Z-binning with square tiles of at most 32
+    // pixels (1 024 invocations, GL's guaranteed minimum); clusters shade per pixel (shade.comp).
+    const bool staged = settings_.shade == ShadeIn::Staged && settings_.kind != CullKind::Clustered && !settings_.floor;
     if (staged && (grid_.tile_w != grid_.tile_h || grid_.tile_w > 32))
-      throw Error("clustered lights: tiled-staged needs square tiles of at most 32 pixels, not " +
+      throw Error("clustered lights: " + name() + " needs square tiles of at most 32 pixels, not " +
                   std::to_string(grid_.tile_w) + " x " + std::to_string(grid_.tile_h));
     subgroup_path_.clear();
     if (settings_.shade != ShadeIn::Fragment) {
@@ -227,8 +227,10 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
           if (settings_.subgroup_merge) d.push_back("SUBGROUP_MERGE 1");
         }
       }
-      const ShaderProgram& p = program(GL_COMPUTE_SHADER, staged ? "09_clustered/shaders/shade_staged.comp"
-                                                                 : "09_clustered/shaders/shade.comp", d);
+      const char* file = !staged                              ? "09_clustered/shaders/shade.comp"
+                         : settings_.kind == CullKind::ZBin ? "09_clustered/shaders/zbin_staged.comp"
+                                                            : "09_clustered/shaders/shade_staged.comp";
+      const ShaderProgram& p = program(GL_COMPUTE_SHADER, file, d);
       set_grid_uniforms(p, camera);
       p.use();
       light.bind_images(GL_READ_WRITE);  // on the units LightBuffer::image_defines() names

@@ -30,7 +30,7 @@ namespace lp::ch09 {
 // ZBin: Z-binning (Drobot 2017): lights sorted by depth, a range per depth bin, a bit per
 // light per tile (shaders/zbin.glsl).
 enum class CullKind { Tiled, Clustered, ZBin };
-enum class ShadeIn { Compute, Fragment, Staged };  // Staged: compute, the tile's lights in shared memory (tiled)
+enum class ShadeIn { Compute, Fragment, Staged };  // Staged: compute, the tile's lights in shared memory (tiled, zbin)
 enum class SubgroupUse { Off, Native, Any };
 
 struct ClusterSettings {
@@ -71,11 +71,13 @@ struct ClusterSettings {
   // subgroups take the per-invocation loop. The same image either way.
   bool subgroup_merge = false;
 };
-// The seven ways of the program's --mode, beside chapter 03's: "tiled", "tiled-2.5d" (with the
+// The eight ways of the program's --mode, beside chapter 03's: "tiled", "tiled-2.5d" (with the
 // depth mask), "tiled-fragment", "tiled-staged" (the tile's lights staged in shared memory,
-// tiles of at most 32 pixels), "clustered" (compute), "clustered-fragment", "zbin" (compute).
-inline const std::vector<std::string> kClusterModes = {"tiled", "tiled-2.5d", "tiled-fragment", "tiled-staged",
-                                                       "clustered", "clustered-fragment", "zbin"};
+// tiles of at most 32 pixels), "clustered" (compute), "clustered-fragment", "zbin" (compute),
+// "zbin-staged" (the lights of the tile's bins staged in shared memory: zbin_staged.comp).
+inline const std::vector<std::string> kClusterModes = {"tiled",     "tiled-2.5d",         "tiled-fragment",
+                                                       "tiled-staged", "clustered",       "clustered-fragment",
+                                                       "zbin",      "zbin-staged"};
 // Modes for measuring, not for the program's list: "zbin-floor" (settings.floor above).
 inline const std::vector<std::string> kBenchModes = {"zbin-floor"};
 bool is_cluster_mode(const std::string& name);  // one of kClusterModes or kBenchModes

@@ -82,7 +82,7 @@ struct Method {
 std::vector<Method> density_methods(const ch09::ClusterSettings& base) {
   std::vector<Method> m;
   // The floor first: every other method's shading is stated as a multiple of its.
-  for (const std::string mode : {"zbin-floor", "tiled", "tiled-2.5d", "tiled-staged", "clustered", "zbin"})
+  for (const std::string mode : {"zbin-floor", "tiled", "tiled-2.5d", "tiled-staged", "clustered", "zbin", "zbin-staged"})
     m.push_back({mode, "default", ch09::settings_for_mode(mode, base)});
   Method indexed{"zbin", "records by index", ch09::settings_for_mode("zbin", base)};
   indexed.settings.sorted_records = false;  // each light's record read through the sorted order's index
@@ -121,6 +121,11 @@ std::vector<Method> grid_methods(const ch09::ClusterSettings& base) {
       z.settings.zbins = bins;
       m.push_back(z);
     }
+  for (const int tile : {8, 16, 32}) {  // staged: a work group a tile, so at most 32 pixels
+    Method z{"zbin-staged", "tile " + std::to_string(tile) + " bins 1024", ch09::settings_for_mode("zbin-staged", base)};
+    z.settings.tile_px = tile;
+    m.push_back(z);
+  }
   return m;
 }
 // [/grid-methods]

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdlib>
 #include <map>
@@ -840,6 +841,92 @@ TEST_F(ClusteredGl, ZBinningsSortedRecordsAreTheLightsItsOrderNames) {
   }
 }
 
+// Z-binning staged (zbin_staged.comp): a work group per tile stages the lights of the span its
+// pixels' bins name, in sorted order and in chunks of a group's size, and each pixel adds the
+// part of each chunk in its own bin's range. It must add exactly zbin_visit's lights in
+// zbin_visit's order: the same evaluated pairs and light buffers, bit for bit. Two passes sort
+// alike only where no two lights share a sort key (ties are ordered by the atomics), so the
+// case lays its lights out along the view, each 1.3 sort keys deeper than the last (their
+// depths grow by a constant ratio, the keys are exponential), spots among them. The hard cases
+// are the tiles of near and far surfaces (spans of many bins, each pixel a part of them) and
+// spans of more lights than a chunk: the near tiles see over a thousand. (And 32-pixel tiles,
+// whose 1 024 invocations stage a chunk of 256, for both staged passes.)
+TEST_F(ClusteredGl, ZBinStagedAddsZBinningsLightsInItsOrder) {
+  World& w = street();
+  const int width = 160, height = 90;
+  const FrameCamera cam = camera(w, "street_level", width, height);
+  const glm::mat4 to_world = glm::inverse(cam.view);
+  const glm::vec3 eye = cam.position, forward = -glm::vec3(to_world[2]), right = glm::vec3(to_world[0]),
+                  up = glm::vec3(to_world[1]);
+  constexpr double kSortKeys = 16384.0;  // zbin.comp's
+  const double key_ratio = std::exp(std::log(double(cam.zfar) / double(cam.znear)) / kSortKeys);
+  const int n = 3000;
+  const double near = 2.0, far = 100.0, ratio = std::exp(std::log(far / near) / double(n - 1));
+  ASSERT_GT(std::log(ratio), 1.3 * std::log(key_ratio)) << "lights closer in depth than a sort key";
+  std::vector<Light> lights = ch03::lights_for_count(w.scene_, n);
+  int local = 0, spots = 0;
+  for (Light& l : lights) {
+    if (l.type == LightType::Directional) continue;
+    const int k = local++;
+    const float d = float(near * std::pow(ratio, double(k)));
+    l.position = eye + d * forward + float((k * 7) % 11 - 5) * 0.6f * right + (float(k % 5) * 0.5f - 1.2f) * up;
+    spots += l.type == LightType::Spot;
+  }
+  ASSERT_EQ(local, n);
+  ASSERT_GT(spots, 0) << "no spot: the staged cones go untested";
+  set_light_list(w, lights);
+  // 32-pixel tiles too: a group of 1 024 invocations stages 256 records at a time.
+  for (const int tile : {16, 32}) {
+    SCOPED_TRACE("tiles of " + std::to_string(tile) + " px");
+    ClusterSettings zbin = settings_for_mode("zbin"), zbin_staged = settings_for_mode("zbin-staged");
+    zbin.tile_px = zbin_staged.tile_px = tile;
+    ClusteredLights p(w.frame_.volumes(), zbin);
+    ClusteredLights q(w.frame_.volumes(), zbin_staged);
+    const Render a = render(w, cam, width, height, &p, false);
+    const Render b = render(w, cam, width, height, &q, false);
+    ASSERT_EQ(p.zbin_lists().order, q.zbin_lists().order) << "the case's sort keys are distinct";
+    ASSERT_GT(a.counts.lit, 200000u) << "the case needs tens of lights a pixel";
+    EXPECT_EQ(b.counts.lit, a.counts.lit);
+    EXPECT_EQ(b.counts.evaluated, a.counts.evaluated);
+    EXPECT_TRUE(b.l1 == a.l1 && b.l2 == a.l2) << "the light buffers differ";
+  }
+  // tiled-staged at 32-pixel tiles (its chunks too): tiled's lights in tiled's order.
+  {
+    ClusterSettings tiled = settings_for_mode("tiled"), tiled_staged = settings_for_mode("tiled-staged");
+    tiled.tile_px = tiled_staged.tile_px = 32;
+    ClusteredLights p(w.frame_.volumes(), tiled);
+    ClusteredLights q(w.frame_.volumes(), tiled_staged);
+    const Render a = render(w, cam, width, height, &p, false);
+    const Render b = render(w, cam, width, height, &q, false);
+    EXPECT_EQ(b.counts.lit, a.counts.lit);
+    EXPECT_EQ(b.counts.evaluated, a.counts.evaluated);
+    EXPECT_TRUE(b.l1 == a.l1 && b.l2 == a.l2) << "tiled-staged's light buffers differ from tiled's at 32-pixel tiles";
+  }
+  ClusteredLights plain(w.frame_.volumes(), settings_for_mode("zbin"));
+  ClusteredLights staged(w.frame_.volumes(), settings_for_mode("zbin-staged"));
+  const Render a = render(w, cam, width, height, &plain, false);
+  const Render b = render(w, cam, width, height, &staged, false);
+  ASSERT_EQ(plain.zbin_lists().order, staged.zbin_lists().order);
+  // Staged with the records read through the index (sorted_records off): the same again.
+  ClusterSettings indexed = settings_for_mode("zbin-staged");
+  indexed.sorted_records = false;
+  ClusteredLights staged_indexed(w.frame_.volumes(), indexed);
+  const Render c = render(w, cam, width, height, &staged_indexed, false);
+  EXPECT_EQ(c.counts.evaluated, a.counts.evaluated);
+  EXPECT_TRUE(c.l1 == a.l1 && c.l2 == a.l2) << "the light buffers differ (records by index)";
+  // A tile with more lights than a chunk holds (so that the chunks are tested).
+  const ClusteredLights::ZBinLists z = staged.zbin_lists();
+  std::size_t most = 0;
+  for (std::size_t t = 0; t * z.words < z.masks.size(); ++t) {
+    std::size_t bits = 0;
+    for (std::size_t k = 0; k < z.words; ++k) bits += std::size_t(std::popcount(z.masks[t * z.words + k]));
+    most = std::max(most, bits);
+  }
+  EXPECT_GT(most, 4u * 256u) << "no tile holds several chunks of lights";
+  std::printf("lit %llu, evaluated %llu, the most lights in a tile %zu\n", (unsigned long long)a.counts.lit,
+              (unsigned long long)a.counts.evaluated, most);
+}
+
 // Z-binning clears only the mask words the last frame set (tile_words names them; the whole
 // masks only when their layout changes). The hard case is a pass kept from frame to frame: its
 // lists must be a fresh pass's, tile by tile (as sets of lights: the order inside a sort bucket
@@ -936,7 +1023,7 @@ TEST_F(ClusteredGl, HundredThousandLightsAtASmallSize) {
   ASSERT_EQ(full.stencil.shaded, 100000u * width * height) << "the full-screen pass shades every light everywhere";
   ASSERT_GT(full.stencil.lit, 100000u) << "thousands of lights at each of the 144 pixels";
   std::vector<float> k;
-  for (const std::string& mode : {std::string("tiled"), std::string("clustered"), std::string("zbin")}) {
+  for (const std::string& mode : {std::string("tiled"), std::string("clustered"), std::string("zbin"), std::string("zbin-staged")}) {
     SCOPED_TRACE(mode);
     ClusterSettings settings = settings_for_mode(mode);
     settings.tile_px = 8;  // tiled and zbin: 2 x 2 tiles

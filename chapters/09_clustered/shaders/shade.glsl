@@ -76,6 +76,14 @@ const int kZShade = 0, kZCount = 1, kZWrite = 2;
 #ifdef FLOOR
 layout(std430, binding = 8) buffer FloorLists { uint floor_lights[]; };  // the exact lists, per pixel
 #endif
+// The record of light i at sorted position p.
+SortedRecord zbin_record(uint p, int i) {
+#ifdef SORTED_RECORDS
+  return sorted_records[p];  // read beside its index, not after it
+#else
+  return SortedRecord(cluster_lights[i], cone_of(i));
+#endif
+}
 // The light of the lowest bit left in mask word w (if any), visited; its bit cleared.
 void zbin_take(Surface s, vec3 to_eye, uint w, int op, inout uint m, inout uint at, inout vec3 diffuse,
                inout vec3 specular, inout uint lit) {
@@ -83,11 +91,7 @@ void zbin_take(Surface s, vec3 to_eye, uint w, int op, inout uint m, inout uint 
   uint p = w * 32u + uint(findLSB(m));
   int i = int(light_indices[p]);
   m &= m - 1u;
-#ifdef SORTED_RECORDS
-  SortedRecord r = sorted_records[p];  // read beside its index, not after it
-#else
-  SortedRecord r = SortedRecord(cluster_lights[i], cone_of(i));
-#endif
+  SortedRecord r = zbin_record(p, i);
   if (op == kZShade) {
     add_lamp(s, to_eye, i, r.light, r.cone, diffuse, specular, lit);
     return;

@@ -11,7 +11,9 @@ layout(local_size_x = STAGE_TILE, local_size_y = STAGE_TILE) in;
 layout(binding = LIGHT_BUFFER_IMAGE + 0, rgba16f) uniform image2D u_l1;  // LightBuffer::image_defines()
 layout(binding = LIGHT_BUFFER_IMAGE + 1, rgba16f) uniform image2D u_l2;
 
-const uint kChunk = uint(STAGE_TILE * STAGE_TILE);
+// Records staged at once: at most 256 (13 KiB; GL promises 32 KiB of shared memory, and
+// 32-pixel tiles' 1 024 invocations would need 52).
+const uint kChunk = min(uint(STAGE_TILE * STAGE_TILE), 256u);
 shared ClusterLight s_light[kChunk];
 shared vec4 s_cone[kChunk];
 shared int s_index[kChunk];

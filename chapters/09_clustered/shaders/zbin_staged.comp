@@ -1,0 +1,134 @@
+#version 450
+// Pass 3 of Z-binning with the tile's lights staged in shared memory: one work group per
+// tile, one invocation per pixel. The group takes the sorted positions its pixels' depth bins
+// name (the union of their ranges), copies the lights of that span whose tile bit is set into
+// shared memory, a chunk at a time and in sorted order, and each pixel adds the chunk's lights
+// that lie in its own bin's range. The same lights in the same order as zbin_visit (shade.glsl)
+// adds them, each record read from memory once per tile instead of once per pixel.
+layout(local_size_x = STAGE_TILE, local_size_y = STAGE_TILE) in;
+#define FRAME_PIXEL_COMPUTE 1  // the frame's hooks read this invocation's pixel
+#include "09_clustered/shaders/shade.glsl"
+
+// Every loop here counts against llvmpipe's limit of 65 535 iterations a shader (see the lists'
+// loop): the pixel's loop adds four lights an iteration, the searches have fixed steps.
+layout(binding = LIGHT_BUFFER_IMAGE + 0, rgba16f) uniform image2D u_l1;  // LightBuffer::image_defines()
+layout(binding = LIGHT_BUFFER_IMAGE + 1, rgba16f) uniform image2D u_l2;
+
+const uint kGroup = uint(STAGE_TILE * STAGE_TILE);  // invocations
+// Records staged at once: 256 (12 KiB of records; GL promises 32 KiB of shared memory), or
+// the group's size where that is smaller (8-pixel tiles: 64).
+const uint kChunk = min(kGroup, 256u);
+shared uint s_first, s_last;   // the span of sorted positions the tile's pixels name
+shared uint s_sum[kGroup];     // the words' bit counts, summed (each invocation's word's end)
+shared SortedRecord s_record[kChunk];
+shared int s_light[kChunk];
+shared uint s_position[kChunk];  // ascending within a chunk, and from chunk to chunk
+
+// [zbin-stage]
+// Invocation t's mask word of this round, cut to the span: each round takes kGroup words.
+uint span_word(uint tile, uint w, uint first, uint last) {
+  if (w > (last >> 5u)) return 0u;
+  if ((tile_words[tile * zbin_word_words() + (w >> 5u)] & (1u << (w & 31u))) == 0u) return 0u;  // no bit set
+  uint m = tile_masks[tile * zbin_words() + w];
+  if (w == first >> 5u) m &= 0xFFFFFFFFu << (first & 31u);
+  if (w == last >> 5u) m &= 0xFFFFFFFFu >> (31u - (last & 31u));
+  return m;
+}
+
+// Inclusive prefix sums of s_sum over the group (Hillis and Steele: log2 kGroup steps).
+void sum_up(uint t) {
+  for (uint o = 1u; o < kGroup; o <<= 1u) {
+    uint v = t >= o ? s_sum[t - o] : 0u;
+    barrier();
+    s_sum[t] += v;
+    barrier();
+  }
+}
+
+// How many of the chunk's first n staged lights lie before sorted position p (a binary search
+// with a fixed number of steps: the positions ascend).
+uint staged_before(uint p, uint n) {
+  uint a = 0u;
+  for (uint step = kChunk; step > 0u; step >>= 1u)
+    if (a + step <= n && s_position[a + step - 1u] < p) a += step;
+  return a;
+}
+
+void add_staged(Surface s, vec3 to_eye, uint k, inout vec3 diffuse, inout vec3 specular, inout uint lit) {
+  add_lamp(s, to_eye, s_light[k], s_record[k].light, s_record[k].cone, diffuse, specular, lit);
+}
+// [/zbin-stage]
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  bool inside = all(lessThan(pixel, u_grid.xy));
+  Surface s = decode_gbuffer(inside ? pixel : ivec2(0));
+  bool shaded = inside && !s.is_sky;
+  uint t = gl_LocalInvocationIndex;
+  uint tile = uint(cell_index(ivec2(gl_WorkGroupID.xy), 0));  // the group is the tile (STAGE_TILE pixels)
+  if (t == 0u) {
+    s_first = 0xFFFFFFFFu;
+    s_last = 0u;
+  }
+  barrier();
+  // The pixel's range of sorted positions (zbin_visit's), and the tile's: their union.
+  uvec2 range = shaded ? zbin_range(zbin_of(view_depth(s.position))) : uvec2(1u, 0u);
+  if (range.x <= range.y) {
+    atomicMin(s_first, range.x);
+    atomicMax(s_last, range.y);
+  }
+  barrier();
+  uint first = s_first, last = s_last;  // the same in every invocation: the loops below are uniform
+  vec3 diffuse = vec3(0.0), specular = vec3(0.0);
+  vec3 to_eye = normalize(gb_eye.xyz - s.position);
+  uint evaluated = 0u, lit = 0u;
+  // [zbin-staged-loop]
+  if (first <= last)
+    for (uint w0 = first >> 5u; w0 <= last >> 5u; w0 += kGroup) {
+      // A round: invocation t's word, its lights counted and numbered in sorted order.
+      uint m = span_word(tile, w0 + t, first, last);
+      barrier();  // the last round's total is read
+      s_sum[t] = uint(bitCount(m));
+      barrier();
+      sum_up(t);
+      uint total = s_sum[kGroup - 1u], before = s_sum[t] - uint(bitCount(m));
+      // The round's lights in chunks of kChunk: each invocation stages those of its word that
+      // fall in the chunk, then every pixel adds those in its own range.
+      for (uint chunk = 0u; chunk < total; chunk += kChunk) {
+        uint at = before, bits = before + uint(bitCount(m)) > chunk ? m : 0u;  // (a word before the chunk: none)
+        while (bits != 0u && at < chunk + kChunk) {
+          uint p = (w0 + t) * 32u + uint(findLSB(bits));
+          bits &= bits - 1u;
+          if (at >= chunk) {
+            int i = int(light_indices[p]);
+            s_record[at - chunk] = zbin_record(p, i);
+            s_light[at - chunk] = i;
+            s_position[at - chunk] = p;
+          }
+          ++at;
+        }
+        barrier();
+        // [zbin-staged-pixel]
+        // The pixel's part of the chunk: its lights from the range's start to its end (none
+        // where its bin's range is empty: x > y).
+        uint n = min(kChunk, total - chunk);
+        uint a = staged_before(range.x, n), b = max(a, staged_before(range.y + 1u, n));
+        evaluated += b - a;
+        for (uint k = a; k < b; k += 4u) {
+          add_staged(s, to_eye, k, diffuse, specular, lit);
+          if (k + 1u < b) add_staged(s, to_eye, k + 1u, diffuse, specular, lit);
+          if (k + 2u < b) add_staged(s, to_eye, k + 2u, diffuse, specular, lit);
+          if (k + 3u < b) add_staged(s, to_eye, k + 3u, diffuse, specular, lit);
+        }
+        // [/zbin-staged-pixel]
+        barrier();  // the chunk is read before the next is staged
+      }
+    }
+  // [/zbin-staged-loop]
+  if (!inside) return;
+  if (shaded) count_pixel(evaluated, lit);
+  vec4 l1, l2;
+  output_of(diffuse, specular, evaluated, lit, l1, l2);
+  imageStore(u_l1, pixel, imageLoad(u_l1, pixel) + l1);
+  imageStore(u_l2, pixel, imageLoad(u_l2, pixel) + l2);
+}
