@@ -87,6 +87,9 @@ std::vector<Method> density_methods(const ch09::ClusterSettings& base) {
   Method indexed{"zbin", "records by index", ch09::settings_for_mode("zbin", base)};
   indexed.settings.sorted_records = false;  // each light's record read through the sorted order's index
   m.push_back(indexed);
+  Method blocks{"zbin-staged", "sub-blocks", ch09::settings_for_mode("zbin-staged", base)};
+  blocks.settings.sub_blocks = true;  // a bit per 4 x 4 block of the tile for each staged light
+  m.push_back(blocks);
   return m;
 }
 
@@ -121,11 +124,14 @@ std::vector<Method> grid_methods(const ch09::ClusterSettings& base) {
       z.settings.zbins = bins;
       m.push_back(z);
     }
-  for (const int tile : {8, 16, 32}) {  // staged: a work group a tile, so at most 32 pixels
-    Method z{"zbin-staged", "tile " + std::to_string(tile) + " bins 1024", ch09::settings_for_mode("zbin-staged", base)};
-    z.settings.tile_px = tile;
-    m.push_back(z);
-  }
+  for (const int tile : {8, 16, 32})  // staged: a work group a tile, so at most 32 pixels
+    for (const bool blocks : {false, true}) {
+      Method z{"zbin-staged", "tile " + std::to_string(tile) + " bins 1024" + (blocks ? " sub-blocks" : ""),
+               ch09::settings_for_mode("zbin-staged", base)};
+      z.settings.tile_px = tile;
+      z.settings.sub_blocks = blocks;
+      m.push_back(z);
+    }
   return m;
 }
 // [/grid-methods]

@@ -24,6 +24,32 @@ shared SortedRecord s_record[kChunk];
 shared int s_light[kChunk];
 shared uint s_position[kChunk];  // ascending within a chunk, and from chunk to chunk
 
+#ifdef SUB_BLOCKS
+// ClusterSettings::sub_blocks: the tile cut into 4 x 4 blocks, each with its own depth bounds
+// and box; a staged light carries a bit per block its sphere meets, and a pixel passes over
+// the lights whose bit for its block is clear (they cannot reach any of its pixels).
+const uint kBlockPx = uint(STAGE_TILE) / 4u;
+shared uint s_block_near[16], s_block_far[16];  // view depths as uint bits (positive floats order alike)
+shared vec3 s_block_lo[16], s_block_hi[16];
+shared uint s_blocks;  // the blocks that hold a surface
+shared uint s_reach[kChunk];  // each staged light's blocks
+uint block_of(uvec2 local) { return (local.y / kBlockPx) * 4u + local.x / kBlockPx; }
+// The blocks the sphere of a light (world-space centre, radius) meets: the tile's test
+// (sphere_meets_box) on each block's box.
+uint block_reached(vec3 c, float radius, uint b) {
+  bool meets = (s_blocks & (1u << b)) != 0u && sphere_meets_box(c, radius, Box(s_block_lo[b], s_block_hi[b]));
+  return meets ? 1u << b : 0u;
+}
+uint blocks_reached(vec4 position_radius) {
+  vec3 c = (u_view * vec4(position_radius.xyz, 1.0)).xyz;
+  uint reach = 0u;
+  for (uint b = 0u; b < 16u; b += 4u)  // four blocks an iteration (llvmpipe's loop limit)
+    reach |= block_reached(c, position_radius.w, b) | block_reached(c, position_radius.w, b + 1u) |
+             block_reached(c, position_radius.w, b + 2u) | block_reached(c, position_radius.w, b + 3u);
+  return reach;
+}
+#endif
+
 // [zbin-stage]
 // Invocation t's mask word of this round, cut to the span: each round takes kGroup words.
 uint span_word(uint tile, uint w, uint first, uint last) {
@@ -54,8 +80,15 @@ uint staged_before(uint p, uint n) {
   return a;
 }
 
-void add_staged(Surface s, vec3 to_eye, uint k, inout vec3 diffuse, inout vec3 specular, inout uint lit) {
+// Staged light k added to the pixel's sums, unless (with the blocks) it cannot reach the
+// pixel's block; `evaluated` counts those added.
+void add_staged(Surface s, vec3 to_eye, uint k, uint block_bit, inout vec3 diffuse, inout vec3 specular,
+                inout uint evaluated, inout uint lit) {
+#ifdef SUB_BLOCKS
+  if ((s_reach[k] & block_bit) == 0u) return;
+#endif
   add_lamp(s, to_eye, s_light[k], s_record[k].light, s_record[k].cone, diffuse, specular, lit);
+  ++evaluated;
 }
 // [/zbin-stage]
 
@@ -70,13 +103,38 @@ void main() {
     s_first = 0xFFFFFFFFu;
     s_last = 0u;
   }
+  uint block_bit = 0u;
+#ifdef SUB_BLOCKS
+  block_bit = 1u << block_of(gl_LocalInvocationID.xy);
+  if (t < 16u) {
+    s_block_near[t] = floatBitsToUint(u_depth_range.y * 2.0);
+    s_block_far[t] = 0u;
+  }
+  if (t == 0u) s_blocks = 0u;
+#endif
   barrier();
   // The pixel's range of sorted positions (zbin_visit's), and the tile's: their union.
-  uvec2 range = shaded ? zbin_range(zbin_of(view_depth(s.position))) : uvec2(1u, 0u);
+  float depth = view_depth(s.position);
+  uvec2 range = shaded ? zbin_range(zbin_of(depth)) : uvec2(1u, 0u);
   if (range.x <= range.y) {
     atomicMin(s_first, range.x);
     atomicMax(s_last, range.y);
   }
+#ifdef SUB_BLOCKS
+  if (shaded) {  // the block's depth bounds, as depth_bounds.comp takes a tile's
+    uint b = block_of(gl_LocalInvocationID.xy);
+    atomicMin(s_block_near[b], floatBitsToUint(max(depth, 0.0)));
+    atomicMax(s_block_far[b], floatBitsToUint(max(depth, 0.0)));
+    atomicOr(s_blocks, block_bit);
+  }
+  barrier();
+  if (t < 16u && (s_blocks & (1u << t)) != 0u) {  // each block's box (cell_box, the tile's)
+    ivec2 p0 = ivec2(gl_WorkGroupID.xy) * STAGE_TILE + ivec2(t % 4u, t / 4u) * int(kBlockPx);
+    Box box = cell_box(p0, min(p0 + int(kBlockPx), u_grid.xy), uintBitsToFloat(s_block_near[t]), uintBitsToFloat(s_block_far[t]));
+    s_block_lo[t] = box.lo;
+    s_block_hi[t] = box.hi;
+  }
+#endif
   barrier();
   uint first = s_first, last = s_last;  // the same in every invocation: the loops below are uniform
   vec3 diffuse = vec3(0.0), specular = vec3(0.0);
@@ -104,21 +162,23 @@ void main() {
             s_record[at - chunk] = zbin_record(p, i);
             s_light[at - chunk] = i;
             s_position[at - chunk] = p;
+#ifdef SUB_BLOCKS
+            s_reach[at - chunk] = blocks_reached(s_record[at - chunk].light.position_radius);
+#endif
           }
           ++at;
         }
         barrier();
         // [zbin-staged-pixel]
         // The pixel's part of the chunk: its lights from the range's start to its end (none
-        // where its bin's range is empty: x > y).
+        // where its bin's range is empty, x > y: then b <= a).
         uint n = min(kChunk, total - chunk);
-        uint a = staged_before(range.x, n), b = max(a, staged_before(range.y + 1u, n));
-        evaluated += b - a;
+        uint a = staged_before(range.x, n), b = staged_before(range.y + 1u, n);
         for (uint k = a; k < b; k += 4u) {
-          add_staged(s, to_eye, k, diffuse, specular, lit);
-          if (k + 1u < b) add_staged(s, to_eye, k + 1u, diffuse, specular, lit);
-          if (k + 2u < b) add_staged(s, to_eye, k + 2u, diffuse, specular, lit);
-          if (k + 3u < b) add_staged(s, to_eye, k + 3u, diffuse, specular, lit);
+          add_staged(s, to_eye, k, block_bit, diffuse, specular, evaluated, lit);
+          if (k + 1u < b) add_staged(s, to_eye, k + 1u, block_bit, diffuse, specular, evaluated, lit);
+          if (k + 2u < b) add_staged(s, to_eye, k + 2u, block_bit, diffuse, specular, evaluated, lit);
+          if (k + 3u < b) add_staged(s, to_eye, k + 3u, block_bit, diffuse, specular, evaluated, lit);
         }
         // [/zbin-staged-pixel]
         barrier();  // the chunk is read before the next is staged
