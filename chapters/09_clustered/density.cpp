@@ -41,16 +41,40 @@ DensityFit fit_density(double target, float start, const std::function<double(fl
   DensityFit fit;
   double s = start, m = measure(float(s));
   double prev_s = 0, prev_m = 0;
+  // The bracket: the largest scale measured below the target and the smallest above it (0: none yet).
+  double lo_s = 0, lo_m = 0, hi_s = 0, hi_m = 0;
+  auto bracket = [&](double bs, double bm) {
+    if (bm < target && bs > lo_s) lo_s = bs, lo_m = bm;
+    if (bm > target && (hi_s == 0 || bs < hi_s)) hi_s = bs, hi_m = bm;
+  };
+  bracket(s, m);
   fit = {float(s), m, 1, std::abs(m / target - 1) <= tolerance};
   while (!fit.met && fit.steps < max_steps) {
-    double p = 3.0;  // density ~ s^p: 3 for lights small next to the scene
-    if (prev_s > 0 && prev_m > 0 && m > 0 && std::abs(std::log(s / prev_s)) > 1e-6)
-      p = std::clamp(std::log(m / prev_m) / std::log(s / prev_s), 0.5, 6.0);
-    const double ratio = m > 0 ? std::pow(target / m, 1.0 / p) : 4.0;  // nothing lit: lights 4x as large
+    double next;
+    if (lo_s > 0 && hi_s > 0) {
+      // [fit-bracket]
+      // Bracketed: the secant between the bracket's ends in log space (density ~ s^p with the p
+      // they show, however steep), or the bracket's middle where that is not strictly inside it.
+      // A secant from the last two points alone overshoots a steep density back and forth.
+      next = std::sqrt(lo_s * hi_s);
+      if (lo_m > 0) {
+        const double p = std::log(hi_m / lo_m) / std::log(hi_s / lo_s);
+        const double secant = lo_s * std::pow(target / lo_m, 1.0 / p);
+        if (secant > lo_s && secant < hi_s) next = secant;
+      }
+      // [/fit-bracket]
+    } else {
+      double p = 3.0;  // density ~ s^p: 3 for lights small next to the scene
+      if (prev_s > 0 && prev_m > 0 && m > 0 && std::abs(std::log(s / prev_s)) > 1e-6)
+        p = std::clamp(std::log(m / prev_m) / std::log(s / prev_s), 0.5, 6.0);
+      const double ratio = m > 0 ? std::pow(target / m, 1.0 / p) : 4.0;  // nothing lit: lights 4x as large
+      next = s * std::clamp(ratio, 0.125, 8.0);
+    }
     prev_s = s;
     prev_m = m;
-    s *= std::clamp(ratio, 0.125, 8.0);
+    s = next;
     m = measure(float(s));
+    bracket(s, m);
     ++fit.steps;
     if (std::abs(m / target - 1) < std::abs(fit.density / target - 1)) {
       fit.scale = float(s);

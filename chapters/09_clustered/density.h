@@ -25,7 +25,9 @@ std::vector<Camera> views_along(const Camera& start, int count, float step);
 // returns the lit pairs per surface pixel with the lights scaled by s; it grows with s, as
 // s^3 while lights are small next to the scene and more slowly once they span it (faster,
 // by chance, on a small image), so each step is a secant in log space (the first one assumes
-// s^3). Bounded: at most
+// s^3), between the bracket's ends once the target lies between two measurements (and is
+// monotone: a steep density, lights near their cut on many surfaces at once, then converges
+// instead of overshooting). Bounded: at most
 // `max_steps` measurements; `met` says whether the target was reached.
 struct DensityFit {
   float scale = 1;
