@@ -67,13 +67,15 @@ add_test(NAME 09_clustered.density_sweep_reaches_its_density COMMAND ${EXPECT} 0
   "^32,1000,clustered,default,[0-9.]+,(31\\.|32\\.|30\\.[4-9])[0-9]*,"
   # Z-binning and the floor measured too; the floor's shading is 1 x its own.
   "^32,1000,zbin,default,[0-9.]+,(31\\.|32\\.|30\\.[4-9])[0-9]*,"
+  "^32,1000,zbin-staged,default,[0-9.]+,(31\\.|32\\.|30\\.[4-9])[0-9]*,"
+  "^32,1000,zbin-staged,sub-blocks,[0-9.]+,(31\\.|32\\.|30\\.[4-9])[0-9]*,"
   "^32,1000,zbin-floor,default,([0-9.e-]+,){10}1,"
   # The CPU's time per frame beside the GPU's, and Z-binning's assignment by its parts (the
   # clears, the sort, the bins, the tiles; the floor's exact lists only in zbin-floor).
   "^32,1000,zbin,default,([^,]+,){13}[0-9.]*[1-9][0-9.e-]*,[0-9.e-]+,([0-9.]*[1-9][0-9.e-]*,){3}0,"
   "^32,1000,zbin-floor,default,([^,]+,){18}[0-9.]*[1-9][0-9.e-]*,"
   "^32,1000,tiled,default,([^,]+,){13}[0-9.]*[1-9][0-9.e-]*,0,0,0,0,0,"
-  --no-match "warning: .*(not 8|not 32|overflow|lists over)"
+  --no-match "warning: .*(not 8|not 32|overflow|lists over| at [0-9]+ lights: )"
   -- sh -c "$<TARGET_FILE:09_clustered_sweep> --density --out ${SWEEP09_OUT} --size 64x36 --max-lights 1000 --views 2 --frames 1 2>&1 && cat ${SWEEP09_OUT}/09_density_summary_llvmpipe.csv")
 set_tests_properties(09_clustered.density_sweep_reaches_its_density PROPERTIES TIMEOUT 300)
 # The grid sweep (--grid): each grid of each method at the target density, named in the summary.
@@ -83,7 +85,10 @@ add_test(NAME 09_clustered.grid_sweep_names_every_grid COMMAND ${EXPECT} 0
   "^8,1000,tiled,tile 8,"  "^8,1000,tiled,tile 32,"  "^8,1000,clustered,60x34x96,"
   "^8,1000,clustered,16x9x24 near 2,"  "^8,1000,clustered,16x9x96 near 10,"
   "^8,1000,zbin,tile 64 bins 4096,[0-9.]+,(7\\.(7[6-9]|[89])|8\\.([01]|2[0-4]))[0-9]*,"
-  --no-match "warning: .*(not 8|overflow|lists over|not timed)"
+  # Z-binning staged at each tile size, 32 pixels too (a group of 1 024 invocations), with and
+  # without the sub-blocks; no method may fail (a shader that does not link is warned so).
+  "^8,1000,zbin-staged,tile 8 bins 1024,"  "^8,1000,zbin-staged,tile 32 bins 1024 sub-blocks,"
+  --no-match "warning: .*(not 8|overflow|lists over|not timed| at [0-9]+ lights: )"
   -- sh -c "$<TARGET_FILE:09_clustered_sweep> --grid --target 8 --out ${GRID09_OUT} --size 64x36 --max-lights 1000 --views 1 --frames 1 2>&1 && cat ${GRID09_OUT}/09_grid_d8_summary_llvmpipe.csv")
 set_tests_properties(09_clustered.grid_sweep_names_every_grid PROPERTIES TIMEOUT 300)
 # The subgroup sweep (--subgroups): each path's light buffers and counts against the fallback's
