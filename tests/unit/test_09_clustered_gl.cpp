@@ -903,6 +903,25 @@ TEST_F(ClusteredGl, ZBinStagedAddsZBinningsLightsInItsOrder) {
     std::printf("tiles of %d px: evaluated %llu, with the blocks %llu, lit %llu\n", tile,
                 (unsigned long long)a.counts.evaluated, (unsigned long long)c.counts.evaluated,
                 (unsigned long long)a.counts.lit);
+    if (tile != 16) continue;
+    // Staged with the records read through the index (sorted_records off): the same again.
+    ClusterSettings indexed = zbin_staged;
+    indexed.sorted_records = false;
+    indexed.sub_blocks = false;
+    ClusteredLights staged_indexed(w.frame_.volumes(), indexed);
+    const Render d = render(w, cam, width, height, &staged_indexed, false);
+    EXPECT_EQ(d.counts.evaluated, a.counts.evaluated);
+    EXPECT_TRUE(d.l1 == a.l1 && d.l2 == a.l2) << "the light buffers differ (records by index)";
+    // A tile with more lights than a chunk holds (so that the chunks are tested).
+    const ClusteredLights::ZBinLists z = q.zbin_lists();
+    std::size_t most = 0;
+    for (std::size_t t = 0; t * z.words < z.masks.size(); ++t) {
+      std::size_t bits = 0;
+      for (std::size_t k = 0; k < z.words; ++k) bits += std::size_t(std::popcount(z.masks[t * z.words + k]));
+      most = std::max(most, bits);
+    }
+    EXPECT_GT(most, 4u * 256u) << "no tile holds several chunks of lights";
+    std::printf("the most lights in a tile %zu\n", most);
   }
   // tiled-staged at 32-pixel tiles (its chunks too): tiled's lights in tiled's order.
   {
@@ -916,32 +935,6 @@ TEST_F(ClusteredGl, ZBinStagedAddsZBinningsLightsInItsOrder) {
     EXPECT_EQ(b.counts.evaluated, a.counts.evaluated);
     EXPECT_TRUE(b.l1 == a.l1 && b.l2 == a.l2) << "tiled-staged's light buffers differ from tiled's at 32-pixel tiles";
   }
-  ClusterSettings tiles_only = settings_for_mode("zbin-staged");
-  tiles_only.sub_blocks = false;
-  ClusteredLights plain(w.frame_.volumes(), settings_for_mode("zbin"));
-  ClusteredLights staged(w.frame_.volumes(), tiles_only);
-  const Render a = render(w, cam, width, height, &plain, false);
-  const Render b = render(w, cam, width, height, &staged, false);
-  ASSERT_EQ(plain.zbin_lists().order, staged.zbin_lists().order);
-  // Staged with the records read through the index (sorted_records off): the same again.
-  ClusterSettings indexed = settings_for_mode("zbin-staged");
-  indexed.sorted_records = false;
-  indexed.sub_blocks = false;
-  ClusteredLights staged_indexed(w.frame_.volumes(), indexed);
-  const Render c = render(w, cam, width, height, &staged_indexed, false);
-  EXPECT_EQ(c.counts.evaluated, a.counts.evaluated);
-  EXPECT_TRUE(c.l1 == a.l1 && c.l2 == a.l2) << "the light buffers differ (records by index)";
-  // A tile with more lights than a chunk holds (so that the chunks are tested).
-  const ClusteredLights::ZBinLists z = staged.zbin_lists();
-  std::size_t most = 0;
-  for (std::size_t t = 0; t * z.words < z.masks.size(); ++t) {
-    std::size_t bits = 0;
-    for (std::size_t k = 0; k < z.words; ++k) bits += std::size_t(std::popcount(z.masks[t * z.words + k]));
-    most = std::max(most, bits);
-  }
-  EXPECT_GT(most, 4u * 256u) << "no tile holds several chunks of lights";
-  std::printf("lit %llu, evaluated %llu, the most lights in a tile %zu\n", (unsigned long long)a.counts.lit,
-              (unsigned long long)a.counts.evaluated, most);
 }
 
 // Z-binning clears only the mask words the last frame set (tile_words names them; the whole
