@@ -28,9 +28,17 @@ ClusterSettings settings_for_mode(const std::string& name, ClusterSettings s) {
   return s;
 }
 
+namespace {
+// The staged shading (a work group a tile, its lights in shared memory): tiled or Z-binning's
+// (not the floor's, which reads per-pixel lists), where the settings ask for it.
+bool staged_shading(const ClusterSettings& s) {
+  return s.shade == ShadeIn::Staged && s.kind != CullKind::Clustered && !s.floor;
+}
+}  // namespace
+
 std::string mode_name(const ClusterSettings& s) {
   const bool mask = s.kind == CullKind::Tiled && s.depth_mask;
-  const bool staged = s.kind != CullKind::Clustered && !s.floor && s.shade == ShadeIn::Staged;
+  const bool staged = staged_shading(s);
   const char* kind = s.kind == CullKind::Tiled ? "tiled" : s.kind == CullKind::ZBin ? "zbin" : "clustered";
   return std::string(kind) + (mask ? "-2.5d" : "") +
          (s.kind == CullKind::ZBin && s.floor ? "-floor" : "") + (s.shade == ShadeIn::Fragment ? "-fragment" : "") +
@@ -207,7 +215,7 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
     if (output == ch03::LightVolumes::Output::HeatLit) d.push_back("HEAT_LIT 1");
     // Staged: one work group per tile, so tiled or Z-binning with square tiles of at most 32
     // pixels (1 024 invocations, GL's guaranteed minimum); clusters shade per pixel (shade.comp).
-    const bool staged = settings_.shade == ShadeIn::Staged && settings_.kind != CullKind::Clustered && !settings_.floor;
+    const bool staged = staged_shading(settings_);
     if (staged && (grid_.tile_w != grid_.tile_h || grid_.tile_w > 32))
       throw Error("clustered lights: " + name() + " needs square tiles of at most 32 pixels, not " +
                   std::to_string(grid_.tile_w) + " x " + std::to_string(grid_.tile_h));
