@@ -117,15 +117,11 @@ void zbin_visit(Surface s, vec3 to_eye, ivec2 pixel, int op, inout uint at, inou
   uint w0 = range.x >> 5u, w1 = range.y >> 5u;
   if (range.x <= range.y)
     for (uint k = w0 >> 5u; k <= w1 >> 5u; ++k) {
-      uint words = tile_words[tile * zbin_word_words() + k];
-      if (k == w0 >> 5u) words &= 0xFFFFFFFFu << (w0 & 31u);
-      if (k == w1 >> 5u) words &= 0xFFFFFFFFu >> (31u - (w1 & 31u));
+      uint words = cut_to_span(tile_words[tile * zbin_word_words() + k], k, w0, w1);
       while (words != 0u) {
         uint w = k * 32u + uint(findLSB(words));
         words &= words - 1u;
-        uint m = tile_masks[base + w];
-        if (w == w0) m &= 0xFFFFFFFFu << (range.x & 31u);
-        if (w == w1) m &= 0xFFFFFFFFu >> (31u - (range.y & 31u));
+        uint m = cut_to_span(tile_masks[base + w], w, range.x, range.y);
         evaluated += uint(bitCount(m));
         while (m != 0u) {
           zbin_take(s, to_eye, w, op, m, at, diffuse, specular, lit);

@@ -31,6 +31,14 @@ struct SortedRecord {
 layout(std430, binding = SORTED_RECORDS) buffer SortedRecords { SortedRecord sorted_records[]; };
 #endif
 
+// Word w of a bit array (its positions w * 32 .. w * 32 + 31) cut to the positions first .. last:
+// a range's masks (the shading's walk, the staged span) and which of its words have bits.
+uint cut_to_span(uint word, uint w, uint first, uint last) {
+  if (w == first >> 5u) word &= 0xFFFFFFFFu << (first & 31u);
+  if (w == last >> 5u) word &= 0xFFFFFFFFu >> (31u - (last & 31u));
+  return word;
+}
+
 uint zbin_words() { return (uint(u_tiles.w) + 31u) / 32u; }
 uint zbin_word_words() { return (zbin_words() + 31u) / 32u; }
 

@@ -55,10 +55,7 @@ uint blocks_reached(vec4 position_radius) {
 uint span_word(uint tile, uint w, uint first, uint last) {
   if (w > (last >> 5u)) return 0u;
   if ((tile_words[tile * zbin_word_words() + (w >> 5u)] & (1u << (w & 31u))) == 0u) return 0u;  // no bit set
-  uint m = tile_masks[tile * zbin_words() + w];
-  if (w == first >> 5u) m &= 0xFFFFFFFFu << (first & 31u);
-  if (w == last >> 5u) m &= 0xFFFFFFFFu >> (31u - (last & 31u));
-  return m;
+  return cut_to_span(tile_masks[tile * zbin_words() + w], w, first, last);
 }
 
 // Inclusive prefix sums of s_sum over the group (Hillis and Steele: log2 kGroup steps).
