@@ -48,9 +48,10 @@ struct ClusterSettings {
   // zbin: each light's record (and a spot's cone) copied into the sorted order by the sort, so
   // that the shading reads a light at its sorted position beside its index, not through it.
   bool sorted_records = true;
-  // zbin-staged: each tile cut into 4 x 4 blocks with their own depth bounds; a staged light
-  // is passed over by the pixels of the blocks its sphere does not meet (zbin_staged.comp).
-  // Fewer lights evaluated, more work staging each: off by default (slower on the H200).
+  // zbin-staged: each tile cut into blocks of 8 x 4 pixels (a block to 32 invocations, an
+  // NVIDIA warp) with their own depth bounds; a staged light is passed over by the pixels of
+  // the blocks its sphere does not meet (zbin_staged.comp). Fewer lights evaluated, more work
+  // staging each: off by default (slower on the H200).
   bool sub_blocks = false;
   // The index list starts this large (indices) and grows to what a frame needs, up to
   // max_indices. Growth is found a frame late, never by waiting for the GPU: a cell that does

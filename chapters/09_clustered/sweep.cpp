@@ -19,6 +19,7 @@
 // the two differ anywhere.
 //   09_clustered_sweep [--out DIR] [--size WxH] [--frames N] [--max-lights N] [--stencil-max N] [--density] [--grid]
 //                      [--subgroups] [--views N] [--target D]   (D: one target density alone, e.g. 32)
+//                      [--min-lights N] [--modes A,B]   (the counts from N, the modes A and B and the floor alone)
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -57,6 +58,8 @@ struct Settings {
   bool subgroups = false;
   int views = kViewsUnset;  // 6, the grid sweep 3
   int target = 0;           // one target density alone (0: every one)
+  int min_lights = 0;       // light counts below this are skipped (their density is not fitted)
+  std::string modes;        // --modes a,b: those modes' methods alone (and the floor, which every ratio needs)
   static constexpr int kViewsUnset = -1000000;
 };
 
@@ -88,7 +91,7 @@ std::vector<Method> density_methods(const ch09::ClusterSettings& base) {
   indexed.settings.sorted_records = false;  // each light's record read through the sorted order's index
   m.push_back(indexed);
   Method blocks{"zbin-staged", "sub-blocks", ch09::settings_for_mode("zbin-staged", base)};
-  blocks.settings.sub_blocks = true;  // a bit per 4 x 4 block of the tile for each staged light
+  blocks.settings.sub_blocks = true;  // a bit per 8 x 4 block of the tile for each staged light
   m.push_back(blocks);
   return m;
 }
@@ -200,9 +203,14 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
   // lights: on a GPU the lists start at 2^26 entries (256 MiB), so they rarely grow.
   ch09::ClusterSettings base_settings;
   if (!software) base_settings.initial_indices = 1u << 26;
-  const std::vector<Method> methods = s.subgroups ? subgroup_methods(base_settings)
-                                     : s.grid    ? grid_methods(base_settings)
-                                                 : density_methods(base_settings);
+  std::vector<Method> methods = s.subgroups ? subgroup_methods(base_settings)
+                               : s.grid    ? grid_methods(base_settings)
+                                           : density_methods(base_settings);
+  if (!s.modes.empty()) {
+    const std::string listed = "," + s.modes + ",";
+    std::erase_if(methods, [&](const Method& m) { return m.mode != "zbin-floor" && listed.find("," + m.mode + ",") == std::string::npos; });
+    if (methods.size() < 2) throw UsageError("--modes " + s.modes + ": no method of this sweep is named");
+  }
   // --subgroups: each mode's fallback buffers per view, which its subgroup path must equal.
   std::map<std::string, std::vector<std::uint16_t>> fallback_buffers;  // by "mode|view"
   std::map<std::string, ch09::EvalCounts> fallback_counts;
@@ -238,6 +246,7 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
       if (n > s.max_lights) break;
       if (previous) start *= std::cbrt(float(previous) / float(n));  // the same density: volume per light x previous / n
       previous = n;
+      if (n < s.min_lights) continue;
       const std::vector<Light> base = ch03::lights_for_count(scene, n);
       auto use = [&](float scale) {
         frame.volumes().set_lights(ch03::build_light_set(ch09::scaled_lights(base, scale), threshold, frame.volumes().shapes()));
@@ -368,7 +377,7 @@ int main(int argc, char** argv) {
     args.text("--out", s.out).size("--size", s.width, s.height, &s.size_given).integer("--frames", s.frames)
         .integer("--max-lights", s.max_lights).integer("--stencil-max", s.stencil_max).text("--view", s.view)
         .flag("--density", s.density).flag("--grid", s.grid).flag("--subgroups", s.subgroups).integer("--views", s.views)
-        .integer("--target", s.target);
+        .integer("--target", s.target).integer("--min-lights", s.min_lights).text("--modes", s.modes);
   }, [&] {
     std::filesystem::create_directories(s.out);
     if (s.views == Settings::kViewsUnset) s.views = s.grid || s.subgroups ? 3 : 6;

@@ -875,8 +875,9 @@ TEST_F(ClusteredGl, ZBinStagedAddsZBinningsLightsInItsOrder) {
   ASSERT_EQ(local, n);
   ASSERT_GT(spots, 0) << "no spot: the staged cones go untested";
   set_light_list(w, lights);
-  // 32-pixel tiles too: a group of 1 024 invocations stages 256 records at a time.
-  for (const int tile : {16, 32}) {
+  // 32-pixel tiles too (a group of 1 024 invocations stages 256 records at a time, four
+  // invocations test a light's 32 blocks), and 8 (a tile of two blocks).
+  for (const int tile : {16, 32, 8}) {
     SCOPED_TRACE("tiles of " + std::to_string(tile) + " px");
     ClusterSettings zbin = settings_for_mode("zbin"), zbin_staged = settings_for_mode("zbin-staged");
     zbin.tile_px = zbin_staged.tile_px = tile;

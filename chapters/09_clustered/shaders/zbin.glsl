@@ -55,22 +55,27 @@ vec2 zbin_extent(float z, float radius) {
 }
 
 // [zbin-rect]
-// A light's screen rectangle (cluster_grid.h's sphere_tiles, its twin): the tiles t0 .. t1
-// (xy, zw; inclusive, empty when t0 > t1) that the sphere (centre in view space, radius) can
-// cover. Its view-space box, cut at half the near plane (no surface is nearer), seen from the
-// eye: x / d over the box is extreme at its corners, so the rectangle of the corners'
-// projections holds the sphere's.
-ivec4 sphere_tiles(vec3 c, float radius) {
+// A light's screen rectangle (cluster_grid.h's sphere_tiles, its twin): the pixels (xy lo, zw
+// hi; empty when lo > hi) that the sphere (centre in view space, radius) can cover. Its
+// view-space box, cut at half the near plane (no surface is nearer), seen from the eye: x / d
+// over the box is extreme at its corners, so the rectangle of the corners' projections holds
+// the sphere's; a pixel wider on each side for rounding.
+vec4 sphere_pixels(vec3 c, float radius) {
   float r = radius * (1.0 + 1e-5) + 1e-6;
   float d0 = max(-c.z - r, 0.5 * u_depth_range.x), d1 = -c.z + r;
-  if (d1 < d0) return ivec4(0, 0, -1, -1);  // wholly nearer than the near plane
+  if (d1 < d0) return vec4(1e30, 1e30, -1e30, -1e30);  // wholly nearer than the near plane
   vec2 lo = min((c.xy - r) / d0, (c.xy - r) / d1), hi = max((c.xy + r) / d0, (c.xy + r) / d1);
   vec2 ndc_lo = lo * u_projection.xy - u_projection.zw, ndc_hi = hi * u_projection.xy - u_projection.zw;
-  // Pixels, a pixel wider on each side for rounding (each tile is then tested exactly), in tiles.
-  vec2 px_lo = (ndc_lo * 0.5 + 0.5) * vec2(u_grid.xy) - 1.0, px_hi = (ndc_hi * 0.5 + 0.5) * vec2(u_grid.xy) + 1.0;
+  return vec4((ndc_lo * 0.5 + 0.5) * vec2(u_grid.xy) - 1.0, (ndc_hi * 0.5 + 0.5) * vec2(u_grid.xy) + 1.0);
+}
+// The tiles t0 .. t1 (xy, zw; inclusive, empty when t0 > t1) the sphere's rectangle meets (each
+// tile is then tested exactly).
+ivec4 sphere_tiles(vec3 c, float radius) {
+  vec4 px = sphere_pixels(c, radius);
+  if (px.x > px.z) return ivec4(0, 0, -1, -1);  // wholly nearer than the near plane
   vec2 tiles = vec2(u_tiles.xy);
-  ivec2 t0 = ivec2(clamp(floor(px_lo / vec2(u_grid.zw)), vec2(0.0), tiles));
-  ivec2 t1 = ivec2(clamp(floor(px_hi / vec2(u_grid.zw)), vec2(-1.0), tiles - 1.0));
+  ivec2 t0 = ivec2(clamp(floor(px.xy / vec2(u_grid.zw)), vec2(0.0), tiles));
+  ivec2 t1 = ivec2(clamp(floor(px.zw / vec2(u_grid.zw)), vec2(-1.0), tiles - 1.0));
   return ivec4(t0, t1);
 }
 // [/zbin-rect]

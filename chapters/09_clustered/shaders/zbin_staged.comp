@@ -6,7 +6,8 @@
 // that lie in its own bin's range. The same lights in the same order as zbin_visit (shade.glsl)
 // adds them, each record read from memory once per tile instead of once per pixel.
 layout(local_size_x = STAGE_TILE, local_size_y = STAGE_TILE) in;
-#define FRAME_PIXEL_COMPUTE 1  // the frame's hooks read this invocation's pixel
+#define FRAME_PIXEL_COMPUTE 1  // the frame's hooks read this invocation's pixel,
+#define FRAME_PIXEL_REMAPPED 1  // which invocation_pixel() below names
 #include "09_clustered/shaders/shade.glsl"
 
 // Every loop here counts against llvmpipe's limit of 65 535 iterations a shader (see the lists'
@@ -25,30 +26,47 @@ shared int s_light[kChunk];
 shared uint s_position[kChunk];  // ascending within a chunk, and from chunk to chunk
 
 #ifdef SUB_BLOCKS
-// ClusterSettings::sub_blocks: the tile cut into 4 x 4 blocks, each with its own depth bounds
-// and box; a staged light carries a bit per block its sphere meets, and a pixel passes over
-// the lights whose bit for its block is clear (they cannot reach any of its pixels).
-const uint kBlockPx = uint(STAGE_TILE) / 4u;
-shared uint s_block_near[16], s_block_far[16];  // view depths as uint bits (positive floats order alike)
-shared vec3 s_block_lo[16], s_block_hi[16];
+// ClusterSettings::sub_blocks: the tile cut into blocks of 8 x 4 pixels, one to each 32
+// invocations (a warp on NVIDIA's GPUs), each with its own depth bounds and box. A staged light
+// carries a bit per block its sphere meets, and a block's pixels pass over the lights whose
+// bit is clear together: a warp skips a light whole instead of idling beside a lane that adds it.
+const uint kBlockW = 8u, kBlockH = 4u;
+const uint kBlockColumns = uint(STAGE_TILE) / kBlockW, kBlocks = kGroup / (kBlockW * kBlockH);
+shared uint s_block_near[kBlocks], s_block_far[kBlocks];  // view depths as uint bits (positive floats order alike)
+shared vec3 s_block_lo[kBlocks], s_block_hi[kBlocks];
 shared uint s_blocks;  // the blocks that hold a surface
 shared uint s_reach[kChunk];  // each staged light's blocks
-uint block_of(uvec2 local) { return (local.y / kBlockPx) * 4u + local.x / kBlockPx; }
-// The blocks the sphere of a light (world-space centre, radius) meets: the tile's test
-// (sphere_meets_box) on each block's box.
-uint block_reached(vec3 c, float radius, uint b) {
-  bool meets = (s_blocks & (1u << b)) != 0u && sphere_meets_box(c, radius, Box(s_block_lo[b], s_block_hi[b]));
-  return meets ? 1u << b : 0u;
+// Invocation t's pixel in the tile: block t / 32, its pixels in rows of 8.
+uvec2 local_pixel(uint t) {
+  uint b = t / 32u, i = t % 32u;
+  return uvec2((b % kBlockColumns) * kBlockW + i % kBlockW, (b / kBlockColumns) * kBlockH + i / kBlockW);
 }
-uint blocks_reached(vec4 position_radius) {
+// Which of the blocks b0, b0 + step, ... a light (world-space centre, radius) meets. A cheap
+// test first, the light's screen rectangle (sphere_pixels, in blocks) and depth extent
+// (zbin_extent) against the block's pixels and depth bounds; then the tile's own test
+// (sphere_meets_box) on the block's box, which is tighter.
+uint blocks_reached(vec4 position_radius, uint b0, uint step) {
   vec3 c = (u_view * vec4(position_radius.xyz, 1.0)).xyz;
+  vec2 extent = zbin_extent(-c.z, position_radius.w);
+  vec4 px = sphere_pixels(c, position_radius.w) - vec4(gl_WorkGroupID.xy * uint(STAGE_TILE), gl_WorkGroupID.xy * uint(STAGE_TILE));
+  vec2 size = vec2(kBlockW, kBlockH);  // clamped so that the conversion cannot overflow
+  ivec4 rect = ivec4(clamp(floor(px / size.xyxy), vec4(-1.0), vec4(64.0)));
   uint reach = 0u;
-  for (uint b = 0u; b < 16u; b += 4u)  // four blocks an iteration (llvmpipe's loop limit)
-    reach |= block_reached(c, position_radius.w, b) | block_reached(c, position_radius.w, b + 1u) |
-             block_reached(c, position_radius.w, b + 2u) | block_reached(c, position_radius.w, b + 3u);
+  for (uint b = b0; b < kBlocks; b += step) {
+    ivec2 at = ivec2(b % kBlockColumns, b / kBlockColumns);
+    bool covered = all(greaterThanEqual(at, rect.xy)) && all(lessThanEqual(at, rect.zw));
+    bool deep = uintBitsToFloat(s_block_near[b]) <= extent.y && uintBitsToFloat(s_block_far[b]) >= extent.x;
+    if (covered && deep && (s_blocks & (1u << b)) != 0u &&
+        sphere_meets_box(c, position_radius.w, Box(s_block_lo[b], s_block_hi[b])))
+      reach |= 1u << b;
+  }
   return reach;
 }
+#else
+uvec2 local_pixel(uint t) { return uvec2(t % uint(STAGE_TILE), t / uint(STAGE_TILE)); }
 #endif
+// The pixel of this invocation (the frame's hooks read it: frame_pixel.glsl).
+ivec2 invocation_pixel() { return ivec2(gl_WorkGroupID.xy * uint(STAGE_TILE) + local_pixel(gl_LocalInvocationIndex)); }
 
 // [zbin-stage]
 // Invocation t's mask word of this round, cut to the span: each round takes kGroup words.
@@ -90,11 +108,11 @@ void add_staged(Surface s, vec3 to_eye, uint k, uint block_bit, inout vec3 diffu
 // [/zbin-stage]
 
 void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  uint t = gl_LocalInvocationIndex;
+  ivec2 pixel = invocation_pixel();
   bool inside = all(lessThan(pixel, u_grid.xy));
   Surface s = decode_gbuffer(inside ? pixel : ivec2(0));
   bool shaded = inside && !s.is_sky;
-  uint t = gl_LocalInvocationIndex;
   uint tile = uint(cell_index(ivec2(gl_WorkGroupID.xy), 0));  // the group is the tile (STAGE_TILE pixels)
   if (t == 0u) {
     s_first = 0xFFFFFFFFu;
@@ -102,8 +120,8 @@ void main() {
   }
   uint block_bit = 0u;
 #ifdef SUB_BLOCKS
-  block_bit = 1u << block_of(gl_LocalInvocationID.xy);
-  if (t < 16u) {
+  block_bit = 1u << (t / 32u);
+  if (t < kBlocks) {
     s_block_near[t] = floatBitsToUint(u_depth_range.y * 2.0);
     s_block_far[t] = 0u;
   }
@@ -119,15 +137,14 @@ void main() {
   }
 #ifdef SUB_BLOCKS
   if (shaded) {  // the block's depth bounds, as depth_bounds.comp takes a tile's
-    uint b = block_of(gl_LocalInvocationID.xy);
-    atomicMin(s_block_near[b], floatBitsToUint(max(depth, 0.0)));
-    atomicMax(s_block_far[b], floatBitsToUint(max(depth, 0.0)));
+    atomicMin(s_block_near[t / 32u], floatBitsToUint(max(depth, 0.0)));
+    atomicMax(s_block_far[t / 32u], floatBitsToUint(max(depth, 0.0)));
     atomicOr(s_blocks, block_bit);
   }
   barrier();
-  if (t < 16u && (s_blocks & (1u << t)) != 0u) {  // each block's box (cell_box, the tile's)
-    ivec2 p0 = ivec2(gl_WorkGroupID.xy) * STAGE_TILE + ivec2(t % 4u, t / 4u) * int(kBlockPx);
-    Box box = cell_box(p0, min(p0 + int(kBlockPx), u_grid.xy), uintBitsToFloat(s_block_near[t]), uintBitsToFloat(s_block_far[t]));
+  if (t < kBlocks && (s_blocks & (1u << t)) != 0u) {  // each block's box (cell_box, the tile's)
+    ivec2 p0 = ivec2(gl_WorkGroupID.xy) * STAGE_TILE + ivec2(t % kBlockColumns, t / kBlockColumns) * ivec2(kBlockW, kBlockH);
+    Box box = cell_box(p0, min(p0 + ivec2(kBlockW, kBlockH), u_grid.xy), uintBitsToFloat(s_block_near[t]), uintBitsToFloat(s_block_far[t]));
     s_block_lo[t] = box.lo;
     s_block_hi[t] = box.hi;
   }
@@ -160,16 +177,25 @@ void main() {
             s_light[at - chunk] = i;
             s_position[at - chunk] = p;
 #ifdef SUB_BLOCKS
-            s_reach[at - chunk] = blocks_reached(s_record[at - chunk].light.position_radius);
+            s_reach[at - chunk] = 0u;
 #endif
           }
           ++at;
         }
         barrier();
+        uint n = min(kChunk, total - chunk);  // the lights staged
+#ifdef SUB_BLOCKS
+        // Each light's blocks: kGroup / kChunk invocations a light (32-pixel tiles: four), each
+        // taking every fourth block.
+        if (t % kChunk < n) {
+          uint reach = blocks_reached(s_record[t % kChunk].light.position_radius, t / kChunk, kGroup / kChunk);
+          if (reach != 0u) atomicOr(s_reach[t % kChunk], reach);
+        }
+        barrier();
+#endif
         // [zbin-staged-pixel]
         // The pixel's part of the chunk: its lights from the range's start to its end (none
         // where its bin's range is empty, x > y: then b <= a).
-        uint n = min(kChunk, total - chunk);
         uint a = staged_before(range.x, n), b = staged_before(range.y + 1u, n);
         for (uint k = a; k < b; k += 4u) {
           add_staged(s, to_eye, k, block_bit, diffuse, specular, evaluated, lit);
