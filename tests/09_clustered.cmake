@@ -103,6 +103,15 @@ add_test(NAME 09_clustered.subgroup_sweep_equals_the_fallback COMMAND ${EXPECT} 
 set_tests_properties(09_clustered.subgroup_sweep_equals_the_fallback PROPERTIES TIMEOUT 300)
 add_test(NAME 09_clustered.density_sweep_bad_views COMMAND ${EXPECT} 1 "--views: 1 to 64, not 0"
   -- $<TARGET_FILE:09_clustered_sweep> --density --views 0)
+# --modes and --min-lights: the named modes' methods and the floor alone, from the count given.
+set(MODES09_OUT ${CMAKE_BINARY_DIR}/out/09_modes)
+add_test(NAME 09_clustered.density_sweep_modes_and_min_lights COMMAND ${EXPECT} 0
+  "^8,10000,zbin-floor,default,"  "^8,10000,zbin-staged,default,"  "^8,10000,zbin-staged,sub-blocks,"
+  --no-match "^8,1000,|^8,10000,(tiled|clustered|zbin,)|warning"
+  -- sh -c "$<TARGET_FILE:09_clustered_sweep> --density --target 8 --modes zbin-staged --min-lights 10000 --out ${MODES09_OUT} --size 64x36 --max-lights 10000 --views 1 --frames 1 2>&1 && cat ${MODES09_OUT}/09_density_d8_summary_llvmpipe.csv")
+set_tests_properties(09_clustered.density_sweep_modes_and_min_lights PROPERTIES TIMEOUT 300)
+add_test(NAME 09_clustered.density_sweep_bad_mode COMMAND ${EXPECT} 2 "--modes: 'zbin-stagd' is no mode of chapter 9"
+  -- $<TARGET_FILE:09_clustered_sweep> --density --modes zbin,zbin-stagd --out ${MODES09_OUT}/bad --size 64x36 --max-lights 1000 --views 1 --frames 1)
 # The chapter's exercises (main.cpp's list; the book's "Exercises"): solutions pass, stubs fail,
 # and a plausible wrong answer to each (tests/exercises/wrong/09_clustered/) fails. Exercise 4's
 # answer is a number.

@@ -209,7 +209,7 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
   if (!s.modes.empty()) {
     const std::string listed = "," + s.modes + ",";
     std::erase_if(methods, [&](const Method& m) { return m.mode != "zbin-floor" && listed.find("," + m.mode + ",") == std::string::npos; });
-    if (methods.size() < 2) throw UsageError("--modes " + s.modes + ": no method of this sweep is named");
+    if (methods.size() < 2) throw UsageError("--modes " + s.modes + ": names no method of this sweep but the floor");
   }
   // --subgroups: each mode's fallback buffers per view, which its subgroup path must equal.
   std::map<std::string, std::vector<std::uint16_t>> fallback_buffers;  // by "mode|view"
@@ -383,6 +383,12 @@ int main(int argc, char** argv) {
     if (s.views == Settings::kViewsUnset) s.views = s.grid || s.subgroups ? 3 : 6;
     if (s.views < 1 || s.views > 64) throw Error("--views: 1 to 64, not " + std::to_string(s.views));
     if (s.grid && s.subgroups) throw UsageError("--grid and --subgroups: one at a time");
+    for (std::size_t at = 0; !s.modes.empty() && at <= s.modes.size();) {  // each of --modes a,b is a mode
+      const std::size_t end = std::min(s.modes.find(',', at), s.modes.size());
+      const std::string mode = s.modes.substr(at, end - at);
+      if (!ch09::is_cluster_mode(mode)) throw UsageError("--modes: '" + mode + "' is no mode of chapter 9");
+      at = end + 1;
+    }
     if (s.grid || s.subgroups) s.density = true;  // the density sweep over grids, or over the two paths
     if (s.density) {  // many configurations: fewer frames each
       s.frames = std::min(s.frames, 10);
