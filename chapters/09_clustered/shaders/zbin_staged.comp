@@ -25,20 +25,25 @@ shared SortedRecord s_record[kChunk];
 shared int s_light[kChunk];
 shared uint s_position[kChunk];  // ascending within a chunk, and from chunk to chunk
 
+// The tile's first pixel (the group is the tile).
+ivec2 tile_origin() { return ivec2(gl_WorkGroupID.xy) * STAGE_TILE; }
+
 #ifdef SUB_BLOCKS
 // ClusterSettings::sub_blocks: the tile cut into blocks of 8 x 4 pixels, one to each 32
 // invocations (a warp on NVIDIA's GPUs), each with its own depth bounds and box. A staged light
 // carries a bit per block its sphere meets, and a block's pixels pass over the lights whose
 // bit is clear together: a warp skips a light whole instead of idling beside a lane that adds it.
 const uint kBlockW = 8u, kBlockH = 4u;
-const uint kBlockColumns = uint(STAGE_TILE) / kBlockW, kBlocks = kGroup / (kBlockW * kBlockH);
+const uint kBlockPixels = kBlockW * kBlockH;  // a block's invocations
+const uint kBlockColumns = uint(STAGE_TILE) / kBlockW, kBlocks = kGroup / kBlockPixels;
 shared uint s_block_near[kBlocks], s_block_far[kBlocks];  // view depths as uint bits (positive floats order alike)
 shared vec3 s_block_lo[kBlocks], s_block_hi[kBlocks];
 shared uint s_blocks;  // the blocks that hold a surface
 shared uint s_reach[kChunk];  // each staged light's blocks
-// Invocation t's pixel in the tile: block t / 32, its pixels in rows of 8.
+uint block_of(uint t) { return t / kBlockPixels; }  // invocation t's block
+// Invocation t's pixel in the tile: its block's, in rows of 8.
 uvec2 local_pixel(uint t) {
-  uint b = t / 32u, i = t % 32u;
+  uint b = block_of(t), i = t % kBlockPixels;
   return uvec2((b % kBlockColumns) * kBlockW + i % kBlockW, (b / kBlockColumns) * kBlockH + i / kBlockW);
 }
 // Which of the blocks b0, b0 + step, ... a light (world-space centre, radius) meets. A cheap
@@ -48,7 +53,7 @@ uvec2 local_pixel(uint t) {
 uint blocks_reached(vec4 position_radius, uint b0, uint step) {
   vec3 c = (u_view * vec4(position_radius.xyz, 1.0)).xyz;
   vec2 extent = zbin_extent(-c.z, position_radius.w);
-  vec4 px = sphere_pixels(c, position_radius.w) - vec4(gl_WorkGroupID.xy * uint(STAGE_TILE), gl_WorkGroupID.xy * uint(STAGE_TILE));
+  vec4 px = sphere_pixels(c, position_radius.w) - vec2(tile_origin()).xyxy;
   vec2 size = vec2(kBlockW, kBlockH);  // clamped so that the conversion cannot overflow
   ivec4 rect = ivec4(clamp(floor(px / size.xyxy), vec4(-1.0), vec4(64.0)));
   uint reach = 0u;
@@ -66,7 +71,7 @@ uint blocks_reached(vec4 position_radius, uint b0, uint step) {
 uvec2 local_pixel(uint t) { return uvec2(t % uint(STAGE_TILE), t / uint(STAGE_TILE)); }
 #endif
 // The pixel of this invocation (the frame's hooks read it: frame_pixel.glsl).
-ivec2 invocation_pixel() { return ivec2(gl_WorkGroupID.xy * uint(STAGE_TILE) + local_pixel(gl_LocalInvocationIndex)); }
+ivec2 invocation_pixel() { return tile_origin() + ivec2(local_pixel(gl_LocalInvocationIndex)); }
 
 // [zbin-stage]
 // Invocation t's mask word of this round, cut to the span: each round takes kGroup words.
@@ -120,7 +125,8 @@ void main() {
   }
   uint block_bit = 0u;
 #ifdef SUB_BLOCKS
-  block_bit = 1u << (t / 32u);
+  uint block = block_of(t);
+  block_bit = 1u << block;
   if (t < kBlocks) {
     s_block_near[t] = floatBitsToUint(u_depth_range.y * 2.0);
     s_block_far[t] = 0u;
@@ -137,13 +143,13 @@ void main() {
   }
 #ifdef SUB_BLOCKS
   if (shaded) {  // the block's depth bounds, as depth_bounds.comp takes a tile's
-    atomicMin(s_block_near[t / 32u], floatBitsToUint(max(depth, 0.0)));
-    atomicMax(s_block_far[t / 32u], floatBitsToUint(max(depth, 0.0)));
+    atomicMin(s_block_near[block], floatBitsToUint(max(depth, 0.0)));
+    atomicMax(s_block_far[block], floatBitsToUint(max(depth, 0.0)));
     atomicOr(s_blocks, block_bit);
   }
   barrier();
   if (t < kBlocks && (s_blocks & (1u << t)) != 0u) {  // each block's box (cell_box, the tile's)
-    ivec2 p0 = ivec2(gl_WorkGroupID.xy) * STAGE_TILE + ivec2(t % kBlockColumns, t / kBlockColumns) * ivec2(kBlockW, kBlockH);
+    ivec2 p0 = tile_origin() + ivec2(t % kBlockColumns, t / kBlockColumns) * ivec2(kBlockW, kBlockH);
     Box box = cell_box(p0, min(p0 + ivec2(kBlockW, kBlockH), u_grid.xy), uintBitsToFloat(s_block_near[t]), uintBitsToFloat(s_block_far[t]));
     s_block_lo[t] = box.lo;
     s_block_hi[t] = box.hi;
