@@ -20,6 +20,7 @@
 //   09_clustered_sweep [--out DIR] [--size WxH] [--frames N] [--max-lights N] [--stencil-max N] [--density] [--grid]
 //                      [--subgroups] [--views N] [--target D]   (D: one target density alone, e.g. 32)
 //                      [--min-lights N] [--modes A,B]   (the counts from N, the modes A and B and the floor alone)
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -59,7 +60,8 @@ struct Settings {
   int views = kViewsUnset;  // 6, the grid sweep 3
   int target = 0;           // one target density alone (0: every one)
   int min_lights = 0;       // light counts below this are skipped (their density is not fitted)
-  std::string modes;        // --modes a,b: those modes' methods alone (and the floor, which every ratio needs)
+  std::string modes_arg;    // --modes a,b: those modes' methods alone (and the floor, which every ratio needs),
+  std::vector<std::string> modes;  // the modes it names (main() checks each)
   static constexpr int kViewsUnset = -1000000;
 };
 
@@ -207,9 +209,8 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
                                : s.grid    ? grid_methods(base_settings)
                                            : density_methods(base_settings);
   if (!s.modes.empty()) {
-    const std::string listed = "," + s.modes + ",";
-    std::erase_if(methods, [&](const Method& m) { return m.mode != "zbin-floor" && listed.find("," + m.mode + ",") == std::string::npos; });
-    if (methods.size() < 2) throw UsageError("--modes " + s.modes + ": names no method of this sweep but the floor");
+    std::erase_if(methods, [&](const Method& m) { return m.mode != "zbin-floor" && std::ranges::find(s.modes, m.mode) == s.modes.end(); });
+    if (methods.size() < 2) throw UsageError("--modes " + s.modes_arg + ": names no method of this sweep but the floor");
   }
   // --subgroups: each mode's fallback buffers per view, which its subgroup path must equal.
   std::map<std::string, std::vector<std::uint16_t>> fallback_buffers;  // by "mode|view"
@@ -377,16 +378,16 @@ int main(int argc, char** argv) {
     args.text("--out", s.out).size("--size", s.width, s.height, &s.size_given).integer("--frames", s.frames)
         .integer("--max-lights", s.max_lights).integer("--stencil-max", s.stencil_max).text("--view", s.view)
         .flag("--density", s.density).flag("--grid", s.grid).flag("--subgroups", s.subgroups).integer("--views", s.views)
-        .integer("--target", s.target).integer("--min-lights", s.min_lights).text("--modes", s.modes);
+        .integer("--target", s.target).integer("--min-lights", s.min_lights).text("--modes", s.modes_arg);
   }, [&] {
     std::filesystem::create_directories(s.out);
     if (s.views == Settings::kViewsUnset) s.views = s.grid || s.subgroups ? 3 : 6;
     if (s.views < 1 || s.views > 64) throw Error("--views: 1 to 64, not " + std::to_string(s.views));
     if (s.grid && s.subgroups) throw UsageError("--grid and --subgroups: one at a time");
-    for (std::size_t at = 0; !s.modes.empty() && at <= s.modes.size();) {  // each of --modes a,b is a mode
-      const std::size_t end = std::min(s.modes.find(',', at), s.modes.size());
-      const std::string mode = s.modes.substr(at, end - at);
-      if (!ch09::is_cluster_mode(mode)) throw UsageError("--modes: '" + mode + "' is no mode of chapter 9");
+    for (std::size_t at = 0; !s.modes_arg.empty() && at <= s.modes_arg.size();) {  // each of --modes a,b is a mode
+      const std::size_t end = std::min(s.modes_arg.find(',', at), s.modes_arg.size());
+      s.modes.push_back(s.modes_arg.substr(at, end - at));
+      if (!ch09::is_cluster_mode(s.modes.back())) throw UsageError("--modes: '" + s.modes.back() + "' is no mode of chapter 9");
       at = end + 1;
     }
     if (s.grid || s.subgroups) s.density = true;  // the density sweep over grids, or over the two paths
