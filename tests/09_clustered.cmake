@@ -69,6 +69,7 @@ add_test(NAME 09_clustered.density_sweep_reaches_its_density COMMAND ${EXPECT} 0
   "^32,1000,zbin,default,[0-9.]+,(31\\.|32\\.|30\\.[4-9])[0-9]*,"
   "^32,1000,zbin-staged,default,[0-9.]+,(31\\.|32\\.|30\\.[4-9])[0-9]*,"
   "^32,1000,zbin-staged,sub-blocks,[0-9.]+,(31\\.|32\\.|30\\.[4-9])[0-9]*,"
+  "^32,1000,zbin-staged,fields,[0-9.]+,(31\\.|32\\.|30\\.[4-9])[0-9]*,"
   "^32,1000,zbin-floor,default,([0-9.e-]+,){10}1,"
   # The CPU's time per frame beside the GPU's, and Z-binning's assignment by its parts (the
   # clears, the sort, the bins, the tiles; the floor's exact lists only in zbin-floor).
@@ -86,8 +87,9 @@ add_test(NAME 09_clustered.grid_sweep_names_every_grid COMMAND ${EXPECT} 0
   "^8,1000,clustered,16x9x24 near 2,"  "^8,1000,clustered,16x9x96 near 10,"
   "^8,1000,zbin,tile 64 bins 4096,[0-9.]+,(7\\.(7[6-9]|[89])|8\\.([01]|2[0-4]))[0-9]*,"
   # Z-binning staged at each tile size, 32 pixels too (a group of 1 024 invocations), with and
-  # without the sub-blocks; no method may fail (a shader that does not link is warned so).
+  # without the sub-blocks, and at 256 and 4 096 bins; no method may fail (a shader that does not link is warned so).
   "^8,1000,zbin-staged,tile 8 bins 1024,"  "^8,1000,zbin-staged,tile 32 bins 1024 sub-blocks,"
+  "^8,1000,zbin-staged,tile 16 bins 256,"  "^8,1000,zbin-staged,tile 16 bins 4096,"
   --no-match "warning: .*(not 8|overflow|lists over|not timed| at [0-9]+ lights: )"
   -- sh -c "$<TARGET_FILE:09_clustered_sweep> --grid --target 8 --out ${GRID09_OUT} --size 64x36 --max-lights 1000 --views 1 --frames 1 2>&1 && cat ${GRID09_OUT}/09_grid_d8_summary_llvmpipe.csv")
 set_tests_properties(09_clustered.grid_sweep_names_every_grid PROPERTIES TIMEOUT 300)
@@ -107,6 +109,7 @@ add_test(NAME 09_clustered.density_sweep_bad_views COMMAND ${EXPECT} 1 "--views:
 set(MODES09_OUT ${CMAKE_BINARY_DIR}/out/09_modes)
 add_test(NAME 09_clustered.density_sweep_modes_and_min_lights COMMAND ${EXPECT} 0
   "^8,10000,zbin-floor,default,"  "^8,10000,zbin-staged,default,"  "^8,10000,zbin-staged,sub-blocks,"
+  "^8,10000,zbin-staged,fields,"
   --no-match "^8,1000,|^8,10000,(tiled|clustered|zbin,)|warning"
   -- sh -c "$<TARGET_FILE:09_clustered_sweep> --density --target 8 --modes zbin-staged --min-lights 10000 --out ${MODES09_OUT} --size 64x36 --max-lights 10000 --views 1 --frames 1 2>&1 && cat ${MODES09_OUT}/09_density_d8_summary_llvmpipe.csv")
 set_tests_properties(09_clustered.density_sweep_modes_and_min_lights PROPERTIES TIMEOUT 300)

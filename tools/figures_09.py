@@ -13,6 +13,7 @@ The same for the fair case (--density): 09_density_summary_llvmpipe.csv and, fro
 from each 09_grid*_summary_*.csv that has near-slice rows (09_grid_summary_llvmpipe.csv, the GPU's
 09_grid_d32_summary_h200.csv), 09_near_slice_<tag>.svg, <tag> the file's name after 09_grid_.
 """
+import math
 import re
 import subprocess
 import sys
@@ -118,6 +119,47 @@ def near_slice_plots(d: Path, csv: Path, tag: str, where: str):
          by("local_median_ms"), "the near slice's far end (m; 0: none)", f"ms of the local lights ({unit}, log)", ylog=True)
 
 
+def cells_covered(r, cell_px):
+    """A light's footprint in cells: the pixels it lights (lit pairs over the lights, a view) over
+    a cell's pixels."""
+    return float(r["lit"]) / float(r["views"]) / float(r["lights"]) / cell_px
+
+
+def footprint_plot(d: Path, density_csv: Path, grid_csv: Path, tag: str, where: str):
+    """Z-binning staged: lights evaluated per lit one against how many cells a light covers, every
+    point of the density and grid sweeps (the tiles, or the 8 x 4 sub-blocks as cells of 32
+    pixels), beside the screen-only model (the book derives it): 1 + 1/x + 4/sqrt(pi x)."""
+    series, xs = [], []
+    label = lambda r: f"{int(r['lights']) // 1000:,}k" if int(r["lights"]) >= 100000 else ""
+    if density_csv.exists():
+        _, rows = read_csv(density_csv)
+        for grid, cell, name in (("default", 256, "16-pixel tiles"), ("sub-blocks", 32, "8 x 4 blocks")):
+            for t in sorted({r["target_density"] for r in rows}, key=float):
+                pts = [(cells_covered(r, cell), float(r["evaluated_per_lit"]), label(r))
+                       for r in rows if r["method"] == "zbin-staged" and r["grid"] == grid and r["target_density"] == t]
+                if pts:
+                    series.append(Series(f"{name}, {float(t):g} per pixel", pts, line=False))
+                    xs += [p[0] for p in pts]
+    if grid_csv.exists():
+        _, rows = read_csv(grid_csv)
+        for tile in (8, 32):
+            pts = [(cells_covered(r, tile * tile), float(r["evaluated_per_lit"]), label(r))
+                   for r in rows if r["method"] == "zbin-staged" and r["grid"] == f"tile {tile} bins 1024"]
+            if pts:
+                series.append(Series(f"{tile}-pixel tiles, {float(rows[0]['target_density']):g} per pixel", pts, line=False))
+                xs += [p[0] for p in pts]
+    if not series:
+        return
+    lo, hi = min(xs), max(xs)
+    grid = [lo * (hi / lo) ** (k / 60) for k in range(61)]  # 61 points: drawn as lines, without markers
+    series.append(Series("screen-only model", [(x, 1 + 1 / x + 4 / math.sqrt(math.pi * x)) for x in grid],
+                         dashed=True, colour="#7f7f7f"))
+    series.append(Series("goal: 1.5", [(x, 1.5) for x in grid], dashed=True, colour="#000000"))
+    plot(d / f"09_footprint_{tag}.svg", f"How tight a list is: the cells a light covers ({where})",
+         "exact counts (zbin-staged; the same on any GPU at this size); labels: lights (k: thousands)", series,
+         "a light's lit pixels / a cell's pixels (log)", "evaluated / lit (log)", xlog=True, ylog=True)
+
+
 def pictures(build: Path, d: Path):
     exe = build / "chapters" / "09_clustered" / "09_clustered"
     for name, args in PICTURES:
@@ -137,6 +179,7 @@ def main(argv):
                             (d / "09_density_summary_h200.csv", "h200", "NVIDIA H200")):
         if csv.exists():
             density_plots(d, csv, tag, where)
+    footprint_plot(d, d / "09_density_summary_h200.csv", d / "09_grid_d32_summary_h200.csv", "h200", "NVIDIA H200, 1920x1080")
     for csv in sorted(d.glob("09_grid*_summary_*.csv")):
         tag = csv.stem.replace("09_grid_", "").replace("09_grid", "").replace("summary_", "").replace("_summary", "")
         near_slice_plots(d, csv, tag.strip("_"), "NVIDIA H200" if "h200" in tag else "llvmpipe" if "llvmpipe" in tag else tag)

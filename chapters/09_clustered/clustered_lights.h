@@ -53,6 +53,9 @@ struct ClusterSettings {
   // the blocks its sphere does not meet (zbin_staged.comp). Fewer lights evaluated, more work
   // staging each: off by default (slower on the H200).
   bool sub_blocks = false;
+  // zbin-staged: the staged records held as an array per field (positions, radiances, cones: a
+  // structure of arrays) instead of an array of records. The same image; measured by the sweep.
+  bool staged_fields = false;
   // The index list starts this large (indices) and grows to what a frame needs, up to
   // max_indices. Growth is found a frame late, never by waiting for the GPU: a cell that does
   // not fit is shaded from every light that frame (slower, the same image) and counted, and

@@ -95,6 +95,9 @@ std::vector<Method> density_methods(const ch09::ClusterSettings& base) {
   Method blocks{"zbin-staged", "sub-blocks", ch09::settings_for_mode("zbin-staged", base)};
   blocks.settings.sub_blocks = true;  // a bit per 8 x 4 block of the tile for each staged light
   m.push_back(blocks);
+  Method fields{"zbin-staged", "fields", ch09::settings_for_mode("zbin-staged", base)};
+  fields.settings.staged_fields = true;  // the staged records as a structure of arrays
+  m.push_back(fields);
   return m;
 }
 
@@ -137,6 +140,12 @@ std::vector<Method> grid_methods(const ch09::ClusterSettings& base) {
       z.settings.sub_blocks = blocks;
       m.push_back(z);
     }
+  for (const int bins : {256, 4096}) {  // and its bins, at 16-pixel tiles
+    Method z{"zbin-staged", "tile 16 bins " + std::to_string(bins), ch09::settings_for_mode("zbin-staged", base)};
+    z.settings.tile_px = 16;
+    z.settings.zbins = bins;
+    m.push_back(z);
+  }
   return m;
 }
 // [/grid-methods]

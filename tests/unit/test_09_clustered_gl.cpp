@@ -905,14 +905,20 @@ TEST_F(ClusteredGl, ZBinStagedAddsZBinningsLightsInItsOrder) {
                 (unsigned long long)a.counts.evaluated, (unsigned long long)c.counts.evaluated,
                 (unsigned long long)a.counts.lit);
     if (tile != 16) continue;
-    // Staged with the records read through the index (sorted_records off): the same again.
-    ClusterSettings indexed = zbin_staged;
+    // Two layouts of the same records, each zbin's evaluations and light buffers again: read
+    // through the index (sorted_records off), and staged as a structure of arrays (staged_fields).
+    ClusterSettings indexed = zbin_staged, fields = zbin_staged;
     indexed.sorted_records = false;
-    indexed.sub_blocks = false;
-    ClusteredLights staged_indexed(w.frame_.volumes(), indexed);
-    const Render d = render(w, cam, width, height, &staged_indexed, false);
-    EXPECT_EQ(d.counts.evaluated, a.counts.evaluated);
-    EXPECT_TRUE(d.l1 == a.l1 && d.l2 == a.l2) << "the light buffers differ (records by index)";
+    fields.staged_fields = true;
+    for (ClusterSettings* v : {&indexed, &fields}) {
+      ClusterSettings& variant = *v;
+      variant.sub_blocks = false;
+      ClusteredLights staged_variant(w.frame_.volumes(), variant);
+      const Render d = render(w, cam, width, height, &staged_variant, false);
+      EXPECT_EQ(d.counts.evaluated, a.counts.evaluated);
+      EXPECT_TRUE(d.l1 == a.l1 && d.l2 == a.l2)
+          << "the light buffers differ (" << (variant.staged_fields ? "the records' fields staged apart" : "records by index") << ")";
+    }
     // A tile with more lights than a chunk holds (so that the chunks are tested).
     const ClusteredLights::ZBinLists z = q.zbin_lists();
     std::size_t most = 0;

@@ -21,9 +21,23 @@ const uint kGroup = uint(STAGE_TILE * STAGE_TILE);  // invocations
 const uint kChunk = min(kGroup, 256u);
 shared uint s_first, s_last;   // the span of sorted positions the tile's pixels name
 shared uint s_sum[kGroup];     // the words' bit counts, summed (each invocation's word's end)
-shared SortedRecord s_record[kChunk];
 shared int s_light[kChunk];
 shared uint s_position[kChunk];  // ascending within a chunk, and from chunk to chunk
+// The staged records: an array of records, or (ClusterSettings::staged_fields) an array per
+// field, a structure of arrays. The same values either way; only their layout differs.
+#ifdef STAGED_FIELDS
+shared vec4 s_position_radius[kChunk], s_radiance[kChunk], s_cone[kChunk];
+void stage_record(uint k, SortedRecord r) {
+  s_position_radius[k] = r.light.position_radius;
+  s_radiance[k] = r.light.radiance_inv_range2;
+  s_cone[k] = r.cone;
+}
+SortedRecord staged_record(uint k) { return SortedRecord(ClusterLight(s_position_radius[k], s_radiance[k]), s_cone[k]); }
+#else
+shared SortedRecord s_record[kChunk];
+void stage_record(uint k, SortedRecord r) { s_record[k] = r; }
+SortedRecord staged_record(uint k) { return s_record[k]; }
+#endif
 
 // The tile's first pixel (the group is the tile).
 ivec2 tile_origin() { return ivec2(gl_WorkGroupID.xy) * STAGE_TILE; }
@@ -107,7 +121,8 @@ void add_staged(Surface s, vec3 to_eye, uint k, uint block_bit, inout vec3 diffu
 #ifdef SUB_BLOCKS
   if ((s_reach[k] & block_bit) == 0u) return;
 #endif
-  add_lamp(s, to_eye, s_light[k], s_record[k].light, s_record[k].cone, diffuse, specular, lit);
+  SortedRecord r = staged_record(k);
+  add_lamp(s, to_eye, s_light[k], r.light, r.cone, diffuse, specular, lit);
   ++evaluated;
 }
 // [/zbin-stage]
@@ -179,7 +194,7 @@ void main() {
           bits &= bits - 1u;
           if (at >= chunk) {
             int i = int(light_indices[p]);
-            s_record[at - chunk] = zbin_record(p, i);
+            stage_record(at - chunk, zbin_record(p, i));
             s_light[at - chunk] = i;
             s_position[at - chunk] = p;
 #ifdef SUB_BLOCKS
@@ -194,7 +209,7 @@ void main() {
         // Each light's blocks: kGroup / kChunk invocations a light (32-pixel tiles: four), each
         // taking every fourth block.
         if (t % kChunk < n) {
-          uint reach = blocks_reached(s_record[t % kChunk].light.position_radius, t / kChunk, kGroup / kChunk);
+          uint reach = blocks_reached(staged_record(t % kChunk).light.position_radius, t / kChunk, kGroup / kChunk);
           if (reach != 0u) atomicOr(s_reach[t % kChunk], reach);
         }
         barrier();
