@@ -103,6 +103,18 @@ add_test(NAME 09_clustered.subgroup_sweep_equals_the_fallback COMMAND ${EXPECT} 
   --no-match "DIFFERENT|warning: .*(overflow|lists over|not timed)"
   -- sh -c "$<TARGET_FILE:09_clustered_sweep> --subgroups --out ${SUB09_OUT} --size 64x36 --max-lights 1000 --views 1 --frames 1 2>&1 && cat ${SUB09_OUT}/09_subgroups_summary_llvmpipe.csv")
 set_tests_properties(09_clustered.subgroup_sweep_equals_the_fallback PROPERTIES TIMEOUT 300)
+# The phase sweep (--phases): zbin-staged's cycles by phase, with and without the sub-blocks: every
+# phase timed but the blocks' own without them, and the shares of a method summing to one.
+set(PHASES09_OUT ${CMAKE_BINARY_DIR}/out/09_phases)
+add_test(NAME 09_clustered.phase_sweep_times_every_phase COMMAND ${EXPECT} 0
+  "^32,1000,zbin-staged,phase clocks,setup,[1-9][0-9]*,"  "^32,1000,zbin-staged,phase clocks,shade,[1-9][0-9]*,0\\.[1-9]"
+  "^32,1000,zbin-staged,phase clocks,reach,0,0,"  "^32,1000,zbin-staged,sub-blocks phase clocks,reach,[1-9][0-9]*,"
+  "^shares: phase clocks 1\\.000, sub-blocks phase clocks 1\\.000$"
+  --no-match "warning"
+  -- sh -c "$<TARGET_FILE:09_clustered_sweep> --phases --target 32 --out ${PHASES09_OUT} --size 64x36 --max-lights 1000 --views 1 --frames 1 2>&1 && cat ${PHASES09_OUT}/09_phases_d32_cycles_llvmpipe.csv && awk -F, '/^32,/ { s[$4] += $7 } END { printf \"shares: phase clocks %.3f, sub-blocks phase clocks %.3f\\n\", s[\"phase clocks\"], s[\"sub-blocks phase clocks\"] }' ${PHASES09_OUT}/09_phases_d32_cycles_llvmpipe.csv")
+set_tests_properties(09_clustered.phase_sweep_times_every_phase PROPERTIES TIMEOUT 300)
+add_test(NAME 09_clustered.phase_sweep_alone COMMAND ${EXPECT} 2 "--grid, --subgroups and --phases: one at a time"
+  -- $<TARGET_FILE:09_clustered_sweep> --grid --phases --out ${PHASES09_OUT}/bad)
 add_test(NAME 09_clustered.density_sweep_bad_views COMMAND ${EXPECT} 1 "--views: 1 to 64, not 0"
   -- $<TARGET_FILE:09_clustered_sweep> --density --views 0)
 # --modes and --min-lights: the named modes' methods and the floor alone, from the count given.

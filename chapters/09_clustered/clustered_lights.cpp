@@ -56,13 +56,20 @@ const std::vector<std::string>& ClusteredLights::zbin_assign_parts() {
 }
 
 // [subgroup-support]
-std::string subgroup_support() {
-  const char* none = std::getenv("LIGHTPASS_TEST_NO_SUBGROUPS");
-  if (none && std::string(none) == "1") return "";
+namespace {
+std::set<std::string> gl_extensions() {
   std::set<std::string> extensions;
   GLint n = 0;
   glGetIntegerv(GL_NUM_EXTENSIONS, &n);
   for (GLint i = 0; i < n; ++i) extensions.insert(reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i))));
+  return extensions;
+}
+}  // namespace
+
+std::string subgroup_support() {
+  const char* none = std::getenv("LIGHTPASS_TEST_NO_SUBGROUPS");
+  if (none && std::string(none) == "1") return "";
+  const std::set<std::string> extensions = gl_extensions();
   if (extensions.count("GL_KHR_shader_subgroup")) {
     GLint stages = 0, features = 0;
     glGetIntegerv(GL_SUBGROUP_SUPPORTED_STAGES_KHR, &stages);
@@ -108,6 +115,7 @@ constexpr std::size_t kMaxLights = std::size_t(1) << 22;
 constexpr GLuint kTubeBinding = 10;  // shade.glsl's Tubes buffer (CLUSTER_TUBES); 9 holds the spots' cones
 constexpr GLuint kTileWordsBinding = 11;  // zbin.glsl's TileWords
 constexpr GLuint kSortedBinding = 12;     // zbin.glsl's SortedRecords (ClusterSettings::sorted_records)
+constexpr GLuint kClocksBinding = 13;     // zbin_staged.comp's PhaseClocks (ClusterSettings::phase_clocks)
 }  // namespace
 
 // [pack]
@@ -225,6 +233,7 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
       if (staged) d.push_back("STAGE_TILE " + std::to_string(grid_.tile_w));
       if (staged && settings_.kind == CullKind::ZBin && settings_.sub_blocks) d.push_back("SUB_BLOCKS 1");
       if (staged && settings_.kind == CullKind::ZBin && settings_.staged_fields) d.push_back("STAGED_FIELDS 1");
+      if (staged && settings_.kind == CullKind::ZBin && settings_.phase_clocks) d.push_back(phase_clocks_define());
       if (!staged && settings_.kind != CullKind::ZBin) {  // a tile's or cluster's list, read once where shared
         if (!support_known_) support_ = subgroup_support();  // the context's, asked once
         support_known_ = true;
@@ -267,6 +276,35 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
   light.bind();
 }
 // [/draw]
+
+const std::vector<std::string>& ClusteredLights::phase_names() {
+  static const std::vector<std::string> names = {"setup", "span", "stage", "reach", "shade", "output"};  // zbin_staged.comp's
+  return names;
+}
+
+std::string ClusteredLights::phase_clocks_define() {
+  if (!clocks_ready_) {
+    if (!gl_extensions().count("GL_ARB_shader_clock"))
+      throw Error("clustered lights: the phase clocks need GL_ARB_shader_clock, which this driver does not offer");
+    const std::vector<std::uint32_t> zero(2 * phase_names().size(), 0u);  // a 64-bit sum a phase, as two words
+    glNamedBufferData(clocks_.id(), GLsizeiptr(zero.size() * 4), zero.data(), GL_DYNAMIC_READ);
+    clocks_ready_ = true;
+  }
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kClocksBinding, clocks_.id());
+  return "PHASE_CLOCKS " + std::to_string(kClocksBinding);
+}
+
+std::vector<std::uint64_t> ClusteredLights::take_phase_cycles() {
+  std::vector<std::uint64_t> cycles(phase_names().size(), 0);
+  if (!clocks_ready_) return cycles;
+  std::vector<std::uint32_t> words(2 * cycles.size());
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  glGetNamedBufferSubData(clocks_.id(), 0, GLsizeiptr(words.size() * 4), words.data());
+  for (std::size_t k = 0; k < cycles.size(); ++k) cycles[k] = (std::uint64_t(words[2 * k + 1]) << 32) | words[2 * k];
+  std::fill(words.begin(), words.end(), 0u);
+  glNamedBufferSubData(clocks_.id(), 0, GLsizeiptr(words.size() * 4), words.data());
+  return cycles;
+}
 
 // [build-lists]
 std::vector<std::string> ClusteredLights::build_lists(int w, int h, const ch03::SurfaceView& view) {

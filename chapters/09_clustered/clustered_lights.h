@@ -56,6 +56,10 @@ struct ClusterSettings {
   // zbin-staged: the staged records held as an array per field (positions, radiances, cones: a
   // structure of arrays) instead of an array of records. The same image; measured by the sweep.
   bool staged_fields = false;
+  // zbin-staged, a benchmark (09_clustered_sweep --phases): one invocation of each work group
+  // reads its SM's clock (GL_ARB_shader_clock) after each phase of zbin_staged.comp and adds the
+  // cycles to the phase's sum (ClusteredLights::take_phase_cycles). The same image.
+  bool phase_clocks = false;
   // The index list starts this large (indices) and grows to what a frame needs, up to
   // max_indices. Growth is found a frame late, never by waiting for the GPU: a cell that does
   // not fit is shaded from every light that frame (slower, the same image) and counted, and
@@ -172,6 +176,11 @@ class ClusteredLights : public ch03::LocalLightPass {
   // where the driver has none, "off" (settings.subgroups false), or "" (the fragment or staged
   // shading, Z-binning, whose lists are per pixel, or no draw yet).
   const std::string& subgroup_path() const { return subgroup_path_; }
+  // With settings().phase_clocks: the cycles of each phase of zbin_staged.comp (phase_names())
+  // summed over its work groups since the last call, then zeroed. It waits for the GPU: a
+  // benchmark's read-back, never a frame's.
+  static const std::vector<std::string>& phase_names();
+  std::vector<std::uint64_t> take_phase_cycles();
   const ClusterSettings& settings() const { return settings_; }
   void set_settings(const ClusterSettings& s) { settings_ = s; }
   void set_counting(bool on) { counting_ = on; }
@@ -264,6 +273,9 @@ class ClusteredLights : public ch03::LocalLightPass {
   std::uint64_t frame_ = 0;
   ch03::FragmentCounters counters_{5};
   std::string subgroup_path_, support_;
+  std::string phase_clocks_define();  // checks for GL_ARB_shader_clock, binds the sums
+  gl::Buffer clocks_;
+  bool clocks_ready_ = false;
   bool support_known_ = false;
   ch02::FullScreenPass full_screen_;
   ProgramCache programs_;

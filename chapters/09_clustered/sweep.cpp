@@ -17,8 +17,11 @@
 // without it (the fallback), each view's light buffers compared bit for bit and the exact counts
 // compared; timed side by side (09_subgroups*.csv, the path in the grid column). Exits 1 when
 // the two differ anywhere.
+// --phases: zbin-staged with and without its sub-blocks at 100 000 and 1 000 000 lights, its
+// phase clocks on (ClusterSettings::phase_clocks): the cycles each phase of the pass took, summed
+// over its work groups and views, and each phase's share (09_phases*.csv, beside the usual rows).
 //   09_clustered_sweep [--out DIR] [--size WxH] [--frames N] [--max-lights N] [--stencil-max N] [--density] [--grid]
-//                      [--subgroups] [--views N] [--target D]   (D: one target density alone, e.g. 32)
+//                      [--subgroups] [--phases] [--views N] [--target D]   (D: one target density alone, e.g. 32)
 //                      [--min-lights N] [--modes A,B]   (the counts from N, the modes A and B and the floor alone)
 #include <algorithm>
 #include <chrono>
@@ -57,6 +60,7 @@ struct Settings {
   bool density = false;
   bool grid = false;
   bool subgroups = false;
+  bool phases = false;
   int views = kViewsUnset;  // 6, the grid sweep 3
   int target = 0;           // one target density alone (0: every one)
   int min_lights = 0;       // light counts below this are skipped (their density is not fitted)
@@ -150,6 +154,18 @@ std::vector<Method> grid_methods(const ch09::ClusterSettings& base) {
 }
 // [/grid-methods]
 
+// zbin-staged timed phase by phase, without and with the sub-blocks.
+std::vector<Method> phase_methods(const ch09::ClusterSettings& base) {
+  std::vector<Method> m;
+  for (const bool blocks : {false, true}) {
+    Method z{"zbin-staged", blocks ? "sub-blocks phase clocks" : "phase clocks", ch09::settings_for_mode("zbin-staged", base)};
+    z.settings.sub_blocks = blocks;
+    z.settings.phase_clocks = true;
+    m.push_back(z);
+  }
+  return m;
+}
+
 // The compute shading with and without the subgroup path, for the two ways whose lists a
 // subgroup may share (a tile's, a cluster's).
 std::vector<Method> subgroup_methods(const ch09::ClusterSettings& base) {
@@ -184,7 +200,7 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
   const bool software = context.is_software();
   const std::vector<Camera> views = ch09::views_along(scene.camera(s.view), s.views, 12.f);
   std::vector<int> counts = {1000, 10000, 100000, 1000000};
-  if (s.grid || s.subgroups) counts = software ? std::vector<int>{1000} : std::vector<int>{100000, 1000000};
+  if (s.grid || s.subgroups || s.phases) counts = software ? std::vector<int>{1000} : std::vector<int>{100000, 1000000};
   std::vector<double> densities = {8, 32, 128};
   if (software) densities = {8, 32};
   if (s.subgroups) densities = {32};
@@ -192,10 +208,12 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
   const float threshold = ch03::cut_threshold(1.f, ch03::peak_reflectance(scene));
   // One target alone writes its own files (09_grid_d32...), so that runs of each density add up.
   const std::string label = software ? "_llvmpipe" : "";
-  const std::string name = std::string(s.subgroups ? "09_subgroups" : s.grid ? "09_grid" : "09_density") +
+  const std::string name = std::string(s.subgroups ? "09_subgroups" : s.grid ? "09_grid" : s.phases ? "09_phases" : "09_density") +
                            (s.target > 0 ? "_d" + std::to_string(s.target) : "");
   const std::string rows_file = s.out + "/" + name + label + ".csv", summary_file = s.out + "/" + name + "_summary" + label + ".csv";
   std::ofstream rows(rows_file), summary(summary_file);
+  const std::string phases_file = s.out + "/" + name + "_cycles" + label + ".csv";
+  std::ofstream phases;
   // cpu_ms: the CPU's time per frame (submission; a read-back that waits shows here), and
   // Z-binning's assignment by its parts (0 for the other methods; the summary's are medians).
   std::string parts_header;
@@ -210,12 +228,17 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
   summary << header << "target_density,lights,method,grid,range_scale,density,lit,evaluated_per_lit,local_median_ms,local_p95_ms,"
           << "assign_median_ms,assign_p95_ms,shade_median_ms,shade_p95_ms,shade_per_floor,list_bytes_max,views,cpu_median_ms,"
           << parts_header << csv_measure_columns() << "\n";
+  if (s.phases) {
+    phases.open(phases_file);
+    phases << header << "target_density,lights,method,grid,phase,cycles,share," << csv_measure_columns() << "\n";
+  }
   // A cell that overflows is shaded from every light for a frame, very slow with a million
   // lights: on a GPU the lists start at 2^26 entries (256 MiB), so they rarely grow.
   ch09::ClusterSettings base_settings;
   if (!software) base_settings.initial_indices = 1u << 26;
   std::vector<Method> methods = s.subgroups ? subgroup_methods(base_settings)
                                : s.grid    ? grid_methods(base_settings)
+                               : s.phases  ? phase_methods(base_settings)
                                            : density_methods(base_settings);
   if (!s.modes.empty()) {
     std::erase_if(methods, [&](const Method& m) { return m.mode != "zbin-floor" && std::ranges::find(s.modes, m.mode) == s.modes.end(); });
@@ -287,6 +310,7 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
         std::vector<double> local, assign, shade, cpu;
         std::vector<std::vector<double>> assign_parts(ch09::ClusteredLights::zbin_assign_parts().size());
         std::uint64_t lit = 0, surface = 0, evaluated = 0;
+        std::vector<std::uint64_t> cycles(ch09::ClusteredLights::phase_names().size(), 0);  // --phases: over the views
         std::size_t bytes = 0;
         int frames = 0;
         for (const Camera& view : views) {
@@ -305,7 +329,12 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
           PassMetrics metrics;
           MeasureOptions options{.frames = s.frames};
           options.warmup = {.block_frames = 2, .block_seconds = 0.05, .min_seconds = 0.1, .tolerance = 0.03, .max_seconds = 2};
+          if (methods[mi].settings.phase_clocks) pass.take_phase_cycles();  // the measured frames' cycles alone
           const Measurement t = measure(metrics, [&] { render(view, pass, &metrics); }, options);
+          if (methods[mi].settings.phase_clocks) {
+            const std::vector<std::uint64_t> taken = pass.take_phase_cycles();
+            for (std::size_t k = 0; k < cycles.size(); ++k) cycles[k] += taken[k];
+          }
           if (s.subgroups) {  // the path taken, and the last timed frame's buffers against the fallback's
             grid = methods[mi].grid == "fallback" ? "fallback" : methods[mi].grid + " " + pass.subgroup_path();
             std::vector<std::uint16_t> buffers = light_buffers(frame, s.width, s.height);
@@ -363,6 +392,15 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
                 << views.size() << ',' << ch09::quantile(cpu, 0.5) << ',';
         for (const std::vector<double>& p : assign_parts) summary << ch09::quantile(p, 0.5) << ',';
         summary << csv_measure_values(context.renderer(), s.width, s.height, frames) << std::endl;
+        if (methods[mi].settings.phase_clocks) {
+          std::uint64_t all = 0;
+          for (const std::uint64_t c : cycles) all += c;
+          for (std::size_t k = 0; k < cycles.size(); ++k)
+            phases << target_density << ',' << n << ',' << method << ',' << grid << ','
+                   << ch09::ClusteredLights::phase_names()[k] << ',' << cycles[k] << ','
+                   << (all ? double(cycles[k]) / double(all) : 0.0) << ','
+                   << csv_measure_values(context.renderer(), s.width, s.height, frames) << std::endl;
+        }
         std::cout << target_density << " per pixel, " << n << " lights, " << method << " (" << grid << "): local lights "
                   << ch09::quantile(local, 0.5) << " ms median, " << ch09::quantile(local, 0.95) << " p95; evaluated per lit "
                   << (lit ? double(evaluated) / double(lit) : 0.0) << "; shading " << per_floor << " x the floor's" << std::endl;
@@ -371,7 +409,7 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
   }
   frame.set_local_lights(nullptr);
   std::cout << "took " << std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count() << " s\n";
-  std::cout << "wrote " << rows_file << " and " << summary_file << '\n';
+  std::cout << "wrote " << rows_file << " and " << summary_file << (s.phases ? " and " + phases_file : "") << '\n';
   if (!differences.empty()) {
     std::string where;
     for (const std::string& d : differences) where += (where.empty() ? "" : "; ") + d;
@@ -386,20 +424,20 @@ int main(int argc, char** argv) {
   return run_sweep(argc, argv, "09_clustered_sweep", [&](SweepArgs& args) {
     args.text("--out", s.out).size("--size", s.width, s.height, &s.size_given).integer("--frames", s.frames)
         .integer("--max-lights", s.max_lights).integer("--stencil-max", s.stencil_max).text("--view", s.view)
-        .flag("--density", s.density).flag("--grid", s.grid).flag("--subgroups", s.subgroups).integer("--views", s.views)
+        .flag("--density", s.density).flag("--grid", s.grid).flag("--subgroups", s.subgroups).flag("--phases", s.phases).integer("--views", s.views)
         .integer("--target", s.target).integer("--min-lights", s.min_lights).text("--modes", s.modes_arg);
   }, [&] {
     std::filesystem::create_directories(s.out);
-    if (s.views == Settings::kViewsUnset) s.views = s.grid || s.subgroups ? 3 : 6;
+    if (s.views == Settings::kViewsUnset) s.views = s.grid || s.subgroups || s.phases ? 3 : 6;
     if (s.views < 1 || s.views > 64) throw Error("--views: 1 to 64, not " + std::to_string(s.views));
-    if (s.grid && s.subgroups) throw UsageError("--grid and --subgroups: one at a time");
+    if (int(s.grid) + int(s.subgroups) + int(s.phases) > 1) throw UsageError("--grid, --subgroups and --phases: one at a time");
     for (std::size_t at = 0; !s.modes_arg.empty() && at <= s.modes_arg.size();) {  // each of --modes a,b is a mode
       const std::size_t end = std::min(s.modes_arg.find(',', at), s.modes_arg.size());
       s.modes.push_back(s.modes_arg.substr(at, end - at));
       if (!ch09::is_cluster_mode(s.modes.back())) throw UsageError("--modes: '" + s.modes.back() + "' is no mode of chapter 9");
       at = end + 1;
     }
-    if (s.grid || s.subgroups) s.density = true;  // the density sweep over grids, or over the two paths
+    if (s.grid || s.subgroups || s.phases) s.density = true;  // the density sweep over grids, or over the two paths
     if (s.density) {  // many configurations: fewer frames each
       s.frames = std::min(s.frames, 10);
     }
@@ -411,7 +449,7 @@ int main(int argc, char** argv) {
       s.height = 90;
       s.frames = std::min(s.frames, 2);
       s.max_lights = std::min(s.max_lights, 10000);
-      s.views = std::min(s.views, s.grid || s.subgroups ? 2 : 3);
+      s.views = std::min(s.views, s.grid || s.subgroups || s.phases ? 2 : 3);
     } else if (software && !s.size_given) {  // a CPU: small, few lights, few frames
       s.width = 320;
       s.height = 180;

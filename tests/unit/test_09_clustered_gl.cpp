@@ -919,6 +919,31 @@ TEST_F(ClusteredGl, ZBinStagedAddsZBinningsLightsInItsOrder) {
       EXPECT_TRUE(d.l1 == a.l1 && d.l2 == a.l2)
           << "the light buffers differ (" << (variant.staged_fields ? "the records' fields staged apart" : "records by index") << ")";
     }
+    // The phase clocks (a benchmark's, ClusterSettings::phase_clocks): the same buffers, every
+    // phase of the pass timed, the blocks' tests ("reach") only with the blocks, and the sums
+    // zeroed once taken.
+    for (const bool blocks : {false, true}) {
+      ClusterSettings clocked = zbin_staged;
+      clocked.phase_clocks = true;
+      clocked.sub_blocks = blocks;
+      ClusteredLights clocked_pass(w.frame_.volumes(), clocked);
+      const Render e = render(w, cam, width, height, &clocked_pass, false);
+      EXPECT_TRUE(e.l1 == a.l1 && e.l2 == a.l2) << "the light buffers differ with the phase clocks";
+      const std::vector<std::uint64_t> cycles = clocked_pass.take_phase_cycles();
+      ASSERT_EQ(cycles.size(), ClusteredLights::phase_names().size());
+      for (std::size_t k = 0; k < cycles.size(); ++k) {
+        const std::string& phase = ClusteredLights::phase_names()[k];
+        if (phase == "reach" && !blocks)
+          EXPECT_EQ(cycles[k], 0u) << "the blocks' phase timed without the blocks";
+        else
+          EXPECT_GT(cycles[k], 0u) << "phase '" << phase << "' not timed" << (blocks ? " (with the blocks)" : "");
+      }
+      std::printf("phase cycles%s:", blocks ? " with the blocks" : "");
+      for (std::size_t k = 0; k < cycles.size(); ++k)
+        std::printf(" %s %llu", ClusteredLights::phase_names()[k].c_str(), (unsigned long long)cycles[k]);
+      std::printf("\n");
+      EXPECT_EQ(clocked_pass.take_phase_cycles(), std::vector<std::uint64_t>(cycles.size(), 0)) << "the sums were not zeroed";
+    }
     // A tile with more lights than a chunk holds (so that the chunks are tested).
     const ClusteredLights::ZBinLists z = q.zbin_lists();
     std::size_t most = 0;

@@ -1,4 +1,7 @@
 #version 450
+#ifdef PHASE_CLOCKS
+#extension GL_ARB_shader_clock : require
+#endif
 // Pass 3 of Z-binning with the tile's lights staged in shared memory: one work group per
 // tile, one invocation per pixel. The group takes the sorted positions its pixels' depth bins
 // name (the union of their ranges), copies the lights of that span whose tile bit is set into
@@ -87,6 +90,36 @@ uvec2 local_pixel(uint t) { return uvec2(t % uint(STAGE_TILE), t / uint(STAGE_TI
 // The pixel of this invocation (the frame's hooks read it: frame_pixel.glsl).
 ivec2 invocation_pixel() { return tile_origin() + ivec2(local_pixel(gl_LocalInvocationIndex)); }
 
+#ifdef PHASE_CLOCKS
+// ClusterSettings::phase_clocks, a benchmark: where a work group's time goes. Invocation 0 reads
+// its SM's clock after each phase (each ends at a barrier, so its reading is the group's) and
+// adds the cycles since its last reading to the phase's sum: ClusteredLights::phase_names().
+layout(std430, binding = PHASE_CLOCKS) buffer PhaseClocks { uint phase_cycles[]; };  // phase k: [2k] low, [2k + 1] high
+const int kPhases = 6;
+uint clock_at, clock_sums[kPhases];
+void clock_start() {
+  clock_at = clock2x32ARB().x;
+  for (int k = 0; k < kPhases; ++k) clock_sums[k] = 0u;
+}
+void clock_phase(int k) {
+  uint now = clock2x32ARB().x;
+  clock_sums[k] += now - clock_at;  // unsigned: right across the counter's wrap
+  clock_at = now;
+}
+void clock_add() {  // into the 64-bit sums: a carry where the low word wraps
+  if (gl_LocalInvocationIndex != 0u) return;
+  for (int k = 0; k < kPhases; ++k) {
+    uint before = atomicAdd(phase_cycles[2 * k], clock_sums[k]);
+    if (before + clock_sums[k] < before) atomicAdd(phase_cycles[2 * k + 1], 1u);
+  }
+}
+#else
+void clock_start() {}
+void clock_phase(int k) {}
+void clock_add() {}
+#endif
+const int kSetup = 0, kSpan = 1, kStage = 2, kReach = 3, kShade = 4, kOutput = 5;  // the phases
+
 // [zbin-stage]
 // Invocation t's mask word of this round, cut to the span: each round takes kGroup words.
 uint span_word(uint tile, uint w, uint first, uint last) {
@@ -128,6 +161,7 @@ void add_staged(Surface s, vec3 to_eye, uint k, uint block_bit, inout vec3 diffu
 // [/zbin-stage]
 
 void main() {
+  clock_start();
   uint t = gl_LocalInvocationIndex;
   ivec2 pixel = invocation_pixel();
   bool inside = all(lessThan(pixel, u_grid.xy));
@@ -171,6 +205,7 @@ void main() {
   }
 #endif
   barrier();
+  clock_phase(kSetup);
   uint first = s_first, last = s_last;  // the same in every invocation: the loops below are uniform
   vec3 diffuse = vec3(0.0), specular = vec3(0.0);
   vec3 to_eye = normalize(gb_eye.xyz - s.position);
@@ -185,6 +220,7 @@ void main() {
       barrier();
       sum_up(t);
       uint total = s_sum[kGroup - 1u], before = s_sum[t] - uint(bitCount(m));
+      clock_phase(kSpan);
       // The round's lights in chunks of kChunk: each invocation stages those of its word that
       // fall in the chunk, then every pixel adds those in its own range.
       for (uint chunk = 0u; chunk < total; chunk += kChunk) {
@@ -204,6 +240,7 @@ void main() {
           ++at;
         }
         barrier();
+        clock_phase(kStage);
         uint n = min(kChunk, total - chunk);  // the lights staged
 #ifdef SUB_BLOCKS
         // Each light's blocks: kGroup / kChunk invocations a light (32-pixel tiles: four), each
@@ -213,6 +250,7 @@ void main() {
           if (reach != 0u) atomicOr(s_reach[t % kChunk], reach);
         }
         barrier();
+        clock_phase(kReach);
 #endif
         // [zbin-staged-pixel]
         // The pixel's part of the chunk: its lights from the range's start to its end (none
@@ -226,6 +264,7 @@ void main() {
         }
         // [/zbin-staged-pixel]
         barrier();  // the chunk is read before the next is staged
+        clock_phase(kShade);
       }
     }
   // [/zbin-staged-loop]
@@ -235,4 +274,6 @@ void main() {
   output_of(diffuse, specular, evaluated, lit, l1, l2);
   imageStore(u_l1, pixel, imageLoad(u_l1, pixel) + l1);
   imageStore(u_l2, pixel, imageLoad(u_l2, pixel) + l2);
+  clock_phase(kOutput);
+  clock_add();
 }
