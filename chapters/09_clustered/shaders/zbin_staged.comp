@@ -90,6 +90,7 @@ uvec2 local_pixel(uint t) { return uvec2(t % uint(STAGE_TILE), t / uint(STAGE_TI
 // The pixel of this invocation (the frame's hooks read it: frame_pixel.glsl).
 ivec2 invocation_pixel() { return tile_origin() + ivec2(local_pixel(gl_LocalInvocationIndex)); }
 
+// [phase-clocks]
 #ifdef PHASE_CLOCKS
 // ClusterSettings::phase_clocks, a benchmark: where a work group's time goes. Invocation 0 reads
 // its SM's clock after each phase (each ends at a barrier, so its reading is the group's) and
@@ -119,6 +120,7 @@ void clock_phase(int k) {}
 void clock_add() {}
 #endif
 const int kSetup = 0, kSpan = 1, kStage = 2, kReach = 3, kShade = 4, kOutput = 5;  // the phases
+// [/phase-clocks]
 
 // [zbin-stage]
 // Invocation t's mask word of this round, cut to the span: each round takes kGroup words.
