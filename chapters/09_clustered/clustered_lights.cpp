@@ -231,9 +231,11 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
     if (settings_.shade != ShadeIn::Fragment) {
       for (const std::string& image : ch03::LightBuffer::image_defines()) d.push_back(image);
       if (staged) d.push_back("STAGE_TILE " + std::to_string(grid_.tile_w));
-      if (staged && settings_.kind == CullKind::ZBin && settings_.sub_blocks) d.push_back("SUB_BLOCKS 1");
-      if (staged && settings_.kind == CullKind::ZBin && settings_.staged_fields) d.push_back("STAGED_FIELDS 1");
-      if (staged && settings_.kind == CullKind::ZBin && settings_.phase_clocks) d.push_back(phase_clocks_define());
+      if (staged && settings_.kind == CullKind::ZBin) {  // zbin_staged.comp's options
+        if (settings_.sub_blocks) d.push_back("SUB_BLOCKS 1");
+        if (settings_.staged_fields) d.push_back("STAGED_FIELDS 1");
+        if (settings_.phase_clocks) d.push_back(phase_clocks_define());
+      }
       if (!staged && settings_.kind != CullKind::ZBin) {  // a tile's or cluster's list, read once where shared
         if (!support_known_) support_ = subgroup_support();  // the context's, asked once
         support_known_ = true;

@@ -61,6 +61,8 @@ struct Settings {
   bool grid = false;
   bool subgroups = false;
   bool phases = false;
+  // The sweeps that run the density sweep's loop over their own methods, two counts a density.
+  bool density_variant() const { return grid || subgroups || phases; }
   int views = kViewsUnset;  // 6, the grid sweep 3
   int target = 0;           // one target density alone (0: every one)
   int min_lights = 0;       // light counts below this are skipped (their density is not fitted)
@@ -200,7 +202,7 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
   const bool software = context.is_software();
   const std::vector<Camera> views = ch09::views_along(scene.camera(s.view), s.views, 12.f);
   std::vector<int> counts = {1000, 10000, 100000, 1000000};
-  if (s.grid || s.subgroups || s.phases) counts = software ? std::vector<int>{1000} : std::vector<int>{100000, 1000000};
+  if (s.density_variant()) counts = software ? std::vector<int>{1000} : std::vector<int>{100000, 1000000};
   std::vector<double> densities = {8, 32, 128};
   if (software) densities = {8, 32};
   if (s.subgroups) densities = {32};
@@ -428,7 +430,7 @@ int main(int argc, char** argv) {
         .integer("--target", s.target).integer("--min-lights", s.min_lights).text("--modes", s.modes_arg);
   }, [&] {
     std::filesystem::create_directories(s.out);
-    if (s.views == Settings::kViewsUnset) s.views = s.grid || s.subgroups || s.phases ? 3 : 6;
+    if (s.views == Settings::kViewsUnset) s.views = s.density_variant() ? 3 : 6;
     if (s.views < 1 || s.views > 64) throw Error("--views: 1 to 64, not " + std::to_string(s.views));
     if (int(s.grid) + int(s.subgroups) + int(s.phases) > 1) throw UsageError("--grid, --subgroups and --phases: one at a time");
     for (std::size_t at = 0; !s.modes_arg.empty() && at <= s.modes_arg.size();) {  // each of --modes a,b is a mode
@@ -437,7 +439,7 @@ int main(int argc, char** argv) {
       if (!ch09::is_cluster_mode(s.modes.back())) throw UsageError("--modes: '" + s.modes.back() + "' is no mode of chapter 9");
       at = end + 1;
     }
-    if (s.grid || s.subgroups || s.phases) s.density = true;  // the density sweep over grids, or over the two paths
+    if (s.density_variant()) s.density = true;  // the density sweep over grids, the two paths or the phases
     if (s.density) {  // many configurations: fewer frames each
       s.frames = std::min(s.frames, 10);
     }
@@ -449,7 +451,7 @@ int main(int argc, char** argv) {
       s.height = 90;
       s.frames = std::min(s.frames, 2);
       s.max_lights = std::min(s.max_lights, 10000);
-      s.views = std::min(s.views, s.grid || s.subgroups || s.phases ? 2 : 3);
+      s.views = std::min(s.views, s.density_variant() ? 2 : 3);
     } else if (software && !s.size_given) {  // a CPU: small, few lights, few frames
       s.width = 320;
       s.height = 180;
