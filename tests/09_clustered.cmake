@@ -29,6 +29,13 @@ lightpass_image_test(09_clustered.opening_shows_the_lights_evaluated_beside_the_
   RUN ${P09} --headless --size 320x180 --out ${CMAKE_BINARY_DIR}/out/09_opening.png)
 set_tests_properties(09_clustered.opening_shows_the_lights_evaluated_beside_the_image PROPERTIES FIXTURES_REQUIRED opening09)
 lightpass_program_test(09_clustered.bad_mode 2 "unknown mode 'forward'" ${P09} --mode forward)
+# zbin-staged's lanes (four invocations a pixel by default): a shape the pass cannot take is
+# refused with the reason, not a shader link error or a wrong image.
+lightpass_program_test(09_clustered.zbin_staged_lanes_need_small_tiles 1
+  "zbin-staged with 4 invocations a pixel needs tiles of at most 16 pixels, not 32 \\(one lane for those\\)"
+  ${P09} --headless --size 64x36 --mode zbin-staged --tile 32 --out ${CMAKE_BINARY_DIR}/out/09_lanes_tile32.png)
+lightpass_program_test(09_clustered.zbin_staged_three_lanes_refused 1 "takes 1, 2 or 4 invocations a pixel, not 3"
+  ${P09} --headless --size 64x36 --mode zbin-staged --lanes 3 --out ${CMAKE_BINARY_DIR}/out/09_lanes_3.png)
 # --bench times the three passes apart, under the names the sweep reads.
 lightpass_program_test(09_clustered.bench_times_the_three_passes 0
   "\"name\":\"local lights: clustered: depth bounds\".*\"name\":\"local lights: clustered: assign\".*\"name\":\"local lights: clustered: shade\",[^}]*\"counts\":\\{\"evaluated\":[1-9][0-9]*,\"lit\":[1-9][0-9]*\\}"
@@ -70,6 +77,8 @@ add_test(NAME 09_clustered.density_sweep_reaches_its_density COMMAND ${EXPECT} 0
   "^32,1000,zbin-staged,default,[0-9.]+,(31\\.|32\\.|30\\.[4-9])[0-9]*,"
   "^32,1000,zbin-staged,sub-blocks,[0-9.]+,(31\\.|32\\.|30\\.[4-9])[0-9]*,"
   "^32,1000,zbin-staged,fields,[0-9.]+,(31\\.|32\\.|30\\.[4-9])[0-9]*,"
+  "^32,1000,zbin-staged,lanes 1,[0-9.]+,(31\\.|32\\.|30\\.[4-9])[0-9]*,"
+  "^32,1000,zbin-staged,lanes 2,[0-9.]+,(31\\.|32\\.|30\\.[4-9])[0-9]*,"
   "^32,1000,zbin-floor,default,([0-9.e-]+,){10}1,"
   # The CPU's time per frame beside the GPU's, and Z-binning's assignment by its parts (the
   # clears, the sort, the bins, the tiles; the floor's exact lists only in zbin-floor).
@@ -121,7 +130,7 @@ add_test(NAME 09_clustered.density_sweep_bad_views COMMAND ${EXPECT} 1 "--views:
 set(MODES09_OUT ${CMAKE_BINARY_DIR}/out/09_modes)
 add_test(NAME 09_clustered.density_sweep_modes_and_min_lights COMMAND ${EXPECT} 0
   "^8,10000,zbin-floor,default,"  "^8,10000,zbin-staged,default,"  "^8,10000,zbin-staged,sub-blocks,"
-  "^8,10000,zbin-staged,fields,"
+  "^8,10000,zbin-staged,fields,"  "^8,10000,zbin-staged,lanes 1,"  "^8,10000,zbin-staged,lanes 2,"
   --no-match "^8,1000,|^8,10000,(tiled|clustered|zbin,)|warning"
   -- sh -c "$<TARGET_FILE:09_clustered_sweep> --density --target 8 --modes zbin-staged --min-lights 10000 --out ${MODES09_OUT} --size 64x36 --max-lights 10000 --views 1 --frames 1 2>&1 && cat ${MODES09_OUT}/09_density_d8_summary_llvmpipe.csv")
 set_tests_properties(09_clustered.density_sweep_modes_and_min_lights PROPERTIES TIMEOUT 300)

@@ -227,6 +227,19 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
     if (staged && (grid_.tile_w != grid_.tile_h || grid_.tile_w > 32))
       throw Error("clustered lights: " + name() + " needs square tiles of at most 32 pixels, not " +
                   std::to_string(grid_.tile_w) + " x " + std::to_string(grid_.tile_h));
+    if (staged && settings_.kind == CullKind::ZBin) {  // zbin_staged.comp's shapes
+      const int lanes = settings_.pixel_lanes;
+      if (settings_.sub_blocks && grid_.tile_w % 8 != 0)
+        throw Error("clustered lights: " + name() + "'s sub-blocks of 8 x 4 pixels need tiles of 8, 16, 24 or 32 pixels, not " +
+                    std::to_string(grid_.tile_w));
+      if (lanes != 1 && lanes != 2 && lanes != 4)
+        throw Error("clustered lights: " + name() + " takes 1, 2 or 4 invocations a pixel, not " + std::to_string(lanes));
+      // (Larger tiles: over 1 024 invocations, or over GL's 32 KiB of shared memory with the lanes' sums.)
+      if (lanes > 1 && (settings_.sub_blocks || grid_.tile_w > 16))
+        throw Error("clustered lights: " + name() + " with " + std::to_string(lanes) + " invocations a pixel needs " +
+                    (settings_.sub_blocks ? std::string("no sub-blocks") : "tiles of at most 16 pixels, not " + std::to_string(grid_.tile_w)) +
+                    " (one lane for those)");
+    }
     subgroup_path_.clear();
     if (settings_.shade != ShadeIn::Fragment) {
       for (const std::string& image : ch03::LightBuffer::image_defines()) d.push_back(image);
@@ -234,6 +247,7 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
       if (staged && settings_.kind == CullKind::ZBin) {  // zbin_staged.comp's options
         if (settings_.sub_blocks) d.push_back("SUB_BLOCKS 1");
         if (settings_.staged_fields) d.push_back("STAGED_FIELDS 1");
+        if (settings_.pixel_lanes > 1) d.push_back("PIXEL_LANES " + std::to_string(settings_.pixel_lanes));
         if (settings_.phase_clocks) d.push_back(phase_clocks_define());
       }
       if (!staged && settings_.kind != CullKind::ZBin) {  // a tile's or cluster's list, read once where shared

@@ -56,6 +56,13 @@ struct ClusterSettings {
   // zbin-staged: the staged records held as an array per field (positions, radiances, cones: a
   // structure of arrays) instead of an array of records. The same image; measured by the sweep.
   bool staged_fields = false;
+  // zbin-staged: invocations a pixel (1, 2 or 4; more than 1 in tiles of at most 16). Lane j adds
+  // the lights j, j + lanes, ... of the pixel's part of each chunk, and the lanes' sums are
+  // added in lane order at the end: a tile whose pixels each add thousands of lights (the far
+  // end of the street) spreads them over lanes times the warps, so that the pass does not wait
+  // on its heaviest tile. The same lights, the same lit pairs; the sums regrouped (float
+  // addition: the same to rounding). One lane with sub_blocks or larger tiles.
+  int pixel_lanes = 4;
   // zbin-staged, a benchmark (09_clustered_sweep --phases): one invocation of each work group
   // reads its SM's clock (GL_ARB_shader_clock) after each phase of zbin_staged.comp and adds the
   // cycles to the phase's sum (ClusteredLights::take_phase_cycles). The same image.

@@ -100,10 +100,16 @@ std::vector<Method> density_methods(const ch09::ClusterSettings& base) {
   m.push_back(indexed);
   Method blocks{"zbin-staged", "sub-blocks", ch09::settings_for_mode("zbin-staged", base)};
   blocks.settings.sub_blocks = true;  // a bit per 8 x 4 block of the tile for each staged light
+  blocks.settings.pixel_lanes = 1;
   m.push_back(blocks);
   Method fields{"zbin-staged", "fields", ch09::settings_for_mode("zbin-staged", base)};
   fields.settings.staged_fields = true;  // the staged records as a structure of arrays
   m.push_back(fields);
+  for (const int lanes : {1, 2}) {  // invocations a pixel, each adding every lanes-th light (default 4)
+    Method laned{"zbin-staged", "lanes " + std::to_string(lanes), ch09::settings_for_mode("zbin-staged", base)};
+    laned.settings.pixel_lanes = lanes;
+    m.push_back(laned);
+  }
   return m;
 }
 
@@ -144,24 +150,27 @@ std::vector<Method> grid_methods(const ch09::ClusterSettings& base) {
                ch09::settings_for_mode("zbin-staged", base)};
       z.settings.tile_px = tile;
       z.settings.sub_blocks = blocks;
+      z.settings.pixel_lanes = 1;  // the grid varies, one lane throughout (32-pixel tiles take no more)
       m.push_back(z);
     }
   for (const int bins : {256, 4096}) {  // and its bins, at 16-pixel tiles
     Method z{"zbin-staged", "tile 16 bins " + std::to_string(bins), ch09::settings_for_mode("zbin-staged", base)};
     z.settings.tile_px = 16;
     z.settings.zbins = bins;
+    z.settings.pixel_lanes = 1;
     m.push_back(z);
   }
   return m;
 }
 // [/grid-methods]
 
-// zbin-staged timed phase by phase, without and with the sub-blocks.
+// zbin-staged timed phase by phase (one lane a pixel), without and with the sub-blocks.
 std::vector<Method> phase_methods(const ch09::ClusterSettings& base) {
   std::vector<Method> m;
   for (const bool blocks : {false, true}) {
     Method z{"zbin-staged", blocks ? "sub-blocks phase clocks" : "phase clocks", ch09::settings_for_mode("zbin-staged", base)};
     z.settings.sub_blocks = blocks;
+    z.settings.pixel_lanes = 1;  // a pixel's work in one invocation, as the blocks take it
     z.settings.phase_clocks = true;
     m.push_back(z);
   }

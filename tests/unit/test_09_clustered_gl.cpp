@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <map>
+#include <tuple>
 #include <utility>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -119,6 +120,10 @@ class ClusteredGl : public ::testing::Test {
     w.frame_.set_local_lights(nullptr);
     return r;
   }
+
+  // ZBinStaged*'s case: lights along the view, each tile size of `tiles` checked (with `shapes`,
+  // also the lanes and blocks a shape cannot take, and tiled-staged at 32-pixel tiles).
+  static void zbin_staged_cases(const std::vector<int>& tiles, bool shapes);
 
   static World* street_;
   static World* atrium_;
@@ -849,9 +854,11 @@ TEST_F(ClusteredGl, ZBinningsSortedRecordsAreTheLightsItsOrderNames) {
 // case lays its lights out along the view, each 1.3 sort keys deeper than the last (their
 // depths grow by a constant ratio, the keys are exponential), spots among them. The hard cases
 // are the tiles of near and far surfaces (spans of many bins, each pixel a part of them) and
-// spans of more lights than a chunk: the near tiles see over a thousand. (And 32-pixel tiles,
-// whose 1 024 invocations stage a chunk of 256, for both staged passes.)
-TEST_F(ClusteredGl, ZBinStagedAddsZBinningsLightsInItsOrder) {
+// spans of more lights than a chunk: the near tiles see over a thousand. ZBinStagedAtOtherTileSizes
+// takes the other shapes: 32-pixel tiles, whose 1 024 invocations stage a chunk of 256 (for
+// both staged passes); 8; 12, whose chunk of 144 is no power of two for the searches; 1, whose
+// walk takes the span 32 sorted positions a round, so that spans cross rounds.
+void ClusteredGl::zbin_staged_cases(const std::vector<int>& tiles, bool shapes) {
   World& w = street();
   const int width = 160, height = 90;
   const FrameCamera cam = camera(w, "street_level", width, height);
@@ -877,11 +884,12 @@ TEST_F(ClusteredGl, ZBinStagedAddsZBinningsLightsInItsOrder) {
   set_light_list(w, lights);
   // 32-pixel tiles too (a group of 1 024 invocations stages 256 records at a time, four
   // invocations test a light's 32 blocks), and 8 (a tile of two blocks).
-  for (const int tile : {16, 32, 8}) {
+  for (const int tile : tiles) {
     SCOPED_TRACE("tiles of " + std::to_string(tile) + " px");
     ClusterSettings zbin = settings_for_mode("zbin"), zbin_staged = settings_for_mode("zbin-staged");
     zbin.tile_px = zbin_staged.tile_px = tile;
     zbin_staged.sub_blocks = false;
+    zbin_staged.pixel_lanes = 1;  // one invocation a pixel adds zbin_visit's lights in its order (the lanes: below)
     ClusteredLights p(w.frame_.volumes(), zbin);
     ClusteredLights q(w.frame_.volumes(), zbin_staged);
     const Render a = render(w, cam, width, height, &p, false);
@@ -892,8 +900,20 @@ TEST_F(ClusteredGl, ZBinStagedAddsZBinningsLightsInItsOrder) {
     EXPECT_EQ(b.counts.evaluated, a.counts.evaluated);
     EXPECT_TRUE(b.l1 == a.l1 && b.l2 == a.l2) << "the light buffers differ";
     // The blocks pass over only lights that add nothing to the pixel: the same sums, bit for
-    // bit, the same lit pairs, fewer evaluated (and never fewer than the lit).
+    // bit, the same lit pairs, fewer evaluated (and never fewer than the lit). Blocks of 8 x 4
+    // pixels do not tile a 12-pixel tile: refused, with the reason.
     zbin_staged.sub_blocks = true;
+    if (tile % 8 != 0) {
+      ClusteredLights refused(w.frame_.volumes(), zbin_staged);
+      try {
+        render(w, cam, width, height, &refused, false);
+        ADD_FAILURE() << "sub-blocks in " << tile << "-pixel tiles were not refused";
+      } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("sub-blocks"), std::string::npos) << e.what();
+      }
+      w.frame_.set_local_lights(nullptr);  // (the refused pass goes out of scope)
+      continue;
+    }
     ClusteredLights r(w.frame_.volumes(), zbin_staged);
     const Render c = render(w, cam, width, height, &r, false);
     ASSERT_EQ(p.zbin_lists().order, r.zbin_lists().order);
@@ -904,6 +924,42 @@ TEST_F(ClusteredGl, ZBinStagedAddsZBinningsLightsInItsOrder) {
     std::printf("tiles of %d px: evaluated %llu, with the blocks %llu, lit %llu\n", tile,
                 (unsigned long long)a.counts.evaluated, (unsigned long long)c.counts.evaluated,
                 (unsigned long long)a.counts.lit);
+    // [pixel-lanes-bound]
+    // Two and four invocations a pixel (ClusterSettings::pixel_lanes): the same lights evaluated
+    // and lit, exactly; the sums regrouped. Every term is a light's non-negative radiance, so a
+    // float sum of k of them in any order is within (k - 1) 2^-24 of their exact sum S, two
+    // orders within 2k 2^-24 S of each other; both add the same earlier value and round once to
+    // half, which may flip one half ulp (at most 2^-10 of the value, 2^-24 below the normals).
+    // With k <= 4 096 lights a pixel: |a - b| <= (2^-11 + 2^-10) max(a, b) + 2^-24 < 2^-9 max + 2^-24.
+    if (tile <= 16) {
+      const ClusteredLights::ZBinLists z = q.zbin_lists();
+      std::size_t most = 0;  // the most lights in a tile bounds a pixel's k
+      for (std::size_t t = 0; t * z.words < z.masks.size(); ++t) {
+        std::size_t bits = 0;
+        for (std::size_t k = 0; k < z.words; ++k) bits += std::size_t(std::popcount(z.masks[t * z.words + k]));
+        most = std::max(most, bits);
+      }
+      ASSERT_LE(most, 4096u) << "the bound below assumes at most 4 096 lights a pixel";
+      for (const int lanes : {2, 4}) {
+        ClusterSettings laned = zbin_staged;
+        laned.sub_blocks = false;
+        laned.pixel_lanes = lanes;
+        ClusteredLights laned_pass(w.frame_.volumes(), laned);
+        const Render e = render(w, cam, width, height, &laned_pass, false);
+        EXPECT_EQ(e.counts.lit, a.counts.lit) << lanes << " lanes";
+        EXPECT_EQ(e.counts.evaluated, a.counts.evaluated) << lanes << " lanes";
+        std::size_t outside = 0, differ = 0;
+        for (const auto& [x, y] : {std::pair{&e.l1, &a.l1}, std::pair{&e.l2, &a.l2}})
+          for (std::size_t i = 0; i < x->size(); ++i) {
+            const double u = (*x)[i], v = (*y)[i], bound = std::ldexp(std::max(std::abs(u), std::abs(v)), -9) + std::ldexp(1.0, -24);
+            differ += u != v;
+            outside += std::abs(u - v) > bound;
+          }
+        EXPECT_EQ(outside, 0u) << lanes << " lanes: channels beyond the regrouping's bound (of " << differ << " that differ)";
+        std::printf("tiles of %d px, %d lanes: %zu channels differ from one lane's, within the bound\n", tile, lanes, differ);
+      }
+    }
+    // [/pixel-lanes-bound]
     if (tile != 16) continue;
     // Two layouts of the same records, each zbin's evaluations and light buffers again: read
     // through the index (sorted_records off), and staged as a structure of arrays (staged_fields).
@@ -955,6 +1011,22 @@ TEST_F(ClusteredGl, ZBinStagedAddsZBinningsLightsInItsOrder) {
     EXPECT_GT(most, 4u * 256u) << "no tile holds several chunks of lights";
     std::printf("the most lights in a tile %zu\n", most);
   }
+  if (!shapes) return;
+  // Lanes the pass cannot take: refused with the reason, not a link error or a wrong image.
+  for (const auto& [tile, lanes, blocks] : {std::tuple{16, 3, false}, std::tuple{32, 2, false}, std::tuple{16, 4, true}}) {
+    ClusterSettings bad = settings_for_mode("zbin-staged");
+    bad.tile_px = tile;
+    bad.pixel_lanes = lanes;
+    bad.sub_blocks = blocks;
+    ClusteredLights refused(w.frame_.volumes(), bad);
+    try {
+      render(w, cam, width, height, &refused, false);
+      ADD_FAILURE() << lanes << " lanes in " << tile << "-pixel tiles" << (blocks ? " with sub-blocks" : "") << " not refused";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("invocations a pixel"), std::string::npos) << e.what();
+    }
+    w.frame_.set_local_lights(nullptr);  // (the refused pass goes out of scope)
+  }
   // tiled-staged at 32-pixel tiles (its chunks too): tiled's lights in tiled's order.
   {
     ClusterSettings tiled = settings_for_mode("tiled"), tiled_staged = settings_for_mode("tiled-staged");
@@ -968,6 +1040,8 @@ TEST_F(ClusteredGl, ZBinStagedAddsZBinningsLightsInItsOrder) {
     EXPECT_TRUE(b.l1 == a.l1 && b.l2 == a.l2) << "tiled-staged's light buffers differ from tiled's at 32-pixel tiles";
   }
 }
+TEST_F(ClusteredGl, ZBinStagedAddsZBinningsLightsInItsOrder) { zbin_staged_cases({16}, false); }
+TEST_F(ClusteredGl, ZBinStagedAtOtherTileSizes) { zbin_staged_cases({32, 8, 12, 1}, true); }
 
 // Z-binning clears only the mask words the last frame set (tile_words names them; the whole
 // masks only when their layout changes). The hard case is a pass kept from frame to frame: its

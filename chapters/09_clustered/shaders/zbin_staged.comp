@@ -7,8 +7,13 @@
 // name (the union of their ranges), copies the lights of that span whose tile bit is set into
 // shared memory, a chunk at a time and in sorted order, and each pixel adds the chunk's lights
 // that lie in its own bin's range. The same lights in the same order as zbin_visit (shade.glsl)
-// adds them, each record read from memory once per tile instead of once per pixel.
-layout(local_size_x = STAGE_TILE, local_size_y = STAGE_TILE) in;
+// adds them, each record read from memory once per tile instead of once per pixel. With
+// PIXEL_LANES (ClusterSettings::pixel_lanes) a pixel has that many invocations, the group's
+// z: each adds every PIXEL_LANES-th of the pixel's lights, and lane 0 adds up the lanes' sums.
+#ifndef PIXEL_LANES
+#define PIXEL_LANES 1
+#endif
+layout(local_size_x = STAGE_TILE, local_size_y = STAGE_TILE, local_size_z = PIXEL_LANES) in;
 #define FRAME_PIXEL_COMPUTE 1  // the frame's hooks read this invocation's pixel,
 #define FRAME_PIXEL_REMAPPED 1  // which invocation_pixel() below names
 #include "09_clustered/shaders/shade.glsl"
@@ -18,7 +23,8 @@ layout(local_size_x = STAGE_TILE, local_size_y = STAGE_TILE) in;
 layout(binding = LIGHT_BUFFER_IMAGE + 0, rgba16f) uniform image2D u_l1;  // LightBuffer::image_defines()
 layout(binding = LIGHT_BUFFER_IMAGE + 1, rgba16f) uniform image2D u_l2;
 
-const uint kGroup = uint(STAGE_TILE * STAGE_TILE);  // invocations
+const uint kPixels = uint(STAGE_TILE * STAGE_TILE), kLanes = uint(PIXEL_LANES);
+const uint kGroup = kPixels * kLanes;  // invocations: lane j's are kPixels * j onwards
 // Records staged at once: 256 (12 KiB of records; GL promises 32 KiB of shared memory), or
 // the group's size where that is smaller (8-pixel tiles: 64).
 const uint kChunk = min(kGroup, 256u);
@@ -52,7 +58,7 @@ ivec2 tile_origin() { return ivec2(gl_WorkGroupID.xy) * STAGE_TILE; }
 // bit is clear together: a warp skips a light whole instead of idling beside a lane that adds it.
 const uint kBlockW = 8u, kBlockH = 4u;
 const uint kBlockPixels = kBlockW * kBlockH;  // a block's invocations
-const uint kBlockColumns = uint(STAGE_TILE) / kBlockW, kBlocks = kGroup / kBlockPixels;
+const uint kBlockColumns = uint(STAGE_TILE) / kBlockW, kBlocks = kPixels / kBlockPixels;
 shared uint s_block_near[kBlocks], s_block_far[kBlocks];  // view depths as uint bits (positive floats order alike)
 shared vec3 s_block_lo[kBlocks], s_block_hi[kBlocks];
 shared uint s_blocks;  // the blocks that hold a surface
@@ -85,7 +91,10 @@ uint blocks_reached(vec4 position_radius, uint b0, uint step) {
   return reach;
 }
 #else
-uvec2 local_pixel(uint t) { return uvec2(t % uint(STAGE_TILE), t / uint(STAGE_TILE)); }
+uvec2 local_pixel(uint t) {
+  t %= kPixels;  // the pixel of each lane
+  return uvec2(t % uint(STAGE_TILE), t / uint(STAGE_TILE));
+}
 #endif
 // The pixel of this invocation (the frame's hooks read it: frame_pixel.glsl).
 ivec2 invocation_pixel() { return tile_origin() + ivec2(local_pixel(gl_LocalInvocationIndex)); }
@@ -141,10 +150,11 @@ void sum_up(uint t) {
 }
 
 // How many of the chunk's first n staged lights lie before sorted position p (a binary search
-// with a fixed number of steps: the positions ascend).
+// with a fixed number of steps: the positions ascend). Its steps are powers of two, from the
+// largest within kChunk: they sum to any count up to kChunk (12-pixel tiles: 144).
 uint staged_before(uint p, uint n) {
   uint a = 0u;
-  for (uint step = kChunk; step > 0u; step >>= 1u)
+  for (uint step = 1u << uint(findMSB(kChunk)); step > 0u; step >>= 1u)
     if (a + step <= n && s_position[a + step - 1u] < p) a += step;
   return a;
 }
@@ -162,9 +172,36 @@ void add_staged(Surface s, vec3 to_eye, uint k, uint block_bit, inout vec3 diffu
 }
 // [/zbin-stage]
 
+// [pixel-lanes]
+#if PIXEL_LANES > 1
+shared vec3 s_lane_diffuse[kPixels], s_lane_specular[kPixels];
+shared uvec2 s_lane_counts[kPixels];  // evaluated, lit
+#endif
+// The lanes' sums into lane 0's, in lane order (a fixed order: the same image every frame).
+void add_lanes(uint lane, uint pixel, inout vec3 diffuse, inout vec3 specular, inout uint evaluated, inout uint lit) {
+#if PIXEL_LANES > 1
+  for (uint j = 1u; j < kLanes; ++j) {
+    if (lane == j) {
+      s_lane_diffuse[pixel] = diffuse;
+      s_lane_specular[pixel] = specular;
+      s_lane_counts[pixel] = uvec2(evaluated, lit);
+    }
+    barrier();
+    if (lane == 0u) {
+      diffuse += s_lane_diffuse[pixel];
+      specular += s_lane_specular[pixel];
+      evaluated += s_lane_counts[pixel].x;
+      lit += s_lane_counts[pixel].y;
+    }
+    barrier();
+  }
+#endif
+}
+// [/pixel-lanes]
+
 void main() {
   clock_start();
-  uint t = gl_LocalInvocationIndex;
+  uint t = gl_LocalInvocationIndex, lane = t / kPixels;  // (lane 0 alone without PIXEL_LANES)
   ivec2 pixel = invocation_pixel();
   bool inside = all(lessThan(pixel, u_grid.xy));
   Surface s = decode_gbuffer(inside ? pixel : ivec2(0));
@@ -256,13 +293,13 @@ void main() {
 #endif
         // [zbin-staged-pixel]
         // The pixel's part of the chunk: its lights from the range's start to its end (none
-        // where its bin's range is empty, x > y: then b <= a).
+        // where its bin's range is empty, x > y: then b <= a), this lane's every kLanes-th.
         uint a = staged_before(range.x, n), b = staged_before(range.y + 1u, n);
-        for (uint k = a; k < b; k += 4u) {
+        for (uint k = a + lane; k < b; k += 4u * kLanes) {
           add_staged(s, to_eye, k, block_bit, diffuse, specular, evaluated, lit);
-          if (k + 1u < b) add_staged(s, to_eye, k + 1u, block_bit, diffuse, specular, evaluated, lit);
-          if (k + 2u < b) add_staged(s, to_eye, k + 2u, block_bit, diffuse, specular, evaluated, lit);
-          if (k + 3u < b) add_staged(s, to_eye, k + 3u, block_bit, diffuse, specular, evaluated, lit);
+          if (k + kLanes < b) add_staged(s, to_eye, k + kLanes, block_bit, diffuse, specular, evaluated, lit);
+          if (k + 2u * kLanes < b) add_staged(s, to_eye, k + 2u * kLanes, block_bit, diffuse, specular, evaluated, lit);
+          if (k + 3u * kLanes < b) add_staged(s, to_eye, k + 3u * kLanes, block_bit, diffuse, specular, evaluated, lit);
         }
         // [/zbin-staged-pixel]
         barrier();  // the chunk is read before the next is staged
@@ -270,7 +307,8 @@ void main() {
       }
     }
   // [/zbin-staged-loop]
-  if (!inside) return;
+  add_lanes(lane, t % kPixels, diffuse, specular, evaluated, lit);
+  if (!inside || lane != 0u) return;
   if (shaded) count_pixel(evaluated, lit);
   vec4 l1, l2;
   output_of(diffuse, specular, evaluated, lit, l1, l2);
