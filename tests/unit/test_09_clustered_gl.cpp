@@ -269,6 +269,16 @@ void set_light_list(World& w, std::vector<Light> lights) {
   w.frame_.volumes().set_lights(ch03::build_light_set(lights, ch03::cut_threshold(1.f, ch03::peak_reflectance(w.scene_)),
                                                       w.frame_.volumes().shapes()));
 }
+// The most lights any tile of Z-binning's masks holds (its set bits).
+std::size_t most_lights_in_a_tile(const ClusteredLights::ZBinLists& z) {
+  std::size_t most = 0;
+  for (std::size_t t = 0; t * z.words < z.masks.size(); ++t) {
+    std::size_t bits = 0;
+    for (std::size_t k = 0; k < z.words; ++k) bits += std::size_t(std::popcount(z.masks[t * z.words + k]));
+    most = std::max(most, bits);
+  }
+  return most;
+}
 }  // namespace
 
 // Our lit count is exact: every (pixel, light) pair the full-screen pass lights (chapter 03's
@@ -900,49 +910,35 @@ void ClusteredGl::zbin_staged_cases(const std::vector<int>& tiles, bool shapes) 
     EXPECT_EQ(b.counts.evaluated, a.counts.evaluated);
     EXPECT_TRUE(b.l1 == a.l1 && b.l2 == a.l2) << "the light buffers differ";
     // The blocks pass over only lights that add nothing to the pixel: the same sums, bit for
-    // bit, the same lit pairs, fewer evaluated (and never fewer than the lit). Blocks of 8 x 4
-    // pixels do not tile a 12-pixel tile: refused, with the reason.
-    zbin_staged.sub_blocks = true;
-    if (tile % 8 != 0) {
-      ClusteredLights refused(w.frame_.volumes(), zbin_staged);
-      try {
-        render(w, cam, width, height, &refused, false);
-        ADD_FAILURE() << "sub-blocks in " << tile << "-pixel tiles were not refused";
-      } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("sub-blocks"), std::string::npos) << e.what();
-      }
-      w.frame_.set_local_lights(nullptr);  // (the refused pass goes out of scope)
-      continue;
+    // bit, the same lit pairs, fewer evaluated (and never fewer than the lit). (Blocks of 8 x 4
+    // pixels do not tile a 12-pixel tile: refused, below.)
+    if (tile % 8 == 0) {
+      ClusterSettings blocks = zbin_staged;
+      blocks.sub_blocks = true;
+      ClusteredLights r(w.frame_.volumes(), blocks);
+      const Render c = render(w, cam, width, height, &r, false);
+      ASSERT_EQ(p.zbin_lists().order, r.zbin_lists().order);
+      EXPECT_EQ(c.counts.lit, a.counts.lit);
+      EXPECT_TRUE(c.l1 == a.l1 && c.l2 == a.l2) << "the light buffers differ with the blocks";
+      EXPECT_LT(c.counts.evaluated, a.counts.evaluated) << "the blocks pass over no light";
+      EXPECT_GE(c.counts.evaluated, c.counts.lit);
+      std::printf("tiles of %d px: evaluated %llu, with the blocks %llu, lit %llu\n", tile,
+                  (unsigned long long)a.counts.evaluated, (unsigned long long)c.counts.evaluated,
+                  (unsigned long long)a.counts.lit);
     }
-    ClusteredLights r(w.frame_.volumes(), zbin_staged);
-    const Render c = render(w, cam, width, height, &r, false);
-    ASSERT_EQ(p.zbin_lists().order, r.zbin_lists().order);
-    EXPECT_EQ(c.counts.lit, a.counts.lit);
-    EXPECT_TRUE(c.l1 == a.l1 && c.l2 == a.l2) << "the light buffers differ with the blocks";
-    EXPECT_LT(c.counts.evaluated, a.counts.evaluated) << "the blocks pass over no light";
-    EXPECT_GE(c.counts.evaluated, c.counts.lit);
-    std::printf("tiles of %d px: evaluated %llu, with the blocks %llu, lit %llu\n", tile,
-                (unsigned long long)a.counts.evaluated, (unsigned long long)c.counts.evaluated,
-                (unsigned long long)a.counts.lit);
-    // [pixel-lanes-bound]
     // Two and four invocations a pixel (ClusterSettings::pixel_lanes): the same lights evaluated
     // and lit, exactly; the sums regrouped. Every term is a light's non-negative radiance, so a
     // float sum of k of them in any order is within (k - 1) 2^-24 of their exact sum S, two
     // orders within 2k 2^-24 S of each other; both add the same earlier value and round once to
     // half, which may flip one half ulp (at most 2^-10 of the value, 2^-24 below the normals).
     // With k <= 4 096 lights a pixel: |a - b| <= (2^-11 + 2^-10) max(a, b) + 2^-24 < 2^-9 max + 2^-24.
-    if (tile <= 16) {
-      const ClusteredLights::ZBinLists z = q.zbin_lists();
-      std::size_t most = 0;  // the most lights in a tile bounds a pixel's k
-      for (std::size_t t = 0; t * z.words < z.masks.size(); ++t) {
-        std::size_t bits = 0;
-        for (std::size_t k = 0; k < z.words; ++k) bits += std::size_t(std::popcount(z.masks[t * z.words + k]));
-        most = std::max(most, bits);
-      }
+    // (At 16- and 8-pixel tiles, the shapes the blocks take too: 12 and 1 run one lane.)
+    const bool lanes_here = tile <= 16 && tile % 8 == 0;
+    const std::size_t most = lanes_here ? most_lights_in_a_tile(q.zbin_lists()) : 0;  // bounds a pixel's k
+    if (lanes_here) {
       ASSERT_LE(most, 4096u) << "the bound below assumes at most 4 096 lights a pixel";
       for (const int lanes : {2, 4}) {
         ClusterSettings laned = zbin_staged;
-        laned.sub_blocks = false;
         laned.pixel_lanes = lanes;
         ClusteredLights laned_pass(w.frame_.volumes(), laned);
         const Render e = render(w, cam, width, height, &laned_pass, false);
@@ -959,7 +955,6 @@ void ClusteredGl::zbin_staged_cases(const std::vector<int>& tiles, bool shapes) 
         std::printf("tiles of %d px, %d lanes: %zu channels differ from one lane's, within the bound\n", tile, lanes, differ);
       }
     }
-    // [/pixel-lanes-bound]
     if (tile != 16) continue;
     // Two layouts of the same records, each zbin's evaluations and light buffers again: read
     // through the index (sorted_records off), and staged as a structure of arrays (staged_fields).
@@ -1001,19 +996,15 @@ void ClusteredGl::zbin_staged_cases(const std::vector<int>& tiles, bool shapes) 
       EXPECT_EQ(clocked_pass.take_phase_cycles(), std::vector<std::uint64_t>(cycles.size(), 0)) << "the sums were not zeroed";
     }
     // A tile with more lights than a chunk holds (so that the chunks are tested).
-    const ClusteredLights::ZBinLists z = q.zbin_lists();
-    std::size_t most = 0;
-    for (std::size_t t = 0; t * z.words < z.masks.size(); ++t) {
-      std::size_t bits = 0;
-      for (std::size_t k = 0; k < z.words; ++k) bits += std::size_t(std::popcount(z.masks[t * z.words + k]));
-      most = std::max(most, bits);
-    }
     EXPECT_GT(most, 4u * 256u) << "no tile holds several chunks of lights";
     std::printf("the most lights in a tile %zu\n", most);
   }
   if (!shapes) return;
-  // Lanes the pass cannot take: refused with the reason, not a link error or a wrong image.
-  for (const auto& [tile, lanes, blocks] : {std::tuple{16, 3, false}, std::tuple{32, 2, false}, std::tuple{16, 4, true}}) {
+  // Shapes the pass cannot take, refused with the reason, not a link error or a wrong image:
+  // sub-blocks in a 12-pixel tile, three lanes, lanes in 32-pixel tiles, lanes with sub-blocks.
+  for (const auto& [tile, lanes, blocks, reason] :
+       {std::tuple{12, 1, true, "sub-blocks"}, std::tuple{16, 3, false, "invocations a pixel"},
+        std::tuple{32, 2, false, "invocations a pixel"}, std::tuple{16, 4, true, "invocations a pixel"}}) {
     ClusterSettings bad = settings_for_mode("zbin-staged");
     bad.tile_px = tile;
     bad.pixel_lanes = lanes;
@@ -1021,9 +1012,9 @@ void ClusteredGl::zbin_staged_cases(const std::vector<int>& tiles, bool shapes) 
     ClusteredLights refused(w.frame_.volumes(), bad);
     try {
       render(w, cam, width, height, &refused, false);
-      ADD_FAILURE() << lanes << " lanes in " << tile << "-pixel tiles" << (blocks ? " with sub-blocks" : "") << " not refused";
+      ADD_FAILURE() << lanes << " lane(s) in " << tile << "-pixel tiles" << (blocks ? " with sub-blocks" : "") << " not refused";
     } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find("invocations a pixel"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(reason), std::string::npos) << e.what();
     }
     w.frame_.set_local_lights(nullptr);  // (the refused pass goes out of scope)
   }
