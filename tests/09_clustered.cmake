@@ -126,12 +126,15 @@ add_test(NAME 09_clustered.phase_sweep_alone COMMAND ${EXPECT} 2 "--grid, --subg
   -- $<TARGET_FILE:09_clustered_sweep> --grid --phases --out ${PHASES09_OUT}/bad)
 add_test(NAME 09_clustered.density_sweep_bad_views COMMAND ${EXPECT} 1 "--views: 1 to 64, not 0"
   -- $<TARGET_FILE:09_clustered_sweep> --density --views 0)
-# --modes and --min-lights: the named modes' methods and the floor alone, from the count given.
+# --modes and --min-lights: the named modes' methods and the floor alone, from the count given;
+# no warning that the density was missed, a list overflowed or a method went untimed (the
+# density test's list: a warning that frame times had not settled is the machine's load, not
+# the sweep's).
 set(MODES09_OUT ${CMAKE_BINARY_DIR}/out/09_modes)
 add_test(NAME 09_clustered.density_sweep_modes_and_min_lights COMMAND ${EXPECT} 0
   "^8,10000,zbin-floor,default,"  "^8,10000,zbin-staged,default,"  "^8,10000,zbin-staged,sub-blocks,"
   "^8,10000,zbin-staged,fields,"  "^8,10000,zbin-staged,lanes 1,"  "^8,10000,zbin-staged,lanes 2,"
-  --no-match "^8,1000,|^8,10000,(tiled|clustered|zbin,)|warning"
+  --no-match "^8,1000,|^8,10000,(tiled|clustered|zbin,)|warning: .*(not 8|overflow|lists over| at [0-9]+ lights: )"
   -- sh -c "$<TARGET_FILE:09_clustered_sweep> --density --target 8 --modes zbin-staged --min-lights 10000 --out ${MODES09_OUT} --size 64x36 --max-lights 10000 --views 1 --frames 1 2>&1 && cat ${MODES09_OUT}/09_density_d8_summary_llvmpipe.csv")
 set_tests_properties(09_clustered.density_sweep_modes_and_min_lights PROPERTIES TIMEOUT 300)
 add_test(NAME 09_clustered.density_sweep_bad_mode COMMAND ${EXPECT} 2 "--modes: 'zbin-stagd' is no mode of chapter 9"
