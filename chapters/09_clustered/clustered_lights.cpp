@@ -116,6 +116,7 @@ constexpr GLuint kTubeBinding = 10;  // shade.glsl's Tubes buffer (CLUSTER_TUBES
 constexpr GLuint kTileWordsBinding = 11;  // zbin.glsl's TileWords
 constexpr GLuint kSortedBinding = 12;     // zbin.glsl's SortedRecords (ClusterSettings::sorted_records)
 constexpr GLuint kClocksBinding = 13;     // zbin_staged.comp's PhaseClocks (ClusterSettings::phase_clocks)
+constexpr GLuint kLaneTilesBinding = 14;  // zbin.glsl's LaneTiles (ClusterSettings::lanes_from)
 }  // namespace
 
 // [pack]
@@ -235,6 +236,8 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
       if (lanes != 1 && lanes != 2 && lanes != 4)
         throw Error("clustered lights: " + name() + " takes 1, 2 or 4 invocations a pixel, not " + std::to_string(lanes));
       // (Larger tiles: over 1 024 invocations, or over GL's 32 KiB of shared memory with the lanes' sums.)
+      if (settings_.lanes_from < 0)
+        throw Error("clustered lights: " + name() + "'s lanes_from is a count of lights, not " + std::to_string(settings_.lanes_from));
       if (lanes > 1 && (settings_.sub_blocks || grid_.tile_w > 16))
         throw Error("clustered lights: " + name() + " with " + std::to_string(lanes) + " invocations a pixel needs " +
                     (settings_.sub_blocks ? std::string("no sub-blocks") : "tiles of at most 16 pixels, not " + std::to_string(grid_.tile_w)) +
@@ -265,15 +268,20 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
       const char* file = !staged                              ? "09_clustered/shaders/shade.comp"
                          : settings_.kind == CullKind::ZBin ? "09_clustered/shaders/zbin_staged.comp"
                                                             : "09_clustered/shaders/shade_staged.comp";
-      const ShaderProgram& p = program(GL_COMPUTE_SHADER, file, d);
-      set_grid_uniforms(p, camera);
-      p.use();
-      light.bind_images(GL_READ_WRITE);  // on the units LightBuffer::image_defines() names
-      if (staged) {  // a group a tile
-        glDispatchCompute(GLuint(grid_.tiles_x), GLuint(grid_.tiles_y), 1);
-        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+      const bool lane_lists = staged && settings_.kind == CullKind::ZBin && settings_.pixel_lanes > 1 && settings_.lanes_from > 0;
+      if (lane_lists) {  // a first pass lists the tiles that need the lanes
+        shade_heavy_then_light(d, light, camera);
       } else {
-        light.dispatch_per_pixel();
+        const ShaderProgram& p = program(GL_COMPUTE_SHADER, file, d);
+        set_grid_uniforms(p, camera);
+        p.use();
+        light.bind_images(GL_READ_WRITE);  // on the units LightBuffer::image_defines() names
+        if (staged) {  // a group a tile
+          glDispatchCompute(GLuint(grid_.tiles_x), GLuint(grid_.tiles_y), 1);
+          glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        } else {
+          light.dispatch_per_pixel();
+        }
       }
     } else {
       const ShaderProgram& p = program(GL_FRAGMENT_SHADER, "09_clustered/shaders/shade.frag", d);
@@ -292,6 +300,57 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
   light.bind();
 }
 // [/draw]
+
+// [lane-dispatch]
+// zbin-staged with lanes only where a tile needs them (ClusterSettings::lanes_from): a group a
+// tile counts the tile's lights and lists it as heavy or light (zbin_lanes.comp), then the
+// heavy tiles are shaded with the lanes and the light ones with one, each dispatch as many
+// groups as its list holds, read by the GPU from the counts the first pass left.
+void ClusteredLights::shade_heavy_then_light(const std::vector<std::string>& defines, const ch03::LightBuffer& light,
+                                             const FrameCamera& camera) {
+  const std::size_t tiles = std::size_t(grid_.tiles_x) * std::size_t(grid_.tiles_y), bytes = 24 + tiles * 4;
+  if (bytes != lane_tiles_bytes_) glNamedBufferData(lane_tiles_.id(), GLsizeiptr(lane_tiles_bytes_ = bytes), nullptr, GL_DYNAMIC_DRAW);
+  const std::uint32_t none[6] = {0, 1, 1, 0, 1, 1};  // (x, y, z) of two dispatches of no group
+  glNamedBufferSubData(lane_tiles_.id(), 0, sizeof(none), none);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLaneTilesBinding, lane_tiles_.id());
+  std::vector<std::string> d = defines;
+  d.push_back("LANE_TILES " + std::to_string(kLaneTilesBinding));
+  const ShaderProgram& count = program(GL_COMPUTE_SHADER, "09_clustered/shaders/zbin_lanes.comp", d);
+  set_grid_uniforms(count, camera);
+  glProgramUniform1ui(count.id(), glGetUniformLocation(count.id(), "u_lanes_from"), GLuint(settings_.lanes_from));
+  count.use();
+  glDispatchCompute(GLuint(grid_.tiles_x), GLuint(grid_.tiles_y), 1);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);  // the lists, and the counts as dispatches
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, lane_tiles_.id());
+  light.bind_images(GL_READ_WRITE);  // on the units LightBuffer::image_defines() names
+  // The heavy tiles first (their groups run longest), then the light: one lane, from the back.
+  for (const bool heavy : {true, false}) {
+    std::vector<std::string> shade = d;
+    shade.push_back(std::string("TILES_FROM_END ") + (heavy ? "0" : "1"));
+    if (!heavy) std::erase_if(shade, [](const std::string& x) { return x.rfind("PIXEL_LANES ", 0) == 0; });
+    const ShaderProgram& p = program(GL_COMPUTE_SHADER, "09_clustered/shaders/zbin_staged.comp", shade);
+    set_grid_uniforms(p, camera);
+    p.use();
+    glDispatchComputeIndirect(GLintptr(heavy ? 0 : 12));
+  }
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
+                  GL_SHADER_STORAGE_BARRIER_BIT);
+}
+// [/lane-dispatch]
+
+ClusteredLights::LaneTiles ClusteredLights::lane_tiles() const {
+  LaneTiles t;
+  if (lane_tiles_bytes_ < 24) return t;
+  std::vector<std::uint32_t> v(lane_tiles_bytes_ / 4);
+  glGetNamedBufferSubData(lane_tiles_.id(), 0, GLsizeiptr(lane_tiles_bytes_), v.data());
+  const std::size_t tiles = v.size() - 6, heavy = std::min<std::size_t>(v[0], tiles), light = std::min<std::size_t>(v[3], tiles - heavy);
+  t.heavy.assign(v.begin() + 6, v.begin() + 6 + std::ptrdiff_t(heavy));
+  t.light.assign(v.end() - std::ptrdiff_t(light), v.end());
+  std::sort(t.heavy.begin(), t.heavy.end());
+  std::sort(t.light.begin(), t.light.end());
+  return t;
+}
 
 const std::vector<std::string>& ClusteredLights::phase_names() {
   static const std::vector<std::string> names = {"setup", "span", "stage", "reach", "shade", "output"};  // zbin_staged.comp's

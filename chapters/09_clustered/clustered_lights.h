@@ -63,6 +63,12 @@ struct ClusterSettings {
   // on its heaviest tile. The same lights, the same lit pairs; the sums regrouped (float
   // addition: the same to rounding). One lane with sub_blocks or larger tiles.
   int pixel_lanes = 4;
+  // zbin-staged with pixel_lanes above 1: the lanes only in the tiles whose masks hold at least
+  // this many lights (the lights their pixels may stage). A first pass (zbin_lanes.comp) counts
+  // each tile's and lists the tiles, heavy and light; the heavy are shaded with the lanes, the
+  // light with one, by two indirect dispatches (the counts stay on the GPU). 0: every tile with
+  // the lanes, one dispatch. The same lights and lit pairs either way.
+  int lanes_from = 1024;
   // zbin-staged, a benchmark (09_clustered_sweep --phases): one invocation of each work group
   // reads its SM's clock (GL_ARB_shader_clock) after each phase of zbin_staged.comp and adds the
   // cycles to the phase's sum (ClusteredLights::take_phase_cycles). The same image.
@@ -188,6 +194,12 @@ class ClusteredLights : public ch03::LocalLightPass {
   // benchmark's read-back, never a frame's.
   static const std::vector<std::string>& phase_names();
   std::vector<std::uint64_t> take_phase_cycles();
+  // With lanes_from: the last draw's tiles (y * tiles_x + x) that were shaded with the lanes
+  // (heavy) and with one (light), each sorted, for the tests. Waits for the GPU.
+  struct LaneTiles {
+    std::vector<std::uint32_t> heavy, light;
+  };
+  LaneTiles lane_tiles() const;
   const ClusterSettings& settings() const { return settings_; }
   void set_settings(const ClusterSettings& s) { settings_ = s; }
   void set_counting(bool on) { counting_ = on; }
@@ -282,6 +294,9 @@ class ClusteredLights : public ch03::LocalLightPass {
   std::string subgroup_path_, support_;
   std::string phase_clocks_define();  // checks for GL_ARB_shader_clock, binds the sums
   gl::Buffer clocks_;
+  gl::Buffer lane_tiles_;  // zbin_lanes.comp's two dispatches and lists of tiles (lanes_from)
+  std::size_t lane_tiles_bytes_ = 0;
+  void shade_heavy_then_light(const std::vector<std::string>& defines, const ch03::LightBuffer& light, const FrameCamera& camera);
   bool clocks_ready_ = false;
   bool support_known_ = false;
   ch02::FullScreenPass full_screen_;

@@ -120,6 +120,8 @@ const lp::Chapter kChapter{
                       {"bins", "zbin: exponential depth bins", 1024, 1, 16384, true},
                       {"lanes", "zbin-staged: invocations a pixel, 1, 2 or 4 (more than 1 in tiles of at most 16 "
                                 "pixels)", 4, 1, 4, true},
+                      {"lanes-from", "zbin-staged: the lanes only in tiles of at least this many lights (0: every tile)",
+                       1024, 0, 1000000, true},
                       {"heat-scale", "heat maps: lights per pixel or per cluster shown white", 100, 1, 1e7, false},
                       {"count", "count lights evaluated and lit (atomic counters, costs a little time)", 1, 0, 1, true}},
             // Down the street, the lit image beside the lights each pixel evaluated: the cells' lists.
@@ -193,6 +195,7 @@ int main(int argc, char** argv) {
         s.near_slice = float(f.knob("near-slice"));
         s.zbins = f.knob_int("bins");
         s.pixel_lanes = f.knob_int("lanes");
+        s.lanes_from = f.knob_int("lanes-from");
         if (is_forward) {
           forward.set_settings(s);
           forward.set_counting(f.knob_int("count") != 0);

@@ -124,6 +124,10 @@ class ClusteredGl : public ::testing::Test {
   // ZBinStaged*'s case: lights along the view, each tile size of `tiles` checked (with `shapes`,
   // also the lanes and blocks a shape cannot take, and tiled-staged at 32-pixel tiles).
   static void zbin_staged_cases(const std::vector<int>& tiles, bool shapes);
+  // The lanes in the heavy tiles alone (ClusterSettings::lanes_from), against one lane's render
+  // and four lanes' in every tile of the same case.
+  static void lanes_in_heavy_tiles(World& w, const FrameCamera& cam, int width, int height, const ClusterSettings& one_lane,
+                                   const ClusteredLights::ZBinLists& lists, const Render& one, const Render& four);
 
   static World* street_;
   static World* atrium_;
@@ -270,14 +274,18 @@ void set_light_list(World& w, std::vector<Light> lights) {
                                                       w.frame_.volumes().shapes()));
 }
 // The most lights any tile of Z-binning's masks holds (its set bits).
-std::size_t most_lights_in_a_tile(const ClusteredLights::ZBinLists& z) {
-  std::size_t most = 0;
-  for (std::size_t t = 0; t * z.words < z.masks.size(); ++t) {
-    std::size_t bits = 0;
-    for (std::size_t k = 0; k < z.words; ++k) bits += std::size_t(std::popcount(z.masks[t * z.words + k]));
-    most = std::max(most, bits);
+// Each tile's lights: the bits of its masks.
+std::vector<std::size_t> lights_per_tile(const ClusteredLights::ZBinLists& z) {
+  std::vector<std::size_t> n;
+  for (std::size_t t = 0; z.words && (t + 1) * z.words <= z.masks.size(); ++t) {
+    n.push_back(0);
+    for (std::size_t k = 0; k < z.words; ++k) n.back() += std::size_t(std::popcount(z.masks[t * z.words + k]));
   }
-  return most;
+  return n;
+}
+std::size_t most_lights_in_a_tile(const ClusteredLights::ZBinLists& z) {
+  const std::vector<std::size_t> n = lights_per_tile(z);
+  return n.empty() ? 0 : *std::max_element(n.begin(), n.end());
 }
 }  // namespace
 
@@ -868,6 +876,58 @@ TEST_F(ClusteredGl, ZBinningsSortedRecordsAreTheLightsItsOrderNames) {
 // takes the other shapes: 32-pixel tiles, whose 1 024 invocations stage a chunk of 256 (for
 // both staged passes); 8; 12, whose chunk of 144 is no power of two for the searches; 1, whose
 // walk takes the span 32 sorted positions a round, so that spans cross rounds.
+// Four lanes only in the tiles whose masks hold at least lanes_from lights: zbin_lanes.comp
+// lists each tile as heavy or light by its count, and the two dispatches shade the heavy with
+// four lanes, the light with one. The threshold is the case's median count, so that both lists
+// hold tiles. Each list must be exactly the tiles on its side of it (the masks counted here), and
+// each pixel must be, bit for bit, what one lane (light tiles) or four lanes in every tile
+// (heavy) made of it: a tile shaded twice, by the wrong dispatch or not at all differs there
+// (the case's two renders differ in both kinds of tile: checked).
+void ClusteredGl::lanes_in_heavy_tiles(World& w, const FrameCamera& cam, int width, int height, const ClusterSettings& one_lane,
+                                       const ClusteredLights::ZBinLists& lists, const Render& one, const Render& four) {
+  const std::vector<std::size_t> per_tile = lights_per_tile(lists);
+  std::vector<std::size_t> sorted = per_tile;
+  std::sort(sorted.begin(), sorted.end());
+  ASSERT_FALSE(sorted.empty());
+  const std::size_t from = std::max<std::size_t>(sorted[sorted.size() / 2], 1);
+  ClusterSettings adaptive = one_lane;
+  adaptive.pixel_lanes = 4;
+  adaptive.lanes_from = int(from);
+  ClusteredLights pass(w.frame_.volumes(), adaptive);
+  const Render r = render(w, cam, width, height, &pass, false);
+  EXPECT_EQ(r.counts.lit, one.counts.lit);
+  EXPECT_EQ(r.counts.evaluated, one.counts.evaluated);
+  ASSERT_EQ(pass.zbin_lists().order, lists.order) << "the case's sort keys are distinct";
+  std::vector<std::uint32_t> heavy, light;
+  for (std::size_t t = 0; t < per_tile.size(); ++t) (per_tile[t] >= from ? heavy : light).push_back(std::uint32_t(t));
+  ASSERT_FALSE(heavy.empty());
+  ASSERT_FALSE(light.empty());
+  const ClusteredLights::LaneTiles listed = pass.lane_tiles();
+  EXPECT_EQ(listed.heavy, heavy) << "the tiles given four lanes (from " << from << " lights)";
+  EXPECT_EQ(listed.light, light) << "the tiles given one lane";
+  const int tile = adaptive.tile_px, tiles_x = (width + tile - 1) / tile;
+  std::size_t wrong[2] = {0, 0}, apart[2] = {0, 0};  // [light, heavy]: pixels not as their dispatch makes them; where one and four lanes differ
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const std::size_t t = std::size_t((y / tile) * tiles_x + x / tile), i = (std::size_t(y) * std::size_t(width) + std::size_t(x)) * 4;
+      const bool is_heavy = per_tile[t] >= from;
+      const Render& want = is_heavy ? four : one;
+      bool same = true, differ = false;
+      for (int c = 0; c < 4; ++c) {
+        same = same && r.l1[i + c] == want.l1[i + c] && r.l2[i + c] == want.l2[i + c];
+        differ = differ || one.l1[i + c] != four.l1[i + c] || one.l2[i + c] != four.l2[i + c];
+      }
+      wrong[is_heavy] += !same;
+      apart[is_heavy] += differ;
+    }
+  EXPECT_EQ(wrong[1], 0u) << "pixels of heavy tiles that are not four lanes' sums";
+  EXPECT_EQ(wrong[0], 0u) << "pixels of light tiles that are not one lane's sums";
+  EXPECT_GT(apart[1], 0u) << "one and four lanes agree in every heavy tile: the case cannot tell them apart";
+  EXPECT_GT(apart[0], 0u) << "one and four lanes agree in every light tile: the case cannot tell them apart";
+  std::printf("lanes from %zu lights: %zu heavy tiles, %zu light; pixels where one and four lanes differ: %zu, %zu\n", from,
+              heavy.size(), light.size(), apart[1], apart[0]);
+}
+
 void ClusteredGl::zbin_staged_cases(const std::vector<int>& tiles, bool shapes) {
   World& w = street();
   const int width = 160, height = 90;
@@ -937,11 +997,14 @@ void ClusteredGl::zbin_staged_cases(const std::vector<int>& tiles, bool shapes) 
     const std::size_t most = lanes_here ? most_lights_in_a_tile(q.zbin_lists()) : 0;  // bounds a pixel's k
     if (lanes_here) {
       ASSERT_LE(most, 4096u) << "the bound below assumes at most 4 096 lights a pixel";
+      Render four;  // four lanes in every tile
       for (const int lanes : {2, 4}) {
         ClusterSettings laned = zbin_staged;
         laned.pixel_lanes = lanes;
+        laned.lanes_from = 0;  // every tile
         ClusteredLights laned_pass(w.frame_.volumes(), laned);
         const Render e = render(w, cam, width, height, &laned_pass, false);
+        if (lanes == 4) four = e;
         EXPECT_EQ(e.counts.lit, a.counts.lit) << lanes << " lanes";
         EXPECT_EQ(e.counts.evaluated, a.counts.evaluated) << lanes << " lanes";
         std::size_t outside = 0, differ = 0;
@@ -954,6 +1017,7 @@ void ClusteredGl::zbin_staged_cases(const std::vector<int>& tiles, bool shapes) 
         EXPECT_EQ(outside, 0u) << lanes << " lanes: channels beyond the regrouping's bound (of " << differ << " that differ)";
         std::printf("tiles of %d px, %d lanes: %zu channels differ from one lane's, within the bound\n", tile, lanes, differ);
       }
+      lanes_in_heavy_tiles(w, cam, width, height, zbin_staged, q.zbin_lists(), a, four);
     }
     if (tile != 16) continue;
     // Two layouts of the same records, each zbin's evaluations and light buffers again: read
@@ -1001,18 +1065,22 @@ void ClusteredGl::zbin_staged_cases(const std::vector<int>& tiles, bool shapes) 
   }
   if (!shapes) return;
   // Shapes the pass cannot take, refused with the reason, not a link error or a wrong image:
-  // sub-blocks in a 12-pixel tile, three lanes, lanes in 32-pixel tiles, lanes with sub-blocks.
-  for (const auto& [tile, lanes, blocks, reason] :
-       {std::tuple{12, 1, true, "sub-blocks"}, std::tuple{16, 3, false, "invocations a pixel"},
-        std::tuple{32, 2, false, "invocations a pixel"}, std::tuple{16, 4, true, "invocations a pixel"}}) {
+  // sub-blocks in a 12-pixel tile, three lanes, lanes in 32-pixel tiles, lanes with sub-blocks,
+  // lanes from a negative count of lights.
+  for (const auto& [tile, lanes, blocks, from, reason] :
+       {std::tuple{12, 1, true, 0, "sub-blocks"}, std::tuple{16, 3, false, 0, "invocations a pixel"},
+        std::tuple{32, 2, false, 0, "invocations a pixel"}, std::tuple{16, 4, true, 0, "invocations a pixel"},
+        std::tuple{16, 4, false, -1, "lanes_from is a count of lights, not -1"}}) {
     ClusterSettings bad = settings_for_mode("zbin-staged");
     bad.tile_px = tile;
     bad.pixel_lanes = lanes;
     bad.sub_blocks = blocks;
+    bad.lanes_from = from;
     ClusteredLights refused(w.frame_.volumes(), bad);
     try {
       render(w, cam, width, height, &refused, false);
-      ADD_FAILURE() << lanes << " lane(s) in " << tile << "-pixel tiles" << (blocks ? " with sub-blocks" : "") << " not refused";
+      ADD_FAILURE() << lanes << " lane(s) in " << tile << "-pixel tiles" << (blocks ? " with sub-blocks" : "") << " from "
+                    << from << " lights not refused";
     } catch (const Error& e) {
       EXPECT_NE(std::string(e.what()).find(reason), std::string::npos) << e.what();
     }

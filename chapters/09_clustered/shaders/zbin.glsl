@@ -20,6 +20,19 @@ layout(std430, binding = 7) buffer TileMasks { uint tile_masks[]; };
 // and the shading skips a tile's empty words 32 at a time.
 layout(std430, binding = 11) buffer TileWords { uint tile_words[]; };  // (3 is the fragment counters')
 
+#ifdef LANE_TILES
+// [lane-tiles]
+// ClusterSettings::lanes_from: zbin_lanes.comp's lists of tiles for zbin_staged.comp's two
+// indirect dispatches. lane_dispatch[0..2]: the heavy tiles' groups (x, 1, 1), [3..5]: the
+// light tiles'. The tiles (y * tiles_x + x): heavy from lane_tiles[0] up, light from
+// lane_tiles[tiles - 1] down.
+layout(std430, binding = LANE_TILES) buffer LaneTiles {
+  uint lane_dispatch[6];
+  uint lane_tiles[];
+};
+// [/lane-tiles]
+#endif
+
 // A light and its cone (zero for a point) as the shading reads them.
 struct SortedRecord {
   ClusterLight light;

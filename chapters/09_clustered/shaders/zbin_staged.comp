@@ -48,8 +48,20 @@ void stage_record(uint k, SortedRecord r) { s_record[k] = r; }
 SortedRecord staged_record(uint k) { return s_record[k]; }
 #endif
 
-// The tile's first pixel (the group is the tile).
-ivec2 tile_origin() { return ivec2(gl_WorkGroupID.xy) * STAGE_TILE; }
+// The group's tile: the dispatch's grid is the tiles' (x, y), or with LANE_TILES the group takes
+// its tile from zbin_lanes.comp's list, the heavy tiles' from the front (TILES_FROM_END 0), the
+// light tiles' from the back (1).
+#ifdef LANE_TILES
+ivec2 group_tile() {
+  uint k = TILES_FROM_END != 0 ? uint(u_tiles.x * u_tiles.y) - 1u - gl_WorkGroupID.x : gl_WorkGroupID.x;
+  uint tile = lane_tiles[k];
+  return ivec2(tile % uint(u_tiles.x), tile / uint(u_tiles.x));
+}
+#else
+ivec2 group_tile() { return ivec2(gl_WorkGroupID.xy); }
+#endif
+// The tile's first pixel.
+ivec2 tile_origin() { return group_tile() * STAGE_TILE; }
 
 #ifdef SUB_BLOCKS
 // ClusterSettings::sub_blocks: the tile cut into blocks of 8 x 4 pixels, one to each 32
@@ -206,7 +218,7 @@ void main() {
   bool inside = all(lessThan(pixel, u_grid.xy));
   Surface s = decode_gbuffer(inside ? pixel : ivec2(0));
   bool shaded = inside && !s.is_sky;
-  uint tile = uint(cell_index(ivec2(gl_WorkGroupID.xy), 0));  // the group is the tile (STAGE_TILE pixels)
+  uint tile = uint(cell_index(group_tile(), 0));  // the group's tile (STAGE_TILE pixels)
   if (t == 0u) {
     s_first = 0xFFFFFFFFu;
     s_last = 0u;
