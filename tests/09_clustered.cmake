@@ -79,6 +79,7 @@ add_test(NAME 09_clustered.density_sweep_reaches_its_density COMMAND ${EXPECT} 0
   "^32,1000,zbin-staged,fields,[0-9.]+,(31\\.|32\\.|30\\.[4-9])[0-9]*,"
   "^32,1000,zbin-staged,lanes 1,[0-9.]+,(31\\.|32\\.|30\\.[4-9])[0-9]*,"
   "^32,1000,zbin-staged,lanes 2,[0-9.]+,(31\\.|32\\.|30\\.[4-9])[0-9]*,"
+  "^32,1000,zbin-staged,lanes 4,[0-9.]+,(31\\.|32\\.|30\\.[4-9])[0-9]*,"
   "^32,1000,zbin-floor,default,([0-9.e-]+,){10}1,"
   # The CPU's time per frame beside the GPU's, and Z-binning's assignment by its parts (the
   # clears, the sort, the bins, the tiles; the floor's exact lists only in zbin-floor).
@@ -122,7 +123,16 @@ add_test(NAME 09_clustered.phase_sweep_times_every_phase COMMAND ${EXPECT} 0
   --no-match "warning"
   -- sh -c "$<TARGET_FILE:09_clustered_sweep> --phases --target 32 --out ${PHASES09_OUT} --size 64x36 --max-lights 1000 --views 1 --frames 1 2>&1 && cat ${PHASES09_OUT}/09_phases_d32_cycles_llvmpipe.csv && awk -F, '/^32,/ { s[$4] += $7 } END { printf \"shares: phase clocks %.3f, sub-blocks phase clocks %.3f\\n\", s[\"phase clocks\"], s[\"sub-blocks phase clocks\"] }' ${PHASES09_OUT}/09_phases_d32_cycles_llvmpipe.csv")
 set_tests_properties(09_clustered.phase_sweep_times_every_phase PROPERTIES TIMEOUT 300)
-add_test(NAME 09_clustered.phase_sweep_alone COMMAND ${EXPECT} 2 "--grid, --subgroups and --phases: one at a time"
+# The lane sweep (--lanes): zbin-staged with one lane, four in every tile and four in the tiles of
+# at least N lights, a row each; a smoke test of the sweep (the lanes' images: ZBinStaged*).
+set(LANES09_OUT ${CMAKE_BINARY_DIR}/out/09_lanes)
+add_test(NAME 09_clustered.lane_sweep_smoke_names_every_threshold COMMAND ${EXPECT} 0
+  "^32,1000,zbin-floor,default,"  "^32,1000,zbin-staged,lanes 1,"  "^32,1000,zbin-staged,lanes 4,"
+  "^32,1000,zbin-staged,lanes 4 from 256,"  "^32,1000,zbin-staged,lanes 4 from 16384,"
+  --no-match "warning: .*(not 32|overflow|lists over|not timed| at [0-9]+ lights: )"
+  -- sh -c "$<TARGET_FILE:09_clustered_sweep> --lanes --target 32 --out ${LANES09_OUT} --size 64x36 --max-lights 1000 --views 1 --frames 1 2>&1 && cat ${LANES09_OUT}/09_lanes_d32_summary_llvmpipe.csv")
+set_tests_properties(09_clustered.lane_sweep_smoke_names_every_threshold PROPERTIES TIMEOUT 300)
+add_test(NAME 09_clustered.phase_sweep_alone COMMAND ${EXPECT} 2 "--grid, --subgroups, --phases and --lanes: one at a time"
   -- $<TARGET_FILE:09_clustered_sweep> --grid --phases --out ${PHASES09_OUT}/bad)
 add_test(NAME 09_clustered.density_sweep_bad_views COMMAND ${EXPECT} 1 "--views: 1 to 64, not 0"
   -- $<TARGET_FILE:09_clustered_sweep> --density --views 0)
@@ -134,6 +144,7 @@ set(MODES09_OUT ${CMAKE_BINARY_DIR}/out/09_modes)
 add_test(NAME 09_clustered.density_sweep_modes_and_min_lights COMMAND ${EXPECT} 0
   "^8,10000,zbin-floor,default,"  "^8,10000,zbin-staged,default,"  "^8,10000,zbin-staged,sub-blocks,"
   "^8,10000,zbin-staged,fields,"  "^8,10000,zbin-staged,lanes 1,"  "^8,10000,zbin-staged,lanes 2,"
+  "^8,10000,zbin-staged,lanes 4,"
   --no-match "^8,1000,|^8,10000,(tiled|clustered|zbin,)|warning: .*(not 8|overflow|lists over| at [0-9]+ lights: )"
   -- sh -c "$<TARGET_FILE:09_clustered_sweep> --density --target 8 --modes zbin-staged --min-lights 10000 --out ${MODES09_OUT} --size 64x36 --max-lights 10000 --views 1 --frames 1 2>&1 && cat ${MODES09_OUT}/09_density_d8_summary_llvmpipe.csv")
 set_tests_properties(09_clustered.density_sweep_modes_and_min_lights PROPERTIES TIMEOUT 300)

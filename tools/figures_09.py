@@ -160,10 +160,11 @@ def footprint_plot(d: Path, density_csv: Path, grid_csv: Path, tag: str, where: 
          "a light's lit pixels / a cell's pixels (log)", "evaluated / lit (log)", xlog=True, ylog=True)
 
 
-def views_plot(d: Path, csv: Path, tag: str, where: str):
-    """Z-binning staged's shading view by view along the street at 1 000 000 lights, one, two and
-    four lanes a pixel beside the floor: the pass waits on its heaviest tile (the book's "The
-    heaviest tile"). x: the view's distance along the street (the sweep's views are 12 m apart)."""
+def views_plot(d: Path, csv: Path, tag: str):
+    """Z-binning staged's shading view by view along the street at 1 000 000 lights, one lane and
+    four lanes a pixel in every tile, and four in the heavy tiles alone (the default), beside the
+    floor: the pass waits on its heaviest tile (the book's "The heaviest tile"). x: the view's
+    distance along the street (the sweep's views are 12 m apart)."""
     if not csv.exists():
         return
     notes, rows = read_csv(csv)
@@ -172,14 +173,14 @@ def views_plot(d: Path, csv: Path, tag: str, where: str):
     for t in ("32", "8"):
         for method, grid, name, colour in (("zbin-floor", "default", "floor", "#1f77b4"),
                                            ("zbin-staged", "lanes 1", "one lane", "#d62728"),
-                                           ("zbin-staged", "lanes 2", "two lanes", "#2ca02c"),
-                                           ("zbin-staged", "default", "four lanes", "#ff7f0e")):
+                                           ("zbin-staged", "lanes 4", "four lanes", "#ff7f0e"),
+                                           ("zbin-staged", "default", "four in heavy tiles", "#2ca02c")):
             pts = sorted((12.0 * step(r), float(r["shade_ms"])) for r in rows
                          if r["target_density"] == t and r["lights"] == "1000000" and r["method"] == method and r["grid"] == grid)
             if pts:
-                series.append(Series(f"{name}, {t} per pixel", pts, dashed=(t == "8"), colour=colour))
+                series.append(Series(f"{name}, {t}", pts, dashed=(t == "8"), colour=colour))
     if series:
-        plot(d / f"09_views_{tag}.svg", f"Shading view by view, 1 000 000 lights ({where})", notes[0] if notes else "",
+        plot(d / f"09_views_{tag}.svg", "Shading view by view, 1 000 000 lights, 32 and 8 lit a pixel", notes[0] if notes else "",
              series, "the view's distance along the street (m)", "ms of the shading pass (GPU)")
 
 
@@ -203,7 +204,7 @@ def main(argv):
         if csv.exists():
             density_plots(d, csv, tag, where)
     footprint_plot(d, d / "09_density_summary_h200.csv", d / "09_grid_d32_summary_h200.csv", "h200", "NVIDIA H200, 1920x1080")
-    views_plot(d, d / "09_density_h200.csv", "h200", "NVIDIA H200, 1920x1080")
+    views_plot(d, d / "09_density_h200.csv", "h200")  # (the note names the GPU)
     for csv in sorted(d.glob("09_grid*_summary_*.csv")):
         tag = csv.stem.replace("09_grid_", "").replace("09_grid", "").replace("summary_", "").replace("_summary", "")
         near_slice_plots(d, csv, tag.strip("_"), "NVIDIA H200" if "h200" in tag else "llvmpipe" if "llvmpipe" in tag else tag)

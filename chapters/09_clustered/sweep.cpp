@@ -17,11 +17,14 @@
 // without it (the fallback), each view's light buffers compared bit for bit and the exact counts
 // compared; timed side by side (09_subgroups*.csv, the path in the grid column). Exits 1 when
 // the two differ anywhere.
+// --lanes: zbin-staged with one lane a pixel, four in every tile, and four in the tiles that hold
+// at least N lights for N from 256 to 16 384 (ClusterSettings::lanes_from), at 100 000 and
+// 1 000 000 lights (09_lanes*.csv).
 // --phases: zbin-staged with and without its sub-blocks at 100 000 and 1 000 000 lights, its
 // phase clocks on (ClusterSettings::phase_clocks): the cycles each phase of the pass took, summed
 // over its work groups and views, and each phase's share (09_phases*.csv, beside the usual rows).
 //   09_clustered_sweep [--out DIR] [--size WxH] [--frames N] [--max-lights N] [--stencil-max N] [--density] [--grid]
-//                      [--subgroups] [--phases] [--views N] [--target D]   (D: one target density alone, e.g. 32)
+//                      [--subgroups] [--phases] [--lanes] [--views N] [--target D]   (D: one target density alone, e.g. 32)
 //                      [--min-lights N] [--modes A,B]   (the counts from N, the modes A and B and the floor alone)
 #include <algorithm>
 #include <chrono>
@@ -61,8 +64,9 @@ struct Settings {
   bool grid = false;
   bool subgroups = false;
   bool phases = false;
+  bool lanes = false;
   // The sweeps that run the density sweep's loop over their own methods, two counts a density.
-  bool density_variant() const { return grid || subgroups || phases; }
+  bool density_variant() const { return grid || subgroups || phases || lanes; }
   int views = kViewsUnset;  // 6, the grid sweep 3
   int target = 0;           // one target density alone (0: every one)
   int min_lights = 0;       // light counts below this are skipped (their density is not fitted)
@@ -105,10 +109,25 @@ std::vector<Method> density_methods(const ch09::ClusterSettings& base) {
   Method fields{"zbin-staged", "fields", ch09::settings_for_mode("zbin-staged", base)};
   fields.settings.staged_fields = true;  // the staged records as a structure of arrays
   m.push_back(fields);
-  for (const int lanes : {1, 2}) {  // invocations a pixel, each adding every lanes-th light (default 4)
+  for (const int lanes : {1, 2, 4}) {  // invocations a pixel in every tile (default: 4 in the heavy tiles)
     Method laned{"zbin-staged", "lanes " + std::to_string(lanes), ch09::settings_for_mode("zbin-staged", base)};
     laned.settings.pixel_lanes = lanes;
+    laned.settings.lanes_from = 0;
     m.push_back(laned);
+  }
+  return m;
+}
+
+// zbin-staged's lanes: one lane, four in every tile, and four in the tiles of at least N lights
+// (ClusterSettings::lanes_from) for N from 256 to 16 384.
+std::vector<Method> lane_methods(const ch09::ClusterSettings& base) {
+  std::vector<Method> m = {{"zbin-floor", "default", ch09::settings_for_mode("zbin-floor", base)}};
+  for (const int from : {-1, 0, 256, 512, 1024, 2048, 4096, 8192, 16384}) {
+    Method z{"zbin-staged", from < 0 ? "lanes 1" : from == 0 ? "lanes 4" : "lanes 4 from " + std::to_string(from),
+             ch09::settings_for_mode("zbin-staged", base)};
+    z.settings.pixel_lanes = from < 0 ? 1 : 4;
+    z.settings.lanes_from = std::max(from, 0);
+    m.push_back(z);
   }
   return m;
 }
@@ -219,7 +238,8 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
   const float threshold = ch03::cut_threshold(1.f, ch03::peak_reflectance(scene));
   // One target alone writes its own files (09_grid_d32...), so that runs of each density add up.
   const std::string label = software ? "_llvmpipe" : "";
-  const std::string name = std::string(s.subgroups ? "09_subgroups" : s.grid ? "09_grid" : s.phases ? "09_phases" : "09_density") +
+  const std::string name = std::string(s.subgroups ? "09_subgroups" : s.grid ? "09_grid" : s.phases ? "09_phases"
+                                       : s.lanes ? "09_lanes" : "09_density") +
                            (s.target > 0 ? "_d" + std::to_string(s.target) : "");
   const std::string rows_file = s.out + "/" + name + label + ".csv", summary_file = s.out + "/" + name + "_summary" + label + ".csv";
   std::ofstream rows(rows_file), summary(summary_file);
@@ -250,6 +270,7 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
   std::vector<Method> methods = s.subgroups ? subgroup_methods(base_settings)
                                : s.grid    ? grid_methods(base_settings)
                                : s.phases  ? phase_methods(base_settings)
+                               : s.lanes   ? lane_methods(base_settings)
                                            : density_methods(base_settings);
   if (!s.modes.empty()) {
     std::erase_if(methods, [&](const Method& m) { return m.mode != "zbin-floor" && std::ranges::find(s.modes, m.mode) == s.modes.end(); });
@@ -435,13 +456,14 @@ int main(int argc, char** argv) {
   return run_sweep(argc, argv, "09_clustered_sweep", [&](SweepArgs& args) {
     args.text("--out", s.out).size("--size", s.width, s.height, &s.size_given).integer("--frames", s.frames)
         .integer("--max-lights", s.max_lights).integer("--stencil-max", s.stencil_max).text("--view", s.view)
-        .flag("--density", s.density).flag("--grid", s.grid).flag("--subgroups", s.subgroups).flag("--phases", s.phases).integer("--views", s.views)
+        .flag("--density", s.density).flag("--grid", s.grid).flag("--subgroups", s.subgroups).flag("--phases", s.phases).flag("--lanes", s.lanes).integer("--views", s.views)
         .integer("--target", s.target).integer("--min-lights", s.min_lights).text("--modes", s.modes_arg);
   }, [&] {
     std::filesystem::create_directories(s.out);
     if (s.views == Settings::kViewsUnset) s.views = s.density_variant() ? 3 : 6;
     if (s.views < 1 || s.views > 64) throw Error("--views: 1 to 64, not " + std::to_string(s.views));
-    if (int(s.grid) + int(s.subgroups) + int(s.phases) > 1) throw UsageError("--grid, --subgroups and --phases: one at a time");
+    if (int(s.grid) + int(s.subgroups) + int(s.phases) + int(s.lanes) > 1)
+      throw UsageError("--grid, --subgroups, --phases and --lanes: one at a time");
     for (std::size_t at = 0; !s.modes_arg.empty() && at <= s.modes_arg.size();) {  // each of --modes a,b is a mode
       const std::size_t end = std::min(s.modes_arg.find(',', at), s.modes_arg.size());
       s.modes.push_back(s.modes_arg.substr(at, end - at));
