@@ -146,6 +146,7 @@ void DeferredFrame::render(const FrameCamera& camera, const FrameOutput& output,
     if (heat) volumes_.draw_heat(*light_, settings.heat_full_scale);
     else if (settings.show == FrameShow::DiffuseLight) volumes_.draw_light_target(light_->diffuse(), 1.f);
     else if (settings.show == FrameShow::SpecularLight) volumes_.draw_light_target(light_->specular(), 4.f);
+    else if (global_ == GlobalPass::Compute && output.image) volumes_.composite_compute(*light_, view_, background_, output.image);
     else volumes_.composite(*light_, view_, background_);
   }
 

@@ -44,6 +44,9 @@ class DeferredFrame;
 struct FrameOutput {
   GLuint framebuffer = 0;
   int width = 0, height = 0;
+  // The framebuffer's colour as an RGBA16F texture, where it is one (a float target; 0: not):
+  // with the global pass in compute, the composite then runs in compute too, writing it.
+  GLuint image = 0;
   void bind() const;  // binds it, sets the viewport, sRGB encoding on (no-op for float targets)
 };
 
@@ -164,7 +167,8 @@ class DeferredFrame {
   void set_local_lights(LocalLightPass* pass);      // another chapter's; nullptr: chapter 03's again
   // The global pass as a fragment pass (chapter 03's default) or in compute: the same light
   // buffer bit for bit (GlobalPass, light_volumes.h); chapter 10's whole frame runs compute. A
-  // stage's own full-screen pass into the light buffer follows it (chapter 08's add).
+  // stage's own full-screen pass into the light buffer follows it (chapter 08's add), and so
+  // does the composite where the output gives its colour as an image (FrameOutput::image).
   void set_global_pass(GlobalPass how) { global_ = how; }
   GlobalPass global_pass() const { return global_; }
   // Called in the order added; gives the stage its texture units and blocks (StageSlots).

@@ -605,6 +605,19 @@ void LightVolumes::composite(const LightBuffer& light, const SurfaceView& view, 
   restore_state();
 }
 
+void LightVolumes::composite_compute(const LightBuffer& light, const SurfaceView& view, const glm::vec3& background,
+                                     GLuint image) {
+  constexpr GLuint kOutputImage = 0;  // an image unit, bound just before the dispatch (no hook reads images)
+  std::vector<std::string> defines = LightBuffer::shader_defines();
+  defines.push_back("COMPOSITE_IMAGE " + std::to_string(kOutputImage));
+  const ShaderProgram& p = compute_program("03_light_volumes/shaders/composite.comp", view, defines);
+  light.bind_textures();
+  p.use();
+  p.set("u_background", background);
+  glBindImageTexture(kOutputImage, image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  light.dispatch_per_pixel();  // (the light buffer's size: the output's)
+}
+
 void LightVolumes::draw_wireframe(const SurfaceView& view) {
   const ShaderProgram& p = program("03_light_volumes/shaders/flat_colour.frag", view);
   set_volume_uniforms(p, view);

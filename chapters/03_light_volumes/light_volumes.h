@@ -201,6 +201,9 @@ class LightVolumes {
   void draw_local(const LightBuffer& target, const SurfaceView& view, Strategy strategy, Output output = Output::Light);
   // F = albedo * L1 + L2 + emissive into the bound framebuffer (sky pixels: background).
   void composite(const LightBuffer& light, const SurfaceView& view, const glm::vec3& background);
+  // The same colours written by a compute pass into `image`, an RGBA16F texture the light
+  // buffer's size (a float target's colour: FrameOutput::image).
+  void composite_compute(const LightBuffer& light, const SurfaceView& view, const glm::vec3& background, GLuint image);
 
   // Counting costs an atomic operation per fragment: on for tests and the panel, off for timing.
   // The counters start each draw_local at `start` (0; tests start them near 2^32 to see them

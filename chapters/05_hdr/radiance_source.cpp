@@ -104,7 +104,9 @@ void DeferredRadiance::render(const FrameCamera& camera, const RadianceTarget& t
   update_lights();
   // [deferred-frame]
   // Chapter 03's frame, into our float target instead of the sRGB output.
-  frame_->render(camera, {target.framebuffer(), target.width(), target.height()}, metrics);
+  // (Its colour as an image where it is RGBA16F: the composite may run in compute.)
+  const GLuint image = target.format() == GL_RGBA16F ? target.texture() : 0;
+  frame_->render(camera, {target.framebuffer(), target.width(), target.height(), image}, metrics);
   // [/deferred-frame]
 }
 

@@ -52,9 +52,10 @@ const CliSpec kCli{
               {"sun-cascades", "whole: chapter 06's cascades for the sun, snapped (1: one map fitted to the view)",
                double(WholeFrameSettings{}.sun_cascades), 1, ch06::kMaxCascades, true},
               {"clustered", "whole: the local lights by chapter 09's clusters (off: chapter 03's stencil volumes)", 1, 0, 1, true},
-              choice_knob("global", "whole: chapter 03's global pass (ambient + directional) and chapter 08's add "
-                                    "of the indirect light in compute or as fragment passes: the same light, bit for "
-                                    "bit; compute suits a GPU that runs fragment shaders on a few of its cores only",
+              choice_knob("global", "whole: chapter 03's global pass (ambient + directional), chapter 08's add "
+                                    "of the indirect light and chapter 03's composite in compute or as fragment passes: "
+                                    "the same image, bit for bit; compute suits a GPU that runs fragment shaders on a "
+                                    "few of its cores only",
                           {"compute", "fragment"}),
               {"ao", "whole: ambient occlusion (chapters 07, 08)", 1, 0, 1, true},
               {"indirect", "whole: one bounce of indirect light (chapter 08)", 1, 0, 1, true},

@@ -51,9 +51,9 @@ enum class TubeLight { Volumes, Clusters };
 struct WholeFrameSettings {
   bool shadows = true;     // chapter 06: the sun's shadow map (PCF 3x3), when the scene has a sun
   bool clustered = true;   // chapter 09's clusters for the local lights; false: chapter 03's stencil volumes
-  // The full-screen passes into the light buffer, chapter 03's global pass (ambient + directional)
-  // and chapter 08's add of the indirect light, in compute or as their fragment passes: the same
-  // bodies and light buffer (ch03::GlobalPass). Compute, because a GPU may run fragment shaders on
+  // The full-screen passes, chapter 03's global pass (ambient + directional), chapter 08's add of
+  // the indirect light and chapter 03's composite into the float radiance, in compute or as their
+  // fragment passes: the same bodies, light buffer and radiance (ch03::GlobalPass). Compute, because a GPU may run fragment shaders on
   // a few of its cores only and compute on all (the H200: the book's budget); elsewhere the same work.
   ch03::GlobalPass global = ch03::GlobalPass::Compute;
   bool ao = true;          // chapters 07/08: AO on the ambient light (the narrow disk)

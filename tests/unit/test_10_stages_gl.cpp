@@ -260,13 +260,15 @@ TEST(WholeFrameStagesGl, AoAndIndirectLightAreChapter08s) {
   }
 }
 
-// Chapter 03's global pass and chapter 08's add of the indirect light in compute, the whole
-// frame's default (whole_frame.h), against their fragment passes, in the whole frame with the
+// Chapter 03's global pass, chapter 08's add of the indirect light and chapter 03's composite in
+// compute, the whole frame's default (whole_frame.h), against their fragment passes, in the whole frame with the
 // sun's four cascades, the clusters, AO and one bounce on: the global pass's hooks (chapter 06's
 // visibility, chapter 08's ambient, both reading the pixel) run in compute, the clusters read its
 // images, chapter 08's pass reads its L1 as a texture, and its add reads and writes L1 as an image
 // where the fragment pass blends one plus one (a half float and a float summed, rounded once to a
-// half float either way). The same bodies on the same inputs store the same values: the light
+// half float either way), and chapter 03's composite writes the float radiance as an image
+// where the fragment pass writes it as a colour attachment (a float, rounded once to a half
+// float either way). The same bodies on the same inputs store the same values: the light
 // buffer and the float radiance equal bit for bit (the bound is 0). At 160x90 the 8x8 groups
 // overhang the last row of groups.
 TEST(WholeFrameStagesGl, TheGlobalPassInComputeIsItsFragmentPassBitForBit) {
@@ -282,6 +284,7 @@ TEST(WholeFrameStagesGl, TheGlobalPassInComputeIsItsFragmentPassBitForBit) {
     ImageF radiance;
     std::uint64_t samples = 0;      // GL_SAMPLES_PASSED over the global pass
     std::uint64_t add_samples = 0;  // and over chapter 08's add
+    std::uint64_t composite_samples = 0;  // and over chapter 03's composite
   };
   auto frame_with = [&](ch03::GlobalPass how) {
     s.global = how;
@@ -293,7 +296,8 @@ TEST(WholeFrameStagesGl, TheGlobalPassInComputeIsItsFragmentPassBitForBit) {
     EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
     return Frame{light_of(whole.source().frame()), read_texture(whole.radiance()->texture(), kW, kH),
                  metrics.find("global: ambient + directional (chapter 03)")->samples,
-                 metrics.find("ssgi: add to the light buffer")->samples};
+                 metrics.find("ssgi: add to the light buffer")->samples,
+                 metrics.find("composite: albedo x L1 + L2 + emissive (chapter 03)")->samples};
   };
   // Compute first, into new targets: a value it failed to write is not the fragment pass's.
   const Frame compute = frame_with(ch03::GlobalPass::Compute), fragment = frame_with(ch03::GlobalPass::Fragment);
@@ -305,6 +309,8 @@ TEST(WholeFrameStagesGl, TheGlobalPassInComputeIsItsFragmentPassBitForBit) {
   EXPECT_EQ(compute.samples, 0u) << "the compute pass draws no fragment: the frame must have run it";
   EXPECT_EQ(fragment.add_samples, std::uint64_t(kW) * kH) << "chapter 08's fragment add shades every pixel once";
   EXPECT_EQ(compute.add_samples, 0u) << "chapter 08's add in compute draws no fragment";
+  EXPECT_EQ(fragment.composite_samples, std::uint64_t(kW) * kH) << "the fragment composite shades every pixel once";
+  EXPECT_EQ(compute.composite_samples, 0u) << "the composite in compute draws no fragment";
   expect_same_light(compute.light, fragment.light, "the global pass in compute against its fragment pass");
   const Difference d = differ(compute.radiance, fragment.radiance);
   EXPECT_EQ(d.values, 0u) << "the radiance differs in " << d.values << " values, by up to " << d.largest << "; first at "

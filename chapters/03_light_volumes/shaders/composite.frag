@@ -1,20 +1,7 @@
 #version 450
-// The final image from the G-buffer and the light buffer: F = albedo * L1 + L2 + emissive
-// (the thesis's F = Gd (Ld + Ge) + Ls, with our emissive colour added on its own).
-#include "02_gbuffer/shaders/gbuffer.glsl"
-
-layout(binding = LIGHT_BUFFER_UNIT + 0) uniform sampler2D u_diffuse_light;   // L1
-layout(binding = LIGHT_BUFFER_UNIT + 1) uniform sampler2D u_specular_light;  // L2
-
-uniform vec3 u_background;
+// The final image (composite.glsl), a full-screen pass into the bound framebuffer.
+#include "03_light_volumes/shaders/composite.glsl"
 
 out vec4 out_color;
 
-void main() {
-  // [composite]
-  ivec2 pixel = ivec2(gl_FragCoord.xy);
-  Surface s = decode_gbuffer(pixel);
-  vec3 l1 = texelFetch(u_diffuse_light, pixel, 0).rgb, l2 = texelFetch(u_specular_light, pixel, 0).rgb;
-  out_color = vec4(s.is_sky ? u_background : s.albedo * l1 + l2 + s.emissive, 1.0);
-  // [/composite]
-}
+void main() { out_color = vec4(composite_colour(ivec2(gl_FragCoord.xy)), 1.0); }
