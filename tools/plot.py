@@ -39,6 +39,7 @@ class Series:
     line: bool = True  # False: points only (a scatter of settings)
     colour: str = field(default="")
     in_order: bool = False  # True: the line joins the points in the order given (a knob's settings), not by x
+    dash: str = ""  # an SVG stroke-dasharray of its own ("2,3": dotted), over `dashed`
 
 
 def read_csv(path):
@@ -130,7 +131,7 @@ def plot(path, title, note, series, xlabel, ylabel, xlog=False, ylog=False, xtic
         p = [q for q in s.points if keep(q)]
         if s.line and not s.in_order:
             p.sort(key=lambda q: q[0])
-        dash = ' stroke-dasharray="6,4"' if s.dashed else ""
+        dash = f' stroke-dasharray="{s.dash}"' if s.dash else ' stroke-dasharray="6,4"' if s.dashed else ""
         if p and s.line and len(p) > 1:
             d = " ".join(f"{'M' if k == 0 else 'L'}{sx(q[0]):.1f},{sy(clamp_y(q[1])):.1f}" for k, q in enumerate(p))
             out.append(f'<path d="{d}" fill="none" stroke="{c}" stroke-width="2"{dash}/>')
