@@ -235,14 +235,16 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
                     std::to_string(grid_.tile_w));
       if (lanes != 1 && lanes != 2 && lanes != 4)
         throw Error("clustered lights: " + name() + " takes 1, 2 or 4 invocations a pixel, not " + std::to_string(lanes));
-      // (Larger tiles: over 1 024 invocations, or over GL's 32 KiB of shared memory with the lanes' sums.)
       if (settings_.lanes_from < 0)
         throw Error("clustered lights: " + name() + "'s lanes_from is a count of lights, not " + std::to_string(settings_.lanes_from));
+      // (Larger tiles: over 1 024 invocations, or over GL's 32 KiB of shared memory with the lanes' sums.)
       if (lanes > 1 && (settings_.sub_blocks || grid_.tile_w > 16))
         throw Error("clustered lights: " + name() + " with " + std::to_string(lanes) + " invocations a pixel needs " +
                     (settings_.sub_blocks ? std::string("no sub-blocks") : "tiles of at most 16 pixels, not " + std::to_string(grid_.tile_w)) +
                     " (one lane for those)");
     }
+    // zbin-staged with lanes in the heavy tiles alone: a first pass lists the tiles (shade_heavy_then_light).
+    const bool lane_lists = staged && settings_.kind == CullKind::ZBin && settings_.pixel_lanes > 1 && settings_.lanes_from > 0;
     subgroup_path_.clear();
     if (settings_.shade != ShadeIn::Fragment) {
       for (const std::string& image : ch03::LightBuffer::image_defines()) d.push_back(image);
@@ -250,7 +252,8 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
       if (staged && settings_.kind == CullKind::ZBin) {  // zbin_staged.comp's options
         if (settings_.sub_blocks) d.push_back("SUB_BLOCKS 1");
         if (settings_.staged_fields) d.push_back("STAGED_FIELDS 1");
-        if (settings_.pixel_lanes > 1) d.push_back("PIXEL_LANES " + std::to_string(settings_.pixel_lanes));
+        if (settings_.pixel_lanes > 1 && !lane_lists)  // in every tile (with the lists: the heavy tiles' dispatch)
+          d.push_back("PIXEL_LANES " + std::to_string(settings_.pixel_lanes));
         if (settings_.phase_clocks) d.push_back(phase_clocks_define());
       }
       if (!staged && settings_.kind != CullKind::ZBin) {  // a tile's or cluster's list, read once where shared
@@ -268,8 +271,7 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
       const char* file = !staged                              ? "09_clustered/shaders/shade.comp"
                          : settings_.kind == CullKind::ZBin ? "09_clustered/shaders/zbin_staged.comp"
                                                             : "09_clustered/shaders/shade_staged.comp";
-      const bool lane_lists = staged && settings_.kind == CullKind::ZBin && settings_.pixel_lanes > 1 && settings_.lanes_from > 0;
-      if (lane_lists) {  // a first pass lists the tiles that need the lanes
+      if (lane_lists) {
         shade_heavy_then_light(d, light, camera);
       } else {
         const ShaderProgram& p = program(GL_COMPUTE_SHADER, file, d);
@@ -327,7 +329,7 @@ void ClusteredLights::shade_heavy_then_light(const std::vector<std::string>& def
   for (const bool heavy : {true, false}) {
     std::vector<std::string> shade = d;
     shade.push_back(std::string("TILES_FROM_END ") + (heavy ? "0" : "1"));
-    if (!heavy) std::erase_if(shade, [](const std::string& x) { return x.rfind("PIXEL_LANES ", 0) == 0; });
+    if (heavy) shade.push_back("PIXEL_LANES " + std::to_string(settings_.pixel_lanes));  // the light tiles: one lane
     const ShaderProgram& p = program(GL_COMPUTE_SHADER, "09_clustered/shaders/zbin_staged.comp", shade);
     set_grid_uniforms(p, camera);
     p.use();

@@ -273,7 +273,6 @@ void set_light_list(World& w, std::vector<Light> lights) {
   w.frame_.volumes().set_lights(ch03::build_light_set(lights, ch03::cut_threshold(1.f, ch03::peak_reflectance(w.scene_)),
                                                       w.frame_.volumes().shapes()));
 }
-// The most lights any tile of Z-binning's masks holds (its set bits).
 // Each tile's lights: the bits of its masks.
 std::vector<std::size_t> lights_per_tile(const ClusteredLights::ZBinLists& z) {
   std::vector<std::size_t> n;
@@ -283,6 +282,7 @@ std::vector<std::size_t> lights_per_tile(const ClusteredLights::ZBinLists& z) {
   }
   return n;
 }
+// The most lights any tile of Z-binning's masks holds (its set bits).
 std::size_t most_lights_in_a_tile(const ClusteredLights::ZBinLists& z) {
   const std::vector<std::size_t> n = lights_per_tile(z);
   return n.empty() ? 0 : *std::max_element(n.begin(), n.end());
@@ -864,18 +864,6 @@ TEST_F(ClusteredGl, ZBinningsSortedRecordsAreTheLightsItsOrderNames) {
   }
 }
 
-// Z-binning staged (zbin_staged.comp): a work group per tile stages the lights of the span its
-// pixels' bins name, in sorted order and in chunks of a group's size, and each pixel adds the
-// part of each chunk in its own bin's range. It must add exactly zbin_visit's lights in
-// zbin_visit's order: the same evaluated pairs and light buffers, bit for bit. Two passes sort
-// alike only where no two lights share a sort key (ties are ordered by the atomics), so the
-// case lays its lights out along the view, each 1.3 sort keys deeper than the last (their
-// depths grow by a constant ratio, the keys are exponential), spots among them. The hard cases
-// are the tiles of near and far surfaces (spans of many bins, each pixel a part of them) and
-// spans of more lights than a chunk: the near tiles see over a thousand. ZBinStagedAtOtherTileSizes
-// takes the other shapes: 32-pixel tiles, whose 1 024 invocations stage a chunk of 256 (for
-// both staged passes); 8; 12, whose chunk of 144 is no power of two for the searches; 1, whose
-// walk takes the span 32 sorted positions a round, so that spans cross rounds.
 // Four lanes only in the tiles whose masks hold at least lanes_from lights: zbin_lanes.comp
 // lists each tile as heavy or light by its count, and the two dispatches shade the heavy with
 // four lanes, the light with one. The threshold is the case's median count, so that both lists
@@ -928,6 +916,18 @@ void ClusteredGl::lanes_in_heavy_tiles(World& w, const FrameCamera& cam, int wid
               heavy.size(), light.size(), apart[1], apart[0]);
 }
 
+// Z-binning staged (zbin_staged.comp): a work group per tile stages the lights of the span its
+// pixels' bins name, in sorted order and in chunks of a group's size, and each pixel adds the
+// part of each chunk in its own bin's range. It must add exactly zbin_visit's lights in
+// zbin_visit's order: the same evaluated pairs and light buffers, bit for bit. Two passes sort
+// alike only where no two lights share a sort key (ties are ordered by the atomics), so the
+// case lays its lights out along the view, each 1.3 sort keys deeper than the last (their
+// depths grow by a constant ratio, the keys are exponential), spots among them. The hard cases
+// are the tiles of near and far surfaces (spans of many bins, each pixel a part of them) and
+// spans of more lights than a chunk: the near tiles see over a thousand. ZBinStagedAtOtherTileSizes
+// takes the other shapes: 32-pixel tiles, whose 1 024 invocations stage a chunk of 256 (for
+// both staged passes); 8; 12, whose chunk of 144 is no power of two for the searches; 1, whose
+// walk takes the span 32 sorted positions a round, so that spans cross rounds.
 void ClusteredGl::zbin_staged_cases(const std::vector<int>& tiles, bool shapes) {
   World& w = street();
   const int width = 160, height = 90;

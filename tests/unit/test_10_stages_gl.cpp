@@ -261,15 +261,15 @@ TEST(WholeFrameStagesGl, AoAndIndirectLightAreChapter08s) {
 }
 
 // Chapter 03's global pass, chapter 08's add of the indirect light and chapter 03's composite in
-// compute, the whole frame's default (whole_frame.h), against their fragment passes, in the whole frame with the
-// sun's four cascades, the clusters, AO and one bounce on: the global pass's hooks (chapter 06's
-// visibility, chapter 08's ambient, both reading the pixel) run in compute, the clusters read its
-// images, chapter 08's pass reads its L1 as a texture, and its add reads and writes L1 as an image
-// where the fragment pass blends one plus one (a half float and a float summed, rounded once to a
-// half float either way), and chapter 03's composite writes the float radiance as an image
-// where the fragment pass writes it as a colour attachment (a float, rounded once to a half
-// float either way). The same bodies on the same inputs store the same values: the light
-// buffer and the float radiance equal bit for bit (the bound is 0). At 160x90 the 8x8 groups
+// compute, the whole frame's default (whole_frame.h), against their fragment passes, in the whole
+// frame with the sun's four cascades, the clusters, AO and one bounce on: the global pass's hooks
+// (chapter 06's visibility, chapter 08's ambient, both reading the pixel) run in compute, the
+// clusters read its images, chapter 08's pass reads its L1 as a texture, and its add reads and
+// writes L1 as an image where the fragment pass blends one plus one (a half float and a float
+// summed, rounded once to a half float either way), and chapter 03's composite writes the float
+// radiance as an image where the fragment pass writes it as a colour attachment (a float, rounded
+// once to a half float either way). The same bodies on the same inputs store the same values: the
+// light buffer and the float radiance equal bit for bit (the bound is 0). At 160x90 the 8x8 groups
 // overhang the last row of groups.
 TEST(WholeFrameStagesGl, TheGlobalPassInComputeIsItsFragmentPassBitForBit) {
   const Scene scene = shop_street();
