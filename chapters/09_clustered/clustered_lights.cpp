@@ -222,38 +222,15 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
     }
     if (output == ch03::LightVolumes::Output::HeatShaded) d.push_back("HEAT_SHADED 1");
     if (output == ch03::LightVolumes::Output::HeatLit) d.push_back("HEAT_LIT 1");
-    // Staged: one work group per tile, so tiled or Z-binning with square tiles of at most 32
-    // pixels (1 024 invocations, GL's guaranteed minimum); clusters shade per pixel (shade.comp).
     const bool staged = staged_shading(settings_);
-    if (staged && (grid_.tile_w != grid_.tile_h || grid_.tile_w > 32))
-      throw Error("clustered lights: " + name() + " needs square tiles of at most 32 pixels, not " +
-                  std::to_string(grid_.tile_w) + " x " + std::to_string(grid_.tile_h));
-    if (staged && settings_.kind == CullKind::ZBin) {  // zbin_staged.comp's shapes
-      const int lanes = settings_.pixel_lanes;
-      if (settings_.sub_blocks && grid_.tile_w % 8 != 0)
-        throw Error("clustered lights: " + name() + "'s sub-blocks of 8 x 4 pixels need tiles of 8, 16, 24 or 32 pixels, not " +
-                    std::to_string(grid_.tile_w));
-      if (lanes != 1 && lanes != 2 && lanes != 4)
-        throw Error("clustered lights: " + name() + " takes 1, 2 or 4 invocations a pixel, not " + std::to_string(lanes));
-      if (settings_.lanes_from < 0)
-        throw Error("clustered lights: " + name() + "'s lanes_from is a count of lights, not " + std::to_string(settings_.lanes_from));
-      // (Larger tiles: over 1 024 invocations, or over GL's 32 KiB of shared memory with the lanes' sums.)
-      if (lanes > 1 && (settings_.sub_blocks || grid_.tile_w > 16))
-        throw Error("clustered lights: " + name() + " with " + std::to_string(lanes) + " invocations a pixel needs " +
-                    (settings_.sub_blocks ? std::string("no sub-blocks") : "tiles of at most 16 pixels, not " + std::to_string(grid_.tile_w)) +
-                    " (one lane for those)");
-    }
-    // zbin-staged with lanes in the heavy tiles alone: a first pass lists the tiles (shade_heavy_then_light).
-    const bool lane_lists = staged && settings_.kind == CullKind::ZBin && settings_.pixel_lanes > 1 && settings_.lanes_from > 0;
+    if (staged) check_staged_shape();
     subgroup_path_.clear();
     if (settings_.shade != ShadeIn::Fragment) {
       for (const std::string& image : ch03::LightBuffer::image_defines()) d.push_back(image);
       if (staged) d.push_back("STAGE_TILE " + std::to_string(grid_.tile_w));
-      if (staged && settings_.kind == CullKind::ZBin) {  // zbin_staged.comp's options
+      if (staged && settings_.kind == CullKind::ZBin) {  // zbin_staged.comp's options (its lanes: dispatch_zbin_staged)
         if (settings_.sub_blocks) d.push_back("SUB_BLOCKS 1");
         if (settings_.staged_fields) d.push_back("STAGED_FIELDS 1");
-        if (settings_.pixel_lanes > 1 && !lane_lists)  // in every tile (with the lists: the heavy tiles' dispatch)
-          d.push_back("PIXEL_LANES " + std::to_string(settings_.pixel_lanes));
         if (settings_.phase_clocks) d.push_back(phase_clocks_define());
       }
       if (!staged && settings_.kind != CullKind::ZBin) {  // a tile's or cluster's list, read once where shared
@@ -268,13 +245,10 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
           if (settings_.subgroup_merge) d.push_back("SUBGROUP_MERGE 1");
         }
       }
-      const char* file = !staged                              ? "09_clustered/shaders/shade.comp"
-                         : settings_.kind == CullKind::ZBin ? "09_clustered/shaders/zbin_staged.comp"
-                                                            : "09_clustered/shaders/shade_staged.comp";
-      if (lane_lists) {
-        shade_heavy_then_light(d, light, camera);
+      if (staged && settings_.kind == CullKind::ZBin) {
+        dispatch_zbin_staged(d, camera, &light);
       } else {
-        const ShaderProgram& p = program(GL_COMPUTE_SHADER, file, d);
+        const ShaderProgram& p = program(GL_COMPUTE_SHADER, staged ? "09_clustered/shaders/shade_staged.comp" : "09_clustered/shaders/shade.comp", d);
         set_grid_uniforms(p, camera);
         p.use();
         light.bind_images(GL_READ_WRITE);  // on the units LightBuffer::image_defines() names
@@ -303,12 +277,50 @@ void ClusteredLights::draw(const ch03::LightBuffer& light, const ch03::SurfaceVi
 }
 // [/draw]
 
+// Staged: one work group per tile, so tiled or Z-binning with square tiles of at most 32
+// pixels (1 024 invocations, GL's guaranteed minimum); clusters shade per pixel (shade.comp).
+void ClusteredLights::check_staged_shape() const {
+  if (grid_.tile_w != grid_.tile_h || grid_.tile_w > 32)
+    throw Error("clustered lights: " + name() + " needs square tiles of at most 32 pixels, not " + std::to_string(grid_.tile_w) +
+                " x " + std::to_string(grid_.tile_h));
+  if (settings_.kind != CullKind::ZBin) return;
+  const int lanes = settings_.pixel_lanes;  // zbin_staged.comp's shapes
+  if (settings_.sub_blocks && grid_.tile_w % 8 != 0)
+    throw Error("clustered lights: " + name() + "'s sub-blocks of 8 x 4 pixels need tiles of 8, 16, 24 or 32 pixels, not " +
+                std::to_string(grid_.tile_w));
+  if (lanes != 1 && lanes != 2 && lanes != 4)
+    throw Error("clustered lights: " + name() + " takes 1, 2 or 4 invocations a pixel, not " + std::to_string(lanes));
+  if (settings_.lanes_from < 0)
+    throw Error("clustered lights: " + name() + "'s lanes_from is a count of lights, not " + std::to_string(settings_.lanes_from));
+  // (Larger tiles: over 1 024 invocations, or over GL's 32 KiB of shared memory with the lanes' sums.)
+  if (lanes > 1 && (settings_.sub_blocks || grid_.tile_w > 16))
+    throw Error("clustered lights: " + name() + " with " + std::to_string(lanes) + " invocations a pixel needs " +
+                (settings_.sub_blocks ? std::string("no sub-blocks") : "tiles of at most 16 pixels, not " + std::to_string(grid_.tile_w)) +
+                " (one lane for those)");
+}
+
+void ClusteredLights::dispatch_zbin_staged(std::vector<std::string> d, const FrameCamera& camera, const ch03::LightBuffer* light) {
+  d.push_back("STAGE_TILE " + std::to_string(grid_.tile_w));
+  if (settings_.pixel_lanes > 1 && settings_.lanes_from > 0) {  // lanes in the heavy tiles alone: a first pass lists them
+    shade_heavy_then_light(d, light, camera);
+    return;
+  }
+  if (settings_.pixel_lanes > 1) d.push_back("PIXEL_LANES " + std::to_string(settings_.pixel_lanes));  // in every tile
+  const ShaderProgram& p = program(GL_COMPUTE_SHADER, "09_clustered/shaders/zbin_staged.comp", d);
+  set_grid_uniforms(p, camera);
+  p.use();
+  if (light) light->bind_images(GL_READ_WRITE);  // on the units LightBuffer::image_defines() names
+  glDispatchCompute(GLuint(grid_.tiles_x), GLuint(grid_.tiles_y), 1);  // a group a tile
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
+                  GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
 // [lane-dispatch]
 // zbin-staged with lanes only where a tile needs them (ClusterSettings::lanes_from): a group a
 // tile counts the tile's lights and lists it as heavy or light (zbin_lanes.comp), then the
 // heavy tiles are shaded with the lanes and the light ones with one, each dispatch as many
 // groups as its list holds, read by the GPU from the counts the first pass left.
-void ClusteredLights::shade_heavy_then_light(const std::vector<std::string>& defines, const ch03::LightBuffer& light,
+void ClusteredLights::shade_heavy_then_light(const std::vector<std::string>& defines, const ch03::LightBuffer* light,
                                              const FrameCamera& camera) {
   const std::size_t tiles = std::size_t(grid_.tiles_x) * std::size_t(grid_.tiles_y), bytes = 24 + tiles * 4;
   if (bytes != lane_tiles_bytes_) glNamedBufferData(lane_tiles_.id(), GLsizeiptr(lane_tiles_bytes_ = bytes), nullptr, GL_DYNAMIC_DRAW);
@@ -324,7 +336,7 @@ void ClusteredLights::shade_heavy_then_light(const std::vector<std::string>& def
   glDispatchCompute(GLuint(grid_.tiles_x), GLuint(grid_.tiles_y), 1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);  // the lists, and the counts as dispatches
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, lane_tiles_.id());
-  light.bind_images(GL_READ_WRITE);  // on the units LightBuffer::image_defines() names
+  if (light) light->bind_images(GL_READ_WRITE);  // on the units LightBuffer::image_defines() names
   // The heavy tiles first (their groups run longest), then the light: one lane, from the back.
   for (const bool heavy : {true, false}) {
     std::vector<std::string> shade = d;
@@ -593,13 +605,12 @@ void ClusteredLights::assign_zbin(const std::vector<std::string>& defines, const
   steps("bins", 4, 4);
   steps("tiles", 5, 6);
   if (floor) {  // each pixel's exact list, into the index list (bound where the sort's scratch was)
+    check_staged_shape();  // built a tile at a time, with zbin-staged's walk and lanes
     auto floor_pass = timed(metrics_, part + "floor lists");
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, indices_.id());
-    const ShaderProgram& p = program(GL_COMPUTE_SHADER, "09_clustered/shaders/zbin_floor.comp", defines);
-    set_grid_uniforms(p, camera);
-    p.use();
-    glDispatchCompute(GLuint((grid_.width + 7) / 8), GLuint((grid_.height + 7) / 8), 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    std::vector<std::string> d = defines;
+    d.push_back("FLOOR_LISTS 1");
+    dispatch_zbin_staged(d, camera, nullptr);
   }
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   fence_state();
@@ -673,7 +684,7 @@ EvalCounts ClusteredLights::counts() const {
 }
 
 std::vector<glm::uvec2> ClusteredLights::cell_lists() const {
-  if (settings_.kind == CullKind::ZBin) {  // each tile's bits: (0, how many)
+  if (settings_.kind == CullKind::ZBin && !settings_.floor) {  // each tile's bits: (0, how many)
     std::vector<std::uint32_t> m(masks_bytes_ / 4);
     if (!m.empty()) glGetNamedBufferSubData(masks_.id(), 0, GLsizeiptr(masks_bytes_), m.data());
     const std::size_t words = (std::size_t(light_count_) + 31) / 32;
@@ -682,7 +693,7 @@ std::vector<glm::uvec2> ClusteredLights::cell_lists() const {
       for (std::size_t k = 0; k < words && t * words + k < m.size(); ++k) v[t].y += std::uint32_t(std::popcount(m[t * words + k]));
     return v;
   }
-  std::vector<glm::uvec2> v(std::size_t(grid_.cells()));
+  std::vector<glm::uvec2> v(cells_bytes_ / 8);  // a cell's, or (the floor) a pixel's
   if (!v.empty()) glGetNamedBufferSubData(cells_.id(), 0, GLsizeiptr(v.size() * 8), v.data());
   return v;
 }

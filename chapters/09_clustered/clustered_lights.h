@@ -43,7 +43,8 @@ struct ClusterSettings {
   int zbins = 1024;          // zbin: exponential depth bins (1 to 16 384); its tiles are tile_px
   // zbin-floor, a benchmark: Z-binning's lists turned into each pixel's exact list (the lights
   // whose cut reaches its surface) in the assignment, so that the shading pass is the per-pair
-  // arithmetic alone: the floor the other modes' shading is measured against.
+  // arithmetic alone: the floor the other modes' shading is measured against. The lists are
+  // built a tile at a time by zbin_staged.comp's walk (FLOOR_LISTS), with its lanes as set below.
   bool floor = false;
   // zbin: each light's record (and a spot's cone) copied into the sorted order by the sort, so
   // that the shading reads a light at its sorted position beside its index, not through it.
@@ -210,6 +211,7 @@ class ClusteredLights : public ch03::LocalLightPass {
   // Every cell's light count in the last draw (cell_index order: x fastest, then y, then slice).
   std::vector<std::uint32_t> cell_counts() const;
   // Every cell's list as stored: (offset, count) per cell and the index list, for the tests.
+  // zbin: each tile's (0, bits set); zbin-floor: each pixel's exact list (row by row).
   std::vector<glm::uvec2> cell_lists() const;
   std::vector<std::uint32_t> index_list();  // waits for the last draw
   // Z-binning's lists as stored, for the tests: the sorted order (order[p] is a light), each
@@ -296,7 +298,11 @@ class ClusteredLights : public ch03::LocalLightPass {
   gl::Buffer clocks_;
   gl::Buffer lane_tiles_;  // zbin_lanes.comp's two dispatches and lists of tiles (lanes_from)
   std::size_t lane_tiles_bytes_ = 0;
-  void shade_heavy_then_light(const std::vector<std::string>& defines, const ch03::LightBuffer& light, const FrameCamera& camera);
+  void shade_heavy_then_light(const std::vector<std::string>& defines, const ch03::LightBuffer* light, const FrameCamera& camera);
+  // zbin_staged.comp, a group a tile (its lanes as the settings say): the shading into `light`, or
+  // with FLOOR_LISTS in `defines` (light null) the floor's exact lists.
+  void dispatch_zbin_staged(std::vector<std::string> defines, const FrameCamera& camera, const ch03::LightBuffer* light);
+  void check_staged_shape() const;  // throws where zbin_staged.comp cannot take the tiles and lanes asked for
   bool clocks_ready_ = false;
   bool support_known_ = false;
   ch02::FullScreenPass full_screen_;

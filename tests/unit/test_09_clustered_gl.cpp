@@ -530,6 +530,110 @@ TEST_F(ClusteredGl, AListOverCapacityIsReportedAFrameLateAndLosesNoLight) {
   }
 }
 
+// zbin-floor's exact lists, built a tile at a time by zbin_staged.comp (FLOOR_LISTS: a walk
+// that counts, a prefix sum and an atomic a tile, a walk that writes). Whether one invocation
+// a pixel walks the span, four in every tile, or four in the heavy tiles alone (lanes_from),
+// each pixel's list holds the same lights; the lists tile the index list without gap or
+// overlap; with one lane each is in sorted order. Over capacity a tile's pixels are shaded
+// through Z-binning (no light lost) and counted a frame late.
+TEST_F(ClusteredGl, TheFloorsExactListsAreTheSameWithAnyLanes) {
+  World& w = street();
+  set_lights(w, 3000);
+  const int width = 160, height = 90;
+  const FrameCamera cam = camera(w, "street_level", width, height);
+  const std::uint32_t lights = w.frame_.volumes().lights().local_count();
+  ClusterSettings one = settings_for_mode("zbin-floor");
+  one.pixel_lanes = 1;
+  ClusteredLights first(w.frame_.volumes(), one);
+  const Render want = render(w, cam, width, height, &first, false);
+  ASSERT_EQ(want.stats.cells_over, 0u);
+  ASSERT_GT(want.counts.lit, 10000u);
+  const ClusteredLights::ZBinLists zbin = first.zbin_lists();
+  std::vector<std::uint32_t> position(zbin.order.size());
+  for (std::size_t p = 0; p < zbin.order.size(); ++p) position[zbin.order[p]] = std::uint32_t(p);
+  std::vector<std::size_t> per_tile = lights_per_tile(zbin);
+  std::erase(per_tile, 0u);
+  ASSERT_GT(per_tile.size(), 4u);
+  std::nth_element(per_tile.begin(), per_tile.begin() + std::ptrdiff_t(per_tile.size() / 2), per_tile.end());
+  const int median = int(per_tile[per_tile.size() / 2]);
+
+  // Each pixel's lights, sorted; checking on the way that the lists are compacted.
+  auto lists_of = [&](ClusteredLights& pass, bool in_sorted_order) {
+    std::vector<glm::uvec2> cells = pass.cell_lists();
+    const std::vector<std::uint32_t> index = pass.index_list();
+    EXPECT_EQ(cells.size(), std::size_t(width) * std::size_t(height));
+    EXPECT_EQ(index.size(), pass.stats().indices);
+    std::vector<std::vector<std::uint32_t>> pixels;
+    for (const glm::uvec2& c : cells) {
+      std::vector<std::uint32_t> l;
+      for (std::uint32_t k = 0; k < c.y && c.x + k < index.size(); ++k) {
+        EXPECT_LT(index[c.x + k], lights);
+        if (in_sorted_order && k > 0) {
+          EXPECT_LT(position[index[c.x + k - 1]], position[index[c.x + k]]) << "not in sorted order";
+        }
+        l.push_back(index[c.x + k]);
+      }
+      std::sort(l.begin(), l.end());
+      pixels.push_back(l);
+    }
+    std::sort(cells.begin(), cells.end(), [](glm::uvec2 a, glm::uvec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+    std::uint64_t next = 0;
+    for (const glm::uvec2& c : cells) {
+      if (c.y == 0) continue;
+      EXPECT_EQ(c.x, next) << "a gap or an overlap in the index list";
+      next = c.x + std::uint64_t(c.y);
+    }
+    EXPECT_EQ(next, index.size());
+    return pixels;
+  };
+  const std::vector<std::vector<std::uint32_t>> exact = lists_of(first, true);
+  if (HasFailure()) return;
+  struct Case {
+    int lanes, from;
+  };
+  for (const Case c : {Case{4, 0}, Case{2, 0}, Case{4, median}}) {
+    SCOPED_TRACE(std::to_string(c.lanes) + " lanes from " + std::to_string(c.from) + " lights");
+    ClusterSettings s = settings_for_mode("zbin-floor");
+    s.pixel_lanes = c.lanes;
+    s.lanes_from = c.from;
+    ClusteredLights laned(w.frame_.volumes(), s);
+    const Render r = render(w, cam, width, height, &laned, false);
+    EXPECT_EQ(r.counts.lit, want.counts.lit);
+    EXPECT_EQ(r.counts.evaluated, want.counts.evaluated);
+    std::size_t differ = 0;
+    const std::vector<std::vector<std::uint32_t>> got = lists_of(laned, false);
+    for (std::size_t i = 0; i < exact.size() && i < got.size(); ++i) differ += got[i] != exact[i];
+    EXPECT_EQ(differ, 0u) << "pixels whose list holds other lights than one lane's";
+    if (c.from > 0) {
+      const ClusteredLights::LaneTiles t = laned.lane_tiles();
+      EXPECT_FALSE(t.heavy.empty());
+      EXPECT_FALSE(t.light.empty());
+    }
+  }
+
+  // Over capacity: the tiles that do not fit are shaded through Z-binning, the same lights in
+  // the same (sorted) order, those beyond their cut adding exactly 0: the same light buffer.
+  ClusterSettings small = one;
+  small.initial_indices = 16;
+  small.grow = false;
+  ClusteredLights tight(w.frame_.volumes(), small);
+  const Render r = render(w, cam, width, height, &tight, false);
+  EXPECT_GT(r.stats.cells_over, 0u);
+  EXPECT_EQ(r.stats.indices, want.stats.indices) << "what the pixels asked for, exactly";
+  EXPECT_EQ(r.counts.lit, want.counts.lit);
+  EXPECT_GT(r.counts.evaluated, want.counts.evaluated);
+  EXPECT_EQ(r.l1, want.l1);
+  EXPECT_EQ(r.l2, want.l2);
+  std::uint64_t stored = 0, over = 0;
+  for (const glm::uvec2& c : tight.cell_lists()) {
+    if (c.x == 0xFFFFFFFFu) ++over;
+    else stored += c.y;
+  }
+  EXPECT_LE(stored, 16u);
+  EXPECT_EQ(over, r.stats.cells_over);
+  EXPECT_EQ(r.stats.over_entries + stored, want.stats.indices);
+}
+
 TEST_F(ClusteredGl, ZeroLightsAddNothing) {
   World& w = street();
   std::vector<Light> none;

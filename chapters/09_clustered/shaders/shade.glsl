@@ -70,11 +70,11 @@ void add_light(Surface s, vec3 to_eye, uvec2 list, uint k, inout vec3 diffuse, i
 }
 
 #ifdef ZBIN
-// What zbin_visit does with each light it finds: add it (the shading), or (the floor's exact
-// lists, zbin_floor.comp) count those whose cut reaches the surface, or also write them.
-const int kZShade = 0, kZCount = 1, kZWrite = 2;
 #ifdef FLOOR
 layout(std430, binding = 8) buffer FloorLists { uint floor_lights[]; };  // the exact lists, per pixel
+// The floor's lists hold a light where its cut reaches the surface: exactly the lights
+// local_light() does not end at their cut (zbin_staged.comp's FLOOR_LISTS builds them).
+bool cut_reaches(vec4 position_radius, Surface s) { return distance(position_radius.xyz, s.position) <= position_radius.w; }
 #endif
 // The record of light i at sorted position p.
 SortedRecord zbin_record(uint p, int i) {
@@ -84,25 +84,14 @@ SortedRecord zbin_record(uint p, int i) {
   return SortedRecord(cluster_lights[i], cone_of(i));
 #endif
 }
-// The light of the lowest bit left in mask word w (if any), visited; its bit cleared.
-void zbin_take(Surface s, vec3 to_eye, uint w, int op, inout uint m, inout uint at, inout vec3 diffuse,
-               inout vec3 specular, inout uint lit) {
+// The light of the lowest bit left in mask word w (if any), added; its bit cleared.
+void zbin_take(Surface s, vec3 to_eye, uint w, inout uint m, inout vec3 diffuse, inout vec3 specular, inout uint lit) {
   if (m == 0u) return;
   uint p = w * 32u + uint(findLSB(m));
   int i = int(light_indices[p]);
   m &= m - 1u;
   SortedRecord r = zbin_record(p, i);
-  if (op == kZShade) {
-    add_lamp(s, to_eye, i, r.light, r.cone, diffuse, specular, lit);
-    return;
-  }
-  // The floor's lists: the lights local_light() would not end at their cut, exactly.
-  vec4 l = r.light.position_radius;
-  if (distance(l.xyz, s.position) > l.w) return;
-#ifdef FLOOR
-  if (op == kZWrite) floor_lights[at] = uint(i);
-#endif
-  ++at;
+  add_lamp(s, to_eye, i, r.light, r.cone, diffuse, specular, lit);
 }
 
 // [zbin-loop]
@@ -110,8 +99,8 @@ void zbin_take(Surface s, vec3 to_eye, uint w, int op, inout uint m, inout uint 
 // sorted (depth) order. tile_words says which of the tile's words have bits: the range's
 // empty words are passed over 32 at a time. Four bits an iteration, for llvmpipe's loop limit
 // (see the lists' loop).
-void zbin_visit(Surface s, vec3 to_eye, ivec2 pixel, int op, inout uint at, inout vec3 diffuse, inout vec3 specular,
-                inout uint evaluated, inout uint lit) {
+void zbin_visit(Surface s, vec3 to_eye, ivec2 pixel, inout vec3 diffuse, inout vec3 specular, inout uint evaluated,
+                inout uint lit) {
   uvec2 range = zbin_range(zbin_of(view_depth(s.position)));
   uint tile = uint(cell_index(tile_of(pixel), 0)), base = tile * zbin_words();
   uint w0 = range.x >> 5u, w1 = range.y >> 5u;
@@ -124,10 +113,10 @@ void zbin_visit(Surface s, vec3 to_eye, ivec2 pixel, int op, inout uint at, inou
         uint m = cut_to_span(tile_masks[base + w], w, range.x, range.y);
         evaluated += uint(bitCount(m));
         while (m != 0u) {
-          zbin_take(s, to_eye, w, op, m, at, diffuse, specular, lit);
-          zbin_take(s, to_eye, w, op, m, at, diffuse, specular, lit);
-          zbin_take(s, to_eye, w, op, m, at, diffuse, specular, lit);
-          zbin_take(s, to_eye, w, op, m, at, diffuse, specular, lit);
+          zbin_take(s, to_eye, w, m, diffuse, specular, lit);
+          zbin_take(s, to_eye, w, m, diffuse, specular, lit);
+          zbin_take(s, to_eye, w, m, diffuse, specular, lit);
+          zbin_take(s, to_eye, w, m, diffuse, specular, lit);
         }
       }
     }
@@ -190,7 +179,7 @@ void shade_surface(Surface s, ivec2 pixel, out vec3 diffuse, out vec3 specular, 
   if (s.is_sky) return;
   vec3 to_eye = normalize(gb_eye.xyz - s.position);  // the pixel's, for each of its lights
 #ifdef FLOOR
-  // The floor: the pixel's exact list (zbin_floor.comp), no culling left to do; a pixel
+  // The floor: the pixel's exact list (zbin_staged.comp's FLOOR_LISTS), no culling left to do; a pixel
   // whose list did not fit falls back to the Z-binning below.
   uvec2 exact = cells[pixel.y * u_grid.x + pixel.x];
   if (exact.x != kEveryLight) {
@@ -204,8 +193,7 @@ void shade_surface(Surface s, ivec2 pixel, out vec3 diffuse, out vec3 specular, 
   }
 #endif
 #ifdef ZBIN
-  uint unused = 0u;
-  zbin_visit(s, to_eye, pixel, kZShade, unused, diffuse, specular, evaluated, lit);
+  zbin_visit(s, to_eye, pixel, diffuse, specular, evaluated, lit);
   count_pixel(evaluated, lit);
   return;
 #endif

@@ -10,6 +10,8 @@
 // adds them, each record read from memory once per tile instead of once per pixel. With
 // PIXEL_LANES (ClusterSettings::pixel_lanes) a pixel has that many invocations, the group's
 // z: each adds every PIXEL_LANES-th of the pixel's lights, and lane 0 adds up the lanes' sums.
+// With FLOOR_LISTS (zbin-floor's assignment) the pass lights nothing: it writes each pixel's
+// exact list, the staged lights whose cut reaches its surface (floor_lists() below).
 #ifndef PIXEL_LANES
 #define PIXEL_LANES 1
 #endif
@@ -20,8 +22,10 @@ layout(local_size_x = STAGE_TILE, local_size_y = STAGE_TILE, local_size_z = PIXE
 
 // Every loop here counts against llvmpipe's limit of 65 535 iterations a shader (see the lists'
 // loop): the pixel's loop adds four lights an iteration, the searches have fixed steps.
+#ifndef FLOOR_LISTS
 layout(binding = LIGHT_BUFFER_IMAGE + 0, rgba16f) uniform image2D u_l1;  // LightBuffer::image_defines()
 layout(binding = LIGHT_BUFFER_IMAGE + 1, rgba16f) uniform image2D u_l2;
+#endif
 
 const uint kPixels = uint(STAGE_TILE * STAGE_TILE), kLanes = uint(PIXEL_LANES);
 const uint kGroup = kPixels * kLanes;  // invocations: lane j's are kPixels * j onwards
@@ -34,7 +38,11 @@ shared int s_light[kChunk];
 shared uint s_position[kChunk];  // ascending within a chunk, and from chunk to chunk
 // The staged records: an array of records, or (ClusterSettings::staged_fields) an array per
 // field, a structure of arrays. The same values either way; only their layout differs.
-#ifdef STAGED_FIELDS
+#if defined(FLOOR_LISTS)  // the floor's lists test the cut alone: the positions and radii
+shared vec4 s_position_radius[kChunk];
+void stage_record(uint k, SortedRecord r) { s_position_radius[k] = r.light.position_radius; }
+SortedRecord staged_record(uint k) { return SortedRecord(ClusterLight(s_position_radius[k], vec4(0.0)), vec4(0.0)); }
+#elif defined(STAGED_FIELDS)
 shared vec4 s_position_radius[kChunk], s_radiance[kChunk], s_cone[kChunk];
 void stage_record(uint k, SortedRecord r) {
   s_position_radius[k] = r.light.position_radius;
@@ -182,6 +190,26 @@ void add_staged(Surface s, vec3 to_eye, uint k, uint block_bit, inout vec3 diffu
   add_lamp(s, to_eye, s_light[k], r.light, r.cone, diffuse, specular, lit);
   ++evaluated;
 }
+
+// What the walk does with each light of a pixel's part: add it (the shading), or (the floor's
+// lists) count those whose cut reaches the surface, or write them from `at` on.
+const int kAdd = 0, kCount = 1, kWrite = 2;
+#ifdef FLOOR
+void list_staged(Surface s, uint k, int op, inout uint entry) {
+  if (!cut_reaches(staged_record(k).light.position_radius, s)) return;
+  if (op == kWrite) floor_lights[entry] = uint(s_light[k]);
+  ++entry;
+}
+#else
+void list_staged(Surface s, uint k, int op, inout uint entry) {}
+#endif
+void visit_staged(Surface s, vec3 to_eye, uint k, uint block_bit, int op, inout uint entry, inout vec3 diffuse,
+                  inout vec3 specular, inout uint evaluated, inout uint lit) {
+  if (op == kAdd)
+    add_staged(s, to_eye, k, block_bit, diffuse, specular, evaluated, lit);
+  else
+    list_staged(s, k, op, entry);
+}
 // [/zbin-stage]
 
 // [pixel-lanes]
@@ -210,6 +238,131 @@ void add_lanes(uint lane, uint pixel, inout vec3 diffuse, inout vec3 specular, i
 #endif
 }
 // [/pixel-lanes]
+
+// [zbin-staged-loop]
+// The tile's span walked: its lights staged a chunk at a time, and each pixel's part of each
+// chunk visited (op: kAdd, or the floor's kCount and kWrite). Every invocation of the group
+// calls it with the same span: its barriers are uniform.
+void walk_span(int op, uint tile, uint first, uint last, Surface s, vec3 to_eye, uvec2 range, uint lane, uint block_bit,
+               inout uint entry, inout vec3 diffuse, inout vec3 specular, inout uint evaluated, inout uint lit) {
+  uint t = gl_LocalInvocationIndex;
+  if (first <= last)
+    for (uint w0 = first >> 5u; w0 <= last >> 5u; w0 += kGroup) {
+      // A round: invocation t's word, its lights counted and numbered in sorted order.
+      uint m = span_word(tile, w0 + t, first, last);
+      barrier();  // the last round's total is read
+      s_sum[t] = uint(bitCount(m));
+      barrier();
+      sum_up(t);
+      uint total = s_sum[kGroup - 1u], before = s_sum[t] - uint(bitCount(m));
+      clock_phase(kSpan);
+      // The round's lights in chunks of kChunk: each invocation stages those of its word that
+      // fall in the chunk, then every pixel adds those in its own range.
+      for (uint chunk = 0u; chunk < total; chunk += kChunk) {
+        uint at = before, bits = before + uint(bitCount(m)) > chunk ? m : 0u;  // (a word before the chunk: none)
+        while (bits != 0u && at < chunk + kChunk) {
+          uint p = (w0 + t) * 32u + uint(findLSB(bits));
+          bits &= bits - 1u;
+          if (at >= chunk) {
+            int i = int(light_indices[p]);
+            stage_record(at - chunk, zbin_record(p, i));
+            s_light[at - chunk] = i;
+            s_position[at - chunk] = p;
+#ifdef SUB_BLOCKS
+            s_reach[at - chunk] = 0u;
+#endif
+          }
+          ++at;
+        }
+        barrier();
+        clock_phase(kStage);
+        uint n = min(kChunk, total - chunk);  // the lights staged
+#ifdef SUB_BLOCKS
+        // Each light's blocks: kGroup / kChunk invocations a light (32-pixel tiles: four), each
+        // taking every fourth block.
+        if (t % kChunk < n) {
+          uint reach = blocks_reached(staged_record(t % kChunk).light.position_radius, t / kChunk, kGroup / kChunk);
+          if (reach != 0u) atomicOr(s_reach[t % kChunk], reach);
+        }
+        barrier();
+        clock_phase(kReach);
+#endif
+        // [zbin-staged-pixel]
+        // The pixel's part of the chunk: its lights from the range's start to its end (none
+        // where its bin's range is empty, x > y: then b <= a), this lane's every kLanes-th.
+        uint a = staged_before(range.x, n), b = staged_before(range.y + 1u, n);
+        for (uint k = a + lane; k < b; k += 4u * kLanes) {
+          visit_staged(s, to_eye, k, block_bit, op, entry, diffuse, specular, evaluated, lit);
+          if (k + kLanes < b) visit_staged(s, to_eye, k + kLanes, block_bit, op, entry, diffuse, specular, evaluated, lit);
+          if (k + 2u * kLanes < b) visit_staged(s, to_eye, k + 2u * kLanes, block_bit, op, entry, diffuse, specular, evaluated, lit);
+          if (k + 3u * kLanes < b) visit_staged(s, to_eye, k + 3u * kLanes, block_bit, op, entry, diffuse, specular, evaluated, lit);
+        }
+        // [/zbin-staged-pixel]
+        barrier();  // the chunk is read before the next is staged
+        clock_phase(kShade);
+      }
+    }
+}
+// [/zbin-staged-loop]
+
+#ifdef FLOOR_LISTS
+// [floor-lists]
+// zbin-floor's assignment: each pixel's exact list, the lights of its part of the span whose
+// cut reaches its surface, in the index list. Two walks: the first counts each (pixel, lane)'s
+// lights, a prefix sum over the group places them (a pixel's lanes one after another) and one
+// atomic takes the tile's room; the second writes them. Bounded as the index list is: a tile
+// that does not fit marks its pixels (kEveryLight: shaded through Z-binning) and is counted.
+layout(std430, binding = 5) buffer ListState {
+  uint head, capacity, cells_over, over_lo, over_hi, needed_lo, needed_hi, max_count;
+} state;
+shared uint s_base, s_stored, s_pixels, s_longest;
+void floor_lists(uint tile, uint first, uint last, Surface s, uvec2 range, uint lane, bool inside, ivec2 pixel) {
+  uint t = gl_LocalInvocationIndex, u = (t % kPixels) * kLanes + lane;  // (pixel, lane) order
+  vec3 no_light = vec3(0.0);
+  uint n = 0u, unused = 0u;
+  walk_span(kCount, tile, first, last, s, vec3(0.0), range, lane, 0u, n, no_light, no_light, unused, unused);
+  if (t == 0u) s_pixels = s_longest = 0u;
+  barrier();  // every invocation has read the walk's last round total (s_sum) before it is reused
+  s_sum[u] = n;
+  barrier();
+  sum_up(t);
+  uint total = s_sum[kGroup - 1u], start = s_sum[u] - n;  // the tile's entries; this (pixel, lane)'s first
+  uint count = lane == 0u ? s_sum[u + kLanes - 1u] - start : 0u;  // the pixel's, its lanes' together
+  if (count > 0u) {
+    atomicAdd(s_pixels, 1u);
+    atomicMax(s_longest, count);
+  }
+  if (t == 0u) {
+    uint base = 0u;
+    bool stored = true;
+    if (total > 0u) {
+      if (atomicAdd(state.needed_lo, total) > 0xFFFFFFFFu - total) atomicAdd(state.needed_hi, 1u);
+      stored = false;
+      if (atomicAdd(state.head, 0u) <= state.capacity) {
+        base = atomicAdd(state.head, total);
+        stored = base <= state.capacity && total <= state.capacity - base;
+      }
+    }
+    s_base = base;
+    s_stored = stored ? 1u : 0u;
+  }
+  barrier();
+  bool stored = s_stored != 0u;  // the same in every invocation
+  if (t == 0u && total > 0u) {
+    atomicMax(state.max_count, s_longest);
+    if (!stored) {
+      atomicAdd(state.cells_over, s_pixels);
+      if (atomicAdd(state.over_lo, total) > 0xFFFFFFFFu - total) atomicAdd(state.over_hi, 1u);
+    }
+  }
+  if (inside && lane == 0u)
+    cells[pixel.y * u_grid.x + pixel.x] = count == 0u ? uvec2(0u) : stored ? uvec2(s_base + start, count) : uvec2(kEveryLight, 0u);
+  if (!stored || total == 0u) return;
+  uint entry = s_base + start;
+  walk_span(kWrite, tile, first, last, s, vec3(0.0), range, lane, 0u, entry, no_light, no_light, unused, unused);
+}
+// [/floor-lists]
+#endif
 
 void main() {
   clock_start();
@@ -258,67 +411,13 @@ void main() {
   barrier();
   clock_phase(kSetup);
   uint first = s_first, last = s_last;  // the same in every invocation: the loops below are uniform
+#ifdef FLOOR_LISTS
+  floor_lists(tile, first, last, s, range, lane, inside, pixel);
+#else
   vec3 diffuse = vec3(0.0), specular = vec3(0.0);
   vec3 to_eye = normalize(gb_eye.xyz - s.position);
-  uint evaluated = 0u, lit = 0u;
-  // [zbin-staged-loop]
-  if (first <= last)
-    for (uint w0 = first >> 5u; w0 <= last >> 5u; w0 += kGroup) {
-      // A round: invocation t's word, its lights counted and numbered in sorted order.
-      uint m = span_word(tile, w0 + t, first, last);
-      barrier();  // the last round's total is read
-      s_sum[t] = uint(bitCount(m));
-      barrier();
-      sum_up(t);
-      uint total = s_sum[kGroup - 1u], before = s_sum[t] - uint(bitCount(m));
-      clock_phase(kSpan);
-      // The round's lights in chunks of kChunk: each invocation stages those of its word that
-      // fall in the chunk, then every pixel adds those in its own range.
-      for (uint chunk = 0u; chunk < total; chunk += kChunk) {
-        uint at = before, bits = before + uint(bitCount(m)) > chunk ? m : 0u;  // (a word before the chunk: none)
-        while (bits != 0u && at < chunk + kChunk) {
-          uint p = (w0 + t) * 32u + uint(findLSB(bits));
-          bits &= bits - 1u;
-          if (at >= chunk) {
-            int i = int(light_indices[p]);
-            stage_record(at - chunk, zbin_record(p, i));
-            s_light[at - chunk] = i;
-            s_position[at - chunk] = p;
-#ifdef SUB_BLOCKS
-            s_reach[at - chunk] = 0u;
-#endif
-          }
-          ++at;
-        }
-        barrier();
-        clock_phase(kStage);
-        uint n = min(kChunk, total - chunk);  // the lights staged
-#ifdef SUB_BLOCKS
-        // Each light's blocks: kGroup / kChunk invocations a light (32-pixel tiles: four), each
-        // taking every fourth block.
-        if (t % kChunk < n) {
-          uint reach = blocks_reached(staged_record(t % kChunk).light.position_radius, t / kChunk, kGroup / kChunk);
-          if (reach != 0u) atomicOr(s_reach[t % kChunk], reach);
-        }
-        barrier();
-        clock_phase(kReach);
-#endif
-        // [zbin-staged-pixel]
-        // The pixel's part of the chunk: its lights from the range's start to its end (none
-        // where its bin's range is empty, x > y: then b <= a), this lane's every kLanes-th.
-        uint a = staged_before(range.x, n), b = staged_before(range.y + 1u, n);
-        for (uint k = a + lane; k < b; k += 4u * kLanes) {
-          add_staged(s, to_eye, k, block_bit, diffuse, specular, evaluated, lit);
-          if (k + kLanes < b) add_staged(s, to_eye, k + kLanes, block_bit, diffuse, specular, evaluated, lit);
-          if (k + 2u * kLanes < b) add_staged(s, to_eye, k + 2u * kLanes, block_bit, diffuse, specular, evaluated, lit);
-          if (k + 3u * kLanes < b) add_staged(s, to_eye, k + 3u * kLanes, block_bit, diffuse, specular, evaluated, lit);
-        }
-        // [/zbin-staged-pixel]
-        barrier();  // the chunk is read before the next is staged
-        clock_phase(kShade);
-      }
-    }
-  // [/zbin-staged-loop]
+  uint evaluated = 0u, lit = 0u, unused = 0u;
+  walk_span(kAdd, tile, first, last, s, to_eye, range, lane, block_bit, unused, diffuse, specular, evaluated, lit);
   add_lanes(lane, t % kPixels, diffuse, specular, evaluated, lit);
   if (!inside || lane != 0u) return;
   if (shaded) count_pixel(evaluated, lit);
@@ -328,4 +427,5 @@ void main() {
   imageStore(u_l2, pixel, imageLoad(u_l2, pixel) + l2);
   clock_phase(kOutput);
   clock_add();
+#endif
 }
