@@ -300,7 +300,6 @@ void ClusteredLights::check_staged_shape() const {
 }
 
 void ClusteredLights::dispatch_zbin_staged(std::vector<std::string> d, const FrameCamera& camera, const ch03::LightBuffer* light) {
-  d.push_back("STAGE_TILE " + std::to_string(grid_.tile_w));
   if (settings_.pixel_lanes > 1 && settings_.lanes_from > 0) {  // lanes in the heavy tiles alone: a first pass lists them
     shade_heavy_then_light(d, light, camera);
     return;
@@ -610,6 +609,7 @@ void ClusteredLights::assign_zbin(const std::vector<std::string>& defines, const
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, indices_.id());
     std::vector<std::string> d = defines;
     d.push_back("FLOOR_LISTS 1");
+    d.push_back("STAGE_TILE " + std::to_string(grid_.tile_w));
     dispatch_zbin_staged(d, camera, nullptr);
   }
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);

@@ -299,8 +299,8 @@ class ClusteredLights : public ch03::LocalLightPass {
   gl::Buffer lane_tiles_;  // zbin_lanes.comp's two dispatches and lists of tiles (lanes_from)
   std::size_t lane_tiles_bytes_ = 0;
   void shade_heavy_then_light(const std::vector<std::string>& defines, const ch03::LightBuffer* light, const FrameCamera& camera);
-  // zbin_staged.comp, a group a tile (its lanes as the settings say): the shading into `light`, or
-  // with FLOOR_LISTS in `defines` (light null) the floor's exact lists.
+  // zbin_staged.comp, a group a tile (its lanes as the settings say; `defines` name its STAGE_TILE):
+  // the shading into `light`, or with FLOOR_LISTS in `defines` (light null) the floor's exact lists.
   void dispatch_zbin_staged(std::vector<std::string> defines, const FrameCamera& camera, const ch03::LightBuffer* light);
   void check_staged_shape() const;  // throws where zbin_staged.comp cannot take the tiles and lanes asked for
   bool clocks_ready_ = false;
