@@ -320,12 +320,11 @@ void density_sweep(const Settings& s, Context& context, const Scene& scene, ch03
       auto use = [&](float scale) {
         frame.volumes().set_lights(ch03::build_light_set(ch09::scaled_lights(base, scale), threshold, frame.volumes().shapes()));
       };
-      ch09::ClusteredLights& fitting = fit_pass;
       const ch09::DensityFit fit = ch09::fit_density(target_density, start, [&](float scale) {
         use(scale);
         std::uint64_t lit = 0, surface = 0;
         for (const Camera& v : views) {
-          const ch09::EvalCounts c = counted(v, fitting);
+          const ch09::EvalCounts c = counted(v, fit_pass);
           lit += c.lit;
           surface += c.surface;
         }

@@ -53,8 +53,9 @@ struct WholeFrameSettings {
   bool clustered = true;   // chapter 09's clusters for the local lights; false: chapter 03's stencil volumes
   // The full-screen passes, chapter 03's global pass (ambient + directional), chapter 08's add of
   // the indirect light and chapter 03's composite into the float radiance, in compute or as their
-  // fragment passes: the same bodies, light buffer and radiance (ch03::GlobalPass). Compute, because a GPU may run fragment shaders on
-  // a few of its cores only and compute on all (the H200: the book's budget); elsewhere the same work.
+  // fragment passes: the same bodies, light buffer and radiance (ch03::GlobalPass). Compute,
+  // because a GPU may run fragment shaders on a few of its cores only and compute on all (the
+  // H200: the book's budget); elsewhere the same work.
   ch03::GlobalPass global = ch03::GlobalPass::Compute;
   bool ao = true;          // chapters 07/08: AO on the ambient light (the narrow disk)
   bool indirect = true;    // chapter 08: one bounce of diffuse indirect light (the wide disk)

@@ -192,7 +192,7 @@ void add_staged(Surface s, vec3 to_eye, uint k, uint block_bit, inout vec3 diffu
 }
 
 // What the walk does with each light of a pixel's part: add it (the shading), or (the floor's
-// lists) count those whose cut reaches the surface, or write them from `at` on.
+// lists) count those whose cut reaches the surface, or write them from `entry` on.
 const int kAdd = 0, kCount = 1, kWrite = 2;
 #ifdef FLOOR
 void list_staged(Surface s, uint k, int op, inout uint entry) {
